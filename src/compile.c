@@ -1,0 +1,1044 @@
+/* The 2С42 compiler (src/compile.h).  Blocks are parsed one at a time and
+ * compiled at once into bytecode (the parse arena is reset per block); the
+ * static checks of a block run on its parse; program structure (units,
+ * jump and call targets, running off a unit's end, reachability) is checked
+ * at the end on a compact per-block summary, and targets are patched in. */
+#include "compile.h"
+#include "errors.h"
+#include "kp.h"
+#include "opcodes.h"
+#include "parse.h"
+#include "vmmath.h"
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *const kp_motion_name[MO__COUNT] = {
+  "none", "G01", "G02", "G03", "G04", "G07", "G10", "G11", "G12", "G13", "G20", "G37", "M19", "dialog"
+};
+
+/* Per-block summary for the structure checks. */
+enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8 };
+struct summ {
+  int number;
+  unsigned line, col;
+  uint8_t flags;
+  int L, P, PP;            /* targets, -1 none */
+  unsigned Lcol, Pcol, PPcol;
+  long callpc, jpc, pppc;  /* instructions to patch, -1 none */
+  int unit;
+};
+
+struct comp {
+  struct program *p;
+  struct kp_ext *x;
+  struct diag_list *d;
+  struct block *b;
+  struct summ *s;
+  size_t ns, caps;
+  int oom;
+  int seen_g34;            /* text order: a G34 came before */
+  int prev_g27;            /* the previous block had G27 */
+  /* within a block: which slots are given, with known constant values */
+  uint16_t given;
+  uint16_t isconst;
+  double kval[SL__COUNT];
+  int stack, maxstack;
+};
+
+static void *grow(void *v, size_t *cap, size_t need, size_t elem, int *oom)
+{
+  if (need <= *cap)
+    return v;
+  size_t n = *cap ? *cap * 2 : 256;
+  while (n < need)
+    n *= 2;
+  void *q = realloc(v, n * elem);
+  if (!q) {
+    *oom = 1;
+    return v;
+  }
+  *cap = n;
+  return q;
+}
+
+static void err(struct comp *c, int code, unsigned col, const char *fmt, ...)
+  __attribute__((format(printf, 4, 5)));
+static void err(struct comp *c, int code, unsigned col, const char *fmt, ...)
+{
+  char msg[240];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  diag_add(c->d, DIAG_ERROR, code, c->b->line, col ? col : c->b->col, c->b->number, "%s", msg);
+}
+
+static void warn(struct comp *c, unsigned col, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void warn(struct comp *c, unsigned col, const char *fmt, ...)
+{
+  char msg[240];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  diag_add(c->d, DIAG_WARNING, 0, c->b->line, col ? col : c->b->col, c->b->number, "%s", msg);
+}
+
+static long emit(struct comp *c, int op, uint32_t a, unsigned col)
+{
+  long i = prog_emit(c->p, INS(op, a), col);
+  if (i < 0)
+    c->oom = 1;
+  return i;
+}
+
+static void push(struct comp *c, int n)
+{
+  c->stack += n;
+  if (c->stack > c->maxstack)
+    c->maxstack = c->stack;
+}
+
+static void emit_num(struct comp *c, double v, unsigned col)
+{
+  if (v >= 0 && v <= INS_AMAX && v == floor(v) && !(v == 0 && signbit(v))) {
+    emit(c, OP_INT, (uint32_t)v, col);
+  } else {
+    long k = prog_const(c->p, v);
+    if (k < 0)
+      c->oom = 1;
+    emit(c, OP_CONST, (uint32_t)(k < 0 ? 0 : k), col);
+  }
+  push(c, 1);
+}
+
+/* ---- constant folding ---- */
+
+/* Returns 1 and *v when e is constant.  A folding error (E-DIV0, E-DOMAIN on
+ * literals) is reported here, once, and *failed set. */
+static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
+{
+  double a, b;
+  char msg[200];
+  int e1, e2;
+  switch (e->kind) {
+  case EX_NUM:
+    *v = e->v;
+    return 1;
+  case EX_SLOT:
+    if (!(c->given & (1u << e->idx))) {
+      *v = 0;
+      return 1;
+    }
+    if (c->isconst & (1u << e->idx)) {
+      *v = c->kval[e->idx];
+      return 1;
+    }
+    return 0;
+  case EX_NEG:
+    if (!fold(c, e->a, &a, failed))
+      return 0;
+    *v = -a;
+    return 1;
+  case EX_BIN:
+    e1 = fold(c, e->a, &a, failed);
+    e2 = fold(c, e->b, &b, failed);
+    if (!e1 || !e2 || *failed)
+      return 0;
+    break;
+  case EX_FN:
+    if (!fold(c, e->a, &a, failed) || *failed)
+      return 0;
+    b = 0;
+    break;
+  case EX_CMP:
+    e1 = fold(c, e->a, &a, failed);
+    e2 = fold(c, e->b, &b, failed);
+    if (!e1 || !e2 || *failed)
+      return 0;
+    *v = vm_rel(a, b, e->op);
+    return 1;
+  case EX_AND: case EX_OR:
+    e1 = fold(c, e->a, &a, failed);
+    e2 = fold(c, e->b, &b, failed);
+    if (!e1 || !e2 || *failed)
+      return 0;
+    *v = e->kind == EX_AND ? (a != 0 && b != 0) : (a != 0 || b != 0);
+    return 1;
+  default:
+    return 0;
+  }
+  int code = vm_math(e->op, a, b, v, msg, sizeof msg);
+  if (code) {
+    err(c, code, e->col, "%s", msg);
+    *failed = 1;
+    return 0;
+  }
+  return 1;
+}
+
+static void gen(struct comp *c, const struct expr *e)
+{
+  double v;
+  int failed = 0;
+  if (e->kind != EX_CMP && e->kind != EX_AND && e->kind != EX_OR && fold(c, e, &v, &failed)) {
+    emit_num(c, v, e->col);
+    return;
+  }
+  switch (e->kind) {
+  case EX_NUM:
+    emit_num(c, e->v, e->col);
+    return;
+  case EX_REG:
+    emit(c, OP_REG, e->idx, e->col);
+    if ((e->idx == REG_TK || e->idx == REG_UG) && !c->x->uses_tk) {
+      c->x->uses_tk = 1;
+      c->x->tk_line = c->b->line;
+      c->x->tk_col = e->col;
+      c->x->tk_number = c->b->number;
+    }
+    push(c, 1);
+    return;
+  case EX_SLOT:
+    if (c->given & (1u << e->idx))
+      emit(c, OP_WORD, e->idx, e->col), push(c, 1);
+    else
+      emit_num(c, 0, e->col);
+    return;
+  case EX_ARR:
+    emit(c, OP_ARD, e->idx, e->col);
+    push(c, 1);
+    return;
+  case EX_NEG:
+    gen(c, e->a);
+    emit(c, OP_NEG, 0, e->col);
+    return;
+  case EX_FN:
+    gen(c, e->a);
+    emit(c, e->op, 0, e->col);
+    return;
+  case EX_BIN:
+    gen(c, e->a);
+    gen(c, e->b);
+    emit(c, e->op, 0, e->col);
+    push(c, -1);
+    return;
+  case EX_CMP:
+    gen(c, e->a);
+    gen(c, e->b);
+    emit(c, OP_CMP, e->op, e->col);
+    push(c, -1);
+    return;
+  case EX_AND: case EX_OR:
+    gen(c, e->a);
+    gen(c, e->b);
+    emit(c, e->kind == EX_AND ? OP_AND : OP_OR, 0, e->col);
+    push(c, -1);
+    return;
+  }
+}
+
+/* ---- conversion rules ---- */
+
+static uint32_t rule(struct comp *c, const char *name, double lo, double hi, int round_, int clamp, int code)
+{
+  struct prog_rule r;
+  memset(&r, 0, sizeof r);
+  r.lo = lo;
+  r.hi = hi;
+  r.round = (uint8_t)round_;
+  r.clamp_hi = (uint8_t)clamp;
+  r.err = (uint8_t)code;
+  snprintf(r.name, sizeof r.name, "%s", name);
+  long i = prog_rule(c->p, &r);
+  if (i < 0) {
+    c->oom = 1;
+    return 0;
+  }
+  return (uint32_t)i;
+}
+
+struct wrule { const char *name; double lo, hi; int round, clamp; };
+
+static struct wrule slot_rule(const struct block *b, int slot)
+{
+  int g04 = (b->g >> 4) & 1;
+  switch (slot) {
+  case SL_X: if (g04) return (struct wrule){"G04 X", 0, 999999, 1, 0};
+    return (struct wrule){"X", -999999, 999999, 1, 0};
+  case SL_Y: return (struct wrule){"Y", -999999, 999999, 1, 0};
+  case SL_Z: return (struct wrule){"Z", -999999, 999999, 1, 0};
+  case SL_A: return (struct wrule){"A", -9999999, 9999999, 1, 0};
+  case SL_I: return (struct wrule){"I", -4000000, 4000000, 1, 0};
+  case SL_J: return (struct wrule){"J", -4000000, 4000000, 1, 0};
+  case SL_K: return (struct wrule){"K", -4000000, 4000000, 1, 0};
+  case SL_H: return (struct wrule){"H", 0, 30000, 1, 0};
+  case SL_OSCF: return (struct wrule){"G07 F", 0, 6000, 1, 1};
+  case SL_SRCHF: return (struct wrule){"M12 F", 0, 6000, 1, 1};
+  default: return (struct wrule){slot == SL_MIN ? "G28 min" : "G28 max", -9999999, 9999999, 0, 0};
+  }
+}
+
+/* Emit value + SET into dest (register < VM_NREG, or VM_NREG + slot); check
+ * a constant value now, as `s42 check` must. */
+static void store(struct comp *c, const struct expr *e, unsigned dest, struct wrule w, unsigned col)
+{
+  double v;
+  int failed = 0;
+  int k = fold(c, e, &v, &failed);
+  if (failed)
+    return;
+  if (k) {
+    if (w.round)
+      v = round(v);
+    if (!(v >= w.lo && v <= w.hi)) {
+      if (w.clamp && v > w.hi) {
+        warn(c, col, "%s%.10g is over %.0f: clamped to %.0f", w.name, v, w.hi, w.hi);
+      } else {
+        err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w.name, v, w.lo, w.hi);
+        return;
+      }
+    }
+  }
+  if (dest >= VM_NREG) {
+    unsigned s = dest - VM_NREG;
+    c->given |= (uint16_t)(1u << s);
+    if (k) {
+      c->isconst |= (uint16_t)(1u << s);
+      c->kval[s] = w.round ? round(v) : v;
+      if (w.clamp && c->kval[s] > w.hi)
+        c->kval[s] = w.hi;
+    } else {
+      c->isconst &= (uint16_t)~(1u << s);
+    }
+  }
+  gen(c, e);
+  uint32_t r = rule(c, w.name, w.lo, w.hi, w.round, w.clamp, S42_E_RANGE);
+  emit(c, OP_SET, dest | r << 10, col);
+  push(c, -1);
+}
+
+/* ---- static checks of one block ---- */
+
+#define G(n) ((b->g >> (n)) & 1)
+#define M(n) ((b->m >> (n)) & 1)
+
+static int slot_word(const struct block *b, int slot, unsigned *col)
+{
+  for (int i = 0; i < b->nw; i++)
+    if (b->w[i].kind == WK_SLOT && (int)b->w[i].idx == slot) {
+      if (col)
+        *col = b->w[i].col;
+      return 1;
+    }
+  return 0;
+}
+
+static const struct word *find_word(const struct block *b, int kind)
+{
+  for (int i = 0; i < b->nw; i++)
+    if (b->w[i].kind == kind)
+      return &b->w[i];
+  return NULL;
+}
+
+static int motion_of(const struct block *b)
+{
+  if (G(1)) return MO_G01;
+  if (G(2)) return MO_G02;
+  if (G(3)) return MO_G03;
+  if (G(4)) return MO_G04;
+  if (G(7)) return MO_G07;
+  if (G(10)) return MO_G10;
+  if (G(11)) return MO_G11;
+  if (G(12)) return MO_G12;
+  if (G(13)) return MO_G13;
+  if (G(20)) return MO_G20;
+  if (G(37)) return MO_G37;
+  return MO_NONE;
+}
+
+/* In-plane axes of G17 (XY), G18 (YZ), G19 (XZ): slot indices. */
+static void plane_axes(int plane, int *p, int *q)
+{
+  switch (plane) {
+  case 17: *p = SL_X; *q = SL_Y; break;
+  case 18: *p = SL_Y; *q = SL_Z; break;
+  default: *p = SL_X; *q = SL_Z; break;
+  }
+}
+
+static const char *slot_name(int s)
+{
+  static const char *const n[] = {"X", "Y", "Z", "A", "I", "J", "K", "H"};
+  return s < 8 ? n[s] : "?";
+}
+
+/* Check the arc geometry when every in-plane word is a literal. */
+static void check_arc_const(struct comp *c, int plane, unsigned col)
+{
+  int p, q;
+  plane_axes(plane, &p, &q);
+  int cp = p + SL_I, cq = q + SL_I;   /* centre slot of each axis: X->I, Y->J, Z->K */
+  int need[4] = {p, q, cp, cq};
+  double v[4];
+  for (int i = 0; i < 4; i++) {
+    int s = need[i];
+    if (!(c->given & (1u << s)))
+      v[i] = 0;
+    else if (c->isconst & (1u << s))
+      v[i] = c->kval[s];
+    else
+      return;
+  }
+  double r0 = hypot(v[2], v[3]);
+  double r1 = hypot(v[2] - v[0], v[3] - v[1]);
+  if (r0 == 0)
+    err(c, S42_E_ARC, col, "arc centre at its start point: radius 0");
+  else if (r0 > 4000000.0)
+    err(c, S42_E_ARC, col, "arc radius %.3f mm is over 4000 mm", r0 / 1000);
+  else if (fabs(r0 - r1) > 2.0)
+    err(c, S42_E_ARC, col, "arc start radius %.0f µm and end radius %.0f µm differ by more than 2 µm", r0, r1);
+}
+
+static int text_len_check(struct comp *c, const struct text *t, const char *fn, unsigned max)
+{
+  if (t->nchars > max) {
+    err(c, S42_E_TEXT, t->col, "%s: text of %u characters, at most %u", fn, t->nchars, max);
+    return 0;
+  }
+  return 1;
+}
+
+/* Check the ((Rn references in a display text; returns how many. */
+static int text_refs(struct comp *c, const struct text *t, const char *fn, int g29)
+{
+  int n = 0;
+  for (const char *s = t->s; (s = strstr(s, "((")) != NULL;) {
+    const char *q = s + 2;
+    while (*q == ' ') q++;
+    if (*q != 'R' && strncmp(q, "\xD0\xA0", 2) != 0) {   /* R or Cyrillic Р */
+      s += 2;
+      continue;
+    }
+    q += *q == 'R' ? 1 : 2;
+    while (*q == ' ') q++;
+    if (*q < '0' || *q > '9') {
+      err(c, S42_E_TEXT, t->col, "%s: ((R must be followed by a parameter number", fn);
+      return n;
+    }
+    long r = strtol(q, NULL, 10);
+    if (r > 113)
+      err(c, S42_E_TEXT, t->col, "%s: parameter R%ld does not exist (R0..R113)", fn, r);
+    else if (g29 && (r < 100 || r > 113))
+      warn(c, t->col, "%s: current data are R100..R113 by convention; R%ld is shown anyway", fn, r);
+    n++;
+    s = q;
+  }
+  return n;
+}
+
+static void check_block(struct comp *c)
+{
+  struct block *b = c->b;
+  unsigned col;
+  /* groups */
+  int seen[5] = {0};
+  for (int i = 0; i < b->nw; i++) {
+    const struct word *w = &b->w[i];
+    if (w->kind != WK_G)
+      continue;
+    int grp = kp_g_group(w->num);
+    if (seen[grp])
+      err(c, S42_E_GROUP, w->col, "G%02d and G%02d are both group %d functions", seen[grp], w->num, grp);
+    else
+      seen[grp] = w->num;
+  }
+  int naxis = 0, ncentre = 0;
+  unsigned axcol = 0, cecol = 0;
+  for (int s = SL_X; s <= SL_A; s++)
+    if (slot_word(b, s, &col)) { naxis++; if (!axcol) axcol = col; }
+  for (int s = SL_I; s <= SL_K; s++)
+    if (slot_word(b, s, &col)) { ncentre++; if (!cecol) cecol = col; }
+  const struct word *F = NULL;
+  for (int i = 0; i < b->nw; i++)
+    if (b->w[i].kind == WK_REG && b->w[i].letter == 'F')
+      F = &b->w[i];
+  const struct word *L = find_word(b, WK_L), *P = find_word(b, WK_P), *PC = find_word(b, WK_PCOND),
+                    *PP = find_word(b, WK_PP);
+  int arc = G(2) || G(3) || G(12) || G(13);
+
+  /* functions that stand in a separate block */
+  static const int sep[] = {4, 7, 10, 11, 20, 37};
+  for (size_t i = 0; i < sizeof sep / sizeof sep[0]; i++) {
+    int g = sep[i];
+    if (!G(g))
+      continue;
+    if (g == 7) {
+      if (naxis != 1 || ncentre)
+        err(c, S42_E_OSC, b->gcol[7], "G07 takes exactly one axis word (the stroke) and F (the speed)");
+      else if (!F)
+        err(c, S42_E_OSC, b->gcol[7], "G07 needs F, the oscillation speed");
+    } else if (g == 4) {
+      if (!slot_word(b, SL_X, NULL))
+        err(c, S42_E_BLOCK, b->gcol[4], "G04 needs X, the dwell in 0.1 s (G04 X+20 = 2 s)");
+      if (naxis > 1 || ncentre)
+        err(c, S42_E_BLOCK, b->gcol[4], "G04 stands in a separate block: only X (the dwell) beside it");
+    } else if (naxis || ncentre) {
+      err(c, S42_E_BLOCK, axcol ? axcol : cecol, "G%02d stands in a separate block: no axis or centre words beside it", g);
+    }
+  }
+  if (M(19) && (G(4) || G(7) || G(10) || G(11) || G(20) || G(37)))
+    err(c, S42_E_BLOCK, b->mcol[19], "M19 gives the direction of a move: not with G04 G07 G10 G11 G20 G37");
+  if (M(19) && !naxis)
+    err(c, S42_E_BLOCK, b->mcol[19], "M19 needs the increments that give the direction of the move");
+
+  /* arcs and planes */
+  int plane = G(17) ? 17 : G(18) ? 18 : G(19) ? 19 : 0;
+  if (arc) {
+    int g = G(2) ? 2 : G(3) ? 3 : G(12) ? 12 : 13;
+    if (!plane) {
+      err(c, S42_E_PLANE, b->gcol[g], "G%02d needs a plane in the same block: G17 (XY), G18 (YZ) or G19 (XZ)", g);
+    } else {
+      int p, q;
+      plane_axes(plane, &p, &q);
+      int outside = 0;
+      for (int s = SL_X; s <= SL_A; s++) {
+        if (s == p || s == q || !slot_word(b, s, &col))
+          continue;
+        outside++;
+        if (g <= 3)
+          err(c, S42_E_PLANE, col, "%s is not in the G%d plane of this arc (%s%s)", slot_name(s), plane,
+              slot_name(p), slot_name(q));
+      }
+      if (g >= 12 && outside > 1)
+        err(c, S42_E_PLANE, b->gcol[g], "G%d: only one axis outside the G%d plane may move along the helix", g, plane);
+      for (int s = SL_I; s <= SL_K; s++)
+        if (s - SL_I != p && s - SL_I != q && slot_word(b, s, &col))
+          err(c, S42_E_PLANE, col, "centre word %s is not in the G%d plane (%s%s)", slot_name(s), plane,
+              slot_name(p), slot_name(q));
+    }
+  } else {
+    if (ncentre)
+      err(c, S42_E_BLOCK, cecol, "centre words I J K belong to an arc (G02 G03 G12 G13)");
+    if (plane && !M(19))
+      warn(c, b->gcol[plane], "G%d has no effect without an arc (G02 G03 G12 G13)", plane);
+  }
+
+  /* auxiliary functions */
+  int wheel = M(3) + M(4) + M(5);
+  if (wheel > 1)
+    err(c, S42_E_BLOCK, b->mcol[M(3) ? (M(4) ? 4 : 5) : 5], "only one of M3 M4 M5 in a block");
+  if (M(22) && M(23))
+    err(c, S42_E_BLOCK, b->mcol[23], "M22 and M23 contradict each other");
+  if (M(25) && M(26))
+    err(c, S42_E_BLOCK, b->mcol[26], "M25 and M26 contradict each other");
+  if (M(27) + M(28) + M(29) > 1)
+    err(c, S42_E_BLOCK, b->mcol[29] ? b->mcol[29] : b->mcol[28], "only one of M27 M28 M29 in a block");
+  if (M(18) && M(21))
+    err(c, S42_E_BLOCK, b->mcol[21], "M18 shows a directive and M21 erases it: not both in a block");
+  if (M(17) && M(2))
+    err(c, S42_E_BLOCK, b->mcol[17], "M17 and M2 in one block");
+  if ((P || PC) && (M(17) || M(2)))
+    err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
+  int dlg = G(10) || G(11) || G(27) || G(28) || G(33) || G(34);
+  int dg = G(10) ? 10 : G(11) ? 11 : G(27) ? 27 : G(28) ? 28 : G(33) ? 33 : 34;
+  if (dlg && PP)
+    err(c, S42_E_BLOCK, PP->col, "PP is not allowed in a block with G%02d", dg);
+  if (dlg && M(18))
+    err(c, S42_E_BLOCK, b->mcol[18], "M18 is not allowed in a block with G%02d", dg);
+  if (dlg && M(21))
+    err(c, S42_E_BLOCK, b->mcol[21], "M21 is not allowed in a block with G%02d", dg);
+  if ((M(10) || M(12)) && !(G(10) || G(11)))
+    err(c, S42_E_BLOCK, b->mcol[M(10) ? 10 : 12], "M%d belongs to a tooth-step search (G10 or G11)", M(10) ? 10 : 12);
+  if (slot_word(b, SL_H, &col) && !L)
+    err(c, S42_E_BLOCK, col, "H (repeat count) without L (sub call)");
+  if (L && (L->num < 2 || L->num > 999))
+    err(c, S42_E_RANGE, L->col, "L%d: a sub's first block is 2..999", L->num);
+  if ((P && P->num < 1) || (PC && PC->num < 1))
+    err(c, S42_E_RANGE, (P ? P : PC)->col, "jump target 0: block numbers are 1..999");
+  if (PP && PP->num < 1)
+    err(c, S42_E_RANGE, PP->col, "PP target 0: block numbers are 1..999");
+
+  /* group 4: dialog and display */
+  if (G(28) && !c->prev_g27)
+    err(c, S42_E_ORDER, b->gcol[28], "G28 must follow a G27 block (it stores the number G27 took)");
+  if (G(27) && c->seen_g34)
+    err(c, S42_E_ORDER, b->gcol[27], "G27 after G34: input has ended");
+  if (G(27)) {
+    text_len_check(c, &b->g27, "G27", b->g27form == '-' ? 56 : 24);
+    if (strstr(b->g27.s ? b->g27.s : "", "(("))
+      err(c, S42_E_TEXT, b->g27.col, "G27: ((Rn is for G29 and M18 texts");
+  }
+  if (G(33)) {
+    text_len_check(c, &b->g33, "G33", 32);
+    text_refs(c, &b->g33, "G33", 0);
+  }
+  if (M(18)) {
+    text_len_check(c, &b->m18, "M18", 32);
+    text_refs(c, &b->m18, "M18", 0);
+  }
+  for (int i = 0; i < b->ng29; i++) {
+    int refs = text_refs(c, &b->g29[i], "G29", 1);
+    if (refs > 1)
+      err(c, S42_E_TEXT, b->g29[i].col, "G29: one ((Rn value per line");
+    else
+      text_len_check(c, &b->g29[i], "G29", refs ? 24 + 6 : 32);
+  }
+  if (G(37) && b->g37axis != 'Y')
+    err(c, S42_E_AXIS, b->g37col ? b->g37col : b->gcol[37],
+        "G37 returns only Y to its home position: G37 /Y/");
+  if (b->len > 320)
+    err(c, S42_E_BLOCKLEN, b->col, "block of %u characters; at most 320 (ten display lines)", b->len);
+
+  /* functions whose plugins this build does not have */
+  static const struct { int g; const char *what, *plugin; } plug[] = {
+    {10, "tooth-step search", "toothsearch"}, {11, "tooth-step search", "toothsearch"},
+    {12, "helical interpolation", "helix"}, {13, "helical interpolation", "helix"},
+  };
+  for (size_t i = 0; i < sizeof plug / sizeof plug[0]; i++)
+    if (G(plug[i].g))
+      err(c, S42_E_PLUGIN, b->gcol[plug[i].g], "G%d (%s) needs the %s plugin, which is not installed",
+          plug[i].g, plug[i].what, plug[i].plugin);
+}
+
+/* ---- one block ---- */
+
+static uint32_t add_str(struct comp *c, const struct text *t)
+{
+  size_t n = strlen(t->s) + 1;
+  c->x->str = grow(c->x->str, &c->x->capstr, c->x->nstr + n, 1, &c->oom);
+  if (c->oom)
+    return 0;
+  memcpy(c->x->str + c->x->nstr, t->s, n);
+  c->x->nstr += n;
+  return (uint32_t)(c->x->nstr - n + 1);
+}
+
+static void compile_block(struct comp *c)
+{
+  struct block *b = c->b;
+  check_block(c);
+
+  struct prog_block pb = {0};
+  pb.line = b->line;
+  pb.col = (uint16_t)(b->col > 0xffff ? 0xffff : b->col);
+  pb.number = (uint16_t)(b->number < 0 ? 0 : b->number);
+  pb.code = (uint32_t)c->p->ncode;
+  long bi = prog_block_add(c->p, &pb);
+  if (bi < 0) {
+    c->oom = 1;
+    return;
+  }
+  c->x->a = grow(c->x->a, &c->x->cap, c->x->n + 1, sizeof *c->x->a, &c->oom);
+  c->s = grow(c->s, &c->caps, c->ns + 1, sizeof *c->s, &c->oom);
+  if (c->oom)
+    return;
+  struct kp_attr *at = &c->x->a[c->x->n++];
+  struct summ *sm = &c->s[c->ns++];
+  memset(at, 0, sizeof *at);
+  memset(sm, 0, sizeof *sm);
+  sm->number = b->number;
+  sm->line = b->line;
+  sm->col = b->col;
+  sm->L = sm->P = sm->PP = -1;
+  sm->callpc = sm->jpc = sm->pppc = -1;
+  if (b->bad)
+    sm->flags |= SF_BAD;
+
+  at->g = b->g;
+  at->m = b->m;
+  at->plane = (uint8_t)(G(17) ? 17 : G(18) ? 18 : G(19) ? 19 : 0);
+  at->g28reg = (int16_t)b->g28reg;
+  at->g27form = b->g27form;
+  at->g37axis = b->g37axis;
+  int mo = motion_of(b);
+  if (M(19))
+    mo = MO_M19;
+  else if (mo == MO_NONE && (G(27) || G(28) || G(29) || G(33) || G(34)))
+    mo = MO_DIALOG;
+  c->given = c->isconst = 0;
+  c->stack = 0;
+  emit(c, OP_BLOCK, (uint32_t)bi, b->col);
+
+  int g07 = G(7), srch = (G(10) || G(11)) && M(12);
+  int has_motion_words = 0;
+  for (int i = 0; i < b->nw; i++) {
+    const struct word *w = &b->w[i];
+    switch (w->kind) {
+    case WK_REG: {
+      if (w->letter == 'F' && (g07 || srch)) {
+        store(c, w->e, VM_NREG + (g07 ? SL_OSCF : SL_SRCHF), slot_rule(b, g07 ? SL_OSCF : SL_SRCHF), w->col);
+        at->slots |= (uint16_t)(1u << (g07 ? SL_OSCF : SL_SRCHF));
+      } else if (w->letter == 'F') {
+        store(c, w->e, REG_F, (struct wrule){"F", 0, 6000, 1, 1}, w->col);
+        at->has_f = 1;
+      } else if (w->letter == 'D') {
+        store(c, w->e, REG_D1, (struct wrule){"D1", 0, 400000, 0, 0}, w->col);
+      } else {
+        char name[8];
+        snprintf(name, sizeof name, "R%d", w->num);
+        store(c, w->e, w->idx, (struct wrule){name, -9999999, 9999999, 0, 0}, w->col);
+      }
+      break;
+    }
+    case WK_SLOT:
+      store(c, w->e, VM_NREG + w->idx, slot_rule(b, (int)w->idx), w->col);
+      at->slots |= (uint16_t)(1u << w->idx);
+      if (w->idx <= SL_A) {
+        has_motion_words = 1;
+        /* M19 teach-in: a bare parameter (+Rn / -Rn) receives the move */
+        const struct expr *e = w->e;
+        int sign = 1;
+        if (e->kind == EX_NEG) { sign = -1; e = e->a; }
+        if (e->kind == EX_REG && e->idx <= 113)
+          at->bare[w->idx] = (int8_t)(sign * ((int)e->idx + 1));
+      }
+      break;
+    case WK_AWR:
+      gen(c, w->e);
+      emit(c, OP_AWR, w->idx, w->col);
+      push(c, -1);
+      break;
+    case WK_AOP:
+      emit(c, w->op, w->idx, w->col);
+      break;
+    default:
+      break;
+    }
+  }
+  if (mo == MO_NONE && has_motion_words)
+    mo = MO_G01;
+  at->motion = (uint8_t)mo;
+  if (G(28) && b->g28min) {
+    store(c, b->g28min, VM_NREG + SL_MIN, slot_rule(b, SL_MIN), b->g28col);
+    store(c, b->g28max, VM_NREG + SL_MAX, slot_rule(b, SL_MAX), b->g28col);
+  }
+  if ((G(2) || G(3) || G(12) || G(13)) && at->plane)
+    check_arc_const(c, at->plane, b->gcol[G(2) ? 2 : G(3) ? 3 : G(12) ? 12 : 13]);
+  const struct word *PC = find_word(b, WK_PCOND);
+  if (b->cond && PC) {
+    gen(c, b->cond);
+    emit(c, OP_COND, 0, PC->col);
+    push(c, -1);
+  }
+  /* Blocks with anything for the machine or the display always yield;
+   * the rest only when the host watches every block (trace, operator). */
+  int machine = mo != MO_NONE || b->m || at->has_f || b->g;
+  emit(c, machine ? OP_MACH : OP_SYNC, 0, b->col);
+  for (int i = 0; i < b->nm20; i++)
+    emit(c, OP_TRUNC, b->m20[i], b->m20col[i]);
+  emit(c, OP_COMMIT, 0, b->col);
+  const struct word *L = find_word(b, WK_L), *P = find_word(b, WK_P), *PP = find_word(b, WK_PP);
+  if (L) {
+    if (c->given & (1u << SL_H))
+      emit(c, OP_WORD, SL_H, L->col);
+    else
+      emit(c, OP_INT, 1, L->col);
+    sm->L = L->num;
+    sm->Lcol = L->col;
+    sm->callpc = emit(c, OP_CALL, 0, L->col);
+  }
+  if (PP) {
+    sm->PP = PP->num;
+    sm->PPcol = PP->col;
+    sm->pppc = emit(c, OP_PPJ, 0, PP->col);
+  }
+  if (P || PC) {
+    const struct word *j = P ? P : PC;
+    sm->P = j->num;
+    sm->Pcol = j->col;
+    double v;
+    int failed = 0;
+    int always = P || (fold(c, b->cond, &v, &failed) && v != 0);
+    if (always)
+      sm->flags |= SF_UNCOND;
+    sm->jpc = emit(c, P ? OP_JMP : OP_JCOND, 0, j->col);
+  }
+  if (M(17)) {
+    sm->flags |= SF_M17;
+    emit(c, OP_RET, 0, b->mcol[17]);
+  }
+  if (M(2)) {
+    sm->flags |= SF_M2;
+    emit(c, OP_END, 0, b->mcol[2]);
+  }
+  if (c->maxstack > 500)
+    err(c, S42_E_SYNTAX, b->col, "expression too complex");
+
+  /* keep the texts */
+  if (G(27) && b->g27.s) at->g27 = add_str(c, &b->g27);
+  if (G(33) && b->g33.s) at->g33 = add_str(c, &b->g33);
+  if (M(18) && b->m18.s) at->m18 = add_str(c, &b->m18);
+  if (b->ng29) {
+    at->g29 = (uint32_t)c->x->nlines;
+    at->ng29 = (uint32_t)b->ng29;
+    for (int i = 0; i < b->ng29; i++) {
+      c->x->lines = grow(c->x->lines, &c->x->caplines, c->x->nlines + 1, sizeof *c->x->lines, &c->oom);
+      if (c->oom)
+        return;
+      c->x->lines[c->x->nlines++] = add_str(c, &b->g29[i]);
+    }
+  }
+  if (b->nm16) {
+    at->m16 = (uint32_t)c->x->nm16;
+    at->nm16 = (uint32_t)b->nm16;
+    c->x->m16 = grow(c->x->m16, &c->x->capm16, c->x->nm16 + (size_t)b->nm16, sizeof *c->x->m16, &c->oom);
+    if (c->oom)
+      return;
+    memcpy(c->x->m16 + c->x->nm16, b->m16, (size_t)b->nm16 * sizeof *b->m16);
+    c->x->nm16 += (size_t)b->nm16;
+  }
+  if (M(10) && (G(10) || G(11)))
+    c->x->has_m10 = 1;
+  c->prev_g27 = G(27);
+  if (G(34))
+    c->seen_g34 = 1;
+}
+
+/* ---- program structure ---- */
+
+static void serr(struct comp *c, const struct summ *s, unsigned col, int code, const char *fmt, ...)
+  __attribute__((format(printf, 5, 6)));
+static void serr(struct comp *c, const struct summ *s, unsigned col, int code, const char *fmt, ...)
+{
+  char msg[240];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  diag_add(c->d, code ? DIAG_ERROR : DIAG_WARNING, code, s->line, col ? col : s->col, s->number, "%s", msg);
+}
+
+static void ext_free(void *v)
+{
+  struct kp_ext *x = v;
+  if (!x)
+    return;
+  free(x->a);
+  free(x->str);
+  free(x->lines);
+  free(x->m16);
+  free(x);
+}
+
+static void structure(struct comp *c)
+{
+  size_t n = c->ns;
+  struct summ *S = c->s;
+  if (n == 0) {
+    diag_add(c->d, DIAG_ERROR, S42_E_SUB, 1, 1, -1, "the program is empty: it needs block 1 and M2");
+    return;
+  }
+  /* index: number -> first block, count */
+  int first[1000], count[1000];
+  for (int i = 0; i < 1000; i++) {
+    first[i] = -1;
+    count[i] = 0;
+  }
+  for (size_t i = 0; i < n; i++)
+    if (S[i].number > 0 && S[i].number < 1000) {
+      if (first[S[i].number] < 0)
+        first[S[i].number] = (int)i;
+      count[S[i].number]++;
+    }
+  /* unit starts: block 1 and every L target */
+  char *start = calloc(n, 1);
+  int *unit = malloc(n * sizeof *unit);
+  if (!start || !unit) {
+    free(start);
+    free(unit);
+    c->oom = 1;
+    return;
+  }
+  int mp = first[1];
+  if (mp < 0)
+    diag_add(c->d, DIAG_ERROR, S42_E_SUB, S[0].line, S[0].col, S[0].number,
+             "no block 1: the main program starts at block 1");
+  else if (count[1] > 1)
+    for (size_t i = 0; i < n; i++)
+      if (S[i].number == 1 && (int)i != mp)
+        serr(c, &S[i], 0, S42_E_SUB, "block 1 appears twice: the main program starts at block 1");
+  if (mp >= 0)
+    start[mp] = 1;
+  for (size_t i = 0; i < n; i++) {
+    if (S[i].L < 0 || S[i].L < 2 || S[i].L > 999)
+      continue;
+    int t = S[i].L;
+    if (count[t] == 0)
+      serr(c, &S[i], S[i].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
+    else if (count[t] > 1)
+      serr(c, &S[i], S[i].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
+           t, t, count[t]);
+    else {
+      if (mp >= 0 && first[t] > mp)
+        serr(c, &S[first[t]], 0, S42_E_SUB, "sub %d starts after block 1: subs come before the main program", t);
+      start[first[t]] = 1;
+    }
+  }
+  /* units in text order: 0 = the MP, subs numbered from 1 */
+  int u = -1, nsub = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (start[i])
+      u = ((int)i == mp) ? 0 : ++nsub;
+    unit[i] = u;
+    S[i].unit = u;
+    c->p->blocks[i].unit = (uint16_t)(u < 0 ? 0xffff : u);
+  }
+  /* jumps */
+  for (size_t i = 0; i < n; i++) {
+    int tg[2] = {S[i].P, S[i].PP};
+    unsigned tc[2] = {S[i].Pcol, S[i].PPcol};
+    for (int k = 0; k < 2; k++) {
+      int t = tg[k];
+      if (t < 1)
+        continue;
+      if (t > 999 || count[t] == 0)
+        serr(c, &S[i], tc[k], S42_E_TARGET, "%s%d: there is no block %d", k ? "PP" : "P", t, t);
+      else if (count[t] > 1)
+        serr(c, &S[i], tc[k], S42_E_TARGET, "%s%d: block %d appears %d times; a jump target must be unique",
+             k ? "PP" : "P", t, t, count[t]);
+      else if (unit[first[t]] != unit[i])
+        serr(c, &S[i], tc[k], S42_E_SCOPE, "%s%d: block %d is in another %s", k ? "PP" : "P", t, t,
+             unit[i] == 0 ? "unit (a sub)" : "unit");
+    }
+  }
+  /* M17 in the MP, running off the end of a unit */
+  for (size_t i = 0; i < n; i++) {
+    if ((S[i].flags & SF_M17) && unit[i] == 0)
+      serr(c, &S[i], 0, S42_E_SUB, "M17 (end of sub) in the main program");
+    int last = i + 1 == n || start[i + 1];
+    if (!last || unit[i] < 0 || (S[i].flags & SF_BAD))
+      continue;
+    int ok = (S[i].flags & (SF_M2 | SF_UNCOND)) || (unit[i] > 0 && (S[i].flags & SF_M17));
+    if (!ok) {
+      if (unit[i] == 0)
+        serr(c, &S[i], 0, S42_E_SUB, "the main program can run off its end here: its last block needs M2 or an unconditional jump");
+      else
+        serr(c, &S[i], 0, S42_E_SUB, "this sub can run off its end here: its last block needs M17, M2 or an unconditional jump");
+    }
+  }
+  int anym2 = 0;
+  for (size_t i = 0; i < n; i++)
+    if ((S[i].flags & SF_M2) && unit[i] >= 0)
+      anym2 = 1;
+  if (!anym2 && mp >= 0)
+    diag_add(c->d, DIAG_ERROR, S42_E_SUB, S[n - 1].line, S[n - 1].col, S[n - 1].number,
+             "no M2: the program never ends");
+
+  /* reachability, per unit, for the dead-code warning */
+  char *reach = calloc(n, 1);
+  size_t *work = malloc(n * sizeof *work);
+  if (reach && work && !c->d->nerr) {
+    size_t top = 0;
+    for (size_t i = 0; i < n; i++)
+      if (start[i]) {
+        reach[i] = 1;
+        work[top++] = i;
+      }
+    while (top) {
+      size_t i = work[--top];
+      size_t nx[3];
+      int nn = 0;
+      if (!(S[i].flags & (SF_M2 | SF_M17 | SF_UNCOND)) && i + 1 < n && !start[i + 1])
+        nx[nn++] = i + 1;
+      if (S[i].P > 0 && S[i].P < 1000 && first[S[i].P] >= 0)
+        nx[nn++] = (size_t)first[S[i].P];
+      if (S[i].PP > 0 && S[i].PP < 1000 && first[S[i].PP] >= 0)
+        nx[nn++] = (size_t)first[S[i].PP];
+      for (int k = 0; k < nn; k++)
+        if (!reach[nx[k]]) {
+          reach[nx[k]] = 1;
+          work[top++] = nx[k];
+        }
+    }
+    for (size_t i = 0; i < n; i++)
+      if (!reach[i]) {
+        size_t j = i;
+        while (j + 1 < n && !reach[j + 1])
+          j++;
+        serr(c, &S[i], 0, 0, "%s never run%s", unit[i] < 0 ? "blocks before the first unit are" : "this code is",
+             j > i ? " (up to the next reachable block)" : "");
+        i = j;
+      }
+    /* recursion: a sub that can call itself, directly or through others */
+    int nu = nsub + 1;
+    char *calls = calloc((size_t)nu * (size_t)nu, 1);
+    if (calls) {
+      for (size_t i = 0; i < n; i++)
+        if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
+          calls[unit[i] * nu + unit[first[S[i].L]]] = 1;
+      for (int k = 0; k < nu; k++)
+        for (int i = 0; i < nu; i++)
+          if (calls[i * nu + k])
+            for (int j = 0; j < nu; j++)
+              if (calls[k * nu + j])
+                calls[i * nu + j] = 1;
+      for (size_t i = 0; i < n; i++)
+        if (start[i] && unit[i] > 0 && calls[unit[i] * nu + unit[i]])
+          serr(c, &S[i], 0, 0, "sub %d can call itself: more than 8 nested calls stop the run with E-NEST",
+               S[i].number);
+      free(calls);
+    }
+  }
+  free(reach);
+  free(work);
+
+  /* patch targets */
+  if (!c->d->nerr) {
+    for (size_t i = 0; i < n; i++) {
+      if (S[i].callpc >= 0)
+        c->p->code[S[i].callpc] = INS(OP_CALL, c->p->blocks[first[S[i].L]].code);
+      if (S[i].jpc >= 0)
+        c->p->code[S[i].jpc] = INS(INS_OP(c->p->code[S[i].jpc]), c->p->blocks[first[S[i].P]].code);
+      if (S[i].pppc >= 0)
+        c->p->code[S[i].pppc] = INS(OP_PPJ, c->p->blocks[first[S[i].PP]].code);
+    }
+    c->p->entry = c->p->blocks[mp].code;
+  }
+  free(start);
+  free(unit);
+}
+
+int comp_program(const char *src, size_t n, struct diag_list *d, struct program *p)
+{
+  struct comp c;
+  memset(&c, 0, sizeof c);
+  c.p = p;
+  c.d = d;
+  c.x = calloc(1, sizeof *c.x);
+  c.b = malloc(sizeof *c.b);
+  if (!c.x || !c.b) {
+    free(c.x);
+    free(c.b);
+    diag_add(d, DIAG_ERROR, S42_E_SYNTAX, 1, 1, -1, "out of memory");
+    return -1;
+  }
+  p->ext = c.x;
+  p->ext_free = ext_free;
+  p->saved_reg = REG_F;
+  p->file = d->file;
+  struct parser ps;
+  parse_init(&ps, src, n, d);
+  while (!c.oom && parse_block(&ps, c.b)) {
+    c.maxstack = 0;
+    compile_block(&c);
+  }
+  /* a last instruction so that nothing runs off the code */
+  emit(&c, OP_END, 0, 0);
+  parse_free(&ps);
+  if (!c.oom)
+    structure(&c);
+  if (c.x->uses_tk && !c.x->has_m10)
+    diag_add(d, DIAG_WARNING, 0, c.x->tk_line, c.x->tk_col, c.x->tk_number,
+             "TK and UG are set only by a tooth-step search with M10, and this program has none: they read 0");
+  if (c.oom)
+    diag_add(d, DIAG_ERROR, S42_E_LIMIT, 1, 1, -1, "out of memory, or the program exceeds 16 million instructions");
+  free(c.s);
+  free(c.b);
+  diag_sort(d);
+  return d->nerr ? -1 : 0;
+}

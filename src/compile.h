@@ -1,0 +1,14 @@
+/* The 2С42 compiler: text -> program (bytecode, block table, attributes),
+ * with every static check of language.md and all diagnostics in one pass. */
+#ifndef S42_COMPILE_H
+#define S42_COMPILE_H
+
+#include "diag.h"
+#include "program.h"
+#include <stddef.h>
+
+/* Compile src (n bytes).  Diagnostics go to d.  Returns 0 when the program
+ * can run (no errors), -1 otherwise (p still holds what was built). */
+int comp_program(const char *src, size_t n, struct diag_list *d, struct program *p);
+
+#endif

@@ -1,0 +1,57 @@
+/* What a compiled 2С42 block means to the machine and the display: the
+ * front end's per-block attributes, kept in program.ext and indexed like
+ * program.blocks.  The VM never reads these; the session does. */
+#ifndef S42_KP_H
+#define S42_KP_H
+
+#include "ast.h"
+#include "program.h"
+#include <stdint.h>
+
+enum motion {
+  MO_NONE, MO_G01, MO_G02, MO_G03, MO_G04, MO_G07, MO_G10, MO_G11, MO_G12, MO_G13,
+  MO_G20, MO_G37, MO_M19, MO_DIALOG, MO__COUNT
+};
+extern const char *const kp_motion_name[MO__COUNT];
+
+struct kp_attr {
+  uint64_t g;          /* bit n: Gn */
+  uint32_t m;          /* bit n: Mn */
+  uint16_t slots;      /* bit s: word slot s given (ast.h SL_*) */
+  uint8_t motion;      /* enum motion */
+  uint8_t plane;       /* 0, 17, 18 or 19 */
+  uint8_t has_f;       /* the block sets the contour speed */
+  char g27form;        /* ':' or '-' */
+  char g37axis;
+  int16_t g28reg;      /* -1 none */
+  uint32_t g27, g33, m18;   /* string offsets + 1 into kp_ext.str; 0 none */
+  uint32_t g29, ng29;       /* first index into kp_ext.lines, count */
+  uint32_t m16, nm16;       /* first index into kp_ext.m16, count */
+  int8_t bare[4];      /* M19: axis word X Y Z A is +Rn (n+1) or -Rn (-(n+1)); 0 not bare */
+};
+
+struct kp_ext {
+  struct kp_attr *a;
+  size_t n, cap;
+  char *str;
+  size_t nstr, capstr;
+  uint32_t *lines;     /* string offsets + 1 */
+  size_t nlines, caplines;
+  struct m16_item *m16;
+  size_t nm16, capm16;
+  int uses_tk;         /* TK or UG is read somewhere */
+  unsigned tk_line, tk_col; int tk_number;   /* the first place */
+  int has_m10;         /* some block measures TK and UG (G10/G11 M10) */
+};
+
+static inline const struct kp_attr *kp_attr(const struct program *p, size_t b)
+{
+  return &((const struct kp_ext *)p->ext)->a[b];
+}
+
+static inline const char *kp_str(const struct program *p, uint32_t off)
+{
+  return off ? ((const struct kp_ext *)p->ext)->str + off - 1 : NULL;
+}
+
+#endif

@@ -1,0 +1,206 @@
+/* The 2С42 lexer (src/lex.h). */
+#include "lex.h"
+#include "errors.h"
+#include <string.h>
+
+void lex_init(struct lex *l, const char *s, size_t n, struct diag_list *d)
+{
+  memset(l, 0, sizeof *l);
+  l->s = s;
+  l->n = n;
+  l->line = l->col = 1;
+  l->d = d;
+  l->number = -1;
+  /* A UTF-8 byte-order mark is not part of the program. */
+  if (n >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0)
+    l->pos = 3;
+}
+
+/* Decode one code point at p; *len gets its byte length.  Invalid UTF-8 is
+ * returned as U+FFFD (one byte), which no word accepts. */
+static int32_t decode(const struct lex *l, size_t p, size_t *len)
+{
+  const unsigned char *s = (const unsigned char *)l->s + p;
+  size_t left = l->n - p;
+  unsigned char b = s[0];
+  *len = 1;
+  if (b < 0x80)
+    return b;
+  int need;
+  int32_t c;
+  if ((b & 0xE0) == 0xC0) { need = 1; c = b & 0x1F; }
+  else if ((b & 0xF0) == 0xE0) { need = 2; c = b & 0x0F; }
+  else if ((b & 0xF8) == 0xF0) { need = 3; c = b & 0x07; }
+  else return 0xFFFD;
+  if ((size_t)need >= left)
+    return 0xFFFD;
+  for (int i = 1; i <= need; i++) {
+    if ((s[i] & 0xC0) != 0x80)
+      return 0xFFFD;
+    c = (c << 6) | (s[i] & 0x3F);
+  }
+  if ((need == 1 && c < 0x80) || (need == 2 && c < 0x800) || (need == 3 && c < 0x10000) ||
+      c > 0x10FFFF || (c >= 0xD800 && c <= 0xDFFF))
+    return 0xFFFD;
+  *len = (size_t)need + 1;
+  return c;
+}
+
+int lex_utf8(int32_t c, char *buf)
+{
+  if (c < 0x80) { buf[0] = (char)c; return 1; }
+  if (c < 0x800) { buf[0] = (char)(0xC0 | (c >> 6)); buf[1] = (char)(0x80 | (c & 0x3F)); return 2; }
+  if (c < 0x10000) {
+    buf[0] = (char)(0xE0 | (c >> 12)); buf[1] = (char)(0x80 | ((c >> 6) & 0x3F));
+    buf[2] = (char)(0x80 | (c & 0x3F)); return 3;
+  }
+  buf[0] = (char)(0xF0 | (c >> 18)); buf[1] = (char)(0x80 | ((c >> 12) & 0x3F));
+  buf[2] = (char)(0x80 | ((c >> 6) & 0x3F)); buf[3] = (char)(0x80 | (c & 0x3F));
+  return 4;
+}
+
+/* Cyrillic capitals that look like Latin ones: А В С Е Н К М О Р Т Х. */
+static int32_t lookalike(int32_t c)
+{
+  switch (c) {
+  case 0x0410: return 'A';
+  case 0x0412: return 'B';
+  case 0x0421: return 'C';
+  case 0x0415: return 'E';
+  case 0x041D: return 'H';
+  case 0x041A: return 'K';
+  case 0x041C: return 'M';
+  case 0x041E: return 'O';
+  case 0x0420: return 'P';
+  case 0x0422: return 'T';
+  case 0x0425: return 'X';
+  default: return 0;
+  }
+}
+
+static void step(struct lex *l, size_t len, int32_t c)
+{
+  l->pos += len;
+  if (c == '\n') {
+    l->line++;
+    l->col = 1;
+  } else {
+    l->col++;
+  }
+}
+
+int32_t lex_peek(struct lex *l)
+{
+  for (;;) {
+    if (l->pos >= l->n) {
+      l->c = LX_EOF;
+      l->cpos = l->cnext = l->pos;
+      l->cline = l->cnline = l->line;
+      l->ccol = l->cncol = l->col;
+      return LX_EOF;
+    }
+    size_t len;
+    int32_t c = decode(l, l->pos, &len);
+    if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+      step(l, len, c);
+      continue;
+    }
+    if (c == ';') {          /* comment to the end of the line */
+      while (l->pos < l->n && l->s[l->pos] != '\n') {
+        c = decode(l, l->pos, &len);
+        step(l, len, c);
+      }
+      continue;
+    }
+    l->c = c;
+    l->cpos = l->pos;
+    l->cline = l->line;
+    l->ccol = l->col;
+    l->cnext = l->pos + len;
+    l->cnline = l->line;
+    l->cncol = l->col + 1;
+    if (c == '\n') {
+      l->cnline = l->line + 1;
+      l->cncol = 1;
+      l->c = LX_EOB;
+    } else if (c == '^') {
+      l->c = LX_EOB;
+    } else if (c == 0x041F) {   /* П: ПС ends the block */
+      size_t len2;
+      if (l->cnext < l->n) {
+        int32_t c2 = decode(l, l->cnext, &len2);
+        if (c2 == 0x0421 || c2 == 'C') {
+          l->cnext += len2;
+          l->cncol++;
+          l->c = LX_EOB;
+        }
+      }
+    } else {
+      int32_t m = lookalike(c);
+      if (m) {
+        if (!l->noted) {
+          l->noted = 1;
+          diag_add(l->d, DIAG_NOTE, 0, l->line, l->col, l->number,
+                   "Cyrillic look-alike letters are read as the Latin ones (first here)");
+        }
+        l->c = m;
+      }
+    }
+    return l->c;
+  }
+}
+
+void lex_adv(struct lex *l)
+{
+  if (l->c != LX_EOB && l->c != LX_EOF)
+    l->blen++;
+  l->pos = l->cnext;
+  l->line = l->cnline;
+  l->col = l->cncol;
+}
+
+int32_t lex_raw_peek(struct lex *l)
+{
+  if (l->pos >= l->n)
+    return LX_EOF;
+  size_t len;
+  int32_t c = decode(l, l->pos, &len);
+  if (c == '\n' || c == '^')
+    return LX_EOB;
+  if (c == '\r' && l->pos + 1 < l->n && l->s[l->pos + 1] == '\n')
+    return LX_EOB;
+  return c;
+}
+
+void lex_raw_adv(struct lex *l)
+{
+  size_t len;
+  int32_t c = decode(l, l->pos, &len);
+  l->blen++;
+  step(l, len, c);
+}
+
+void lex_skip_block(struct lex *l)
+{
+  for (;;) {
+    int32_t c = lex_peek(l);
+    if (c == LX_EOB || c == LX_EOF)
+      return;
+    lex_adv(l);
+  }
+}
+
+struct lex_mark lex_mark(const struct lex *l)
+{
+  struct lex_mark m = {l->pos, l->line, l->col, l->blen};
+  return m;
+}
+
+void lex_reset(struct lex *l, struct lex_mark m)
+{
+  l->pos = m.pos;
+  l->line = m.line;
+  l->col = m.col;
+  l->blen = m.blen;
+  lex_peek(l);   /* what lex_adv consumes must be this position's character */
+}

@@ -1,0 +1,48 @@
+/* The 2С42 lexer: a cursor over UTF-8 program text, driven by the parser.
+ * Outside text it skips spaces, tabs and `;` comments, maps the Cyrillic
+ * look-alike letters to Latin (noting it once per file) and turns newline,
+ * `^` and `ПС` into an end-of-block mark; inside a slash argument it gives
+ * the characters as they are. */
+#ifndef S42_LEX_H
+#define S42_LEX_H
+
+#include "diag.h"
+#include <stddef.h>
+#include <stdint.h>
+
+#define LX_EOB (-1)   /* end of block: newline, ^ or ПС */
+#define LX_EOF (-2)
+
+struct lex {
+  const char *s;
+  size_t n, pos;          /* pos: next unread byte */
+  unsigned line, col;     /* of pos (1-based, columns count characters) */
+  struct diag_list *d;
+  int number;             /* the current block's number, for diagnostics */
+  int noted;              /* look-alike note given */
+  unsigned blen;          /* significant characters of the current block */
+  /* what lex_peek saw: */
+  int32_t c;
+  size_t cpos, cnext;
+  unsigned cline, ccol, cnline, cncol;
+};
+
+struct lex_mark { size_t pos; unsigned line, col, blen; };
+
+void lex_init(struct lex *l, const char *s, size_t n, struct diag_list *d);
+/* The next significant character (mapped), LX_EOB or LX_EOF; not consumed. */
+int32_t lex_peek(struct lex *l);
+/* Consume what lex_peek returned (a whole ПС for LX_EOB); counts it. */
+void lex_adv(struct lex *l);
+/* Raw access inside text: the next character as written, or LX_EOB at a
+ * newline or ^ (which end the block even inside text), LX_EOF at the end. */
+int32_t lex_raw_peek(struct lex *l);
+void lex_raw_adv(struct lex *l);
+/* Skip the rest of a malformed block up to (not including) its end mark. */
+void lex_skip_block(struct lex *l);
+struct lex_mark lex_mark(const struct lex *l);
+void lex_reset(struct lex *l, struct lex_mark m);
+/* Encode a code point as UTF-8 into buf (4 bytes max); returns length. */
+int lex_utf8(int32_t c, char *buf);
+
+#endif

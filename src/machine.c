@@ -1,0 +1,301 @@
+/* The simulated machine (src/machine.h). */
+#include "machine.h"
+#include "ast.h"
+#include "errors.h"
+#include "kp.h"
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define BIT(x, n) (((x) >> (n)) & 1)
+
+void mach_init(struct machine *m)
+{
+  memset(m, 0, sizeof *m);
+  m->override_pct = 100;
+  m->override_allowed = 1;
+}
+
+static double axis_max(int axis)
+{
+  return axis == AX_Y ? MACH_Y_MAX : MACH_AXIS_MAX;
+}
+
+int64_t mach_osc_offset(const struct machine *m)
+{
+  const struct mach_osc *o = &m->osc;
+  if (!o->active)
+    return 0;
+  double s = fabs(o->stroke);
+  if (s == 0)
+    return 0;
+  double p = fmod(o->travel, 2 * s);
+  double off = p <= s ? p : 2 * s - p;
+  return (int64_t)llround(o->stroke < 0 ? -off : off);
+}
+
+void mach_advance(struct machine *m, double dt)
+{
+  if (!(dt > 0))
+    return;
+  m->t += dt;
+  if (m->osc.active) {
+    m->osc.travel += dt * m->osc.speed * 1000.0 / 60.0;
+    m->pos[m->osc.axis] = m->osc.base + mach_osc_offset(m);
+  }
+}
+
+void mach_jog(struct machine *m, int axis, int64_t d, int correction)
+{
+  m->pos[axis] += d;
+  if (correction)
+    m->corr[axis] += d;
+}
+
+double mach_linear_limit(const double d[4])
+{
+  double x = d[0] / 1000, y = d[1] / 1000, z = d[2] / 1000, a = d[3] / 1000;
+  double l2 = x * x + y * y + z * z + a * a;
+  if (l2 == 0)
+    return MACH_AXIS_MAX;
+  return MACH_AXIS_MAX * sqrt(l2 / (x * x + 36.0 * 36.0 * y * y + z * z + a * a));
+}
+
+static void plane_axes(int plane, int *p, int *q)
+{
+  switch (plane) {
+  case 17: *p = AX_X; *q = AX_Y; break;
+  case 18: *p = AX_Y; *q = AX_Z; break;
+  default: *p = AX_X; *q = AX_Z; break;
+  }
+}
+
+/* Is angle t inside the sweep from t0 of signed length dt? */
+static int in_sweep(double t0, double dt, double t)
+{
+  double rel = dt >= 0 ? t - t0 : t0 - t;
+  rel = fmod(rel, 2 * M_PI);
+  if (rel < 0)
+    rel += 2 * M_PI;
+  return rel <= fabs(dt) + 1e-12;
+}
+
+int mach_arc(const struct mach_block *b, double *len_mm, double *yshare, char *msg, size_t n)
+{
+  int p, q;
+  plane_axes(b->plane, &p, &q);
+  double ep = b->w[p], eq = b->w[q];
+  double cp = b->w[SL_I + p], cq = b->w[SL_I + q];
+  double r0 = hypot(cp, cq), r1 = hypot(ep - cp, eq - cq);
+  if (r0 == 0) {
+    snprintf(msg, n, "arc centre at its start point: radius 0");
+    return S42_E_ARC;
+  }
+  if (r0 > 4000000.0 || r1 > 4000000.0) {
+    snprintf(msg, n, "arc radius %.3f mm is over 4000 mm", fmax(r0, r1) / 1000);
+    return S42_E_ARC;
+  }
+  if (fabs(r0 - r1) > 2.0) {
+    snprintf(msg, n, "arc start radius %.0f µm and end radius %.0f µm differ by more than 2 µm", r0, r1);
+    return S42_E_ARC;
+  }
+  double t0 = atan2(-cq, -cp), t1 = atan2(eq - cq, ep - cp);
+  int ccw = b->motion == MO_G03 || b->motion == MO_G13;
+  double sweep;
+  if (ep == 0 && eq == 0) {
+    sweep = 2 * M_PI;
+  } else {
+    sweep = ccw ? t1 - t0 : t0 - t1;
+    sweep = fmod(sweep, 2 * M_PI);
+    if (sweep <= 0)
+      sweep += 2 * M_PI;
+  }
+  *len_mm = (r0 + r1) / 2 * sweep / 1000.0;
+  double dt = ccw ? sweep : -sweep;
+  /* The tangent at angle t is (-sin t, cos t): its Y share is |sin t| when Y
+   * is the plane's first axis and |cos t| when it is the second. */
+  double s = 0;
+  if (p == AX_Y || q == AX_Y) {
+    double c0 = p == AX_Y ? fabs(sin(t0)) : fabs(cos(t0));
+    double c1 = p == AX_Y ? fabs(sin(t0 + dt)) : fabs(cos(t0 + dt));
+    s = fmax(c0, c1);
+    double crit[2] = {p == AX_Y ? M_PI / 2 : 0, p == AX_Y ? -M_PI / 2 : M_PI};
+    for (int i = 0; i < 2; i++)
+      if (in_sweep(t0, dt, crit[i]))
+        s = 1;   /* rule 16.3: the arc passes where its tangent is parallel to Y */
+  }
+  *yshare = s;
+  return 0;
+}
+
+static double effective(const struct machine *m, double f)
+{
+  if (m->override_allowed)
+    f = f * m->override_pct / 100.0;
+  return f;
+}
+
+static int contour(const struct mach_block *b)
+{
+  return b->motion == MO_G01 || b->motion == MO_G02 || b->motion == MO_G03;
+}
+
+int mach_check(const struct machine *m, const struct mach_block *b, char *msg, size_t n)
+{
+  if (BIT(b->m, 3) && m->wheel == WHEEL_CCW) {
+    snprintf(msg, n, "M3 while the wheel turns counter-clockwise: stop it with M5 first");
+    return S42_E_WHEEL;
+  }
+  if (BIT(b->m, 4) && m->wheel == WHEEL_CW) {
+    snprintf(msg, n, "M4 while the wheel turns clockwise: stop it with M5 first");
+    return S42_E_WHEEL;
+  }
+  int osc_axis = -1;
+  double oscf = 0;
+  if (b->motion == MO_G07) {
+    for (int a = AX_X; a <= AX_A; a++)
+      if (BIT(b->given, a))
+        osc_axis = a;
+    oscf = b->w[SL_OSCF];
+    if (b->w[osc_axis] == 0) {
+      snprintf(msg, n, "G07: oscillation stroke 0");
+      return S42_E_OSC;
+    }
+    if (oscf <= 0) {
+      snprintf(msg, n, "G07: oscillation speed F must be above 0");
+      return S42_E_OSC;
+    }
+    if (m->osc.active && osc_axis != m->osc.axis) {
+      snprintf(msg, n, "G07 changes the oscillating axis while it oscillates: M14 first");
+      return S42_E_OSC;
+    }
+  }
+  int defined = m->osc.defined || b->motion == MO_G07;
+  if (BIT(b->m, 13) && !defined) {
+    snprintf(msg, n, "M13 before any G07: the oscillation is not defined");
+    return S42_E_OSC;
+  }
+  if (contour(b)) {
+    int active = m->osc.active || BIT(b->m, 13);
+    int axis = b->motion == MO_G07 ? osc_axis : m->osc.axis;
+    static const char an[] = "XYZA";
+    if (active && b->w[axis] != 0 && BIT(b->given, axis)) {
+      snprintf(msg, n, "%c oscillates and may not move in the contour", an[axis]);
+      return S42_E_OSC;
+    }
+    double len = 0, ys;
+    if (b->motion == MO_G01) {
+      for (int a = 0; a < 4; a++)
+        len += b->w[a] * b->w[a];
+    } else {
+      int e = mach_arc(b, &len, &ys, msg, n);
+      if (e)
+        return e;
+    }
+    if (len > 0 && b->f <= 0) {
+      snprintf(msg, n, "a contour move with F = 0: give the speed with F");
+      return S42_E_FEED;
+    }
+  }
+  return 0;
+}
+
+void mach_exec(struct machine *m, const struct mach_block *b, struct mach_out *o)
+{
+  memset(o, 0, sizeof *o);
+  /* modal changes: the wheel first */
+  if (BIT(b->m, 5)) {
+    if (m->wheel != WHEEL_OFF)
+      mach_advance(m, MACH_WHEEL_RUNDOWN);
+    m->wheel = WHEEL_OFF;
+  }
+  if (BIT(b->m, 3))
+    m->wheel = WHEEL_CW;
+  if (BIT(b->m, 4))
+    m->wheel = WHEEL_CCW;
+  if (b->motion == MO_G07) {
+    int axis = 0;
+    for (int a = AX_X; a <= AX_A; a++)
+      if (BIT(b->given, a))
+        axis = a;
+    double sp = b->w[SL_OSCF];
+    if (sp > axis_max(axis)) {
+      snprintf(o->warn, sizeof o->warn, "G07: oscillation speed %.0f is over the %c axis's %.2f: clamped",
+               sp, "XYZA"[axis], axis_max(axis));
+      sp = axis_max(axis);
+    }
+    m->osc.defined = 1;
+    m->osc.axis = axis;
+    m->osc.stroke = b->w[axis];
+    m->osc.speed = sp;
+  }
+  if (BIT(b->m, 13) && !m->osc.active) {
+    m->osc.active = 1;
+    m->osc.travel = 0;
+    m->osc.base = m->pos[m->osc.axis];
+  }
+  if (BIT(b->m, 22)) m->corr_allowed = 1;
+  if (BIT(b->m, 23)) m->corr_allowed = 0;
+  if (BIT(b->m, 25)) m->override_allowed = 0;
+  if (BIT(b->m, 26)) m->override_allowed = 1;
+
+  /* the motion */
+  double dt = 0;
+  if (contour(b)) {
+    double d[4] = {0, 0, 0, 0};
+    for (int a = 0; a < 4; a++)
+      if (BIT(b->given, a))
+        d[a] = b->w[a];
+    double len, lim;
+    if (b->motion == MO_G01) {
+      len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + d[3] * d[3]) / 1000.0;
+      lim = mach_linear_limit(d);
+    } else {
+      double ys;
+      char msg[8];
+      mach_arc(b, &len, &ys, msg, sizeof msg);
+      lim = MACH_AXIS_MAX / sqrt((1 - ys * ys) + 36.0 * 36.0 * ys * ys);
+      /* only the plane's axes move along an arc */
+      int p, q;
+      plane_axes(b->plane, &p, &q);
+      for (int a = 0; a < 4; a++)
+        if (a != p && a != q)
+          d[a] = 0;
+    }
+    if (len > 0) {
+      double f = effective(m, b->f);
+      o->feed = f < lim ? f : lim;
+      if (o->feed > 0)
+        dt = len / o->feed * 60.0;
+      double lin2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      if (d[3] != 0 && lin2 > 0 && b->motion == MO_G01) {
+        double ad = d[3] * M_PI * (b->d1 / 1000.0) / 360.0;
+        o->v = o->feed * sqrt((lin2 + ad * ad) / (lin2 + d[3] * d[3]));
+        o->has_v = 1;
+      }
+    }
+    mach_advance(m, dt);
+    for (int a = 0; a < 4; a++) {
+      o->d[a] = (int64_t)llround(d[a]);
+      m->pos[a] += o->d[a];
+    }
+    if (m->osc.active)
+      m->osc.base += o->d[m->osc.axis];
+  } else if (b->motion == MO_G04) {
+    mach_advance(m, b->w[SL_X] / 10.0);
+  } else if (b->motion == MO_G37) {
+    int64_t dy = -m->pos[AX_Y];
+    mach_advance(m, fabs((double)dy) / 1000.0 / MACH_Y_MAX * 60.0);
+    m->pos[AX_Y] += dy;
+    o->d[AX_Y] = dy;
+  }
+
+  /* after the motion: M14 (and M2, which includes it) */
+  if ((BIT(b->m, 14) || BIT(b->m, 2)) && m->osc.active) {
+    int64_t off = mach_osc_offset(m);
+    m->osc.active = 0;
+    if (off != 0 && m->osc.speed > 0)
+      m->t += fabs((double)off) / 1000.0 / m->osc.speed * 60.0;
+    m->pos[m->osc.axis] = m->osc.base;
+  }
+}

@@ -1,0 +1,515 @@
+/* s42: the command line (contracts.md section 1) and the headless runner. */
+#include "compile.h"
+#include "disasm.h"
+#include "errors.h"
+#include "operator.h"
+#include "report.h"
+#include "session.h"
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef S42_VERSION
+#define S42_VERSION "0.1.0"
+#endif
+
+enum { EXIT_END = 0, EXIT_PROGRAM = 1, EXIT_USAGE = 2, EXIT_STOPPED = 3, EXIT_IO = 4 };
+
+static const char usage[] =
+  "usage: s42 run    PROGRAM.kp [options]   run headless: the batch emulator\n"
+  "       s42 tui    [PROGRAM.kp] [options] the 2С42-65 display in the terminal\n"
+  "       s42 check  PROGRAM.kp...          compile only, print diagnostics\n"
+  "       s42 disasm PROGRAM.kp             print the bytecode, block by block\n"
+  "       s42 plot   PROGRAM.kp -o FILE.png run headless and draw the tool path\n"
+  "       s42 --help | --version\n"
+  "\n"
+  "options of run, tui and plot:\n"
+  "  --operator FILE    operator actions for a headless run\n"
+  "  --tool FILE        tool model for tooth-step search\n"
+  "  --trace            one line per executed block on stdout\n"
+  "  --trace=json       the same as JSON Lines\n"
+  "  --dump             the final machine state as one JSON object on stdout\n"
+  "  --screen           the final 16x32 screen on stdout\n"
+  "  --state FILE       where the M15 restart state is kept\n"
+  "  --restart          start from the saved M15 restart point\n"
+  "  --max-blocks N     stop with E-LIMIT after N executed blocks (default 100000000)\n"
+  "  --plugins DIR      where plugins are looked for (also S42_PLUGIN_PATH)\n"
+  "  --modbus HOST:PORT serve the machine over Modbus TCP\n"
+  "  --realtime         pace the simulation at machine speed\n"
+  "  --lang uk|en       language of machine messages (default uk)\n"
+  "\n"
+  "exit status: 0 the program reached M2; 1 an error in the program; 2 bad usage;\n"
+  "3 the operator script had no fitting action, or the cycle was stopped; 4 I/O error\n";
+
+struct opts {
+  const char *program, *operator_file, *tool, *state, *plugins, *modbus, *out;
+  int trace, json, dump, screen, restart, realtime, en;
+  unsigned long long max_blocks;
+};
+
+static int read_file(const char *path, char **buf, size_t *len)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    fprintf(stderr, "s42: %s: %s\n", path, strerror(errno));
+    return -1;
+  }
+  size_t cap = 65536, n = 0;
+  char *b = malloc(cap);
+  while (b) {
+    size_t got = fread(b + n, 1, cap - n, f);
+    n += got;
+    if (n < cap)
+      break;
+    char *nb = cap > ((size_t)1 << 31) ? NULL : realloc(b, cap * 2);
+    if (!nb) {
+      free(b);
+      b = NULL;
+      break;
+    }
+    b = nb;
+    cap *= 2;
+  }
+  int bad = ferror(f);
+  fclose(f);
+  if (!b || bad) {
+    fprintf(stderr, "s42: %s: %s\n", path, b ? "read error" : "too large or out of memory");
+    free(b);
+    return -1;
+  }
+  *buf = b;
+  *len = n;
+  return 0;
+}
+
+static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
+{
+  memset(o, 0, sizeof *o);
+  o->max_blocks = 100000000ULL;
+  for (; i < argc; i++) {
+    const char *a = argv[i];
+    const char **val = NULL;
+    if (strcmp(a, "--trace") == 0) { o->trace = 1; continue; }
+    if (strcmp(a, "--trace=json") == 0) { o->trace = 1; o->json = 1; continue; }
+    if (strcmp(a, "--trace=text") == 0) { o->trace = 1; o->json = 0; continue; }
+    if (strcmp(a, "--dump") == 0) { o->dump = 1; continue; }
+    if (strcmp(a, "--screen") == 0) { o->screen = 1; continue; }
+    if (strcmp(a, "--restart") == 0) { o->restart = 1; continue; }
+    if (strcmp(a, "--realtime") == 0) { o->realtime = 1; continue; }
+    if (strcmp(a, "--operator") == 0) val = &o->operator_file;
+    else if (strcmp(a, "--tool") == 0) val = &o->tool;
+    else if (strcmp(a, "--state") == 0) val = &o->state;
+    else if (strcmp(a, "--plugins") == 0) val = &o->plugins;
+    else if (strcmp(a, "--modbus") == 0) val = &o->modbus;
+    else if (strcmp(a, "-o") == 0) val = &o->out;
+    else if (strcmp(a, "--lang") == 0 || strcmp(a, "--max-blocks") == 0) {
+      if (i + 1 >= argc) {
+        fprintf(stderr, "s42: %s needs a value\n", a);
+        return -1;
+      }
+      const char *v = argv[++i];
+      if (a[2] == 'l') {
+        if (strcmp(v, "uk") == 0) o->en = 0;
+        else if (strcmp(v, "en") == 0) o->en = 1;
+        else {
+          fprintf(stderr, "s42: --lang takes uk or en, not '%s'\n", v);
+          return -1;
+        }
+      } else {
+        char *end;
+        errno = 0;
+        unsigned long long n = strtoull(v, &end, 10);
+        if (errno || *end || !*v || v[0] == '-' || n == 0) {
+          fprintf(stderr, "s42: --max-blocks takes a positive whole number, not '%s'\n", v);
+          return -1;
+        }
+        o->max_blocks = n;
+      }
+      continue;
+    } else if (a[0] == '-' && a[1]) {
+      fprintf(stderr, "s42: unknown option '%s' (see s42 --help)\n", a);
+      return -1;
+    } else {
+      if (o->program && !multi) {
+        fprintf(stderr, "s42: one program at a time ('%s' and '%s')\n", o->program, a);
+        return -1;
+      }
+      if (!o->program)
+        o->program = a;
+      continue;
+    }
+    if (i + 1 >= argc) {
+      fprintf(stderr, "s42: %s needs a value\n", a);
+      return -1;
+    }
+    *val = argv[++i];
+  }
+  return 0;
+}
+
+/* Compile a file; diagnostics to stderr.  Returns 0 ok, 1 program errors,
+ * 4 I/O.  On success *src stays allocated for the caller. */
+static int load(const char *path, struct program *p, struct diag_list *d, char **src, size_t *n)
+{
+  prog_init(p);
+  diag_init(d, path);
+  if (read_file(path, src, n))
+    return EXIT_IO;
+  int r = comp_program(*src, *n, d, p);
+  diag_print(stderr, d);
+  return r ? EXIT_PROGRAM : 0;
+}
+
+static int cmd_check(int argc, char **argv)
+{
+  int worst = 0, any = 0;
+  for (int i = 2; i < argc; i++) {
+    if (argv[i][0] == '-' && argv[i][1]) {
+      fprintf(stderr, "s42: check takes only program files ('%s')\n", argv[i]);
+      return EXIT_USAGE;
+    }
+  }
+  for (int i = 2; i < argc; i++) {
+    struct program p;
+    struct diag_list d;
+    char *src = NULL;
+    size_t n = 0;
+    any = 1;
+    int r = load(argv[i], &p, &d, &src, &n);
+    if (r > worst)
+      worst = r;
+    prog_free(&p);
+    diag_free(&d);
+    free(src);
+  }
+  if (!any) {
+    fprintf(stderr, "s42: check needs a program file\n%s", usage);
+    return EXIT_USAGE;
+  }
+  return worst;
+}
+
+static int cmd_disasm(int argc, char **argv)
+{
+  if (argc != 3 || argv[2][0] == '-') {
+    fprintf(stderr, "usage: s42 disasm PROGRAM.kp\n");
+    return EXIT_USAGE;
+  }
+  struct program p;
+  struct diag_list d;
+  char *src = NULL;
+  size_t n = 0;
+  int r = load(argv[2], &p, &d, &src, &n);
+  if (r == 0)
+    vm_disasm(stdout, &p, src, n);
+  prog_free(&p);
+  diag_free(&d);
+  free(src);
+  return r;
+}
+
+/* ---- the headless run ---- */
+
+struct runner {
+  struct session s;
+  struct opscript ops;
+  size_t next;               /* next ordered action */
+  const char *file;
+  unsigned *runs;            /* runs per block number, for `at` */
+  uint8_t *watch;
+  int stopped_by_script;
+};
+
+static void warn_sink(void *ctx, const struct session *s, const char *msg)
+{
+  struct runner *r = ctx;
+  const struct prog_block *b = &s->p->blocks[s->vm.cur];
+  fprintf(stderr, "%s:%u:%u: warning: N", r->file, b->line, b->col);
+  if (b->number)
+    fprintf(stderr, "%u", b->number);
+  else
+    fputc('-', stderr);
+  fprintf(stderr, ": %s\n", msg);
+}
+
+struct both_sink { struct trace_ctx tr; struct runner *r; };
+
+static void row_sink(void *ctx, const struct session *s, const struct sess_row *row)
+{
+  struct both_sink *b = ctx;
+  if (b->tr.out)
+    report_row(&b->tr, s, row);
+}
+
+static void sink_warn(void *ctx, const struct session *s, const char *msg)
+{
+  struct both_sink *b = ctx;
+  warn_sink(b->r, s, msg);
+}
+
+static void apply_immediate(struct runner *r, const struct op_action *a)
+{
+  switch (a->kind) {
+  case OA_KEY:
+    if (a->key == KEY_EXIT)
+      sess_key_exit(&r->s);
+    else if (a->key == KEY_STOP)
+      sess_key_stop(&r->s);
+    break;
+  case OA_CORRECT:
+    sess_correct(&r->s, a->axis, a->n);
+    break;
+  case OA_OVERRIDE:
+    sess_override(&r->s, (int)a->n);
+    break;
+  default:
+    break;
+  }
+}
+
+/* The block boundary: immediate actions at the head of the script, then
+ * the `at` actions for this run of this block. */
+static void at_boundary(struct runner *r)
+{
+  while (r->next < r->ops.n && !ops_is_waiting(&r->ops.v[r->next]) && r->s.state != SE_STOPPED)
+    apply_immediate(r, &r->ops.v[r->next++]);
+  int num = sess_block_number(&r->s);
+  if (num > 0 && r->watch[r->s.vm.cur]) {
+    unsigned run = ++r->runs[num];
+    for (size_t i = 0; i < r->ops.nat; i++) {
+      struct op_action *a = &r->ops.at[i];
+      if (a->at_number == num && a->at_run == run && !a->fired) {
+        a->fired = 1;
+        apply_immediate(r, a);
+      }
+    }
+  }
+}
+
+/* The machine waits: take the script's fitting actions.  0 when the wait is
+ * over, -1 when the script has nothing that fits (stop, status 3). */
+static int serve_wait(struct runner *r)
+{
+  char what[96];
+  while (r->s.state == SE_WAIT) {
+    if (r->next >= r->ops.n) {
+      const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
+      fprintf(stderr, "%s:%u:%u: N%d: the machine waits for %s and the operator script has no more actions\n",
+              r->file, b->line, b->col, sess_block_number(&r->s), sess_wait_text(&r->s));
+      return -1;
+    }
+    const struct op_action *a = &r->ops.v[r->next];
+    int ok = -1;
+    if (!ops_is_waiting(a)) {
+      apply_immediate(r, a);
+      ok = 0;
+    } else if (a->kind == OA_KEY && a->key == KEY_PUSK) {
+      ok = sess_key_pusk(&r->s);
+    } else if (a->kind == OA_KEY && a->key == KEY_PS) {
+      ok = sess_key_ps(&r->s);
+    } else if (a->kind == OA_JOG) {
+      ok = sess_jog(&r->s, a->axis, a->n);
+    }
+    if (ok) {
+      const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
+      fprintf(stderr, "%s:%u:%u: N%d: the machine waits for %s; the operator script's next action "
+              "(line %u: %s) does not fit\n", r->file, b->line, b->col, sess_block_number(&r->s),
+              sess_wait_text(&r->s), a->line, ops_describe(a, what, sizeof what));
+      return -1;
+    }
+    r->next++;
+  }
+  return 0;
+}
+
+static int cmd_run(int argc, char **argv)
+{
+  struct opts o;
+  if (parse_opts(argc, argv, 2, &o, 0))
+    return EXIT_USAGE;
+  if (!o.program) {
+    fprintf(stderr, "s42: run needs a program file\n%s", usage);
+    return EXIT_USAGE;
+  }
+  const char *unsupported = o.modbus ? "--modbus (the Modbus server)" : o.restart ? "--restart (M15 restart)"
+                          : o.state ? "--state (M15 restart state)" : o.realtime ? "--realtime" : NULL;
+  if (unsupported) {
+    fprintf(stderr, "s42: %s is not implemented in this build\n", unsupported);
+    return EXIT_USAGE;
+  }
+  struct runner r;
+  memset(&r, 0, sizeof r);
+  r.file = o.program;
+  if (o.operator_file) {
+    char *text;
+    size_t n;
+    if (read_file(o.operator_file, &text, &n))
+      return EXIT_IO;
+    int bad = ops_parse(text, n, o.operator_file, &r.ops, stderr);
+    free(text);
+    if (bad)
+      return EXIT_USAGE;
+  }
+  if (o.tool)
+    fprintf(stderr, "s42: warning: --tool %s is not used: tooth-step search is not in this build\n", o.tool);
+  if (o.screen)
+    fprintf(stderr, "s42: warning: --screen: the 2С42 display is not in this build\n");
+
+  struct program p;
+  struct diag_list d;
+  char *src = NULL;
+  size_t n = 0;
+  int rc = load(o.program, &p, &d, &src, &n);
+  if (rc) {
+    if (o.dump && rc == EXIT_PROGRAM) {
+      const struct diag *g = diag_first_error(&d);
+      struct dump_error de;
+      memset(&de, 0, sizeof de);
+      de.code = g ? err_code(g->code) : "E-SYNTAX";
+      de.n = g ? g->number : -1;
+      de.line = g ? g->line : 0;
+      de.col = g ? g->col : 0;
+      de.message = g ? g->msg : "";
+      report_machine_msg(de.machine, sizeof de.machine, g ? g->code : S42_E_SYNTAX, de.n, 0, o.en);
+      report_dump(stdout, "error", &de, NULL);
+    }
+    prog_free(&p);
+    diag_free(&d);
+    free(src);
+    ops_free(&r.ops);
+    return rc;
+  }
+
+  sess_init(&r.s, &p);
+  r.s.en = o.en;
+  r.s.vm.max_blocks = o.max_blocks;
+  struct both_sink bs;
+  bs.tr.out = o.trace ? stdout : NULL;
+  bs.tr.json = o.json;
+  bs.tr.file = o.program;
+  bs.r = &r;
+  r.s.sink.ctx = &bs;
+  r.s.sink.row = row_sink;
+  r.s.sink.warn = sink_warn;
+  r.s.vm.yield_all = o.trace;
+  r.watch = calloc(p.nblocks ? p.nblocks : 1, 1);
+  r.runs = calloc(1000, sizeof *r.runs);
+  if (!r.watch || !r.runs) {
+    fprintf(stderr, "s42: out of memory\n");
+    exit(EXIT_IO);
+  }
+  for (size_t i = 0; i < r.ops.nat; i++)
+    for (size_t b = 0; b < p.nblocks; b++)
+      if (p.blocks[b].number == r.ops.at[i].at_number)
+        r.watch[b] = 1;
+  r.s.vm.watch = r.watch;
+
+  int status = EXIT_END;
+  const char *st = "end";
+  for (;;) {
+    r.s.vm.start_all = r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]);
+    enum sess_ev ev = sess_run(&r.s);
+    if (ev == SE_START) {
+      at_boundary(&r);
+      if (r.s.state == SE_STOPPED) {
+        status = EXIT_STOPPED;
+        st = "stopped";
+        break;
+      }
+      continue;
+    }
+    if (ev == SE_WAIT) {
+      if (serve_wait(&r) == 0 && r.s.state != SE_STOPPED)
+        continue;
+      status = EXIT_STOPPED;
+      st = "stopped";
+      break;
+    }
+    if (ev == SE_END) {
+      break;
+    }
+    if (ev == SE_STOPPED) {
+      status = EXIT_STOPPED;
+      st = "stopped";
+      break;
+    }
+    status = EXIT_PROGRAM;
+    st = "error";
+    break;
+  }
+  if (r.s.state == SE_STOPPED && status == EXIT_STOPPED) {
+    const struct prog_block *b = &p.blocks[r.s.vm.cur];
+    if (r.next <= r.ops.n && r.s.wait == W_NONE)
+      fprintf(stderr, "%s:%u:%u: N%d: the cycle was stopped (key STOP)\n", o.program, b->line, b->col,
+              sess_block_number(&r.s));
+  }
+  struct dump_error de, *dep = NULL;
+  if (status == EXIT_PROGRAM) {
+    const struct vm_error *e = &r.s.vm.err;
+    const struct prog_block *b = &p.blocks[e->block];
+    struct diag g;
+    memset(&g, 0, sizeof g);
+    g.sev = DIAG_ERROR;
+    g.code = e->code;
+    g.line = b->line;
+    g.col = e->col ? e->col : b->col;
+    g.number = b->number ? b->number : -1;
+    snprintf(g.msg, sizeof g.msg, "%s", e->msg);
+    diag_print_one(stderr, o.program, &g);
+    memset(&de, 0, sizeof de);
+    de.code = err_code(e->code);
+    de.n = g.number;
+    de.line = g.line;
+    de.col = g.col;
+    de.message = e->msg;
+    report_machine_msg(de.machine, sizeof de.machine, e->code, g.number, e->aux, o.en);
+    dep = &de;
+  }
+  if (o.dump)
+    report_dump(stdout, st, dep, &r.s);
+  if (fflush(stdout) || ferror(stdout)) {
+    fprintf(stderr, "s42: error writing the output\n");
+    status = EXIT_IO;
+  }
+  free(r.watch);
+  free(r.runs);
+  ops_free(&r.ops);
+  prog_free(&p);
+  diag_free(&d);
+  free(src);
+  return status;
+}
+
+int main(int argc, char **argv)
+{
+  if (argc < 2) {
+    fputs(usage, stderr);
+    return EXIT_USAGE;
+  }
+  const char *cmd = argv[1];
+  if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
+    fputs(usage, stdout);
+    return 0;
+  }
+  if (strcmp(cmd, "--version") == 0) {
+    printf("s42 %s\n", S42_VERSION);
+    return 0;
+  }
+  if (strcmp(cmd, "run") == 0)
+    return cmd_run(argc, argv);
+  if (strcmp(cmd, "check") == 0)
+    return cmd_check(argc, argv);
+  if (strcmp(cmd, "disasm") == 0)
+    return cmd_disasm(argc, argv);
+  if (strcmp(cmd, "--opcodes-md") == 0) {
+    vm_opcodes_md(stdout);
+    return 0;
+  }
+  if (strcmp(cmd, "tui") == 0 || strcmp(cmd, "plot") == 0) {
+    fprintf(stderr, "s42: %s is not implemented in this build\n", cmd);
+    return EXIT_USAGE;
+  }
+  fprintf(stderr, "s42: unknown command '%s'\n%s", cmd, usage);
+  return EXIT_USAGE;
+}

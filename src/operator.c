@@ -1,0 +1,225 @@
+/* Operator script parser (src/operator.h). */
+#include "operator.h"
+#include <ctype.h>
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const keys[] = {"PUSK", "PS", "EXIT", "STOP"};
+
+int ops_is_waiting(const struct op_action *a)
+{
+  switch (a->kind) {
+  case OA_ANSWER: case OA_JOG: case OA_SECTION: return 1;
+  case OA_KEY: return a->key == KEY_PUSK || a->key == KEY_PS;
+  default: return 0;
+  }
+}
+
+const char *ops_describe(const struct op_action *a, char *buf, size_t n)
+{
+  static const char ax[] = "XYZA";
+  switch (a->kind) {
+  case OA_ANSWER: snprintf(buf, n, "answer %lld", (long long)a->n); break;
+  case OA_KEY: snprintf(buf, n, "key %s", keys[a->key]); break;
+  case OA_JOG: snprintf(buf, n, "jog %c %+lld", ax[a->axis], (long long)a->n); break;
+  case OA_CORRECT: snprintf(buf, n, "correct %c %+lld", ax[a->axis], (long long)a->n); break;
+  case OA_OVERRIDE: snprintf(buf, n, "override %lld", (long long)a->n); break;
+  default:
+    if (a->axis2 >= 0)
+      snprintf(buf, n, "section %c %+lld %c %+lld", ax[a->axis], (long long)a->n, ax[a->axis2], (long long)a->n2);
+    else
+      snprintf(buf, n, "section %c %+lld", ax[a->axis], (long long)a->n);
+  }
+  return buf;
+}
+
+struct cur { const char *p, *end; };
+
+static void skipws(struct cur *c)
+{
+  while (c->p < c->end && (*c->p == ' ' || *c->p == '\t' || *c->p == '\r'))
+    c->p++;
+}
+
+static int word(struct cur *c, char *buf, size_t n)
+{
+  skipws(c);
+  size_t k = 0;
+  while (c->p < c->end && *c->p != ' ' && *c->p != '\t' && *c->p != '\r' && *c->p != ';') {
+    if (k + 1 < n)
+      buf[k++] = *c->p;
+    c->p++;
+  }
+  buf[k] = 0;
+  return k > 0;
+}
+
+/* A signed integer; `need_sign` demands + or -. */
+static int integer(const char *w, int64_t lo, int64_t hi, int64_t *out)
+{
+  if (!*w)
+    return 0;
+  const char *p = w;
+  if (*p == '+' || *p == '-')
+    p++;
+  if (!*p)
+    return 0;
+  for (const char *q = p; *q; q++)
+    if (!isdigit((unsigned char)*q))
+      return 0;
+  errno = 0;
+  long long v = strtoll(w, NULL, 10);
+  if (errno || v < lo || v > hi)
+    return 0;
+  *out = v;
+  return 1;
+}
+
+static int axis(const char *w)
+{
+  if (strlen(w) != 1)
+    return -1;
+  const char *p = strchr("XYZA", *w);
+  return p && *w ? (int)(p - "XYZA") : -1;
+}
+
+/* Parse one action from the cursor into a; returns NULL or an error text. */
+static const char *action(struct cur *c, struct op_action *a)
+{
+  static char msg[160];
+  char w[64], w2[64];
+  if (!word(c, w, sizeof w))
+    return "empty action";
+  a->axis2 = -1;
+  if (strcmp(w, "answer") == 0) {
+    a->kind = OA_ANSWER;
+    if (!word(c, w, sizeof w))
+      return "answer needs a number";
+    const char *d = w + (*w == '-' || *w == '+');
+    if (strlen(d) > 7)
+      return "answer: at most 7 digits fit the field";
+    if (!integer(w, -9999999, 9999999, &a->n))
+      return "answer needs a whole number (at most 7 digits, optional -)";
+  } else if (strcmp(w, "key") == 0) {
+    a->kind = OA_KEY;
+    if (!word(c, w, sizeof w))
+      return "key needs a name: PUSK, PS, EXIT or STOP";
+    a->key = -1;
+    for (int i = 0; i < 4; i++)
+      if (strcmp(w, keys[i]) == 0)
+        a->key = i;
+    if (a->key < 0) {
+      snprintf(msg, sizeof msg, "unknown key '%s' (PUSK, PS, EXIT, STOP)", w);
+      return msg;
+    }
+  } else if (strcmp(w, "jog") == 0 || strcmp(w, "correct") == 0 || strcmp(w, "section") == 0) {
+    a->kind = w[0] == 'j' ? OA_JOG : w[0] == 'c' ? OA_CORRECT : OA_SECTION;
+    if (!word(c, w, sizeof w) || (a->axis = axis(w)) < 0)
+      return "expected an axis X, Y, Z or A";
+    if (!word(c, w2, sizeof w2) || !integer(w2, -99999999, 99999999, &a->n))
+      return "expected a signed number of discretes";
+    if (a->kind == OA_SECTION) {
+      skipws(c);
+      if (c->p < c->end && *c->p != ';') {
+        if (!word(c, w, sizeof w) || (a->axis2 = axis(w)) < 0 || a->axis2 == a->axis)
+          return "section: expected a second, different axis";
+        if (!word(c, w2, sizeof w2) || !integer(w2, -99999999, 99999999, &a->n2))
+          return "expected a signed number of discretes";
+      }
+    }
+  } else if (strcmp(w, "override") == 0) {
+    a->kind = OA_OVERRIDE;
+    if (!word(c, w, sizeof w) || !integer(w, 0, 150, &a->n))
+      return "override takes a percentage 0..150";
+  } else {
+    snprintf(msg, sizeof msg, "unknown action '%.40s'", w);
+    return msg;
+  }
+  skipws(c);
+  if (c->p < c->end && *c->p != ';')
+    return "unexpected text after the action";
+  return NULL;
+}
+
+int ops_parse(const char *text, size_t len, const char *file, struct opscript *s, FILE *err)
+{
+  memset(s, 0, sizeof *s);
+  size_t cap = 0, capat = 0;
+  int bad = 0;
+  unsigned line = 0;
+  const char *p = text, *end = text + len;
+  while (p < end) {
+    line++;
+    const char *e = memchr(p, '\n', (size_t)(end - p));
+    if (!e)
+      e = end;
+    struct cur c = {p, e};
+    p = e + 1;
+    skipws(&c);
+    if (c.p >= c.end || *c.p == ';')
+      continue;
+    struct op_action a;
+    memset(&a, 0, sizeof a);
+    a.line = line;
+    a.at_number = -1;
+    const char *msg = NULL;
+    char w[64];
+    struct cur save = c;
+    if (word(&c, w, sizeof w) && strcmp(w, "at") == 0) {
+      char t[64];
+      if (!word(&c, t, sizeof t) || t[0] != 'N') {
+        msg = "at needs a block: at N54 or at N54#3";
+      } else {
+        char *hash = strchr(t, '#');
+        int64_t nb = 0, run = 1;
+        if (hash)
+          *hash = 0;
+        if (!integer(t + 1, 1, 999, &nb) || t[1] == '+' || t[1] == '-' ||
+            (hash && (!integer(hash + 1, 1, 1000000000, &run) || hash[1] == '+' || hash[1] == '-')))
+          msg = "at needs a block: at N54 or at N54#3 (block 1..999, run from 1)";
+        a.at_number = (int)nb;
+        a.at_run = (unsigned)run;
+      }
+      if (!msg) {
+        msg = action(&c, &a);
+        if (!msg && ops_is_waiting(&a))
+          msg = "at fires at a block's start: only key EXIT, key STOP, correct and override";
+      }
+    } else {
+      c = save;
+      msg = action(&c, &a);
+    }
+    if (msg) {
+      fprintf(err, "%s:%u: error: %s\n", file, line, msg);
+      bad = 1;
+      continue;
+    }
+    struct op_action **v = a.at_number >= 0 ? &s->at : &s->v;
+    size_t *n = a.at_number >= 0 ? &s->nat : &s->n, *cp = a.at_number >= 0 ? &capat : &cap;
+    if (*n == *cp) {
+      size_t nc = *cp ? *cp * 2 : 16;
+      struct op_action *q = realloc(*v, nc * sizeof *q);
+      if (!q) {
+        fprintf(err, "%s: out of memory\n", file);
+        ops_free(s);
+        return -1;
+      }
+      *v = q;
+      *cp = nc;
+    }
+    (*v)[(*n)++] = a;
+  }
+  if (bad) {
+    ops_free(s);
+    return -1;
+  }
+  return 0;
+}
+
+void ops_free(struct opscript *s)
+{
+  free(s->v);
+  free(s->at);
+  memset(s, 0, sizeof *s);
+}

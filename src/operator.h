@@ -1,0 +1,39 @@
+/* Operator scripts for headless runs (contracts.md section 3): parsed whole
+ * before the run; a malformed line refuses the script with its number. */
+#ifndef S42_OPERATOR_H
+#define S42_OPERATOR_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+enum op_kind { OA_ANSWER, OA_KEY, OA_JOG, OA_CORRECT, OA_OVERRIDE, OA_SECTION };
+enum op_key { KEY_PUSK, KEY_PS, KEY_EXIT, KEY_STOP };
+
+struct op_action {
+  int kind;
+  int key;                 /* OA_KEY */
+  int axis, axis2;         /* OA_JOG, OA_CORRECT, OA_SECTION (axis2 -1 none) */
+  int64_t n, n2;           /* amounts; OA_ANSWER the number; OA_OVERRIDE % */
+  unsigned line;
+  int at_number;           /* `at N54#3 ...`: block number, -1 not an at line */
+  unsigned at_run;         /* which run of it (1 = first) */
+  int fired;
+};
+
+struct opscript {
+  struct op_action *v;     /* the ordered actions */
+  size_t n;
+  struct op_action *at;    /* the `at` actions */
+  size_t nat;
+};
+
+/* Parse; on errors print FILE:LINE: messages to err and return -1. */
+int ops_parse(const char *text, size_t len, const char *file, struct opscript *s, FILE *err);
+void ops_free(struct opscript *s);
+/* Waiting actions are consumed when the machine waits; the others apply at
+ * the next block boundary. */
+int ops_is_waiting(const struct op_action *a);
+const char *ops_describe(const struct op_action *a, char *buf, size_t n);
+
+#endif

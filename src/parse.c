@@ -1,0 +1,930 @@
+/* The 2С42 parser (src/parse.h): recursive descent over the lexer's cursor.
+ * A syntax error reports one diagnostic and abandons the rest of its block
+ * (longjmp to parse_block); the next block is parsed as usual, so one run
+ * reports the mistakes of every block. */
+#include "parse.h"
+#include "errors.h"
+#include "opcodes.h"
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_DEPTH 100          /* nested parentheses / signs in one expression */
+
+struct arena_chunk { struct arena_chunk *next; size_t size; };
+
+void *arena_alloc(struct arena *a, size_t n)
+{
+  n = (n + 15) & ~(size_t)15;
+  if (a->used + n > a->cap) {
+    /* Keep the full chunk on a list until the reset; start a bigger one. */
+    size_t cap = a->cap ? a->cap * 2 : 16384;
+    while (cap < n + sizeof(struct arena_chunk) + 16)
+      cap *= 2;
+    char *buf = malloc(cap);
+    if (!buf) {
+      fprintf(stderr, "s42: out of memory\n");
+      exit(4);
+    }
+    if (a->buf) {
+      struct arena_chunk *c = (struct arena_chunk *)a->buf;
+      c->next = a->more;
+      a->more = c;
+    }
+    a->buf = buf;
+    a->cap = cap;
+    a->used = 32;   /* room for the chunk header, 16-aligned */
+  }
+  void *p = a->buf + a->used;
+  a->used += n;
+  return p;
+}
+
+void arena_reset(struct arena *a)
+{
+  while (a->more) {
+    struct arena_chunk *c = a->more;
+    a->more = c->next;
+    free(c);
+  }
+  a->used = 32;
+}
+
+void arena_free(struct arena *a)
+{
+  arena_reset(a);
+  free(a->buf);
+  memset(a, 0, sizeof *a);
+}
+
+int kp_valid_g(int n)
+{
+  switch (n) {
+  case 1: case 2: case 3: case 4: case 7: case 9: case 10: case 11: case 12: case 13:
+  case 17: case 18: case 19: case 20: case 27: case 28: case 29: case 33: case 34: case 37:
+    return 1;
+  default:
+    return 0;
+  }
+}
+
+int kp_g_group(int n)
+{
+  switch (n) {
+  case 17: case 18: case 19: return 2;
+  case 9: return 3;
+  case 27: case 28: case 29: case 33: case 34: return 4;
+  default: return 1;
+  }
+}
+
+int kp_valid_m(int n)
+{
+  return (n >= 2 && n <= 5) || n == 10 || (n >= 12 && n <= 23) || (n >= 25 && n <= 29);
+}
+
+/* ---- errors ---- */
+
+struct pstate {
+  struct parser *p;
+  struct block *b;
+  jmp_buf jb;
+};
+
+static void fail(struct pstate *s, int code, unsigned col, const char *fmt, ...)
+  __attribute__((format(printf, 4, 5), noreturn));
+static void fail(struct pstate *s, int code, unsigned col, const char *fmt, ...)
+{
+  char msg[240];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  diag_add(s->p->d, DIAG_ERROR, code, s->p->lx.cline, col ? col : s->p->lx.ccol, s->b->number, "%s", msg);
+  s->b->bad = 1;
+  longjmp(s->jb, 1);
+}
+
+static const char *show(int32_t c, char *buf)
+{
+  if (c == LX_EOB)
+    return "the end of the block";
+  if (c == LX_EOF)
+    return "the end of the file";
+  if (c == 0xFFFD) {
+    strcpy(buf, "invalid UTF-8");
+    return buf;
+  }
+  if (c < 32 || c == 127) {
+    snprintf(buf, 32, "character 0x%02X", (unsigned)c);
+    return buf;
+  }
+  buf[0] = '\'';
+  int n = lex_utf8(c, buf + 1);
+  buf[n + 1] = '\'';
+  buf[n + 2] = 0;
+  return buf;
+}
+
+static int32_t peek(struct pstate *s) { return lex_peek(&s->p->lx); }
+static unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return s->p->lx.ccol; }
+static void adv(struct pstate *s) { lex_peek(&s->p->lx); lex_adv(&s->p->lx); }
+
+static void expect(struct pstate *s, int32_t c, const char *what)
+{
+  char buf[32];
+  int32_t got = peek(s);
+  if (got != c)
+    fail(s, S42_E_SYNTAX, 0, "expected %s, found %s", what, show(got, buf));
+  adv(s);
+}
+
+static int accept(struct pstate *s, int32_t c)
+{
+  if (peek(s) == c) {
+    adv(s);
+    return 1;
+  }
+  return 0;
+}
+
+static int isdig(int32_t c) { return c >= '0' && c <= '9'; }
+
+/* An unsigned integer of at most `maxdig` digits (whitespace between digits
+ * is insignificant, as everywhere outside text). */
+static long number(struct pstate *s, int maxdig, const char *what)
+{
+  char buf[32];
+  unsigned col = pcol(s);
+  if (!isdig(peek(s)))
+    fail(s, S42_E_SYNTAX, 0, "expected %s, found %s", what, show(peek(s), buf));
+  long v = 0;
+  int nd = 0;
+  while (isdig(peek(s))) {
+    if (nd < 12)
+      v = v * 10 + (peek(s) - '0');
+    nd++;
+    adv(s);
+  }
+  if (nd > maxdig)
+    fail(s, S42_E_RANGE, col, "%s has %d digits; at most %d are allowed", what, nd, maxdig);
+  return v;
+}
+
+/* ---- expressions ---- */
+
+static struct expr *node(struct pstate *s, int kind, unsigned col)
+{
+  struct expr *e = arena_alloc(&s->p->ar, sizeof *e);
+  memset(e, 0, sizeof *e);
+  e->kind = (uint8_t)kind;
+  e->col = col;
+  return e;
+}
+
+static struct expr *expr(struct pstate *s);
+static struct expr *unary(struct pstate *s);
+
+static struct expr *call(struct pstate *s, int op, unsigned col, int skip)
+{
+  for (int i = 0; i < skip; i++)
+    adv(s);
+  expect(s, '(', "'(' after the function name");
+  struct expr *e = node(s, EX_FN, col);
+  e->op = (uint8_t)op;
+  e->a = expr(s);
+  expect(s, ')', "')' closing the function argument");
+  return e;
+}
+
+/* The letter after an operand's first letter, to tell SI( from S. */
+static int32_t peek2(struct pstate *s)
+{
+  struct lex_mark m = lex_mark(&s->p->lx);
+  adv(s);
+  int32_t c = peek(s);
+  lex_reset(&s->p->lx, m);
+  return c;
+}
+
+static struct expr *primary(struct pstate *s)
+{
+  char buf[32];
+  unsigned col = pcol(s);
+  int32_t c = peek(s);
+  struct expr *e;
+  if (isdig(c)) {
+    e = node(s, EX_NUM, col);
+    e->v = (double)number(s, 7, "a number");
+    return e;
+  }
+  switch (c) {
+  case '(':
+    adv(s);
+    s->p->paren++;
+    e = expr(s);
+    expect(s, ')', "')'");
+    s->p->paren--;
+    return e;
+  case 'R': {
+    adv(s);
+    long n = number(s, 3, "a parameter number after R");
+    if (n > 113)
+      fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
+    e = node(s, EX_REG, col);
+    e->idx = (unsigned)n;
+    return e;
+  }
+  case 'X': case 'Y': case 'Z':
+    adv(s);
+    e = node(s, EX_SLOT, col);
+    e->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : SL_Z;
+    return e;
+  case 'A': {
+    int32_t c2 = peek2(s);
+    if (c2 == 'S') { adv(s); adv(s); if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ASI(...)?"); return call(s, OP_ASIN, col, 1); }
+    if (c2 == 'C') { adv(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1); }
+    if (c2 == 'T') { adv(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1); }
+    adv(s);
+    e = node(s, EX_SLOT, col);
+    e->idx = SL_A;
+    return e;
+  }
+  case 'S':
+    adv(s);
+    if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean SI(...)?");
+    return call(s, OP_SIN, col, 1);
+  case 'C':
+    adv(s);
+    if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean CO(...)?");
+    return call(s, OP_COS, col, 1);
+  case 'L':
+    adv(s);
+    if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean LO(...)?");
+    return call(s, OP_LOG, col, 1);
+  case 'P':
+    adv(s);
+    if (peek(s) != '1')
+      fail(s, S42_E_SYNTAX, col, "P as an operand is the constant P1 (pi); found %s", show(peek(s), buf));
+    adv(s);
+    if (isdig(peek(s)))
+      fail(s, S42_E_SYNTAX, col, "P1 is the constant pi; P followed by more digits is not an operand");
+    e = node(s, EX_NUM, col);
+    e->v = 3.141592;   /* the machine's value of P1 */
+    return e;
+  case 'U':
+    adv(s);
+    if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean UG?");
+    adv(s);
+    e = node(s, EX_REG, col);
+    e->idx = REG_UG;
+    return e;
+  case 'D':
+    adv(s);
+    if (peek(s) != '1') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean D1?");
+    adv(s);
+    e = node(s, EX_REG, col);
+    e->idx = REG_D1;
+    return e;
+  case 'T': {
+    adv(s);
+    int32_t c2 = peek(s);
+    if (c2 == 'K') {
+      adv(s);
+      e = node(s, EX_REG, col);
+      e->idx = REG_TK;
+      return e;
+    }
+    if (c2 == 'G')
+      return call(s, OP_TAN, col, 1);
+    if (isdig(c2)) {
+      int d1 = c2 - '0';
+      adv(s);
+      int d2 = isdig(peek(s)) ? peek(s) - '0' : -1;
+      if (d1 >= 1 && d1 <= 3 && (d2 == 1 || d2 == 2)) {
+        adv(s);
+        e = node(s, EX_ARR, col);
+        e->idx = (unsigned)(d2 - 1) | (unsigned)d1 << 2;
+        return e;
+      }
+    }
+    fail(s, S42_E_SYNTAX, col, "as an operand T is TK, TG(...) or an array read T11 T21 T31 T12 T22 T32");
+  }
+  default:
+    fail(s, S42_E_SYNTAX, 0, "expected a number, parameter or function, found %s", show(c, buf));
+  }
+}
+
+/* power := primary [ %% unary ]   (right-associative through unary) */
+static struct expr *power(struct pstate *s)
+{
+  struct expr *b = primary(s);
+  if (peek(s) == '%' && peek2(s) == '%') {
+    unsigned col = pcol(s);
+    adv(s);
+    adv(s);
+    struct expr *e = node(s, EX_BIN, col);
+    e->op = OP_POW;
+    e->a = b;
+    e->b = unary(s);
+    return e;
+  }
+  return b;
+}
+
+/* A sign applies to the factor that follows, power included: -2%%2 = -4. */
+static struct expr *unary(struct pstate *s)
+{
+  int32_t c = peek(s);
+  if (c == '+' || c == '-') {
+    unsigned col = pcol(s);
+    adv(s);
+    if (++s->p->depth > MAX_DEPTH)
+      fail(s, S42_E_SYNTAX, col, "expression nested too deeply");
+    struct expr *u = unary(s);
+    s->p->depth--;
+    if (c == '+')
+      return u;
+    struct expr *e = node(s, EX_NEG, col);
+    e->a = u;
+    return e;
+  }
+  if (c == '(') {
+    if (++s->p->depth > MAX_DEPTH)
+      fail(s, S42_E_SYNTAX, 0, "expression nested too deeply");
+    struct expr *e = power(s);
+    s->p->depth--;
+    return e;
+  }
+  return power(s);
+}
+
+static struct expr *term(struct pstate *s)
+{
+  struct expr *e = unary(s);
+  for (;;) {
+    int32_t c = peek(s);
+    if (c == '/' && s->p->slash_ends && s->p->paren == 0)
+      return e;   /* the slash that closes G28 /min:max/ */
+    if (c == '/' || (c == '%' && peek2(s) != '%')) {
+      unsigned col = pcol(s);
+      adv(s);
+      struct expr *n = node(s, EX_BIN, col);
+      n->op = c == '/' ? OP_DIV : OP_MUL;
+      n->a = e;
+      n->b = unary(s);
+      e = n;
+    } else {
+      return e;
+    }
+  }
+}
+
+static struct expr *expr(struct pstate *s)
+{
+  struct expr *e = term(s);
+  for (;;) {
+    int32_t c = peek(s);
+    if (c != '+' && c != '-')
+      return e;
+    unsigned col = pcol(s);
+    adv(s);
+    struct expr *n = node(s, EX_BIN, col);
+    n->op = c == '+' ? OP_ADD : OP_SUB;
+    n->a = e;
+    n->b = term(s);
+    e = n;
+  }
+}
+
+/* A word's value: its sign (required when `sign` is set) starts the first
+ * term: X-R3+100 is (-R3)+100. */
+static struct expr *word_value(struct pstate *s, const char *word, int sign)
+{
+  char buf[32];
+  int32_t c = peek(s);
+  if (sign && c != '+' && c != '-')
+    fail(s, S42_E_SYNTAX, 0, "%s needs a sign and a value (%s+... or %s-...), found %s", word, word, word,
+         show(c, buf));
+  if (c == LX_EOB || c == LX_EOF)
+    fail(s, S42_E_SYNTAX, 0, "%s needs a value", word);
+  return expr(s);
+}
+
+/* ---- conditions ---- */
+
+static struct expr *cond(struct pstate *s);
+
+/* Does the parenthesis at the cursor hold a comparison (a ':' at its own
+ * level) rather than a nested condition? */
+static int is_comparison(struct pstate *s)
+{
+  struct lex_mark m = lex_mark(&s->p->lx);
+  int depth = 0, found = 0;
+  for (;;) {
+    int32_t c = peek(s);
+    if (c == LX_EOB || c == LX_EOF)
+      break;
+    if (c == '(') {
+      depth++;
+    } else if (c == ')') {
+      if (--depth == 0)
+        break;
+    } else if (c == ':' && depth == 1) {
+      found = 1;
+      break;
+    }
+    adv(s);
+  }
+  lex_reset(&s->p->lx, m);
+  return found;
+}
+
+static struct expr *prim(struct pstate *s)
+{
+  char buf[32];
+  unsigned col = pcol(s);
+  if (peek(s) != '(')
+    fail(s, S42_E_SYNTAX, 0, "expected '(' starting a condition, found %s", show(peek(s), buf));
+  if (++s->p->depth > MAX_DEPTH)
+    fail(s, S42_E_SYNTAX, col, "condition nested too deeply");
+  struct expr *e;
+  if (is_comparison(s)) {
+    adv(s);
+    e = node(s, EX_CMP, col);
+    e->a = expr(s);
+    expect(s, ':', "':' before the relation");
+    unsigned rcol = pcol(s), mask = 0;
+    while (peek(s) == 'B' || peek(s) == 'M' || peek(s) == 'R') {
+      unsigned bit = peek(s) == 'M' ? 1u : peek(s) == 'R' ? 2u : 4u;
+      if (mask & bit)
+        fail(s, S42_E_SYNTAX, rcol, "relation repeats a letter (use R B M BR MR BM BMR)");
+      mask |= bit;
+      adv(s);
+    }
+    if (peek(s) != ':')
+      fail(s, S42_E_SYNTAX, 0, "relation must be R, B, M, BR, MR, BM, BMR or empty, found %s",
+           show(peek(s), buf));
+    adv(s);
+    e->op = (uint8_t)mask;
+    e->b = expr(s);
+    expect(s, ')', "')' closing the comparison");
+  } else {
+    adv(s);
+    e = cond(s);
+    expect(s, ')', "')' closing the condition");
+  }
+  s->p->depth--;
+  return e;
+}
+
+static struct expr *conjunction(struct pstate *s)
+{
+  struct expr *e = prim(s);
+  while (peek(s) == 'U') {
+    unsigned col = pcol(s);
+    adv(s);
+    struct expr *n = node(s, EX_AND, col);
+    n->a = e;
+    n->b = prim(s);
+    e = n;
+  }
+  return e;
+}
+
+static struct expr *cond(struct pstate *s)
+{
+  struct expr *e = conjunction(s);
+  while (peek(s) == 'S') {
+    unsigned col = pcol(s);
+    adv(s);
+    struct expr *n = node(s, EX_OR, col);
+    n->a = e;
+    n->b = conjunction(s);
+    e = n;
+  }
+  return e;
+}
+
+/* ---- slash arguments ---- */
+
+/* Read raw text up to the next '/' (not consumed).  Newline or ^ before it
+ * is E-TEXT: the argument was not closed. */
+static void raw_text(struct pstate *s, struct text *t, const char *fn)
+{
+  struct lex *l = &s->p->lx;
+  char buf[1024];
+  size_t n = 0;
+  unsigned nch = 0;
+  t->col = l->col;
+  for (;;) {
+    int32_t c = lex_raw_peek(l);
+    if (c == '/')
+      break;
+    if (c == LX_EOB || c == LX_EOF) {
+      lex_peek(l);
+      fail(s, S42_E_TEXT, t->col, "%s: text not closed with '/' before the end of the block", fn);
+    }
+    char u[4];
+    int k = lex_utf8(c, u);
+    if (n + (size_t)k < sizeof buf - 1) {
+      memcpy(buf + n, u, (size_t)k);
+      n += (size_t)k;
+    }
+    nch++;
+    lex_raw_adv(l);
+  }
+  buf[n] = 0;
+  t->s = arena_alloc(&s->p->ar, n + 1);
+  memcpy(t->s, buf, n + 1);
+  t->nchars = nch;
+}
+
+static void open_slash(struct pstate *s, const char *fn, int code)
+{
+  char buf[32];
+  if (peek(s) != '/')
+    fail(s, code, 0, "%s needs its argument in slashes (/.../), found %s", fn, show(peek(s), buf));
+  adv(s);
+}
+
+static void slash_arg(struct pstate *s, struct block *b, int isg, int n)
+{
+  struct lex *l = &s->p->lx;
+  char fn[8];
+  snprintf(fn, sizeof fn, "%c%02d", isg ? 'G' : 'M', n);
+  if (isg && (n == 27 || n == 33)) {
+    open_slash(s, fn, S42_E_TEXT);
+    struct text *t = n == 27 ? &b->g27 : &b->g33;
+    raw_text(s, t, fn);
+    lex_raw_adv(l);   /* closing '/' */
+    if (n == 27) {
+      b->g27form = ':';
+      if (peek(s) == ':') adv(s);
+      else if (peek(s) == '-') { adv(s); b->g27form = '-'; }
+    }
+  } else if (!isg && n == 18) {
+    open_slash(s, fn, S42_E_TEXT);
+    raw_text(s, &b->m18, fn);
+    lex_raw_adv(l);
+  } else if (isg && n == 29) {
+    open_slash(s, fn, S42_E_TEXT);
+    for (;;) {
+      if (b->ng29 >= MAX_LINES)
+        fail(s, S42_E_TEXT, 0, "G29: more than %d lines", MAX_LINES);
+      raw_text(s, &b->g29[b->ng29++], fn);
+      lex_raw_adv(l);
+      if (lex_raw_peek(l) == '/') {
+        lex_raw_adv(l);
+        break;
+      }
+    }
+  } else if (isg && n == 28) {
+    open_slash(s, fn, S42_E_SYNTAX);
+    b->g28col = pcol(s);
+    s->p->slash_ends = 1;
+    b->g28min = expr(s);
+    expect(s, ':', "':' between the G28 bounds /min:max/ (divide inside parentheses: /(R1/2):R2/)");
+    b->g28max = expr(s);
+    expect(s, '/', "'/' closing the G28 bounds");
+    s->p->slash_ends = 0;
+    b->g28reg = -2;   /* the R word must follow */
+  } else if (isg && n == 37) {
+    open_slash(s, fn, S42_E_SYNTAX);
+    b->g37col = pcol(s);
+    int32_t c = peek(s);
+    if (c == 'X' || c == 'Y' || c == 'Z' || c == 'A') {
+      b->g37axis = (char)c;
+      adv(s);
+    } else if (c != '/') {
+      fail(s, S42_E_AXIS, 0, "G37 takes one axis letter: G37 /Y/");
+    }
+    expect(s, '/', "'/' closing G37 /Y/");
+  } else if (!isg && n == 20) {
+    open_slash(s, fn, S42_E_SYNTAX);
+    while (peek(s) == 'R') {
+      unsigned col = pcol(s);
+      adv(s);
+      long r = number(s, 3, "a parameter number");
+      if (r > 113)
+        fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", r);
+      if (b->nm20 >= MAX_ITEMS)
+        fail(s, S42_E_SYNTAX, col, "M20: too many parameters");
+      b->m20col[b->nm20] = col;
+      b->m20[b->nm20++] = (unsigned)r;
+    }
+    if (b->nm20 == 0)
+      fail(s, S42_E_SYNTAX, 0, "M20 lists parameters: M20 /R12R15/");
+    expect(s, '/', "'/' closing the M20 list");
+  } else if (!isg && n == 16) {
+    open_slash(s, fn, S42_E_SYNTAX);
+    while (peek(s) == 'R') {
+      struct m16_item it;
+      it.col = pcol(s);
+      adv(s);
+      long r = number(s, 3, "a parameter number");
+      if (r > 113)
+        fail(s, S42_E_RANGE, it.col, "parameter R%ld does not exist (R0..R113)", r);
+      int32_t sg = peek(s);
+      if (sg != '+' && sg != '-')
+        fail(s, S42_E_SYNTAX, 0, "M16: expected + or - and an axis after R%ld", r);
+      adv(s);
+      int32_t ax = peek(s);
+      if (ax != 'X' && ax != 'Y' && ax != 'Z' && ax != 'A')
+        fail(s, S42_E_AXIS, 0, "M16: expected an axis X, Y, Z or A after R%ld%c", r, (char)sg);
+      adv(s);
+      it.reg = (unsigned)r;
+      it.sign = sg == '-' ? -1 : 1;
+      it.axis = (char)ax;
+      if (b->nm16 >= MAX_ITEMS)
+        fail(s, S42_E_SYNTAX, it.col, "M16: too many items");
+      b->m16[b->nm16++] = it;
+    }
+    if (b->nm16 == 0)
+      fail(s, S42_E_SYNTAX, 0, "M16 lists corrections to store: M16 /R1+X R2-Z//");
+    expect(s, '/', "'//' closing the M16 list");
+    accept(s, '/');
+  }
+}
+
+/* ---- words ---- */
+
+static struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
+{
+  struct block *b = s->b;
+  if (b->nw >= MAX_WORDS)
+    fail(s, S42_E_BLOCKLEN, col, "too many words in one block");
+  struct word *w = &b->w[b->nw++];
+  memset(w, 0, sizeof *w);
+  w->kind = (uint8_t)kind;
+  w->letter = letter;
+  w->col = col;
+  return w;
+}
+
+static int has_word(const struct block *b, int kind, char letter)
+{
+  for (int i = 0; i < b->nw; i++)
+    if (b->w[i].kind == kind && b->w[i].letter == letter)
+      return 1;
+  return 0;
+}
+
+static void once(struct pstate *s, int kind, char letter, const char *name, unsigned col)
+{
+  if (has_word(s->b, kind, letter))
+    fail(s, S42_E_SYNTAX, col, "%s appears twice in the block", name);
+}
+
+static void word(struct pstate *s)
+{
+  char buf[32];
+  struct block *b = s->b;
+  unsigned col = pcol(s);
+  int32_t c = peek(s);
+  struct word *w;
+  switch (c) {
+  case 'G': case 'M': {
+    adv(s);
+    long n = number(s, 2, c == 'G' ? "a G function number" : "an M function number");
+    int valid = c == 'G' ? kp_valid_g((int)n) : kp_valid_m((int)n);
+    if (!valid) {
+      diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, s->p->lx.cline, col, b->number,
+               "%c%02ld is not a function of the 2С42", (char)c, n);
+      b->bad = 1;
+      return;
+    }
+    if (c == 'G') {
+      if (b->g & (1ull << n))
+        fail(s, S42_E_GROUP, col, "G%02ld appears twice in the block", n);
+      b->g |= 1ull << n;
+      b->gcol[n] = col;
+    } else {
+      if (b->m & (1u << n))
+        fail(s, S42_E_SYNTAX, col, "M%02ld appears twice in the block", n);
+      b->m |= 1u << n;
+      b->mcol[n] = col;
+    }
+    w = new_word(s, c == 'G' ? WK_G : WK_M, (char)c, col);
+    w->num = (int)n;
+    if ((c == 'G' && (n == 27 || n == 28 || n == 29 || n == 33 || n == 37)) ||
+        (c == 'M' && (n == 16 || n == 18 || n == 20)))
+      slash_arg(s, b, c == 'G', (int)n);
+    return;
+  }
+  case 'X': case 'Y': case 'Z': case 'A': case 'I': case 'J': case 'K': {
+    char name[2] = {(char)c, 0};
+    once(s, WK_SLOT, (char)c, name, col);
+    adv(s);
+    struct expr *e = word_value(s, name, 1);
+    w = new_word(s, WK_SLOT, (char)c, col);
+    w->e = e;
+    w->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : c == 'Z' ? SL_Z : c == 'A' ? SL_A
+           : c == 'I' ? SL_I : c == 'J' ? SL_J : SL_K;
+    return;
+  }
+  case 'F': case 'H': {
+    char name[2] = {(char)c, 0};
+    once(s, c == 'F' ? WK_REG : WK_SLOT, (char)c, name, col);
+    adv(s);
+    struct expr *e = word_value(s, name, 0);
+    w = new_word(s, c == 'F' ? WK_REG : WK_SLOT, (char)c, col);
+    w->e = e;
+    w->idx = c == 'F' ? REG_F : SL_H;
+    return;
+  }
+  case 'L': {
+    once(s, WK_L, 'L', "L", col);
+    adv(s);
+    long n = number(s, 3, "the first block number of a sub after L");
+    w = new_word(s, WK_L, 'L', col);
+    w->num = (int)n;
+    return;
+  }
+  case 'R': {
+    adv(s);
+    long n = number(s, 3, "a parameter number after R");
+    if (n > 113)
+      fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
+    char name[24];
+    snprintf(name, sizeof name, "R%ld", n);
+    if (b->g28reg == -2) {        /* G28 /min:max/ Rn: where the answer goes */
+      b->g28reg = (int)n;
+      return;
+    }
+    struct expr *e = word_value(s, name, 1);
+    w = new_word(s, WK_REG, 'R', col);
+    w->num = (int)n;
+    w->idx = (unsigned)n;
+    w->e = e;
+    return;
+  }
+  case 'D': {
+    adv(s);
+    if (peek(s) != '1')
+      fail(s, S42_E_SYNTAX, col, "the only D word is D1 (tool diameter)");
+    adv(s);
+    once(s, WK_REG, 'D', "D1", col);
+    struct expr *e = word_value(s, "D1", 1);
+    w = new_word(s, WK_REG, 'D', col);
+    w->idx = REG_D1;
+    w->e = e;
+    return;
+  }
+  case 'T': {
+    adv(s);
+    if (peek(s) == 'T') {            /* TT1 TT2 TT */
+      adv(s);
+      unsigned mask = 3;
+      if (peek(s) == '1' || peek(s) == '2') {
+        mask = (unsigned)(peek(s) - '0');
+        adv(s);
+      }
+      w = new_word(s, WK_AOP, 'T', col);
+      w->op = OP_AZERO;
+      w->idx = mask;
+      return;
+    }
+    if (!isdig(peek(s)))
+      fail(s, S42_E_SYNTAX, col, "T word: expected TT, T0, T01..T04 or T11..T32, found %s", show(peek(s), buf));
+    int d1 = peek(s) - '0';
+    adv(s);
+    int d2 = isdig(peek(s)) ? peek(s) - '0' : -1;
+    if (d2 >= 0)
+      adv(s);
+    if (d1 == 0) {
+      w = new_word(s, WK_AOP, 'T', col);
+      if (d2 == -1) { w->op = OP_APTR0; w->idx = 3; }
+      else if (d2 == 1 || d2 == 2) { w->op = OP_APTR0; w->idx = (unsigned)d2; }
+      else if (d2 == 3 || d2 == 4) { w->op = OP_APTREND; w->idx = (unsigned)d2 - 2; }
+      else fail(s, S42_E_SYNTAX, col, "T0%d is not an array operation (T0, T01, T02, T03, T04)", d2);
+      return;
+    }
+    if (d1 > 3 || (d2 != 1 && d2 != 2))
+      fail(s, S42_E_SYNTAX, col, "T%d%s is not an array word (T11 T21 T31 T12 T22 T32)", d1,
+           d2 >= 0 ? (char[]){(char)('0' + d2), 0} : "");
+    char name[4] = {'T', (char)('0' + d1), (char)('0' + d2), 0};
+    struct expr *e = word_value(s, name, 1);
+    w = new_word(s, WK_AWR, 'T', col);
+    w->idx = (unsigned)(d2 - 1) | (unsigned)d1 << 2;
+    w->e = e;
+    return;
+  }
+  case 'P': {
+    adv(s);
+    if (peek(s) == 'P') {
+      adv(s);
+      once(s, WK_PP, 'P', "PP", col);
+      w = new_word(s, WK_PP, 'P', col);
+      w->num = (int)number(s, 3, "the target block number after PP");
+      return;
+    }
+    if (has_word(b, WK_P, 'P') || has_word(b, WK_PCOND, 'P'))
+      fail(s, S42_E_SYNTAX, col, "two jumps P in one block");
+    if (peek(s) == '(') {
+      struct expr *e = cond(s);
+      w = new_word(s, WK_PCOND, 'P', col);
+      w->num = (int)number(s, 3, "the target block number after the condition");
+      b->cond = e;
+      return;
+    }
+    w = new_word(s, WK_P, 'P', col);
+    w->num = (int)number(s, 3, "the target block number after P");
+    return;
+  }
+  case '/':
+    fail(s, S42_E_SYNTAX, col, "a slash argument must follow its function (G27 G28 G29 G33 G37 M16 M18 M20)");
+  case 'N':
+    fail(s, S42_E_SYNTAX, col, "a block number may only start the block");
+  default:
+    if (c >= 'a' && c <= 'z')
+      fail(s, S42_E_SYNTAX, col, "unexpected %s: addresses are capital letters", show(c, buf));
+    fail(s, S42_E_SYNTAX, col, "unexpected %s: not a word of the 2С42", show(c, buf));
+  }
+}
+
+void parse_init(struct parser *p, const char *src, size_t n, struct diag_list *d)
+{
+  memset(p, 0, sizeof *p);
+  p->d = d;
+  lex_init(&p->lx, src, n, d);
+}
+
+void parse_free(struct parser *p)
+{
+  arena_free(&p->ar);
+}
+
+static void clear_block(struct block *b)
+{
+  /* Only the header needs zeroing: words are counted by nw. */
+  b->number = -1;
+  b->ncol = 0;
+  b->len = 0;
+  b->bad = 0;
+  b->g = 0;
+  b->m = 0;
+  b->nw = 0;
+  b->cond = NULL;
+  memset(&b->g27, 0, sizeof b->g27);
+  memset(&b->g33, 0, sizeof b->g33);
+  memset(&b->m18, 0, sizeof b->m18);
+  b->g27form = 0;
+  b->ng29 = 0;
+  b->g28min = b->g28max = NULL;
+  b->g28reg = -1;
+  b->g37axis = 0;
+  b->nm16 = 0;
+  b->nm20 = 0;
+}
+
+int parse_block(struct parser *p, struct block *b)
+{
+  struct lex *l = &p->lx;
+  struct pstate s;
+  s.p = p;
+  s.b = b;
+  arena_reset(&p->ar);
+  clear_block(b);
+  int32_t c;
+  for (;;) {
+    c = lex_peek(l);
+    if (c == LX_EOF)
+      return 0;
+    if (c != LX_EOB)
+      break;
+    lex_adv(l);
+  }
+  l->blen = 0;
+  l->number = -1;
+  b->line = l->cline;
+  b->col = l->ccol;
+  if (setjmp(s.jb) == 0) {
+    if (c == 'N' || c == 0x2116) {   /* N12, №12, № 12 */
+      b->ncol = l->ccol;
+      lex_adv(l);
+      long n = number(&s, 3, "a block number");
+      if (n < 1 || n > 999)
+        fail(&s, S42_E_RANGE, b->ncol, "block number %ld outside 1..999", n);
+      b->number = (int)n;
+      l->number = (int)n;
+    }
+    for (;;) {
+      c = lex_peek(l);
+      if (c == LX_EOB || c == LX_EOF)
+        break;
+      word(&s);
+    }
+    if (b->g28reg == -2)
+      fail(&s, S42_E_SYNTAX, b->g28col, "G28 /min:max/ must be followed by the parameter: G28 /min:max/ R3");
+  } else {
+    lex_skip_block(l);
+  }
+  p->depth = p->paren = p->slash_ends = 0;
+  b->len = l->blen;
+  if (lex_peek(l) == LX_EOB)
+    lex_adv(l);
+  return 1;
+}

@@ -1,0 +1,28 @@
+/* The 2С42 parser: one block at a time, from the lexer into struct block. */
+#ifndef S42_PARSE_H
+#define S42_PARSE_H
+
+#include "ast.h"
+#include "lex.h"
+
+struct parser {
+  struct lex lx;
+  struct arena ar;
+  struct diag_list *d;
+  int depth;              /* expression nesting, bounded */
+  int paren;              /* open parentheses in the current expression */
+  int slash_ends;         /* G28 /min:max/: a '/' outside parentheses closes it */
+};
+
+void parse_init(struct parser *p, const char *src, size_t n, struct diag_list *d);
+void parse_free(struct parser *p);
+/* Parse the next non-empty block into b.  Returns 1 when a block was read,
+ * 0 at the end of the text.  Errors are reported and set b->bad. */
+int parse_block(struct parser *p, struct block *b);
+
+/* G and M numbers of the language (E-FUNC otherwise). */
+int kp_valid_g(int n);
+int kp_valid_m(int n);
+int kp_g_group(int n);
+
+#endif

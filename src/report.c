@@ -1,0 +1,165 @@
+/* Trace and dump printers (src/report.h). */
+#include "report.h"
+#include "errors.h"
+#include <math.h>
+#include <string.h>
+
+void json_string(FILE *f, const char *s)
+{
+  fputc('"', f);
+  for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+    if (*p == '"' || *p == '\\')
+      fprintf(f, "\\%c", *p);
+    else if (*p == '\n')
+      fputs("\\n", f);
+    else if (*p < 0x20)
+      fprintf(f, "\\u%04x", *p);
+    else
+      fputc(*p, f);
+  }
+  fputc('"', f);
+}
+
+void json_num(FILE *f, double v)
+{
+  if (!isfinite(v)) {
+    fputs("null", f);
+    return;
+  }
+  if (v == 0)
+    v = 0;   /* no -0 */
+  if (v == floor(v) && fabs(v) < 1e15)
+    fprintf(f, "%.0f", v);
+  else
+    fprintf(f, "%.10g", v);
+}
+
+static const char axes[] = "xyza";
+
+void report_row(void *ctx, const struct session *s, const struct sess_row *r)
+{
+  struct trace_ctx *t = ctx;
+  FILE *f = t->out;
+  (void)s;
+  if (t->json) {
+    fprintf(f, "{\"seq\":%llu,\"n\":", (unsigned long long)r->seq);
+    if (r->n >= 0)
+      fprintf(f, "%d", r->n);
+    else
+      fputs("null", f);
+    fprintf(f, ",\"line\":%u,\"depth\":%d,\"motion\":\"%s\"", r->line, r->depth, r->motion);
+    for (int i = 0; i < 4; i++)
+      fprintf(f, ",\"%c\":%lld", axes[i], (long long)r->d[i]);
+    fprintf(f, ",\"f\":%.0f,\"feed\":%.3f,\"t\":%.4f", r->f, r->feed, r->t);
+    if (r->has_v)
+      fprintf(f, ",\"v\":%.3f", r->v);
+    if (r->osc)
+      fputs(",\"osc\":\"on\"", f);
+    if (r->override_pct != 100)
+      fprintf(f, ",\"override\":%d", r->override_pct);
+    if (r->has_jogs)
+      fprintf(f, ",\"jogs\":{\"x\":%lld,\"y\":%lld,\"z\":%lld,\"a\":%lld}", (long long)r->jogs[0],
+              (long long)r->jogs[1], (long long)r->jogs[2], (long long)r->jogs[3]);
+    fputs("}\n", f);
+  } else {
+    fprintf(f, "%6llu ", (unsigned long long)r->seq);
+    if (r->n >= 0)
+      fprintf(f, "N%-4d", r->n);
+    else
+      fputs("N-   ", f);
+    fprintf(f, " L%-4u %*s%-6s", r->line, 2 * r->depth, "", r->motion);
+    for (int i = 0; i < 4; i++)
+      if (r->d[i])
+        fprintf(f, " %c%+lld", "XYZA"[i], (long long)r->d[i]);
+    fprintf(f, "  F%.0f", r->f);
+    if (r->feed > 0)
+      fprintf(f, " feed %.3f", r->feed);
+    if (r->has_v)
+      fprintf(f, " v %.3f", r->v);
+    if (r->osc)
+      fputs(" osc", f);
+    if (r->override_pct != 100)
+      fprintf(f, " override %d%%", r->override_pct);
+    if (r->has_jogs)
+      fprintf(f, " jogs X%+lld Y%+lld Z%+lld A%+lld", (long long)r->jogs[0], (long long)r->jogs[1],
+              (long long)r->jogs[2], (long long)r->jogs[3]);
+    fprintf(f, "  t %.4f\n", r->t);
+  }
+}
+
+void report_machine_msg(char *buf, size_t n, int code, int number, int aux, int en)
+{
+  char nb[16];
+  if (number > 0)
+    snprintf(nb, sizeof nb, "%d", number);
+  else
+    strcpy(nb, "-");
+  if (code == S42_E_ARRAYP || code == S42_E_ARRAYM)
+    snprintf(buf, n, en ? "error in block %s: array %d bound broken %s" : "помилка в КП №%s: Порушена межа масиву %d %s",
+             nb, aux, code == S42_E_ARRAYP ? "+" : "–");
+  else
+    snprintf(buf, n, en ? "error in block %s: %s" : "помилка в КП №%s: %s", nb, err_title(code, en));
+}
+
+void report_dump(FILE *f, const char *status, const struct dump_error *err, const struct session *s)
+{
+  fprintf(f, "{\"status\":\"%s\",\"error\":", status);
+  if (err) {
+    fprintf(f, "{\"code\":\"%s\",\"n\":", err->code);
+    if (err->n >= 0)
+      fprintf(f, "%d", err->n);
+    else
+      fputs("null", f);
+    fprintf(f, ",\"line\":%u,\"col\":%u,\"message\":", err->line, err->col);
+    json_string(f, err->message);
+    fputs(",\"machine\":", f);
+    json_string(f, err->machine);
+    fputc('}', f);
+  } else {
+    fputs("null", f);
+  }
+  if (!s) {
+    fputs(",\"blocks\":0,\"time\":0,\"pos\":{\"x\":0,\"y\":0,\"z\":0,\"a\":0},\"r\":[", f);
+    for (int i = 0; i < 114; i++)
+      fputs(i ? ",0" : "0", f);
+    fputs("],\"d1\":0,\"tk\":0,\"ug\":0,\"f\":0,\"wheel\":\"off\",\"arrays\":[", f);
+    for (int a = 0; a < 2; a++)
+      fprintf(f, "%s{\"ptr\":0,\"len\":0,\"cells\":[0,0,0,0,0,0,0,0,0,0,0,0,0,0,0]}", a ? "," : "");
+    fputs("]}\n", f);
+    return;
+  }
+  const struct vm *vm = &s->vm;
+  fprintf(f, ",\"blocks\":%llu,\"time\":%.6f,\"pos\":{", (unsigned long long)vm->blocks, s->m.t);
+  for (int i = 0; i < 4; i++)
+    fprintf(f, "%s\"%c\":%lld", i ? "," : "", axes[i], (long long)s->m.pos[i]);
+  fputs("},\"r\":[", f);
+  for (int i = 0; i < 114; i++) {
+    if (i)
+      fputc(',', f);
+    json_num(f, vm->reg[i]);
+  }
+  fputs("],\"d1\":", f);
+  json_num(f, vm->reg[REG_D1]);
+  fputs(",\"tk\":", f);
+  json_num(f, vm->reg[REG_TK]);
+  fputs(",\"ug\":", f);
+  json_num(f, vm->reg[REG_UG]);
+  fputs(",\"f\":", f);
+  json_num(f, vm->reg[REG_F]);
+  static const char *const wheel[] = {"off", "cw", "ccw"};
+  fprintf(f, ",\"wheel\":\"%s\",\"arrays\":[", wheel[s->m.wheel]);
+  for (int a = 0; a < 2; a++) {
+    fprintf(f, "%s{\"ptr\":%d,\"len\":%d,\"cells\":[", a ? "," : "", vm->arr[a].ptr, vm->arr[a].len);
+    for (int i = 0; i < VM_ACELLS; i++) {
+      if (i)
+        fputc(',', f);
+      json_num(f, vm->arr[a].cell[i]);
+    }
+    fputs("]}", f);
+  }
+  fputs("]", f);
+  if (s->m.osc.defined)
+    fprintf(f, ",\"osc\":{\"axis\":\"%c\",\"stroke\":%.0f,\"speed\":%.3f,\"on\":%s}", "xyza"[s->m.osc.axis],
+            s->m.osc.stroke, s->m.osc.speed, s->m.osc.active ? "true" : "false");
+  fputs("}\n", f);
+}

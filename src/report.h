@@ -1,0 +1,33 @@
+/* Trace rows and the final dump, as text and JSON (contracts.md section 2).
+ * Numbers are printed in the C locale with fixed formats. */
+#ifndef S42_REPORT_H
+#define S42_REPORT_H
+
+#include "diag.h"
+#include "session.h"
+#include <stdio.h>
+
+struct trace_ctx {
+  FILE *out;
+  int json;
+  const char *file;
+};
+
+void report_row(void *ctx, const struct session *s, const struct sess_row *r);
+void json_string(FILE *f, const char *s);
+void json_num(FILE *f, double v);
+
+/* The dump: status "end" | "error" | "stopped".  s may be NULL when the
+ * program did not compile (err then names the first check-time error). */
+struct dump_error {
+  const char *code;
+  int n;             /* -1: null */
+  unsigned line, col;
+  const char *message;
+  char machine[200]; /* the machine's own message */
+};
+void report_dump(FILE *f, const char *status, const struct dump_error *err, const struct session *s);
+/* The machine message for an error: "помилка в КП №n: ..." */
+void report_machine_msg(char *buf, size_t n, int code, int number, int aux, int en);
+
+#endif

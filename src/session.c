@@ -1,0 +1,240 @@
+/* The session (src/session.h): turns the VM's block events into machine
+ * work, waits and trace rows. */
+#include "session.h"
+#include "errors.h"
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#define BIT(x, n) (((x) >> (n)) & 1)
+
+void sess_init(struct session *s, const struct program *p)
+{
+  memset(s, 0, sizeof *s);
+  s->p = p;
+  vm_init(&s->vm, p);
+  mach_init(&s->m);
+  s->state = SE_START;
+}
+
+int sess_block_number(const struct session *s)
+{
+  int n = s->p->blocks[s->vm.cur].number;
+  return n ? n : -1;
+}
+
+static void warn(struct session *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void warn(struct session *s, const char *fmt, ...)
+{
+  char msg[240];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  if (s->sink.warn)
+    s->sink.warn(s->sink.ctx, s, msg);
+}
+
+static void emit_row(struct session *s)
+{
+  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
+  struct sess_row r;
+  memset(&r, 0, sizeof r);
+  r.seq = ++s->seq;
+  r.n = sess_block_number(s);
+  r.line = s->p->blocks[s->vm.cur].line;
+  r.depth = s->vm.depth;
+  r.motion = kp_motion_name[at->motion];
+  memcpy(r.d, s->mo.d, sizeof r.d);
+  r.f = s->vm.reg[REG_F];
+  r.feed = s->mo.feed;
+  r.t = s->m.t;
+  r.v = s->mo.v;
+  r.has_v = s->mo.has_v;
+  r.osc = s->m.osc.active;
+  r.override_pct = s->m.override_allowed ? s->m.override_pct : 100;
+  memcpy(r.jogs, s->jogs, sizeof r.jogs);
+  r.has_jogs = s->has_jogs;
+  if (s->sink.row)
+    s->sink.row(s->sink.ctx, s, &r);
+}
+
+/* What of the block this build cannot do yet: a clear error, never a no-op. */
+static int unsupported(struct session *s, const struct kp_attr *at)
+{
+  static const int dlg_g[] = {27, 28, 29, 33, 34};
+  for (size_t i = 0; i < sizeof dlg_g / sizeof dlg_g[0]; i++)
+    if (BIT(at->g, dlg_g[i])) {
+      vm_fail(&s->vm, S42_E_FUNC, "G%d (dialog and display) needs the 2С42 display, not implemented in this build",
+              dlg_g[i]);
+      return 1;
+    }
+  static const int dlg_m[] = {27, 28, 29};
+  for (size_t i = 0; i < sizeof dlg_m / sizeof dlg_m[0]; i++)
+    if (BIT(at->m, dlg_m[i])) {
+      vm_fail(&s->vm, S42_E_FUNC, "M%d (fixed input line) needs the 2С42 display, not implemented in this build",
+              dlg_m[i]);
+      return 1;
+    }
+  if (BIT(at->m, 19)) {
+    vm_fail(&s->vm, S42_E_FUNC, "M19 (teach-in move) is not implemented in this build");
+    return 1;
+  }
+  return 0;
+}
+
+/* The rest of a block after its machine work and waits: M16, the row. */
+static void finish_block(struct session *s)
+{
+  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
+  const struct kp_ext *x = s->p->ext;
+  for (uint32_t i = 0; i < at->nm16; i++) {
+    const struct m16_item *it = &x->m16[at->m16 + i];
+    int axis = it->axis == 'X' ? 0 : it->axis == 'Y' ? 1 : it->axis == 'Z' ? 2 : 3;
+    vm_set_reg(&s->vm, it->reg, (double)(it->sign * s->m.corr[axis]));
+  }
+  emit_row(s);
+  s->wait = W_NONE;
+  s->state = SE_START;
+}
+
+/* A VM_EV_BLOCK: do the block's machine work.  Returns the session event
+ * when the host must act, or -1 to keep running. */
+static int do_block(struct session *s)
+{
+  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
+  char msg[200];
+  if (unsupported(s, at))
+    return SE_ERROR;
+  if (s->vm.clamped) {
+    const struct prog_rule *ru = &s->p->rules[s->vm.clamped - 1];
+    warn(s, "%s%.10g is over %.0f: clamped to %.0f", ru->name, s->vm.clamped_from, ru->hi, ru->hi);
+    s->vm.clamped = 0;
+  }
+  if (s->vm.pp_jumps != s->pp_seen) {        /* M16 counts from the last PP jump */
+    s->pp_seen = s->vm.pp_jumps;
+    memset(s->m.corr, 0, sizeof s->m.corr);
+  }
+  struct mach_block *b = &s->mb;
+  b->motion = at->motion;
+  b->plane = at->plane;
+  b->g = at->g;
+  b->m = at->m;
+  b->given = at->slots;
+  for (int i = 0; i < SL__COUNT; i++)
+    b->w[i] = BIT(at->slots, i) ? s->vm.w[i] : 0.0;
+  b->f = s->vm.reg[REG_F];
+  b->d1 = s->vm.reg[REG_D1];
+  int e = mach_check(&s->m, b, msg, sizeof msg);
+  if (e) {
+    vm_fail(&s->vm, e, "%s", msg);
+    return SE_ERROR;
+  }
+  memset(s->jogs, 0, sizeof s->jogs);
+  s->has_jogs = 0;
+  mach_exec(&s->m, b, &s->mo);
+  if (s->mo.warn[0])
+    warn(s, "%s", s->mo.warn);
+  if (BIT(at->m, 21))
+    s->directive = 0;
+  if (at->m18)
+    s->directive = at->m18;
+  if (at->motion == MO_G20) {
+    memset(s->m.corr, 0, sizeof s->m.corr);   /* M16 counts from here */
+    s->wait = at->m18 ? W_PS : W_PUSK;
+    return SE_WAIT;
+  }
+  finish_block(s);
+  return -1;
+}
+
+enum sess_ev sess_run(struct session *s)
+{
+  if (s->state == SE_WAIT || s->state == SE_END || s->state == SE_ERROR || s->state == SE_STOPPED)
+    return (enum sess_ev)s->state;
+  for (;;) {
+    enum vm_event ev = vm_run(&s->vm);
+    int r;
+    switch (ev) {
+    case VM_EV_START:
+      return (enum sess_ev)(s->state = SE_START);
+    case VM_EV_BLOCK:
+      r = do_block(s);
+      if (r >= 0)
+        return (enum sess_ev)(s->state = r);
+      break;
+    case VM_EV_END:
+      return (enum sess_ev)(s->state = SE_END);
+    default:
+      return (enum sess_ev)(s->state = SE_ERROR);
+    }
+  }
+}
+
+int sess_key_pusk(struct session *s)
+{
+  if (s->state != SE_WAIT || s->wait != W_PUSK)
+    return -1;
+  finish_block(s);
+  return 0;
+}
+
+int sess_key_ps(struct session *s)
+{
+  if (s->state != SE_WAIT || s->wait != W_PS)
+    return -1;
+  s->wait = W_PUSK;
+  return 0;
+}
+
+void sess_key_exit(struct session *s)
+{
+  s->vm.exit_latch = 1;
+}
+
+void sess_key_stop(struct session *s)
+{
+  if (s->state == SE_END || s->state == SE_ERROR)
+    return;
+  s->state = SE_STOPPED;
+}
+
+int sess_jog(struct session *s, int axis, int64_t d)
+{
+  if (s->state != SE_WAIT || axis < 0 || axis > 3)
+    return -1;
+  mach_jog(&s->m, axis, d, s->m.corr_allowed);
+  s->jogs[axis] += d;
+  s->has_jogs = 1;
+  return 0;
+}
+
+int sess_correct(struct session *s, int axis, int64_t d)
+{
+  if (!s->m.corr_allowed) {
+    warn(s, s->en ? "correction refused: operational corrections are forbidden (M23)"
+                  : "корекцію відхилено: оперативні корекції заборонені (M23)");
+    return -1;
+  }
+  mach_jog(&s->m, axis, d, 1);
+  return 0;
+}
+
+int sess_override(struct session *s, int pct)
+{
+  if (!s->m.override_allowed) {
+    warn(s, s->en ? "feed override refused: forbidden by M25" : "корекцію швидкості відхилено: заборонено M25");
+    return -1;
+  }
+  s->m.override_pct = pct;
+  return 0;
+}
+
+const char *sess_wait_text(const struct session *s)
+{
+  switch (s->wait) {
+  case W_PUSK: return s->en ? "Start (key PUSK)" : "Пуск (key PUSK)";
+  case W_PS: return s->en ? "PS, then Start (key PS, key PUSK)" : "ПС, потім Пуск (key PS, key PUSK)";
+  default: return "nothing";
+  }
+}

@@ -1,0 +1,73 @@
+/* A session: one program running on one VM against one machine, driven by
+ * a host (the headless runner, the terminal, the Modbus server).  sess_run
+ * advances until the host must act -- a watched block starts, the machine
+ * waits for the operator, the end, an error -- and never blocks. */
+#ifndef S42_SESSION_H
+#define S42_SESSION_H
+
+#include "kp.h"
+#include "machine.h"
+#include "vm.h"
+
+enum sess_ev { SE_START, SE_WAIT, SE_END, SE_ERROR, SE_STOPPED };
+enum sess_wait { W_NONE, W_PUSK, W_PS };   /* W_PS: ПС first, then Пуск */
+
+struct sess_row {
+  uint64_t seq;
+  int n;                 /* block number, -1 none */
+  unsigned line;
+  int depth;
+  const char *motion;
+  int64_t d[4];
+  double f, feed, t, v;
+  int has_v;
+  int osc;               /* oscillation on after the block */
+  int override_pct;
+  int64_t jogs[4];
+  int has_jogs;
+};
+
+struct session;
+struct sess_sink {
+  void *ctx;
+  void (*row)(void *ctx, const struct session *s, const struct sess_row *r);
+  void (*warn)(void *ctx, const struct session *s, const char *msg);
+};
+
+struct session {
+  const struct program *p;
+  struct vm vm;
+  struct machine m;
+  struct sess_sink sink;
+  int state;             /* enum sess_ev of the last return */
+  int wait;              /* enum sess_wait while state == SE_WAIT */
+  int en;                /* English machine messages */
+  uint64_t seq;
+  uint32_t directive;    /* M18 text shown (string offset + 1), 0 none */
+  uint32_t pp_seen;
+  /* the block in progress while waiting */
+  struct mach_block mb;
+  struct mach_out mo;
+  int64_t jogs[4];
+  int has_jogs;
+};
+
+void sess_init(struct session *s, const struct program *p);
+enum sess_ev sess_run(struct session *s);
+/* Operator input.  Each returns 0 when taken, -1 when it does not fit what
+ * the machine waits for (the caller decides what that means). */
+int sess_key_pusk(struct session *s);
+int sess_key_ps(struct session *s);
+void sess_key_exit(struct session *s);
+void sess_key_stop(struct session *s);
+int sess_jog(struct session *s, int axis, int64_t d);
+/* Correction / override from the panel: 0 applied, -1 refused (a warning
+ * says why). */
+int sess_correct(struct session *s, int axis, int64_t d);
+int sess_override(struct session *s, int pct);
+/* What the machine waits for, in words, for messages. */
+const char *sess_wait_text(const struct session *s);
+/* The current block's number (-1 none) and line. */
+int sess_block_number(const struct session *s);
+
+#endif

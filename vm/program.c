@@ -1,0 +1,100 @@
+/* Growing arrays of a compiled program (vm/program.h). */
+#include "program.h"
+#include "opcodes.h"
+#include <stdlib.h>
+#include <string.h>
+
+void prog_init(struct program *p)
+{
+  memset(p, 0, sizeof *p);
+  p->saved_reg = -1;
+}
+
+void prog_free(struct program *p)
+{
+  free(p->code);
+  free(p->cols);
+  free(p->k);
+  free(p->rules);
+  free(p->blocks);
+  if (p->ext_free)
+    p->ext_free(p->ext);
+  prog_init(p);
+}
+
+static int grow(void **ptr, size_t *cap, size_t need, size_t elem)
+{
+  if (need <= *cap)
+    return 0;
+  size_t n = *cap ? *cap * 2 : 64;
+  while (n < need)
+    n *= 2;
+  void *q = realloc(*ptr, n * elem);
+  if (!q)
+    return -1;
+  *ptr = q;
+  *cap = n;
+  return 0;
+}
+
+long prog_emit(struct program *p, uint32_t ins, unsigned col)
+{
+  if (p->ncode >= INS_AMAX)
+    return -1;
+  size_t cap = p->capcode;
+  if (grow((void **)&p->code, &p->capcode, p->ncode + 1, sizeof *p->code))
+    return -1;
+  if (cap != p->capcode) {
+    uint16_t *c = realloc(p->cols, p->capcode * sizeof *c);
+    if (!c)
+      return -1;
+    p->cols = c;
+  }
+  p->code[p->ncode] = ins;
+  p->cols[p->ncode] = (uint16_t)(col > 0xffff ? 0xffff : col);
+  return (long)p->ncode++;
+}
+
+long prog_const(struct program *p, double v)
+{
+  /* Reuse the last few constants: programs repeat the same numbers. */
+  for (size_t i = p->nk, n = 0; i-- > 0 && n < 8; n++)
+    if (memcmp(&p->k[i], &v, sizeof v) == 0)
+      return (long)i;
+  if (p->nk >= INS_AMAX || grow((void **)&p->k, &p->capk, p->nk + 1, sizeof *p->k))
+    return -1;
+  p->k[p->nk] = v;
+  return (long)p->nk++;
+}
+
+long prog_rule(struct program *p, const struct prog_rule *r)
+{
+  for (size_t i = 0; i < p->nrules; i++)
+    if (memcmp(&p->rules[i], r, sizeof *r) == 0)
+      return (long)i;
+  if (p->nrules >= 0x3fff || grow((void **)&p->rules, &p->caprules, p->nrules + 1, sizeof *p->rules))
+    return -1;
+  p->rules[p->nrules] = *r;
+  return (long)p->nrules++;
+}
+
+long prog_block_add(struct program *p, const struct prog_block *b)
+{
+  if (p->nblocks >= INS_AMAX || grow((void **)&p->blocks, &p->capblocks, p->nblocks + 1, sizeof *p->blocks))
+    return -1;
+  p->blocks[p->nblocks] = *b;
+  return (long)p->nblocks++;
+}
+
+size_t prog_block_at(const struct program *p, uint32_t pc)
+{
+  size_t lo = 0, hi = p->nblocks;
+  while (hi - lo > 1) {
+    size_t mid = (lo + hi) / 2;
+    if (p->blocks[mid].code <= pc)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}

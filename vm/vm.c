@@ -1,0 +1,399 @@
+/* The VM's dispatch loop, in the style of Lua's lvm.c: vmcase/vmbreak are a
+ * switch by default and computed goto under GCC; cases are short and the pc
+ * is saved before anything that can raise, so every error knows its block
+ * and column.  A block is a transaction: register writes are journaled and
+ * the arrays snapshotted at their first change, so an error rolls back. */
+#include "vm.h"
+#include "errors.h"
+#include "opcodes.h"
+#include "vmmath.h"
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#define STACK 512        /* a block is <= 320 characters: it cannot nest deeper */
+#define CELL_MAX 9999999.0
+
+const struct vm_opinfo vm_ops[OP__COUNT] = {
+#define OP_INFO(name, opd, pop, push, doc) {#name, OPD_##opd, pop, push, doc},
+  S42_OPCODES(OP_INFO)
+#undef OP_INFO
+};
+
+void vm_init(struct vm *vm, const struct program *p)
+{
+  memset(vm, 0, sizeof *vm);
+  vm->p = p;
+  vm->pc = p->entry;
+  vm->max_blocks = 100000000;
+}
+
+static void rollback(struct vm *vm)
+{
+  while (vm->nundo > 0) {
+    vm->nundo--;
+    vm->reg[vm->undo[vm->nundo].reg] = vm->undo[vm->nundo].old;
+  }
+  if (vm->arr_saved)
+    memcpy(vm->arr, vm->arr_old, sizeof vm->arr);
+  vm->arr_saved = 0;
+}
+
+static void verr(struct vm *vm, int code, unsigned col, const char *fmt, va_list ap)
+{
+  vm->err.code = code;
+  vm->err.block = vm->cur;
+  vm->err.col = col;
+  vsnprintf(vm->err.msg, sizeof vm->err.msg, fmt, ap);
+  rollback(vm);
+  vm->done = 1;
+}
+
+static void raise_at(struct vm *vm, uint32_t pc, int code, const char *fmt, ...)
+  __attribute__((format(printf, 4, 5)));
+static void raise_at(struct vm *vm, uint32_t pc, int code, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  verr(vm, code, pc < vm->p->ncode ? vm->p->cols[pc] : 0, fmt, ap);
+  va_end(ap);
+}
+
+void vm_fail(struct vm *vm, int code, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  verr(vm, code, 0, fmt, ap);
+  va_end(ap);
+}
+
+static inline void journal(struct vm *vm, unsigned reg)
+{
+  /* A register written twice in a block needs only its first old value,
+   * but a second entry is harmless and the check would cost more. */
+  if (vm->nundo < VM_JOURNAL) {
+    vm->undo[vm->nundo].reg = reg;
+    vm->undo[vm->nundo].old = vm->reg[reg];
+    vm->nundo++;
+  }
+}
+
+void vm_set_reg(struct vm *vm, unsigned reg, double v)
+{
+  if (reg >= VM_NREG)
+    return;
+  journal(vm, reg);
+  vm->reg[reg] = v;
+}
+
+static inline void save_arrays(struct vm *vm)
+{
+  if (!vm->arr_saved) {
+    memcpy(vm->arr_old, vm->arr, sizeof vm->arr);
+    vm->arr_saved = 1;
+  }
+}
+
+static const char *num(char *buf, size_t n, double v)
+{
+  snprintf(buf, n, "%.10g", v);
+  return buf;
+}
+
+/* SET: convert by the rule and store; 0 or an error code (message in vm). */
+static int do_set(struct vm *vm, uint32_t pc, uint32_t a, double v)
+{
+  const struct prog_rule *r = &vm->p->rules[a >> 10];
+  unsigned dest = a & 0x3ff;
+  char b1[32], b2[32], b3[32];
+  if (r->round)
+    v = round(v);
+  if (!(v >= r->lo && v <= r->hi)) {
+    if (r->clamp_hi && v > r->hi) {
+      vm->clamped = (a >> 10) + 1;   /* the host warns */
+      vm->clamped_from = v;
+      v = r->hi;
+    } else {
+      raise_at(vm, pc, r->err, "%s = %s is outside %s..%s", r->name, num(b1, sizeof b1, v),
+               num(b2, sizeof b2, r->lo), num(b3, sizeof b3, r->hi));
+      return r->err;
+    }
+  }
+  if (dest < VM_NREG) {
+    journal(vm, dest);
+    vm->reg[dest] = v;
+  } else {
+    vm->w[dest - VM_NREG] = v;
+  }
+  return 0;
+}
+
+/* Array access; mode 1 (T1x: then advance), 2 (T2x: stay), 3 (T3x: back first). */
+static int arr_pos(struct vm *vm, uint32_t pc, uint32_t a, int *idx)
+{
+  struct vm_array *ar = &vm->arr[a & 3];
+  int mode = (int)(a >> 2), n = (int)(a & 3) + 1;
+  save_arrays(vm);
+  if (mode == 3) {
+    if (ar->ptr == 0) {
+      raise_at(vm, pc, S42_E_ARRAYM, "array %d: pointer already at cell 0, cannot move back", n);
+      vm->err.aux = n;
+      return S42_E_ARRAYM;
+    }
+    ar->ptr--;
+  }
+  if (ar->ptr >= VM_ACELLS) {
+    raise_at(vm, pc, S42_E_ARRAYP, "array %d: pointer at %d, past the last cell 14", n, ar->ptr);
+    vm->err.aux = n;
+    return S42_E_ARRAYP;
+  }
+  *idx = ar->ptr;
+  if (mode == 1)
+    ar->ptr++;
+  return 0;
+}
+
+/* Arithmetic that failed (or may fail): take the message from vm_math. */
+static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, double *out)
+{
+  char msg[sizeof vm->err.msg];
+  int e = vm_math(op, a, b, out, msg, sizeof msg);
+  if (e)
+    raise_at(vm, pc, e, "%s", msg);
+  return e;
+}
+
+#if defined(__GNUC__) && !defined(S42_SWITCH_DISPATCH)
+#define vmdispatch(o) goto *disp[o];
+#define vmcase(l) L_##l:
+#define vmbreak do { ins = code[pc++]; goto *disp[INS_OP(ins)]; } while (0)
+#else
+#define vmdispatch(o) switch (o)
+#define vmcase(l) case OP_##l:
+#define vmbreak continue
+#endif
+
+#define RAISED goto fail
+#define POP() (st[--sp])
+#define PUSH(v) (st[sp++] = (v))
+
+enum vm_event vm_run(struct vm *vm)
+{
+  const struct program *p = vm->p;
+  const uint32_t *code = p->code;
+  const double *k = p->k;
+  double st[STACK];
+  int sp = 0;
+  uint32_t pc = vm->pc;
+  uint32_t ins;
+  double a, b, r;
+
+  if (vm->done)
+    return vm->err.code ? VM_EV_ERROR : VM_EV_END;
+
+#if defined(__GNUC__) && !defined(S42_SWITCH_DISPATCH)
+  static const void *const disp[OP__COUNT] = {
+#define OP_LABEL(name, opd, pop, push, doc) &&L_##name,
+    S42_OPCODES(OP_LABEL)
+#undef OP_LABEL
+  };
+  vmbreak;
+#else
+  for (;;) {
+    ins = code[pc++];
+#endif
+    vmdispatch(INS_OP(ins)) {
+      vmcase(BLOCK) {
+        vm->cur = INS_A(ins);
+        if (vm->max_blocks && vm->blocks >= vm->max_blocks) {
+          raise_at(vm, pc - 1, S42_E_LIMIT, "the budget of %llu blocks ran out (--max-blocks)",
+                   (unsigned long long)vm->max_blocks);
+          RAISED;
+        }
+        if (vm->start_all || (vm->watch && vm->watch[vm->cur])) {
+          vm->pc = pc;
+          return VM_EV_START;
+        }
+        vmbreak;
+      }
+      vmcase(CONST) { PUSH(k[INS_A(ins)]); vmbreak; }
+      vmcase(INT) { PUSH((double)INS_A(ins)); vmbreak; }
+      vmcase(REG) { PUSH(vm->reg[INS_A(ins)]); vmbreak; }
+      vmcase(WORD) { PUSH(vm->w[INS_A(ins)]); vmbreak; }
+      vmcase(NEG) { st[sp - 1] = -st[sp - 1]; vmbreak; }
+      vmcase(ADD) {
+        b = POP(); a = st[sp - 1]; r = a + b;
+        if (!isfinite(r) && math_at(vm, pc - 1, OP_ADD, a, b, &r)) RAISED;
+        st[sp - 1] = r;
+        vmbreak;
+      }
+      vmcase(SUB) {
+        b = POP(); a = st[sp - 1]; r = a - b;
+        if (!isfinite(r) && math_at(vm, pc - 1, OP_SUB, a, b, &r)) RAISED;
+        st[sp - 1] = r;
+        vmbreak;
+      }
+      vmcase(MUL) {
+        b = POP(); a = st[sp - 1]; r = a * b;
+        if (!isfinite(r) && math_at(vm, pc - 1, OP_MUL, a, b, &r)) RAISED;
+        st[sp - 1] = r;
+        vmbreak;
+      }
+      vmcase(DIV) {
+        b = POP(); a = st[sp - 1];
+        if (math_at(vm, pc - 1, OP_DIV, a, b, &st[sp - 1])) RAISED;
+        vmbreak;
+      }
+      vmcase(POW) {
+        b = POP(); a = st[sp - 1];
+        if (math_at(vm, pc - 1, OP_POW, a, b, &st[sp - 1])) RAISED;
+        vmbreak;
+      }
+      vmcase(SIN) { if (math_at(vm, pc - 1, OP_SIN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
+      vmcase(COS) { if (math_at(vm, pc - 1, OP_COS, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
+      vmcase(TAN) { if (math_at(vm, pc - 1, OP_TAN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
+      vmcase(ASIN) { if (math_at(vm, pc - 1, OP_ASIN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
+      vmcase(ACOS) { if (math_at(vm, pc - 1, OP_ACOS, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
+      vmcase(ATAN) { if (math_at(vm, pc - 1, OP_ATAN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
+      vmcase(LOG) { if (math_at(vm, pc - 1, OP_LOG, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
+      vmcase(SET) {
+        if (do_set(vm, pc - 1, INS_A(ins), POP())) RAISED;
+        vmbreak;
+      }
+      vmcase(ARD) {
+        int i;
+        if (arr_pos(vm, pc - 1, INS_A(ins), &i)) RAISED;
+        PUSH(vm->arr[INS_A(ins) & 3].cell[i]);
+        vmbreak;
+      }
+      vmcase(AWR) {
+        int i;
+        char bv[32];
+        a = POP();
+        if (!(fabs(a) <= CELL_MAX)) {
+          raise_at(vm, pc - 1, S42_E_RANGE, "array %u: value %s outside -9999999..9999999",
+                   (INS_A(ins) & 3) + 1, num(bv, sizeof bv, a));
+          RAISED;
+        }
+        if (arr_pos(vm, pc - 1, INS_A(ins), &i)) RAISED;
+        struct vm_array *ar = &vm->arr[INS_A(ins) & 3];
+        ar->cell[i] = a;
+        if (ar->len < i + 1)
+          ar->len = i + 1;
+        vmbreak;
+      }
+      vmcase(AZERO) {
+        save_arrays(vm);
+        for (int n = 0; n < 2; n++)
+          if (INS_A(ins) & (1u << n))
+            memset(&vm->arr[n], 0, sizeof vm->arr[n]);
+        vmbreak;
+      }
+      vmcase(APTR0) {
+        save_arrays(vm);
+        for (int n = 0; n < 2; n++)
+          if (INS_A(ins) & (1u << n))
+            vm->arr[n].ptr = 0;
+        vmbreak;
+      }
+      vmcase(APTREND) {
+        save_arrays(vm);
+        for (int n = 0; n < 2; n++)
+          if (INS_A(ins) & (1u << n))
+            vm->arr[n].ptr = vm->arr[n].len;
+        vmbreak;
+      }
+      vmcase(CMP) {
+        b = POP(); a = st[sp - 1];
+        st[sp - 1] = vm_rel(a, b, INS_A(ins)) ? 1.0 : 0.0;
+        vmbreak;
+      }
+      vmcase(AND) { b = POP(); st[sp - 1] = (st[sp - 1] != 0.0 && b != 0.0); vmbreak; }
+      vmcase(OR) { b = POP(); st[sp - 1] = (st[sp - 1] != 0.0 || b != 0.0); vmbreak; }
+      vmcase(COND) { vm->jflag = POP() != 0.0; vmbreak; }
+      vmcase(MACH) {
+        vm->pc = pc;
+        return VM_EV_BLOCK;
+      }
+      vmcase(SYNC) {
+        if (vm->yield_all) {
+          vm->pc = pc;
+          return VM_EV_BLOCK;
+        }
+        vmbreak;
+      }
+      vmcase(TRUNC) {
+        vm->reg[INS_A(ins)] = trunc(vm->reg[INS_A(ins)]);
+        vmbreak;
+      }
+      vmcase(COMMIT) {
+        vm->nundo = 0;
+        vm->arr_saved = 0;
+        vm->blocks++;
+        vmbreak;
+      }
+      vmcase(CALL) {
+        uint32_t n = (uint32_t)POP();
+        if (n == 0)
+          vmbreak;
+        if (vm->depth >= VM_MAXDEPTH) {
+          raise_at(vm, pc - 1, S42_E_NEST, "a 9th nested sub call (at most %d levels)", VM_MAXDEPTH);
+          RAISED;
+        }
+        struct vm_frame *f = &vm->frames[vm->depth++];
+        f->ret = pc;
+        f->start = INS_A(ins);
+        f->left = n - 1;
+        f->block = vm->cur;
+        f->saved = p->saved_reg >= 0 ? vm->reg[p->saved_reg] : 0.0;
+        f->jflag = vm->jflag;
+        pc = INS_A(ins);
+        vmbreak;
+      }
+      vmcase(PPJ) {
+        if (vm->exit_latch) {
+          vm->exit_latch = 0;
+          vm->pp_jumps++;
+          pc = INS_A(ins);
+        }
+        vmbreak;
+      }
+      vmcase(JMP) { pc = INS_A(ins); vmbreak; }
+      vmcase(JCOND) {
+        if (vm->jflag)
+          pc = INS_A(ins);
+        vmbreak;
+      }
+      vmcase(RET) {
+        if (vm->depth == 0) {
+          raise_at(vm, pc - 1, S42_E_SUB, "M17 reached in the main program");
+          RAISED;
+        }
+        struct vm_frame *f = &vm->frames[vm->depth - 1];
+        if (p->saved_reg >= 0)
+          vm->reg[p->saved_reg] = f->saved;
+        if (f->left > 0) {
+          f->left--;
+          pc = f->start;
+        } else {
+          vm->depth--;
+          vm->jflag = f->jflag;
+          pc = f->ret;
+        }
+        vmbreak;
+      }
+      vmcase(END) {
+        vm->pc = pc;
+        vm->exit_latch = 0;
+        vm->done = 1;
+        return VM_EV_END;
+      }
+    }
+#if !(defined(__GNUC__) && !defined(S42_SWITCH_DISPATCH))
+  }
+#endif
+fail:
+  vm->pc = pc;
+  return VM_EV_ERROR;
+}

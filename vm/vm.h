@@ -1,0 +1,84 @@
+/* The VM: a stepper over a compiled program.  vm_run executes until the host
+ * must act -- a block's machine work, a watched block's start, the end, an
+ * error -- and returns that event; the host acts and calls vm_run again.
+ * No global state: any number of VMs may live in one process. */
+#ifndef S42_VM_H
+#define S42_VM_H
+
+#include "program.h"
+#include <stdint.h>
+
+#define VM_MAXDEPTH 8     /* nested sub calls */
+#define VM_ACELLS 15      /* cells per array */
+#define VM_JOURNAL 512    /* register writes one block can make (a block is <= 320 chars) */
+
+enum vm_event {
+  VM_EV_BLOCK,   /* the current block's words are evaluated: do its machine work */
+  VM_EV_START,   /* a watched block (vm.watch) is about to run */
+  VM_EV_END,     /* the program ended (M2) */
+  VM_EV_ERROR    /* vm.err says what; the block was rolled back */
+};
+
+struct vm_array { double cell[VM_ACELLS]; int ptr, len; };
+
+struct vm_frame {
+  uint32_t ret, start, left, block;
+  double saved;
+  uint8_t jflag;
+};
+
+struct vm_error {
+  int code;         /* vm/errors.h */
+  uint32_t block;   /* block index */
+  unsigned col;     /* column of the word that raised it (0 unknown) */
+  int aux;          /* code-specific: the array number for E-ARRAY± */
+  char msg[200];
+};
+
+struct vm_undo { uint32_t reg; double old; };
+
+struct vm {
+  const struct program *p;
+  uint32_t pc;
+  uint32_t cur;                /* index of the block being run */
+  double reg[VM_NREG];
+  double w[VM_NSLOT];          /* the pending block's word values */
+  struct vm_array arr[2];
+  uint8_t jflag;               /* the block's jump condition */
+  int depth;
+  struct vm_frame frames[VM_MAXDEPTH];
+  uint64_t blocks;             /* blocks executed (committed) */
+  uint64_t max_blocks;         /* E-LIMIT when reached; 0 = no limit */
+  int yield_all;               /* SYNC yields too: the host watches every block */
+  int start_all;               /* yield VM_EV_START before every block */
+  const uint8_t *watch;        /* per block: yield VM_EV_START before it runs */
+  int exit_latch;              /* cycle-exit key, taken by the next PP block */
+  uint32_t pp_jumps;           /* operational jumps taken */
+  int done;                    /* ended or failed: vm_run returns at once */
+  unsigned clamped;            /* rule index + 1 of a value clamped in this block, 0 none */
+  double clamped_from;         /* the value before clamping */
+  struct vm_error err;
+  /* the open block's transaction */
+  unsigned nundo;
+  int arr_saved;
+  struct vm_undo undo[VM_JOURNAL];
+  struct vm_array arr_old[2];
+};
+
+void vm_init(struct vm *vm, const struct program *p);
+enum vm_event vm_run(struct vm *vm);
+/* The host's machine work for the current block failed: roll the block back
+ * and end the run with that error.  vm_run then returns VM_EV_ERROR. */
+void vm_fail(struct vm *vm, int code, const char *fmt, ...)
+  __attribute__((format(printf, 3, 4)));
+/* Set a register from the host (dialog input, teach-in, M16), journaled as
+ * part of the open block. */
+void vm_set_reg(struct vm *vm, unsigned reg, double v);
+
+/* Block number of block index b (0 when it has none). */
+static inline unsigned vm_block_number(const struct vm *vm, uint32_t b)
+{
+  return vm->p->blocks[b].number;
+}
+
+#endif
