@@ -90,8 +90,12 @@ void vm_disasm(FILE *f, const struct program *p, const char *src, size_t n)
       fprintf(f, "%04u  ??? %08x\n", pc, ins);
       continue;
     }
-    fprintf(f, "%04u  %-8s", pc, vm_ops[op].name);
-    operand(f, p, ins);
+    if (vm_ops[op].opd == OPD_NONE) {
+      fprintf(f, "%04u  %s", pc, vm_ops[op].name);
+    } else {
+      fprintf(f, "%04u  %-8s", pc, vm_ops[op].name);
+      operand(f, p, ins);
+    }
     fputc('\n', f);
   }
 }
