@@ -558,9 +558,9 @@ static void check_block(struct comp *c)
     err(c, S42_E_BLOCK, col, "H (repeat count) without L (sub call)");
   if (L && (L->num < 2 || L->num > 999))
     err(c, S42_E_RANGE, L->col, "L%d: a sub's first block is 2..999", L->num);
-  if ((P && P->num < 1) || (PC && PC->num < 1))
+  if (!b->bad && ((P && P->num < 1) || (PC && PC->num < 1)))
     err(c, S42_E_RANGE, (P ? P : PC)->col, "jump target 0: block numbers are 1..999");
-  if (PP && PP->num < 1)
+  if (!b->bad && PP && PP->num < 1)
     err(c, S42_E_RANGE, PP->col, "PP target 0: block numbers are 1..999");
 
   /* group 4: dialog and display */
@@ -753,7 +753,7 @@ static void compile_block(struct comp *c)
     sm->Pcol = j->col;
     double v;
     int failed = 0;
-    int always = P || (fold(c, b->cond, &v, &failed) && v != 0);
+    int always = P || (b->cond && fold(c, b->cond, &v, &failed) && v != 0);
     if (always)
       sm->flags |= SF_UNCOND;
     sm->jpc = emit(c, P ? OP_JMP : OP_JCOND, 0, j->col);

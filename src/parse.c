@@ -824,10 +824,9 @@ static void word(struct pstate *s)
     if (has_word(b, WK_P, 'P') || has_word(b, WK_PCOND, 'P'))
       fail(s, S42_E_SYNTAX, col, "two jumps P in one block");
     if (peek(s) == '(') {
-      struct expr *e = cond(s);
+      b->cond = cond(s);
       w = new_word(s, WK_PCOND, 'P', col);
       w->num = (int)number(s, 3, "the target block number after the condition");
-      b->cond = e;
       return;
     }
     w = new_word(s, WK_P, 'P', col);

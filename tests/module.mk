@@ -10,6 +10,7 @@ $(TEST_OBJS): MOD_CPPFLAGS := -Isrc -Ivm $(CHECK_CFLAGS)
 .PHONY: unit-bin
 unit-bin: $(UNIT_BIN)
 $(UNIT_BIN): $(TEST_OBJS) $(VM_OBJS) $(SRC_OBJS)
+	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) $(LDLIBS)
 
 unit: $(UNIT_BIN)
@@ -21,7 +22,31 @@ conformance: $(S42)
 programs: $(S42)
 	sh programs/run_expect.sh $(S42) tests/conformance/run.py
 
+# Inputs that once crashed a fuzzer: each must give a clean status (0-3).
+regress: $(S42)
+	@n=0; for f in tests/fuzz/regress/*; do \
+	  $(S42) run "$$f" --max-blocks 100000 --dump >/dev/null 2>&1; st=$$?; \
+	  if [ $$st -gt 3 ]; then echo "FAIL regress $$f: status $$st"; exit 1; fi; n=$$((n+1)); \
+	done; echo "regress: $$n passed, 0 failed"
+
 shared: $(S42)
 	@if [ -d $(SHARED)/conformance/cases ]; then \
 	  sh tests/shared.sh $(S42) $(SHARED); \
 	else echo "shared: $(SHARED) is not here; the shared conformance cases were skipped"; fi
+
+# Fuzzing with libFuzzer (clang): make fuzz FUZZ_SECONDS=60
+FUZZ_SECONDS ?= 30
+FUZZ_TARGETS := fuzz_program fuzz_operator
+FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Ivm -D_GNU_SOURCE
+.PHONY: fuzz fuzz-bin
+fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/%)
+$(BUILD)/fuzz/%: tests/fuzz/%.c $(VM_SRCS) $(SRC_SRCS)
+	@mkdir -p $(@D)
+	clang $(FUZZ_FLAGS) -o $@ $< $(VM_SRCS) $(SRC_SRCS) -lm
+fuzz: fuzz-bin
+	@mkdir -p $(BUILD)/fuzz/corpus-program $(BUILD)/fuzz/corpus-operator
+	@cp programs/*.kp tests/conformance/cases/*/program.kp $(BUILD)/fuzz/corpus-program/ 2>/dev/null || true
+	@for f in tests/conformance/cases/*/program.kp; do cp $$f $(BUILD)/fuzz/corpus-program/$$(basename $$(dirname $$f)).kp; done
+	@for f in programs/*.operator tests/conformance/cases/*/operator.txt; do [ -f $$f ] && cp $$f $(BUILD)/fuzz/corpus-operator/$$(echo $$f | tr / _); done; true
+	$(BUILD)/fuzz/fuzz_program -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 $(BUILD)/fuzz/corpus-program
+	$(BUILD)/fuzz/fuzz_operator -max_total_time=$(FUZZ_SECONDS) -max_len=2048 -timeout=10 $(BUILD)/fuzz/corpus-operator

@@ -1,0 +1,19 @@
+/* The unit test runner: every suite of tests/unit under one SRunner.
+ * Exits non-zero when any test fails. */
+#include "suites.h"
+#include <stdlib.h>
+
+int main(void)
+{
+  SRunner *sr = srunner_create(suite_lex());
+  srunner_add_suite(sr, suite_parse());
+  srunner_add_suite(sr, suite_compile());
+  srunner_add_suite(sr, suite_vm());
+  srunner_add_suite(sr, suite_machine());
+  srunner_add_suite(sr, suite_operator());
+  srunner_add_suite(sr, suite_session());
+  srunner_run_all(sr, CK_NORMAL);
+  int failed = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

@@ -1,0 +1,374 @@
+/* The lexer cursor (src/lex.h): what lex_peek sees, where it is, and what
+ * it notes. */
+#include "suites.h"
+#include "lex.h"
+#include <string.h>
+
+static struct diag_list d;
+static struct lex l;
+
+static void setup(void) { diag_init(&d, "t.kp"); }
+static void teardown(void) { diag_free(&d); }
+
+static void start(const char *s) { lex_init(&l, s, strlen(s), &d); }
+
+/* Peek and consume. */
+static int32_t next(void)
+{
+  int32_t c = lex_peek(&l);
+  lex_adv(&l);
+  return c;
+}
+
+START_TEST(spaces_and_tabs_skipped)
+{
+  start("  X \t+ 1\r 0");
+  ck_assert_int_eq(next(), 'X');
+  ck_assert_int_eq(next(), '+');
+  ck_assert_int_eq(next(), '1');
+  ck_assert_int_eq(next(), '0');
+  ck_assert_int_eq(lex_peek(&l), LX_EOF);
+}
+END_TEST
+
+START_TEST(comment_runs_to_end_of_line)
+{
+  start("X ; Y Z ^ ПС\nA");
+  ck_assert_int_eq(next(), 'X');
+  ck_assert_int_eq(next(), LX_EOB);     /* the newline, not the ^ in the comment */
+  ck_assert_uint_eq(l.line, 2);
+  ck_assert_int_eq(next(), 'A');
+  ck_assert_int_eq(lex_peek(&l), LX_EOF);
+}
+END_TEST
+
+START_TEST(caret_comment_manual_style)
+{
+  start("N1 G01 ^;\nN2");
+  ck_assert_int_eq(next(), 'N');
+  ck_assert_int_eq(next(), '1');
+  ck_assert_int_eq(next(), 'G');
+  ck_assert_int_eq(next(), '0');
+  ck_assert_int_eq(next(), '1');
+  ck_assert_int_eq(next(), LX_EOB);     /* ^ */
+  ck_assert_int_eq(next(), LX_EOB);     /* the newline after the comment */
+  ck_assert_int_eq(next(), 'N');
+}
+END_TEST
+
+START_TEST(newline_and_caret_are_eob)
+{
+  start("X\nY^Z");
+  ck_assert_int_eq(next(), 'X');
+  ck_assert_int_eq(next(), LX_EOB);
+  ck_assert_int_eq(next(), 'Y');
+  ck_assert_int_eq(next(), LX_EOB);
+  ck_assert_int_eq(next(), 'Z');
+  ck_assert_int_eq(next(), LX_EOF);
+}
+END_TEST
+
+START_TEST(ps_is_one_eob)
+{
+  start("X+1ПСY");
+  ck_assert_int_eq(next(), 'X');
+  ck_assert_int_eq(next(), '+');
+  ck_assert_int_eq(next(), '1');
+  ck_assert_int_eq(lex_peek(&l), LX_EOB);
+  ck_assert_uint_eq(l.ccol, 4);
+  lex_adv(&l);
+  /* both letters consumed: Y is the 6th character */
+  ck_assert_int_eq(lex_peek(&l), 'Y');
+  ck_assert_uint_eq(l.ccol, 6);
+  ck_assert_uint_eq(l.cline, 1);
+  /* ПС is not a look-alike letter: no note */
+  ck_assert_uint_eq(d.n, 0);
+}
+END_TEST
+
+START_TEST(ps_with_latin_c)
+{
+  start("\xD0\x9F" "CX");          /* П then Latin C */
+  ck_assert_int_eq(next(), LX_EOB);
+  ck_assert_int_eq(next(), 'X');
+}
+END_TEST
+
+START_TEST(lone_pe_is_not_eob)
+{
+  start("\xD0\x9FX");              /* П alone is no 2С42 letter */
+  ck_assert_int_eq(next(), 0x041F);
+  ck_assert_int_eq(next(), 'X');
+}
+END_TEST
+
+START_TEST(lookalikes_mapped)
+{
+  /* А В С Е Н К М О Р Т Х */
+  static const char *const cyr[] = {"А", "В", "С", "Е", "Н", "К", "М", "О", "Р", "Т", "Х"};
+  static const char lat[] = "ABCEHKMOPTX";
+  for (int i = 0; i < 11; i++) {
+    start(cyr[i]);
+    ck_assert_msg(lex_peek(&l) == lat[i], "%s read as %d, expected %c", cyr[i], (int)lex_peek(&l), lat[i]);
+  }
+}
+END_TEST
+
+START_TEST(lookalike_note_once)
+{
+  start("Х+1 Р2\nМ2 Т11");
+  int n = 0;
+  while (lex_peek(&l) != LX_EOF) {
+    lex_adv(&l);
+    n++;
+  }
+  ck_assert_int_eq(n, 11);
+  ck_assert_uint_eq(d.n, 1);
+  ck_assert_int_eq(d.v[0].sev, DIAG_NOTE);
+  ck_assert_int_eq(d.v[0].code, 0);
+  ck_assert_uint_eq(d.v[0].line, 1);
+  ck_assert_uint_eq(d.v[0].col, 1);
+  ck_assert_uint_eq(d.nerr, 0);
+}
+END_TEST
+
+START_TEST(lookalike_note_at_first_place)
+{
+  start("X+1\n  Y+Х");
+  while (lex_peek(&l) != LX_EOF)
+    lex_adv(&l);
+  ck_assert_uint_eq(d.n, 1);
+  ck_assert_uint_eq(d.v[0].line, 2);
+  ck_assert_uint_eq(d.v[0].col, 5);
+}
+END_TEST
+
+START_TEST(other_cyrillic_not_mapped)
+{
+  start("Д");
+  ck_assert_int_eq(lex_peek(&l), 0x0414);
+  ck_assert_uint_eq(d.n, 0);
+}
+END_TEST
+
+START_TEST(columns_count_characters)
+{
+  start("ХХХ Y");                  /* three 2-byte letters */
+  next(); next(); next();
+  ck_assert_int_eq(lex_peek(&l), 'Y');
+  ck_assert_uint_eq(l.ccol, 5);
+  ck_assert_uint_eq(l.cpos, 7);     /* but byte 7 */
+}
+END_TEST
+
+START_TEST(lines_and_columns)
+{
+  start("AB\n  C");
+  ck_assert_int_eq(lex_peek(&l), 'A');
+  ck_assert_uint_eq(l.cline, 1);
+  ck_assert_uint_eq(l.ccol, 1);
+  next(); next();
+  ck_assert_int_eq(lex_peek(&l), LX_EOB);
+  ck_assert_uint_eq(l.ccol, 3);
+  lex_adv(&l);
+  ck_assert_int_eq(lex_peek(&l), 'C');
+  ck_assert_uint_eq(l.cline, 2);
+  ck_assert_uint_eq(l.ccol, 3);
+}
+END_TEST
+
+START_TEST(invalid_utf8_is_fffd)
+{
+  start("\xFFX");
+  ck_assert_int_eq(next(), 0xFFFD);
+  ck_assert_int_eq(lex_peek(&l), 'X');
+  ck_assert_uint_eq(l.ccol, 2);
+}
+END_TEST
+
+START_TEST(truncated_utf8_is_fffd)
+{
+  start("X\xD0");
+  ck_assert_int_eq(next(), 'X');
+  ck_assert_int_eq(next(), 0xFFFD);
+  ck_assert_int_eq(lex_peek(&l), LX_EOF);
+}
+END_TEST
+
+START_TEST(overlong_and_surrogate_are_fffd)
+{
+  start("\xC0\x80");
+  ck_assert_int_eq(lex_peek(&l), 0xFFFD);
+  start("\xED\xA0\x80");
+  ck_assert_int_eq(lex_peek(&l), 0xFFFD);
+  start("\xF4\x90\x80\x80");        /* above U+10FFFF */
+  ck_assert_int_eq(lex_peek(&l), 0xFFFD);
+  start("\xE2\x28\xA1");            /* bad continuation */
+  ck_assert_int_eq(lex_peek(&l), 0xFFFD);
+}
+END_TEST
+
+START_TEST(four_byte_character)
+{
+  start("\xF0\x9F\x98\x80X");       /* U+1F600 */
+  ck_assert_int_eq(next(), 0x1F600);
+  ck_assert_int_eq(lex_peek(&l), 'X');
+  ck_assert_uint_eq(l.ccol, 2);
+}
+END_TEST
+
+START_TEST(bom_skipped)
+{
+  start("\xEF\xBB\xBFN1");
+  ck_assert_int_eq(lex_peek(&l), 'N');
+  ck_assert_uint_eq(l.ccol, 1);
+  ck_assert_uint_eq(l.cline, 1);
+}
+END_TEST
+
+START_TEST(bom_only_at_start)
+{
+  start("X\xEF\xBB\xBF");
+  next();
+  ck_assert_int_eq(lex_peek(&l), 0xFEFF);
+}
+END_TEST
+
+START_TEST(empty_text_is_eof)
+{
+  start("");
+  ck_assert_int_eq(lex_peek(&l), LX_EOF);
+  start("   ; nothing");
+  ck_assert_int_eq(lex_peek(&l), LX_EOF);
+}
+END_TEST
+
+START_TEST(raw_keeps_spaces)
+{
+  start("/А Б/");
+  ck_assert_int_eq(next(), '/');
+  ck_assert_int_eq(lex_raw_peek(&l), 0x0410);   /* raw: not mapped */
+  lex_raw_adv(&l);
+  ck_assert_int_eq(lex_raw_peek(&l), ' ');
+  lex_raw_adv(&l);
+  ck_assert_int_eq(lex_raw_peek(&l), 0x0411);
+  lex_raw_adv(&l);
+  ck_assert_int_eq(lex_raw_peek(&l), '/');
+  ck_assert_uint_eq(l.col, 5);
+  ck_assert_uint_eq(d.n, 0);          /* raw text gives no look-alike note */
+}
+END_TEST
+
+START_TEST(raw_stops_at_newline_and_caret)
+{
+  start("a\nb");
+  lex_raw_adv(&l);
+  ck_assert_int_eq(lex_raw_peek(&l), LX_EOB);
+  start("a^b");
+  lex_raw_adv(&l);
+  ck_assert_int_eq(lex_raw_peek(&l), LX_EOB);
+  start("a\r\nb");
+  lex_raw_adv(&l);
+  ck_assert_int_eq(lex_raw_peek(&l), LX_EOB);
+  start("a;b");                      /* a comment mark is text inside text */
+  lex_raw_adv(&l);
+  ck_assert_int_eq(lex_raw_peek(&l), ';');
+  start("");
+  ck_assert_int_eq(lex_raw_peek(&l), LX_EOF);
+}
+END_TEST
+
+START_TEST(blen_counts_significant_characters)
+{
+  start("N 1 X+1 ; comment\n");
+  l.blen = 0;
+  while (lex_peek(&l) != LX_EOB)
+    lex_adv(&l);
+  ck_assert_uint_eq(l.blen, 5);       /* N1X+1 */
+  lex_adv(&l);
+  ck_assert_uint_eq(l.blen, 5);       /* the end mark does not count */
+}
+END_TEST
+
+START_TEST(mark_and_reset)
+{
+  start("AB CD");
+  next();
+  struct lex_mark m = lex_mark(&l);
+  next(); next();
+  ck_assert_int_eq(lex_peek(&l), 'D');
+  lex_reset(&l, m);
+  ck_assert_int_eq(lex_peek(&l), 'B');
+  ck_assert_uint_eq(l.ccol, 2);
+  ck_assert_uint_eq(l.blen, 1);
+}
+END_TEST
+
+START_TEST(skip_block)
+{
+  start("X+1 Y+2\nZ");
+  lex_skip_block(&l);
+  ck_assert_int_eq(lex_peek(&l), LX_EOB);
+  lex_adv(&l);
+  ck_assert_int_eq(lex_peek(&l), 'Z');
+}
+END_TEST
+
+START_TEST(utf8_encode)
+{
+  char b[4];
+  ck_assert_int_eq(lex_utf8('A', b), 1);
+  ck_assert_int_eq(b[0], 'A');
+  ck_assert_int_eq(lex_utf8(0x0416, b), 2);
+  ck_assert_mem_eq(b, "Ж", 2);
+  ck_assert_int_eq(lex_utf8(0x2116, b), 3);
+  ck_assert_mem_eq(b, "№", 3);
+  ck_assert_int_eq(lex_utf8(0x1F600, b), 4);
+  ck_assert_mem_eq(b, "\xF0\x9F\x98\x80", 4);
+}
+END_TEST
+
+START_TEST(numero_sign_passes_through)
+{
+  start("№12");
+  ck_assert_int_eq(next(), 0x2116);
+  ck_assert_int_eq(next(), '1');
+  ck_assert_uint_eq(l.ccol, 3);
+}
+END_TEST
+
+Suite *suite_lex(void)
+{
+  Suite *s = suite_create("lex");
+  TCase *tc = tcase_create("cursor");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, spaces_and_tabs_skipped);
+  tcase_add_test(tc, comment_runs_to_end_of_line);
+  tcase_add_test(tc, caret_comment_manual_style);
+  tcase_add_test(tc, newline_and_caret_are_eob);
+  tcase_add_test(tc, ps_is_one_eob);
+  tcase_add_test(tc, ps_with_latin_c);
+  tcase_add_test(tc, lone_pe_is_not_eob);
+  tcase_add_test(tc, lookalikes_mapped);
+  tcase_add_test(tc, lookalike_note_once);
+  tcase_add_test(tc, lookalike_note_at_first_place);
+  tcase_add_test(tc, other_cyrillic_not_mapped);
+  tcase_add_test(tc, columns_count_characters);
+  tcase_add_test(tc, lines_and_columns);
+  tcase_add_test(tc, invalid_utf8_is_fffd);
+  tcase_add_test(tc, truncated_utf8_is_fffd);
+  tcase_add_test(tc, overlong_and_surrogate_are_fffd);
+  tcase_add_test(tc, four_byte_character);
+  tcase_add_test(tc, bom_skipped);
+  tcase_add_test(tc, bom_only_at_start);
+  tcase_add_test(tc, empty_text_is_eof);
+  tcase_add_test(tc, raw_keeps_spaces);
+  tcase_add_test(tc, raw_stops_at_newline_and_caret);
+  tcase_add_test(tc, blen_counts_significant_characters);
+  tcase_add_test(tc, mark_and_reset);
+  tcase_add_test(tc, skip_block);
+  tcase_add_test(tc, utf8_encode);
+  tcase_add_test(tc, numero_sign_passes_through);
+  suite_add_tcase(s, tc);
+  return s;
+}
