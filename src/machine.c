@@ -140,6 +140,16 @@ static int contour(const struct mach_block *b)
   return b->motion == MO_G01 || b->motion == MO_G02 || b->motion == MO_G03;
 }
 
+int mach_held(const struct machine *m, const struct mach_block *b)
+{
+  if (!contour(b) || !m->override_allowed || m->override_pct > 0)
+    return 0;
+  for (int a = 0; a < 4; a++)
+    if (BIT(b->given, a) && b->w[a] != 0)
+      return 1;
+  return 0;
+}
+
 int mach_check(const struct machine *m, const struct mach_block *b, char *msg, size_t n)
 {
   if (BIT(b->m, 3) && m->wheel == WHEEL_CCW) {

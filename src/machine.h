@@ -60,6 +60,8 @@ int mach_check(const struct machine *m, const struct mach_block *b, char *msg, s
 /* Carry the block out (it passed mach_check): modal changes, the motion or
  * dwell, then M14 and M2's end of oscillation. */
 void mach_exec(struct machine *m, const struct mach_block *b, struct mach_out *o);
+/* Is the block's contour move held by a feed override of 0 %? */
+int mach_held(const struct machine *m, const struct mach_block *b);
 /* Effective speed of a linear move (increments in discretes) at speed f. */
 double mach_linear_limit(const double d[4]);
 /* Arc of a G02/G03 block: length in mm, the largest Y share of the tangent

@@ -211,6 +211,16 @@ static int cmd_disasm(int argc, char **argv)
 
 /* ---- the headless run ---- */
 
+/* "N12", or "N-" for a block without a number. */
+static const char *bname(int n, char *buf)
+{
+  if (n > 0)
+    snprintf(buf, 16, "N%d", n);
+  else
+    strcpy(buf, "N-");
+  return buf;
+}
+
 struct runner {
   struct session s;
   struct opscript ops;
@@ -291,12 +301,12 @@ static void at_boundary(struct runner *r)
  * over, -1 when the script has nothing that fits (stop, status 3). */
 static int serve_wait(struct runner *r)
 {
-  char what[96];
+  char what[96], nb[16];
   while (r->s.state == SE_WAIT) {
     if (r->next >= r->ops.n) {
       const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
-      fprintf(stderr, "%s:%u:%u: N%d: the machine waits for %s and the operator script has no more actions\n",
-              r->file, b->line, b->col, sess_block_number(&r->s), sess_wait_text(&r->s));
+      fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s and the operator script has no more actions\n",
+              r->file, b->line, b->col, bname(sess_block_number(&r->s), nb), sess_wait_text(&r->s));
       return -1;
     }
     const struct op_action *a = &r->ops.v[r->next];
@@ -313,8 +323,8 @@ static int serve_wait(struct runner *r)
     }
     if (ok) {
       const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
-      fprintf(stderr, "%s:%u:%u: N%d: the machine waits for %s; the operator script's next action "
-              "(line %u: %s) does not fit\n", r->file, b->line, b->col, sess_block_number(&r->s),
+      fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s; the operator script's next action "
+              "(line %u: %s) does not fit\n", r->file, b->line, b->col, bname(sess_block_number(&r->s), nb),
               sess_wait_text(&r->s), a->line, ops_describe(a, what, sizeof what));
       return -1;
     }
@@ -438,11 +448,12 @@ static int cmd_run(int argc, char **argv)
     st = "error";
     break;
   }
+  char nb[16];
   if (r.s.state == SE_STOPPED && status == EXIT_STOPPED) {
     const struct prog_block *b = &p.blocks[r.s.vm.cur];
     if (r.next <= r.ops.n && r.s.wait == W_NONE)
-      fprintf(stderr, "%s:%u:%u: N%d: the cycle was stopped (key STOP)\n", o.program, b->line, b->col,
-              sess_block_number(&r.s));
+      fprintf(stderr, "%s:%u:%u: note: %s: the cycle was stopped (key STOP)\n", o.program, b->line, b->col,
+              bname(sess_block_number(&r.s), nb));
   }
   struct dump_error de, *dep = NULL;
   if (status == EXIT_PROGRAM) {
@@ -464,6 +475,8 @@ static int cmd_run(int argc, char **argv)
     de.col = g.col;
     de.message = e->msg;
     report_machine_msg(de.machine, sizeof de.machine, e->code, g.number, e->aux, o.en);
+    fprintf(stderr, "%s:%u:%u: note: %s: %s\n", o.program, g.line, g.col,
+            o.en ? "the machine shows" : "на екрані", de.machine);
     dep = &de;
   }
   if (o.dump)

@@ -787,6 +787,8 @@ static void word(struct pstate *s)
       w->idx = mask;
       return;
     }
+    if (peek(s) == 'K')
+      fail(s, S42_E_SYNTAX, col, "TK is read-only: only a tooth-step search with M10 sets it");
     if (!isdig(peek(s)))
       fail(s, S42_E_SYNTAX, col, "T word: expected TT, T0, T01..T04 or T11..T32, found %s", show(peek(s), buf));
     int d1 = peek(s) - '0';
@@ -835,8 +837,10 @@ static void word(struct pstate *s)
   }
   case '/':
     fail(s, S42_E_SYNTAX, col, "a slash argument must follow its function (G27 G28 G29 G33 G37 M16 M18 M20)");
-  case 'N':
+  case 'N': case 0x2116:
     fail(s, S42_E_SYNTAX, col, "a block number may only start the block");
+  case 'U':
+    fail(s, S42_E_SYNTAX, col, "UG is read-only: only a tooth-step search with M10 sets it");
   default:
     if (c >= 'a' && c <= 'z')
       fail(s, S42_E_SYNTAX, col, "unexpected %s: addresses are capital letters", show(c, buf));

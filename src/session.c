@@ -98,6 +98,26 @@ static void finish_block(struct session *s)
   s->state = SE_START;
 }
 
+/* The block's machine work proper, once nothing holds it. */
+static int exec_block(struct session *s)
+{
+  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
+  mach_exec(&s->m, &s->mb, &s->mo);
+  if (s->mo.warn[0])
+    warn(s, "%s", s->mo.warn);
+  if (BIT(at->m, 21))
+    s->directive = 0;
+  if (at->m18)
+    s->directive = at->m18;
+  if (at->motion == MO_G20) {
+    memset(s->m.corr, 0, sizeof s->m.corr);   /* M16 counts from here */
+    s->wait = at->m18 ? W_PS : W_PUSK;
+    return SE_WAIT;
+  }
+  finish_block(s);
+  return -1;
+}
+
 /* A VM_EV_BLOCK: do the block's machine work.  Returns the session event
  * when the host must act, or -1 to keep running. */
 static int do_block(struct session *s)
@@ -132,20 +152,11 @@ static int do_block(struct session *s)
   }
   memset(s->jogs, 0, sizeof s->jogs);
   s->has_jogs = 0;
-  mach_exec(&s->m, b, &s->mo);
-  if (s->mo.warn[0])
-    warn(s, "%s", s->mo.warn);
-  if (BIT(at->m, 21))
-    s->directive = 0;
-  if (at->m18)
-    s->directive = at->m18;
-  if (at->motion == MO_G20) {
-    memset(s->m.corr, 0, sizeof s->m.corr);   /* M16 counts from here */
-    s->wait = at->m18 ? W_PS : W_PUSK;
+  if (mach_held(&s->m, b)) {           /* feed override at 0 %: the move waits */
+    s->wait = W_FEED;
     return SE_WAIT;
   }
-  finish_block(s);
-  return -1;
+  return exec_block(s);
 }
 
 enum sess_ev sess_run(struct session *s)
@@ -227,6 +238,10 @@ int sess_override(struct session *s, int pct)
     return -1;
   }
   s->m.override_pct = pct;
+  if (s->state == SE_WAIT && s->wait == W_FEED && !mach_held(&s->m, &s->mb)) {
+    int r = exec_block(s);
+    s->state = r >= 0 ? r : SE_START;
+  }
   return 0;
 }
 
@@ -235,6 +250,7 @@ const char *sess_wait_text(const struct session *s)
   switch (s->wait) {
   case W_PUSK: return s->en ? "Start (key PUSK)" : "Пуск (key PUSK)";
   case W_PS: return s->en ? "PS, then Start (key PS, key PUSK)" : "ПС, потім Пуск (key PS, key PUSK)";
+  case W_FEED: return s->en ? "a feed override above 0 % (override N)" : "корекцію швидкості понад 0 % (override N)";
   default: return "nothing";
   }
 }

@@ -10,7 +10,8 @@
 #include "vm.h"
 
 enum sess_ev { SE_START, SE_WAIT, SE_END, SE_ERROR, SE_STOPPED };
-enum sess_wait { W_NONE, W_PUSK, W_PS };   /* W_PS: ПС first, then Пуск */
+/* W_PS: ПС first, then Пуск; W_FEED: the feed override is at 0 %, the move waits */
+enum sess_wait { W_NONE, W_PUSK, W_PS, W_FEED };
 
 struct sess_row {
   uint64_t seq;

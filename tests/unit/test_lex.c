@@ -333,6 +333,7 @@ START_TEST(numero_sign_passes_through)
   start("№12");
   ck_assert_int_eq(next(), 0x2116);
   ck_assert_int_eq(next(), '1');
+  ck_assert_int_eq(lex_peek(&l), '2');
   ck_assert_uint_eq(l.ccol, 3);
 }
 END_TEST
