@@ -25,10 +25,11 @@ VERSION  := $(shell cat VERSION 2>/dev/null || echo 0.1.0)
 CPPFLAGS += -DS42_VERSION='"$(VERSION)"'
 
 include vm/module.mk
+include display/module.mk
 include src/module.mk
 include tests/module.mk
 
-OBJS := $(VM_OBJS) $(SRC_OBJS)
+OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
 .PHONY: all check test unit conformance programs regress shared asan run clean install deps docs

@@ -406,6 +406,8 @@ static void check_arc_const(struct comp *c, int plane, unsigned col)
 
 static int text_len_check(struct comp *c, const struct text *t, const char *fn, unsigned max)
 {
+  if (!t->s)
+    return 0;   /* the text did not parse: already reported */
   if (t->nchars > max) {
     err(c, S42_E_TEXT, t->col, "%s: text of %u characters, at most %u", fn, t->nchars, max);
     return 0;
@@ -417,6 +419,8 @@ static int text_len_check(struct comp *c, const struct text *t, const char *fn, 
 static int text_refs(struct comp *c, const struct text *t, const char *fn, int g29)
 {
   int n = 0;
+  if (!t->s)
+    return 0;
   for (const char *s = t->s; (s = strstr(s, "((")) != NULL;) {
     const char *q = s + 2;
     while (*q == ' ') q++;
@@ -777,6 +781,8 @@ static void compile_block(struct comp *c)
     at->g29 = (uint32_t)c->x->nlines;
     at->ng29 = (uint32_t)b->ng29;
     for (int i = 0; i < b->ng29; i++) {
+      if (!b->g29[i].s)
+        continue;
       c->x->lines = grow(c->x->lines, &c->x->caplines, c->x->nlines + 1, sizeof *c->x->lines, &c->oom);
       if (c->oom)
         return;

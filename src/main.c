@@ -320,6 +320,8 @@ static int serve_wait(struct runner *r)
       ok = sess_key_ps(&r->s);
     } else if (a->kind == OA_JOG) {
       ok = sess_jog(&r->s, a->axis, a->n);
+    } else if (a->kind == OA_ANSWER) {
+      ok = sess_answer(&r->s, a->n);
     }
     if (ok) {
       const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
@@ -363,8 +365,6 @@ static int cmd_run(int argc, char **argv)
   }
   if (o.tool)
     fprintf(stderr, "s42: warning: --tool %s is not used: tooth-step search is not in this build\n", o.tool);
-  if (o.screen)
-    fprintf(stderr, "s42: warning: --screen: the 2С42 display is not in this build\n");
 
   struct program p;
   struct diag_list d;
@@ -393,6 +393,7 @@ static int cmd_run(int argc, char **argv)
 
   sess_init(&r.s, &p);
   r.s.en = o.en;
+  r.s.scr.en = o.en;
   r.s.vm.max_blocks = o.max_blocks;
   struct both_sink bs;
   bs.tr.out = o.trace ? stdout : NULL;
@@ -481,6 +482,13 @@ static int cmd_run(int argc, char **argv)
   }
   if (o.dump)
     report_dump(stdout, st, dep, &r.s);
+  if (o.screen) {
+    uint32_t grid[SCR_ROWS][SCR_COLS];
+    if (status == EXIT_PROGRAM)
+      scr_message(&r.s.scr, dep->machine);
+    sess_screen(&r.s, grid);
+    scr_print(stdout, grid);
+  }
   if (fflush(stdout) || ferror(stdout)) {
     fprintf(stderr, "s42: error writing the output\n");
     status = EXIT_IO;

@@ -2,4 +2,4 @@
 SRC_SRCS     := $(filter-out src/main.c,$(wildcard src/*.c))
 SRC_OBJS     := $(SRC_SRCS:%.c=$(BUILD)/%.o)
 SRC_MAIN_OBJ := $(BUILD)/src/main.o
-$(SRC_OBJS) $(SRC_MAIN_OBJ): MOD_CPPFLAGS := -Isrc -Ivm
+$(SRC_OBJS) $(SRC_MAIN_OBJ): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay

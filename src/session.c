@@ -2,6 +2,8 @@
  * work, waits and trace rows. */
 #include "session.h"
 #include "errors.h"
+#include "messages.h"
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -14,6 +16,7 @@ void sess_init(struct session *s, const struct program *p)
   s->p = p;
   vm_init(&s->vm, p);
   mach_init(&s->m);
+  scr_init(&s->scr);
   s->state = SE_START;
 }
 
@@ -62,20 +65,6 @@ static void emit_row(struct session *s)
 /* What of the block this build cannot do yet: a clear error, never a no-op. */
 static int unsupported(struct session *s, const struct kp_attr *at)
 {
-  static const int dlg_g[] = {27, 28, 29, 33, 34};
-  for (size_t i = 0; i < sizeof dlg_g / sizeof dlg_g[0]; i++)
-    if (BIT(at->g, dlg_g[i])) {
-      vm_fail(&s->vm, S42_E_FUNC, "G%d (dialog and display) needs the 2С42 display, not implemented in this build",
-              dlg_g[i]);
-      return 1;
-    }
-  static const int dlg_m[] = {27, 28, 29};
-  for (size_t i = 0; i < sizeof dlg_m / sizeof dlg_m[0]; i++)
-    if (BIT(at->m, dlg_m[i])) {
-      vm_fail(&s->vm, S42_E_FUNC, "M%d (fixed input line) needs the 2С42 display, not implemented in this build",
-              dlg_m[i]);
-      return 1;
-    }
   if (BIT(at->m, 19)) {
     vm_fail(&s->vm, S42_E_FUNC, "M19 (teach-in move) is not implemented in this build");
     return 1;
@@ -96,6 +85,70 @@ static void finish_block(struct session *s)
   emit_row(s);
   s->wait = W_NONE;
   s->state = SE_START;
+  s->scr.mode = SCR_AUTO;
+}
+
+/* G28: check the number the G27 took against |min|..|max| and store it, or
+ * show why not and ask again.  Returns the session event or -1. */
+static int g28_check(struct session *s)
+{
+  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
+  double v = fabs(s->answer);
+  int msg = -1;
+  if (v < s->vm.w[SL_MIN])
+    msg = MSG_BELOW;
+  else if (v > s->vm.w[SL_MAX])
+    msg = MSG_ABOVE;
+  if (msg >= 0) {
+    scr_message(&s->scr, scr_msg_text(msg, s->en));
+    scr_field_reopen(&s->scr);
+    s->wait = W_ANSWER;
+    return SE_WAIT;
+  }
+  vm_set_reg(&s->vm, (unsigned)at->g28reg, s->answer);
+  s->have_answer = 0;
+  return -1;
+}
+
+/* The dialog and display functions of the block (language.md sec. 13). */
+static int dialog(struct session *s, const struct kp_attr *at)
+{
+  if (BIT(at->m, 29))
+    s->scr.fixed = -1;
+  if (BIT(at->m, 28))
+    s->scr.at_fixed = 1;
+  if (BIT(at->g, 33))
+    scr_center(&s->scr, kp_str(s->p, at->g33));
+  if (BIT(at->g, 29)) {
+    const struct kp_ext *x = s->p->ext;
+    if (!s->m15_seen)
+      scr_p3_clear(&s->scr);
+    for (uint32_t i = 0; i < at->ng29; i++)
+      scr_p3_add(&s->scr, kp_str(s->p, x->lines[at->g29 + i]));
+    s->scr.p3 = 1;
+  }
+  if (BIT(at->g, 27)) {
+    scr_prompt(&s->scr, kp_str(s->p, at->g27), at->g27form == '-');
+    if (BIT(at->m, 27))
+      s->scr.fixed = s->scr.last;
+    s->wait = W_ANSWER;
+    return SE_WAIT;
+  }
+  if (BIT(at->m, 27))
+    s->scr.fixed = s->scr.last >= 0 ? s->scr.last : s->scr.nbuf;
+  if (BIT(at->g, 28)) {
+    if (!s->have_answer) {
+      vm_fail(&s->vm, S42_E_ORDER, "G28: no number was taken by a G27 before it");
+      return SE_ERROR;
+    }
+    return g28_check(s);
+  }
+  if (BIT(at->g, 34)) {
+    scr_message(&s->scr, scr_msg_text(MSG_DONE, s->en));
+    s->wait = W_PUSK;
+    return SE_WAIT;
+  }
+  return -1;
 }
 
 /* The block's machine work proper, once nothing holds it. */
@@ -105,14 +158,27 @@ static int exec_block(struct session *s)
   mach_exec(&s->m, &s->mb, &s->mo);
   if (s->mo.warn[0])
     warn(s, "%s", s->mo.warn);
-  if (BIT(at->m, 21))
+  if (BIT(at->m, 15))
+    s->m15_seen = 1;
+  if (BIT(at->m, 21)) {
     s->directive = 0;
-  if (at->m18)
+    scr_clear_directive(&s->scr);
+  }
+  if (at->m18) {
     s->directive = at->m18;
+    scr_set_directive(&s->scr, kp_str(s->p, at->m18), s->vm.reg);
+  }
   if (at->motion == MO_G20) {
     memset(s->m.corr, 0, sizeof s->m.corr);   /* M16 counts from here */
+    s->scr.mode = SCR_MANUAL;
     s->wait = at->m18 ? W_PS : W_PUSK;
     return SE_WAIT;
+  }
+  if (at->motion == MO_DIALOG || BIT(at->m, 27) || BIT(at->m, 28) || BIT(at->m, 29)) {
+    memset(s->m.corr, 0, sizeof s->m.corr);   /* M16 counts from a dialog block */
+    int r = dialog(s, at);
+    if (r >= 0)
+      return r;
   }
   finish_block(s);
   return -1;
@@ -124,6 +190,7 @@ static int do_block(struct session *s)
 {
   const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
   char msg[200];
+  s->scr.block = sess_block_number(s);
   if (unsupported(s, at))
     return SE_ERROR;
   if (s->vm.clamped) {
@@ -186,8 +253,33 @@ int sess_key_pusk(struct session *s)
 {
   if (s->state != SE_WAIT || s->wait != W_PUSK)
     return -1;
+  s->scr.has_message = 0;
   finish_block(s);
   return 0;
+}
+
+int sess_answer(struct session *s, long long v)
+{
+  if (s->state != SE_WAIT || s->wait != W_ANSWER)
+    return -1;
+  s->scr.has_message = 0;
+  scr_field_type(&s->scr, v);
+  scr_field_close(&s->scr);
+  s->answer = (double)v;
+  s->have_answer = 1;
+  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
+  if (BIT(at->g, 28)) {
+    int r = g28_check(s);
+    if (r >= 0)
+      return 0;   /* refused: it waits for the number again */
+  }
+  finish_block(s);
+  return 0;
+}
+
+void sess_screen(const struct session *s, uint32_t grid[SCR_ROWS][SCR_COLS])
+{
+  scr_render(&s->scr, s->vm.reg, s->en, grid);
 }
 
 int sess_key_ps(struct session *s)
@@ -250,6 +342,7 @@ const char *sess_wait_text(const struct session *s)
   switch (s->wait) {
   case W_PUSK: return s->en ? "Start (key PUSK)" : "Пуск (key PUSK)";
   case W_PS: return s->en ? "PS, then Start (key PS, key PUSK)" : "ПС, потім Пуск (key PS, key PUSK)";
+  case W_ANSWER: return s->en ? "a number in the input field (answer N)" : "число в полі введення (answer N)";
   case W_FEED: return s->en ? "a feed override above 0 % (override N)" : "корекцію швидкості понад 0 % (override N)";
   default: return "nothing";
   }

@@ -7,11 +7,13 @@
 
 #include "kp.h"
 #include "machine.h"
+#include "screen.h"
 #include "vm.h"
 
 enum sess_ev { SE_START, SE_WAIT, SE_END, SE_ERROR, SE_STOPPED };
 /* W_PS: ПС first, then Пуск; W_FEED: the feed override is at 0 %, the move waits */
-enum sess_wait { W_NONE, W_PUSK, W_PS, W_FEED };
+/* W_ANSWER: a number in the G27 field (G28 asks again after a refusal) */
+enum sess_wait { W_NONE, W_PUSK, W_PS, W_FEED, W_ANSWER };
 
 struct sess_row {
   uint64_t seq;
@@ -45,6 +47,10 @@ struct session {
   int en;                /* English machine messages */
   uint64_t seq;
   uint32_t directive;    /* M18 text shown (string offset + 1), 0 none */
+  struct screen scr;     /* the 2С42-65 display */
+  double answer;         /* the number the last G27 took */
+  int have_answer;       /* a G27 took a number that no G28 stored yet */
+  int m15_seen;          /* a restart point passed: G29 extends the display */
   uint32_t pp_seen;
   /* the block in progress while waiting */
   struct mach_block mb;
@@ -62,6 +68,10 @@ int sess_key_ps(struct session *s);
 void sess_key_exit(struct session *s);
 void sess_key_stop(struct session *s);
 int sess_jog(struct session *s, int axis, int64_t d);
+/* Type a number into the G27 field and press ПС (the script's `answer`). */
+int sess_answer(struct session *s, long long v);
+/* Render the screen into a grid of cells. */
+void sess_screen(const struct session *s, uint32_t grid[SCR_ROWS][SCR_COLS]);
 /* Correction / override from the panel: 0 applied, -1 refused (a warning
  * says why). */
 int sess_correct(struct session *s, int axis, int64_t d);

@@ -5,11 +5,11 @@ CHECK_LIBS   := $(shell pkg-config --libs check 2>/dev/null || echo -lcheck)
 TEST_SRCS    := $(wildcard tests/unit/*.c)
 TEST_OBJS    := $(TEST_SRCS:%.c=$(BUILD)/%.o)
 UNIT_BIN     := $(BUILD)/tests/unit/run-unit
-$(TEST_OBJS): MOD_CPPFLAGS := -Isrc -Ivm $(CHECK_CFLAGS)
+$(TEST_OBJS): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay $(CHECK_CFLAGS)
 
 .PHONY: unit-bin
 unit-bin: $(UNIT_BIN)
-$(UNIT_BIN): $(TEST_OBJS) $(VM_OBJS) $(SRC_OBJS)
+$(UNIT_BIN): $(TEST_OBJS) $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) $(LDLIBS)
 
@@ -37,12 +37,12 @@ shared: $(S42)
 # Fuzzing with libFuzzer (clang): make fuzz FUZZ_SECONDS=60
 FUZZ_SECONDS ?= 30
 FUZZ_TARGETS := fuzz_program fuzz_operator
-FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Ivm -D_GNU_SOURCE
+FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Ivm -Idisplay -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/%)
-$(BUILD)/fuzz/%: tests/fuzz/%.c $(VM_SRCS) $(SRC_SRCS)
+$(BUILD)/fuzz/%: tests/fuzz/%.c $(VM_SRCS) $(DISP_SRCS) $(SRC_SRCS)
 	@mkdir -p $(@D)
-	clang $(FUZZ_FLAGS) -o $@ $< $(VM_SRCS) $(SRC_SRCS) -lm
+	clang $(FUZZ_FLAGS) -o $@ $< $(VM_SRCS) $(DISP_SRCS) $(SRC_SRCS) -lm
 fuzz: fuzz-bin
 	@mkdir -p $(BUILD)/fuzz/corpus-program $(BUILD)/fuzz/corpus-operator
 	@cp programs/*.kp tests/conformance/cases/*/program.kp $(BUILD)/fuzz/corpus-program/ 2>/dev/null || true

@@ -1,0 +1,30 @@
+/* The machine's own screen messages, Ukrainian (as on the 2С42-65) and
+ * English (--lang en), from one table. */
+#ifndef S42_MESSAGES_H
+#define S42_MESSAGES_H
+
+/* MSG(id, "uk", "en") */
+#define S42_MESSAGES(MSG) \
+  MSG(BELOW,  "знач. менше допустимого", "value below the minimum") \
+  MSG(ABOVE,  "знач. більше допустимого", "value above the maximum") \
+  MSG(DONE,   "Введення завершено",       "Input complete") \
+  MSG(LIMIT,  "Обмеження введення",       "Input buffer full")
+
+enum scr_msg {
+#define MSG_ENUM(id, uk, en) MSG_##id,
+  S42_MESSAGES(MSG_ENUM)
+#undef MSG_ENUM
+  MSG__COUNT
+};
+
+static inline const char *scr_msg_text(int id, int en)
+{
+  static const char *const t[][2] = {
+#define MSG_ROW(id, uk, en) {uk, en},
+    S42_MESSAGES(MSG_ROW)
+#undef MSG_ROW
+  };
+  return t[id][en ? 1 : 0];
+}
+
+#endif

@@ -1,0 +1,362 @@
+/* The 2С42-65 screen model (display/screen.h). */
+#include "screen.h"
+#include "messages.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void scr_init(struct screen *s)
+{
+  memset(s, 0, sizeof *s);
+  s->block = -1;
+  s->fixed = -1;
+  s->fline = -1;
+  s->last = -1;
+  memset(s->digits, ' ', 7);
+}
+
+int scr_decode(const char *p, uint32_t *out, int n)
+{
+  int k = 0;
+  const unsigned char *u = (const unsigned char *)p;
+  while (*u && k < n) {
+    uint32_t c;
+    int len;
+    if (*u < 0x80) { c = *u; len = 1; }
+    else if ((*u & 0xE0) == 0xC0 && u[1]) { c = ((uint32_t)(*u & 0x1F) << 6) | (u[1] & 0x3F); len = 2; }
+    else if ((*u & 0xF0) == 0xE0 && u[1] && u[2]) {
+      c = ((uint32_t)(*u & 0x0F) << 12) | ((uint32_t)(u[1] & 0x3F) << 6) | (u[2] & 0x3F); len = 3;
+    } else if ((*u & 0xF8) == 0xF0 && u[1] && u[2] && u[3]) {
+      c = ((uint32_t)(*u & 0x07) << 18) | ((uint32_t)(u[1] & 0x3F) << 12) | ((uint32_t)(u[2] & 0x3F) << 6) |
+          (u[3] & 0x3F); len = 4;
+    } else { c = 0xFFFD; len = 1; }
+    out[k++] = c;
+    u += len;
+  }
+  return k;
+}
+
+static void put(uint32_t *line, int col, const uint32_t *t, int n)
+{
+  for (int i = 0; i < n && col + i < SCR_COLS; i++)
+    if (col + i >= 0)
+      line[col + i] = t[i];
+}
+
+/* The line the next dialog output goes to (M28: the fixed one). */
+static struct scr_line *next_line(struct screen *s, int *idx)
+{
+  if (s->at_fixed && s->fixed >= 0) {
+    s->at_fixed = 0;
+    *idx = s->fixed;
+    memset(&s->buf[*idx], 0, sizeof s->buf[*idx]);
+    return &s->buf[*idx];
+  }
+  if (s->nbuf >= SCR_BUF) {
+    /* four screens are full: the oldest line goes */
+    memmove(&s->buf[0], &s->buf[1], (SCR_BUF - 1) * sizeof s->buf[0]);
+    s->nbuf--;
+    if (s->fixed >= 0)
+      s->fixed--;
+    if (s->fline >= 0)
+      s->fline--;
+    scr_message(s, scr_msg_text(MSG_LIMIT, s->en));
+  }
+  *idx = s->nbuf++;
+  memset(&s->buf[*idx], 0, sizeof s->buf[*idx]);
+  if (s->nbuf - s->top > SCR_WORK)
+    s->top = s->nbuf - SCR_WORK;
+  return &s->buf[*idx];
+}
+
+void scr_center(struct screen *s, const char *text)
+{
+  uint32_t t[SCR_COLS];
+  int n = scr_decode(text, t, SCR_COLS), idx;
+  s->p3 = 0;
+  struct scr_line *l = next_line(s, &idx);
+  put(l->ch, (SCR_COLS - n) / 2, t, n);
+  s->last = idx;
+}
+
+int scr_prompt(struct screen *s, const char *text, int wrapped)
+{
+  uint32_t t[64];
+  int n = scr_decode(text, t, 64), idx;
+  s->p3 = 0;
+  struct scr_line *l = next_line(s, &idx);
+  if (wrapped && n > 24) {
+    /* the text wraps at a space onto the next line, which gets the field */
+    int cut = n < SCR_COLS ? n : SCR_COLS;
+    for (int i = cut; i > 0; i--)
+      if (t[i - 1] == ' ' && n - i <= 24) {
+        cut = i;
+        break;
+      }
+    put(l->ch, 0, t, cut);
+    l = next_line(s, &idx);
+    n -= cut;
+    if (n > 24)
+      n = 24;
+    put(l->ch, 0, t + cut, n);
+  } else {
+    put(l->ch, 0, t, n);
+  }
+  for (int c = n; c < 25; c++)
+    l->ch[c] = '.';
+  l->field = 1;
+  memset(l->value, ' ', 7);
+  s->last = idx;
+  s->editing = 1;
+  s->fline = idx;
+  memset(s->digits, ' ', 7);
+  s->cursor = 0;
+  s->neg = 0;
+  return 0;
+}
+
+void scr_field_digit(struct screen *s, int d)
+{
+  if (!s->editing)
+    return;
+  s->digits[s->cursor] = (char)('0' + d);
+  s->cursor = (s->cursor + 1) % 7;   /* after the 7th digit, back to the first */
+  s->has_message = 0;
+}
+
+void scr_field_backspace(struct screen *s)
+{
+  if (!s->editing)
+    return;
+  if (s->cursor > 0)
+    s->cursor--;
+  s->digits[s->cursor] = ' ';
+}
+
+void scr_field_move(struct screen *s, int delta)
+{
+  if (s->editing)
+    s->cursor = (s->cursor + delta + 7) % 7;
+}
+
+void scr_field_minus(struct screen *s)
+{
+  if (s->editing)
+    s->neg = !s->neg;
+}
+
+double scr_field_value(const struct screen *s)
+{
+  double v = 0;
+  for (int i = 0; i < 7; i++)
+    if (s->digits[i] >= '0' && s->digits[i] <= '9')
+      v = v * 10 + (s->digits[i] - '0');
+  return s->neg ? -v : v;
+}
+
+void scr_field_close(struct screen *s)
+{
+  if (!s->editing)
+    return;
+  /* leading zeros are dropped: the number is shown right-aligned */
+  char shown[9];
+  double v = scr_field_value(s);
+  snprintf(shown, sizeof shown, "%7.0f", fabs(v));
+  if (v < 0) {
+    char *p = shown;
+    while (*p == ' ' && p[1] == ' ')
+      p++;
+    *p = '-';
+  }
+  memcpy(s->digits, shown, 7);
+  if (s->fline >= 0 && s->fline < s->nbuf)
+    memcpy(s->buf[s->fline].value, shown, 8);
+  s->editing = 0;
+}
+
+void scr_field_reopen(struct screen *s)
+{
+  s->editing = 1;
+  memset(s->digits, ' ', 7);
+  s->cursor = 0;
+  s->neg = 0;
+}
+
+void scr_field_type(struct screen *s, long long v)
+{
+  char d[24];
+  snprintf(d, sizeof d, "%lld", v < 0 ? -v : v);
+  memset(s->digits, ' ', 7);
+  s->cursor = 0;
+  s->neg = 0;
+  for (const char *p = d; *p && p - d < 7; p++)
+    scr_field_digit(s, *p - '0');
+  if (v < 0)
+    scr_field_minus(s);
+}
+
+void scr_p3_clear(struct screen *s)
+{
+  s->np3 = 0;
+}
+
+void scr_p3_add(struct screen *s, const char *text)
+{
+  if (s->np3 >= SCR_WORK)
+    return;
+  struct scr_p3 *l = &s->p3l[s->np3++];
+  memset(l, 0, sizeof *l);
+  l->reg = -1;
+  const char *ref = strstr(text, "((");
+  char head[256];
+  size_t hn = ref ? (size_t)(ref - text) : strlen(text);
+  if (hn >= sizeof head)
+    hn = sizeof head - 1;
+  memcpy(head, text, hn);
+  head[hn] = 0;
+  scr_decode(head, l->ch, SCR_COLS);
+  if (ref) {
+    const char *q = ref + 2;
+    while (*q == ' ') q++;
+    q += (*q == 'R') ? 1 : (strncmp(q, "\xD0\xA0", 2) == 0 ? 2 : 0);
+    l->reg = atoi(q);
+  }
+  s->p3 = 1;
+}
+
+void scr_set_directive(struct screen *s, const char *text, const double *regs)
+{
+  (void)regs;
+  memset(s->directive, 0, sizeof s->directive);
+  scr_decode(text, s->directive, SCR_COLS);
+  snprintf(s->dirtext, sizeof s->dirtext, "%s", text);
+}
+
+void scr_clear_directive(struct screen *s)
+{
+  memset(s->directive, 0, sizeof s->directive);
+  s->dirtext[0] = 0;
+}
+
+void scr_message(struct screen *s, const char *text)
+{
+  memset(s->message, 0, sizeof s->message);
+  scr_decode(text, s->message, SCR_COLS);
+  s->has_message = 1;
+}
+
+void scr_scroll(struct screen *s, int delta)
+{
+  s->top += delta;
+  if (s->top > s->nbuf - SCR_WORK)
+    s->top = s->nbuf - SCR_WORK;
+  if (s->top < 0)
+    s->top = 0;
+}
+
+void scr_value8(double v, char out[9])
+{
+  double r = round(v);
+  if (fabs(r) > 99999999.0 || (r < 0 && r < -9999999.0) || !isfinite(r)) {
+    memcpy(out, "********", 9);
+    return;
+  }
+  snprintf(out, 9, "%8.0f", r == 0 ? 0.0 : r);
+}
+
+static void put_ascii(uint32_t *line, int col, const char *t)
+{
+  for (int i = 0; t[i] && col + i < SCR_COLS; i++)
+    line[col + i] = (unsigned char)t[i];
+}
+
+void scr_render(const struct screen *s, const double *regs, int en, uint32_t g[SCR_ROWS][SCR_COLS])
+{
+  memset(g, 0, sizeof(uint32_t) * SCR_ROWS * SCR_COLS);
+  static const char *const modes[2][3] = {{"АВТОМАТ", "РУЧНИЙ", "РЕЗУЛЬТАТИ"}, {"AUTO", "MANUAL", "RESULTS"}};
+  uint32_t t[SCR_COLS];
+  int n = scr_decode(modes[en ? 1 : 0][s->mode], t, SCR_COLS);
+  put(g[0], 0, t, n);
+  if (s->cyr)
+    g[0][n + 1] = 0x0052;   /* R */
+  if (s->block > 0) {
+    char b[16];
+    snprintf(b, sizeof b, "N%d", s->block);
+    put_ascii(g[0], SCR_COLS - (int)strlen(b), b);
+  }
+  if (s->p3) {
+    for (int i = 0; i < s->np3 && i < SCR_WORK; i++) {
+      memcpy(g[1 + i], s->p3l[i].ch, sizeof g[1 + i]);
+      if (s->p3l[i].reg >= 0 && s->p3l[i].reg <= 113) {
+        char v[9];
+        scr_value8(regs ? regs[s->p3l[i].reg] : 0, v);
+        put_ascii(g[1 + i], SCR_COLS - 8, v);
+      }
+    }
+  } else {
+    for (int i = 0; i < SCR_WORK && s->top + i < s->nbuf; i++) {
+      const struct scr_line *l = &s->buf[s->top + i];
+      memcpy(g[1 + i], l->ch, sizeof g[1 + i]);
+      if (l->field) {
+        int edit = s->editing && s->top + i == s->fline;
+        const char *d = edit ? s->digits : l->value;
+        for (int c = 0; c < 7; c++)
+          g[1 + i][25 + c] = (unsigned char)d[c];
+        if (edit && s->neg)
+          g[1 + i][24] = '-';
+        if (edit && g[1 + i][25 + s->cursor] == ' ')
+          g[1 + i][25 + s->cursor] = '_';
+      }
+    }
+  }
+  if (s->has_message) {
+    memcpy(g[SCR_ROWS - 1], s->message, sizeof g[SCR_ROWS - 1]);
+  } else {
+    /* the directive, with ((Rn drawn live */
+    const char *ref = strstr(s->dirtext, "((");
+    if (s->directive[0] && ref && regs) {
+      char head[SCR_COLS * 4 + 1];
+      size_t hn = (size_t)(ref - s->dirtext);
+      memcpy(head, s->dirtext, hn);
+      head[hn] = 0;
+      int k = scr_decode(head, t, SCR_COLS);
+      put(g[SCR_ROWS - 1], 0, t, k);
+      const char *q = ref + 2;
+      while (*q == ' ') q++;
+      q += (*q == 'R') ? 1 : 0;
+      int reg = atoi(q);
+      while (*q == ' ' || (*q >= '0' && *q <= '9')) q++;
+      char v[9];
+      scr_value8(reg <= 113 ? regs[reg] : 0, v);
+      put_ascii(g[SCR_ROWS - 1], k, v);
+      int k2 = scr_decode(q, t, SCR_COLS);
+      put(g[SCR_ROWS - 1], k + 8, t, k2);
+    } else {
+      memcpy(g[SCR_ROWS - 1], s->directive, sizeof g[SCR_ROWS - 1]);
+    }
+  }
+}
+
+void scr_print(FILE *f, uint32_t g[SCR_ROWS][SCR_COLS])
+{
+  for (int r = 0; r < SCR_ROWS; r++) {
+    int end = SCR_COLS;
+    while (end > 0 && (g[r][end - 1] == 0 || g[r][end - 1] == ' '))
+      end--;
+    for (int c = 0; c < end; c++) {
+      uint32_t ch = g[r][c] ? g[r][c] : ' ';
+      char u[4];
+      int n;
+      if (ch < 0x80) { u[0] = (char)ch; n = 1; }
+      else if (ch < 0x800) { u[0] = (char)(0xC0 | (ch >> 6)); u[1] = (char)(0x80 | (ch & 0x3F)); n = 2; }
+      else if (ch < 0x10000) {
+        u[0] = (char)(0xE0 | (ch >> 12)); u[1] = (char)(0x80 | ((ch >> 6) & 0x3F)); u[2] = (char)(0x80 | (ch & 0x3F)); n = 3;
+      } else {
+        u[0] = (char)(0xF0 | (ch >> 18)); u[1] = (char)(0x80 | ((ch >> 12) & 0x3F));
+        u[2] = (char)(0x80 | ((ch >> 6) & 0x3F)); u[3] = (char)(0x80 | (ch & 0x3F)); n = 4;
+      }
+      fwrite(u, 1, (size_t)n, f);
+    }
+    fputc('\n', f);
+  }
+}

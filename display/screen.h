@@ -1,0 +1,88 @@
+/* The 2С42-65 screen as a pure model: 16 lines of 32 characters -- line 1
+ * the service line (mode, Cyrillic-keyboard R, block number), lines 2-15
+ * the work area (the dialog's input buffer, or the P3 current-data display),
+ * line 16 the directive/message line.  scr_render draws the model into a
+ * grid of cells; headless runs print that grid, the terminal copies it. */
+#ifndef S42_SCREEN_H
+#define S42_SCREEN_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#define SCR_ROWS 16
+#define SCR_COLS 32
+#define SCR_WORK 14                 /* work lines 2..15 */
+#define SCR_BUF (4 * SCR_WORK)      /* the input buffer holds four screens */
+
+enum scr_mode { SCR_AUTO, SCR_MANUAL, SCR_RESULTS };
+
+struct scr_line {
+  uint32_t ch[SCR_COLS];            /* code points, 0 = blank */
+  int field;                        /* this line holds the G27 number field */
+  char value[8];                    /* the number it took, as shown */
+};
+
+struct scr_p3 {                     /* one G29 line */
+  uint32_t ch[SCR_COLS];
+  int reg;                          /* parameter shown at the end, -1 none */
+};
+
+struct screen {
+  int mode;
+  int cyr;                          /* Cyrillic keyboard mode: the letter R */
+  int block;                        /* block number shown, -1 none */
+  struct scr_line buf[SCR_BUF];     /* the input buffer (dialog lines) */
+  int nbuf, top;                    /* lines used; first line shown */
+  int fixed;                        /* M27: the fixed input line, -1 none */
+  int last;                         /* the line the last G27/G33 wrote, -1 none */
+  int en;                           /* English messages */
+  int at_fixed;                     /* M28: the next dialog line goes to the fixed one */
+  int p3;                           /* the work area shows the P3 display */
+  struct scr_p3 p3l[SCR_WORK];
+  int np3;
+  uint32_t directive[SCR_COLS];
+  char dirtext[SCR_COLS * 4 + 1];   /* the directive as written, ((Rn drawn live */
+  uint32_t message[SCR_COLS];
+  int has_message;                  /* a message hides the directive until the next key */
+  /* the number field being edited */
+  int editing, fline;               /* field active; its buffer line */
+  char digits[8];                   /* up to 7 digits, ' ' empty */
+  int cursor, neg;
+};
+
+void scr_init(struct screen *s);
+/* Decode UTF-8 into at most n code points; returns how many. */
+int scr_decode(const char *utf8, uint32_t *out, int n);
+/* G33: text centred on the next work line. */
+void scr_center(struct screen *s, const char *text);
+/* G27: text from the start of the line, dots to column 25, the field at
+ * 26-32 (wrapped: the text runs over two lines, the field on the second).
+ * When four screens are full the oldest line goes, with "Обмеження введення". */
+int scr_prompt(struct screen *s, const char *text, int wrapped);
+/* The field: digits, ЗБ, arrows, minus; the value when ПС ends it. */
+void scr_field_digit(struct screen *s, int d);
+void scr_field_backspace(struct screen *s);
+void scr_field_move(struct screen *s, int delta);
+void scr_field_minus(struct screen *s);
+double scr_field_value(const struct screen *s);
+void scr_field_reopen(struct screen *s);   /* G28 refused: enter again */
+void scr_field_close(struct screen *s);
+/* Type a whole number into the field (the operator script's `answer`). */
+void scr_field_type(struct screen *s, long long v);
+/* G29: start (or, after M15, extend) the P3 layout. */
+void scr_p3_clear(struct screen *s);
+void scr_p3_add(struct screen *s, const char *text);
+void scr_set_directive(struct screen *s, const char *text, const double *regs);
+void scr_clear_directive(struct screen *s);
+void scr_message(struct screen *s, const char *text);
+void scr_scroll(struct screen *s, int delta);
+/* Render into cells; regs feeds the ((Rn fields (114 values). */
+void scr_render(const struct screen *s, const double *regs, int en, uint32_t grid[SCR_ROWS][SCR_COLS]);
+/* The grid as 16 UTF-8 text lines. */
+void scr_print(FILE *f, uint32_t grid[SCR_ROWS][SCR_COLS]);
+/* Format Rn for a ((Rn field: rounded, right-aligned in 8, ******** if it
+ * does not fit. */
+void scr_value8(double v, char out[9]);
+
+#endif
