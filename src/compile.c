@@ -415,6 +415,27 @@ static int text_len_check(struct comp *c, const struct text *t, const char *fn, 
   return 1;
 }
 
+/* Characters of a display text outside its ((Rn reference. */
+static unsigned text_chars_outside_ref(const char *s)
+{
+  unsigned n = 0;
+  const char *ref = s ? strstr(s, "((") : NULL;
+  for (const char *p = s; p && *p;) {
+    if (p == ref) {
+      p += 2;
+      while (*p == ' ') p++;
+      if (*p == 'R') p++;
+      else if (strncmp(p, "\xD0\xA0", 2) == 0) p += 2;
+      while (*p == ' ' || (*p >= '0' && *p <= '9')) p++;
+      continue;
+    }
+    if (((unsigned char)*p & 0xC0) != 0x80)
+      n++;
+    p++;
+  }
+  return n;
+}
+
 /* Check the ((Rn references in a display text; returns how many. */
 static int text_refs(struct comp *c, const struct text *t, const char *fn, int g29)
 {
@@ -587,10 +608,17 @@ static void check_block(struct comp *c)
   }
   for (int i = 0; i < b->ng29; i++) {
     int refs = text_refs(c, &b->g29[i], "G29", 1);
-    if (refs > 1)
+    if (refs > 1) {
       err(c, S42_E_TEXT, b->g29[i].col, "G29: one ((Rn value per line");
-    else
-      text_len_check(c, &b->g29[i], "G29", refs ? 24 + 6 : 32);
+    } else if (refs == 1) {
+      /* the value takes the last 8 columns: the text beside it is <= 24 */
+      struct text t = b->g29[i];
+      t.nchars = text_chars_outside_ref(t.s);
+      if (t.nchars > 24)
+        err(c, S42_E_TEXT, t.col, "G29: %u characters of text beside a value, at most 24", t.nchars);
+    } else {
+      text_len_check(c, &b->g29[i], "G29", 32);
+    }
   }
   if (G(37) && b->g37axis != 'Y')
     err(c, S42_E_AXIS, b->g37col ? b->g37col : b->gcol[37],

@@ -414,6 +414,18 @@ START_TEST(operands_p1_tk_ug_d1_arrays)
 }
 END_TEST
 
+START_TEST(p1_operand_and_jump)
+{
+  /* P1 is pi where an operand is expected, a jump where a word is */
+  first("R1+P1 P1");
+  ck_assert_uint_eq(d.n, 0);
+  ck_assert_int_eq(b->nw, 2);
+  ck_assert_double_eq(b->w[0].e->v, 3.141592);
+  ck_assert_int_eq(b->w[1].kind, WK_P);
+  ck_assert_int_eq(b->w[1].num, 1);
+}
+END_TEST
+
 START_TEST(unknown_function_is_syntax)
 {
   first("N1 R1+SX(1)");
@@ -816,6 +828,7 @@ Suite *suite_parse(void)
   tcase_add_test(tc, axis_operand_in_expression);
   tcase_add_test(tc, functions_parse);
   tcase_add_test(tc, operands_p1_tk_ug_d1_arrays);
+  tcase_add_test(tc, p1_operand_and_jump);
   tcase_add_test(tc, unknown_function_is_syntax);
   tcase_add_test(tc, register_out_of_range);
   tcase_add_test(tc, literal_of_eight_digits);

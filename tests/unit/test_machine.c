@@ -1,0 +1,479 @@
+/* The simulated machine (src/machine.h): contour-speed limits, arcs,
+ * checks, simulated time, the wheel and oscillation. */
+#include "suites.h"
+#include "ast.h"
+#include "errors.h"
+#include "kp.h"
+#include "machine.h"
+#include <math.h>
+#include <stdarg.h>
+#include <string.h>
+
+static struct machine m;
+static struct mach_block b;
+static struct mach_out o;
+static char msg[200];
+
+static void setup(void)
+{
+  mach_init(&m);
+  memset(&b, 0, sizeof b);
+  memset(&o, 0, sizeof o);
+  msg[0] = 0;
+}
+
+/* A block: motion, then slot/value pairs ending with -1. */
+static void block(int motion, int plane, double f, ...)
+{
+  memset(&b, 0, sizeof b);
+  b.motion = motion;
+  b.plane = plane;
+  b.f = f;
+  va_list ap;
+  va_start(ap, f);
+  for (int s; (s = va_arg(ap, int)) >= 0;) {
+    b.given |= (uint16_t)(1u << s);
+    b.w[s] = va_arg(ap, double);
+  }
+  va_end(ap);
+}
+
+static void with_m(int n) { b.m |= 1u << n; }
+
+static int check(void) { return mach_check(&m, &b, msg, sizeof msg); }
+
+static void exec(void)
+{
+  ck_assert_msg(check() == 0, "mach_check: %s", msg);
+  mach_exec(&m, &b, &o);
+}
+
+/* ---- linear limit ---- */
+
+START_TEST(linear_limit_seed_example)
+{
+  double d[4] = {10000, 10000, 0, 0};
+  double lim = mach_linear_limit(d);
+  ck_near(lim, 6000 * sqrt(2.0 / 1297.0), 1e-9);
+  ck_near(lim, 235.6, 0.05);
+}
+END_TEST
+
+START_TEST(linear_limit_single_axes)
+{
+  double x[4] = {5000, 0, 0, 0}, y[4] = {0, -5000, 0, 0}, a[4] = {0, 0, 0, 90000}, z[4] = {0, 0, 0, 0};
+  ck_near(mach_linear_limit(x), 6000, 1e-9);
+  ck_near(mach_linear_limit(y), 6000.0 / 36, 1e-9);
+  ck_near(mach_linear_limit(a), 6000, 1e-9);
+  ck_near(mach_linear_limit(z), 6000, 1e-9);
+}
+END_TEST
+
+START_TEST(linear_limit_mixed)
+{
+  double d[4] = {30000, 1000, 40000, 0};   /* mm: 30, 1, 40 */
+  double want = 6000 * sqrt((900.0 + 1 + 1600) / (900 + 1296 + 1600));
+  ck_near(mach_linear_limit(d), want, 1e-9);
+}
+END_TEST
+
+START_TEST(exec_seed_linear)
+{
+  /* №01 G01 G09 X+10000 Y+10000 F1000: limited to ~235.6 mm/min */
+  block(MO_G01, 0, 1000, SL_X, 10000.0, SL_Y, 10000.0, -1);
+  exec();
+  double feed = 6000 * sqrt(2.0 / 1297.0);
+  ck_near(o.feed, feed, 1e-9);
+  ck_near(m.t, sqrt(200.0) / feed * 60, 1e-9);
+  ck_assert_int_eq(m.pos[AX_X], 10000);
+  ck_assert_int_eq(m.pos[AX_Y], 10000);
+  ck_assert_int_eq(o.d[AX_Y], 10000);
+}
+END_TEST
+
+START_TEST(exec_linear_time)
+{
+  block(MO_G01, 0, 1000, SL_X, 10000.0, -1);
+  exec();
+  ck_near(o.feed, 1000, 0);
+  ck_near(m.t, 0.6, 1e-12);
+  block(MO_G01, 0, 9000, SL_Z, -6000.0, -1);   /* over the axis limit */
+  exec();
+  ck_near(o.feed, 6000, 1e-9);
+  ck_near(m.t, 0.66, 1e-12);
+  ck_assert_int_eq(m.pos[AX_Z], -6000);
+}
+END_TEST
+
+START_TEST(exec_override)
+{
+  m.override_pct = 50;
+  block(MO_G01, 0, 1000, SL_X, 10000.0, -1);
+  exec();
+  ck_near(o.feed, 500, 1e-12);
+  ck_near(m.t, 1.2, 1e-12);
+  /* M25 forbids the override: 100 % */
+  block(MO_G01, 0, 1000, SL_X, 10000.0, -1);
+  with_m(25);
+  exec();
+  ck_near(o.feed, 1000, 1e-12);
+}
+END_TEST
+
+START_TEST(exec_surface_speed)
+{
+  /* X 3 mm and A 4 deg with D = 100 mm */
+  block(MO_G01, 0, 100, SL_X, 3000.0, SL_A, 4000.0, -1);
+  b.d1 = 100000;
+  exec();
+  ck_assert_int_eq(o.has_v, 1);
+  double ad = 4 * M_PI * 100 / 360;
+  ck_near(o.v, 100 * sqrt((9 + ad * ad) / (9 + 16)), 1e-9);
+}
+END_TEST
+
+/* ---- arcs ---- */
+
+START_TEST(arc_half_circle)
+{
+  /* №01 G02 G19 G09 X-20000 Z+0 I-10000 K+0 F1000: R 10 mm in XZ */
+  block(MO_G02, 19, 1000, SL_X, -20000.0, SL_Z, 0.0, SL_I, -10000.0, SL_K, 0.0, -1);
+  double len, ys;
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(len, M_PI * 10, 1e-9);
+  ck_near(ys, 0, 0);
+  exec();
+  ck_near(o.feed, 1000, 1e-9);         /* XZ: only the 6000 clamp */
+  ck_near(m.t, M_PI * 10 / 1000 * 60, 1e-9);
+  ck_assert_int_eq(m.pos[AX_X], -20000);
+  ck_assert_int_eq(m.pos[AX_Z], 0);
+}
+END_TEST
+
+START_TEST(arc_full_circle)
+{
+  /* №07 G02 G19 G09 X+0 Z+0 I-10000 K+0 F1000 */
+  block(MO_G02, 19, 1000, SL_X, 0.0, SL_Z, 0.0, SL_I, -10000.0, SL_K, 0.0, -1);
+  double len, ys;
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(len, 2 * M_PI * 10, 1e-9);
+  b.motion = MO_G03;
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(len, 2 * M_PI * 10, 1e-9);
+}
+END_TEST
+
+START_TEST(arc_direction_lengths)
+{
+  /* XY, centre 10 mm along +X, end at the centre's top: G02 turns a
+   * quarter (through the bottom? no: clockwise from 180 deg to 90 deg),
+   * G03 three quarters */
+  double len, ys;
+  block(MO_G02, 17, 1000, SL_X, 10000.0, SL_Y, 10000.0, SL_I, 10000.0, SL_J, 0.0, -1);
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(len, M_PI / 2 * 10, 1e-9);
+  block(MO_G03, 17, 1000, SL_X, 10000.0, SL_Y, 10000.0, SL_I, 10000.0, SL_J, 0.0, -1);
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(len, 3 * M_PI / 2 * 10, 1e-9);
+}
+END_TEST
+
+START_TEST(arc_direction_xz)
+{
+  /* XZ: G03 turns from X towards Z.  Start at angle 180 (centre +X),
+   * end at angle 270 (Z = -R): counter-clockwise is a quarter */
+  double len, ys;
+  block(MO_G03, 19, 1000, SL_X, 10000.0, SL_Z, -10000.0, SL_I, 10000.0, SL_K, 0.0, -1);
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(len, M_PI / 2 * 10, 1e-9);
+  b.motion = MO_G02;
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(len, 3 * M_PI / 2 * 10, 1e-9);
+}
+END_TEST
+
+START_TEST(arc_y_share_rule_2)
+{
+  /* XY arc from 60 deg to 120 deg (G03): the radius makes at most 30 deg
+   * with Y at its ends and never lies along X: Y share sin 30 = 0.5 */
+  block(MO_G03, 17, 1000, SL_X, -10000.0, SL_Y, 0.0, SL_I, -5000.0, SL_J, -8660.0, -1);
+  double len, ys;
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(ys, 0.5, 1e-4);
+  ck_near(len, M_PI / 3 * 10, 1e-2);
+  exec();
+  ck_near(o.feed, 6000 / sqrt((1 - ys * ys) + 36.0 * 36.0 * ys * ys), 1e-9);
+  ck_near(o.feed, 332.95, 0.05);
+}
+END_TEST
+
+START_TEST(arc_y_share_rule_3)
+{
+  /* the same ends clockwise: the arc passes 0 deg, where the tangent is
+   * parallel to Y: F <= 6000/36 */
+  block(MO_G02, 17, 1000, SL_X, -10000.0, SL_Y, 0.0, SL_I, -5000.0, SL_J, -8660.0, -1);
+  double len, ys;
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(ys, 1, 0);
+  ck_near(len, 5 * M_PI / 3 * 10, 1e-2);
+  exec();
+  ck_near(o.feed, 6000.0 / 36, 1e-9);
+}
+END_TEST
+
+START_TEST(arc_y_share_yz_plane)
+{
+  /* YZ: Y is the first axis, the Y share is |sin t|.  A quarter from
+   * 180 deg to 270 deg passes no point with the tangent along Y... its
+   * end at 270 deg has the radius along -Z: tangent along Y, share 1 */
+  block(MO_G03, 18, 1000, SL_Y, 10000.0, SL_Z, -10000.0, SL_J, 10000.0, SL_K, 0.0, -1);
+  double len, ys;
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(len, M_PI / 2 * 10, 1e-9);
+  ck_near(ys, 1, 1e-12);
+  /* from 180 deg to 210 deg: the tangent turns from Z by 30 deg */
+  block(MO_G03, 18, 1000, SL_Y, 1340.0, SL_Z, -5000.0, SL_J, 10000.0, SL_K, 0.0, -1);
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_near(ys, 0.5, 1e-4);
+  ck_near(len, M_PI / 6 * 10, 1e-2);
+}
+END_TEST
+
+START_TEST(arc_errors)
+{
+  double len, ys;
+  block(MO_G02, 19, 1000, SL_X, -20000.0, SL_Z, 0.0, SL_I, -10005.0, -1);
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);
+  block(MO_G02, 19, 1000, SL_X, -20000.0, SL_Z, 0.0, SL_I, -10002.0, -1);
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);   /* radii 10002, 9998 */
+  block(MO_G02, 19, 1000, SL_X, -20000.0, SL_Z, 0.0, SL_I, -10001.0, -1);
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);   /* 2 µm apart: fine */
+  block(MO_G02, 17, 1000, SL_X, 100.0, -1);
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);
+  block(MO_G02, 17, 1000, SL_X, 0.0, SL_I, 3000000.0, SL_J, 3000000.0, -1);
+  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);
+  ck_assert_int_eq(check(), S42_E_ARC);
+}
+END_TEST
+
+/* ---- checks ---- */
+
+START_TEST(check_wheel)
+{
+  block(MO_NONE, 0, 0, -1);
+  with_m(3);
+  exec();
+  ck_assert_int_eq(m.wheel, WHEEL_CW);
+  block(MO_NONE, 0, 0, -1);
+  with_m(4);
+  ck_assert_int_eq(check(), S42_E_WHEEL);
+  block(MO_NONE, 0, 0, -1);
+  with_m(3);
+  ck_assert_int_eq(check(), 0);        /* M3 again: no reversal */
+  block(MO_NONE, 0, 0, -1);
+  with_m(5);
+  exec();
+  block(MO_NONE, 0, 0, -1);
+  with_m(4);
+  exec();
+  ck_assert_int_eq(m.wheel, WHEEL_CCW);
+  block(MO_NONE, 0, 0, -1);
+  with_m(3);
+  ck_assert_int_eq(check(), S42_E_WHEEL);
+}
+END_TEST
+
+START_TEST(check_feed_zero)
+{
+  block(MO_G01, 0, 0, SL_X, 1.0, -1);
+  ck_assert_int_eq(check(), S42_E_FEED);
+  block(MO_G02, 19, 0, SL_X, -20000.0, SL_I, -10000.0, -1);
+  ck_assert_int_eq(check(), S42_E_FEED);
+  block(MO_G01, 0, 0, SL_X, 0.0, -1);  /* no path: no speed needed */
+  ck_assert_int_eq(check(), 0);
+  block(MO_G04, 0, 0, SL_X, 20.0, -1);
+  ck_assert_int_eq(check(), 0);
+}
+END_TEST
+
+START_TEST(check_osc)
+{
+  block(MO_NONE, 0, 0, -1);
+  with_m(13);
+  ck_assert_int_eq(check(), S42_E_OSC);     /* M13 before any G07 */
+  block(MO_G07, 0, 0, SL_A, 0.0, SL_OSCF, 5500.0, -1);
+  ck_assert_int_eq(check(), S42_E_OSC);     /* stroke 0 */
+  block(MO_G07, 0, 0, SL_A, -20000.0, SL_OSCF, 0.0, -1);
+  ck_assert_int_eq(check(), S42_E_OSC);     /* speed 0 */
+  block(MO_G07, 0, 0, SL_A, -20000.0, SL_OSCF, 5500.0, -1);
+  exec();
+  ck_assert_int_eq(m.osc.defined, 1);
+  ck_assert_int_eq(m.osc.active, 0);
+  block(MO_G01, 0, 1000, SL_X, 40000.0, -1);
+  with_m(13);
+  exec();
+  ck_assert_int_eq(m.osc.active, 1);
+  block(MO_G01, 0, 1000, SL_A, 5.0, -1);
+  ck_assert_int_eq(check(), S42_E_OSC);     /* the oscillating axis in the contour */
+  block(MO_G07, 0, 0, SL_X, 100.0, SL_OSCF, 50.0, -1);
+  ck_assert_int_eq(check(), S42_E_OSC);     /* another axis while it oscillates */
+  block(MO_G01, 0, 1000, SL_Z, 5.0, -1);
+  ck_assert_int_eq(check(), 0);
+}
+END_TEST
+
+/* ---- time ---- */
+
+START_TEST(time_dwell)
+{
+  block(MO_G04, 0, 0, SL_X, 20.0, -1);
+  exec();
+  ck_near(m.t, 2.0, 1e-12);
+  ck_assert_int_eq(m.pos[AX_X], 0);    /* G04's X is no move */
+}
+END_TEST
+
+START_TEST(time_wheel_rundown)
+{
+  block(MO_NONE, 0, 0, -1);
+  with_m(5);
+  exec();
+  ck_near(m.t, 0, 0);                  /* the wheel was off */
+  block(MO_NONE, 0, 0, -1);
+  with_m(3);
+  exec();
+  block(MO_G01, 0, 1000, SL_X, 10000.0, -1);
+  with_m(5);
+  exec();
+  ck_near(m.t, 3.0 + 0.6, 1e-12);
+  ck_assert_int_eq(m.wheel, WHEEL_OFF);
+}
+END_TEST
+
+START_TEST(time_g37_return)
+{
+  block(MO_G01, 0, 1000, SL_Y, -5000.0, -1);
+  exec();
+  double t0 = m.t;
+  ck_near(t0, 5.0 / (6000.0 / 36) * 60, 1e-9);
+  block(MO_G37, 0, 0, -1);
+  exec();
+  ck_assert_int_eq(m.pos[AX_Y], 0);
+  ck_assert_int_eq(o.d[AX_Y], 5000);
+  ck_near(m.t - t0, 5.0 / (6000.0 / 36) * 60, 1e-9);
+}
+END_TEST
+
+START_TEST(jog_counts_in_position)
+{
+  mach_jog(&m, AX_Z, -250, 0);
+  ck_assert_int_eq(m.pos[AX_Z], -250);
+  ck_assert_int_eq(m.corr[AX_Z], 0);
+  mach_jog(&m, AX_Z, 100, 1);
+  ck_assert_int_eq(m.pos[AX_Z], -150);
+  ck_assert_int_eq(m.corr[AX_Z], 100);
+  ck_near(m.t, 0, 0);
+}
+END_TEST
+
+/* ---- oscillation ---- */
+
+START_TEST(osc_offset_and_return)
+{
+  block(MO_G07, 0, 0, SL_A, -20000.0, SL_OSCF, 5500.0, -1);
+  exec();
+  block(MO_NONE, 0, 0, -1);
+  with_m(13);
+  exec();
+  ck_assert_int_eq(mach_osc_offset(&m), 0);
+  mach_advance(&m, 0.1);               /* 5500 deg/min: 9166.7 discretes */
+  ck_assert_int_eq(mach_osc_offset(&m), -9167);
+  ck_assert_int_eq(m.pos[AX_A], -9167);
+  mach_advance(&m, 0.2);               /* 27500: back from -20000 by 7500 */
+  ck_assert_int_eq(mach_osc_offset(&m), -12500);
+  double t0 = m.t;
+  block(MO_NONE, 0, 0, -1);
+  with_m(14);
+  exec();
+  ck_assert_int_eq(m.osc.active, 0);
+  ck_assert_int_eq(m.pos[AX_A], 0);
+  ck_near(m.t - t0, 12.5 / 5500 * 60, 1e-9);
+}
+END_TEST
+
+START_TEST(osc_runs_during_moves)
+{
+  block(MO_G07, 0, 0, SL_A, 20000.0, SL_OSCF, 6000.0, -1);
+  exec();
+  block(MO_G01, 0, 1000, SL_X, 1000.0, -1);   /* 0.06 s: 6000 discretes of A */
+  with_m(13);
+  exec();
+  ck_assert_int_eq(m.pos[AX_A], 6000);
+  ck_assert_int_eq(m.pos[AX_X], 1000);
+  block(MO_G01, 0, 1000, SL_X, 1000.0, -1);
+  with_m(2);                            /* M2 includes M14 */
+  exec();
+  ck_assert_int_eq(m.osc.active, 0);
+  ck_assert_int_eq(m.pos[AX_A], 0);
+  ck_near(m.t, 0.12 + 12.0 / 6000 * 60, 1e-9);
+}
+END_TEST
+
+START_TEST(osc_speed_clamped)
+{
+  block(MO_G07, 0, 0, SL_Y, 1000.0, SL_OSCF, 500.0, -1);
+  exec();
+  ck_near(m.osc.speed, 6000.0 / 36, 1e-9);
+  ck_assert_str_ne(o.warn, "");
+  block(MO_G07, 0, 0, SL_Z, 1000.0, SL_OSCF, 5500.0, -1);
+  exec();
+  ck_near(m.osc.speed, 5500, 0);
+  ck_assert_str_eq(o.warn, "");
+}
+END_TEST
+
+Suite *suite_machine(void)
+{
+  Suite *s = suite_create("machine");
+  TCase *tc = tcase_create("speed");
+  tcase_add_checked_fixture(tc, setup, NULL);
+  tcase_add_test(tc, linear_limit_seed_example);
+  tcase_add_test(tc, linear_limit_single_axes);
+  tcase_add_test(tc, linear_limit_mixed);
+  tcase_add_test(tc, exec_seed_linear);
+  tcase_add_test(tc, exec_linear_time);
+  tcase_add_test(tc, exec_override);
+  tcase_add_test(tc, exec_surface_speed);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("arcs");
+  tcase_add_checked_fixture(tc, setup, NULL);
+  tcase_add_test(tc, arc_half_circle);
+  tcase_add_test(tc, arc_full_circle);
+  tcase_add_test(tc, arc_direction_lengths);
+  tcase_add_test(tc, arc_direction_xz);
+  tcase_add_test(tc, arc_y_share_rule_2);
+  tcase_add_test(tc, arc_y_share_rule_3);
+  tcase_add_test(tc, arc_y_share_yz_plane);
+  tcase_add_test(tc, arc_errors);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("checks");
+  tcase_add_checked_fixture(tc, setup, NULL);
+  tcase_add_test(tc, check_wheel);
+  tcase_add_test(tc, check_feed_zero);
+  tcase_add_test(tc, check_osc);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("time");
+  tcase_add_checked_fixture(tc, setup, NULL);
+  tcase_add_test(tc, time_dwell);
+  tcase_add_test(tc, time_wheel_rundown);
+  tcase_add_test(tc, time_g37_return);
+  tcase_add_test(tc, jog_counts_in_position);
+  tcase_add_test(tc, osc_offset_and_return);
+  tcase_add_test(tc, osc_runs_during_moves);
+  tcase_add_test(tc, osc_speed_clamped);
+  suite_add_tcase(s, tc);
+  return s;
+}

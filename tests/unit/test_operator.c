@@ -1,0 +1,309 @@
+/* Operator scripts (src/operator.h, contracts.md section 3): every action,
+ * and the refusals with their line numbers. */
+#include "suites.h"
+#include "operator.h"
+#include "machine.h"
+#include <stdlib.h>
+#include <string.h>
+
+static struct opscript sc;
+static char *errbuf;
+static size_t errlen;
+
+static void setup(void)
+{
+  memset(&sc, 0, sizeof sc);
+  errbuf = NULL;
+  errlen = 0;
+}
+
+static void teardown(void)
+{
+  ops_free(&sc);
+  free(errbuf);
+}
+
+static int parse(const char *text)
+{
+  free(errbuf);
+  errbuf = NULL;
+  FILE *f = open_memstream(&errbuf, &errlen);
+  ck_assert_ptr_nonnull(f);
+  ops_free(&sc);
+  int r = ops_parse(text, strlen(text), "op.txt", &sc, f);
+  fclose(f);
+  return r;
+}
+
+/* One action, parsed alone. */
+static const struct op_action *one(const char *text)
+{
+  ck_assert_msg(parse(text) == 0, "'%s' refused: %s", text, errbuf);
+  ck_assert_uint_eq(sc.n, 1);
+  return &sc.v[0];
+}
+
+static void refused(const char *text, unsigned line)
+{
+  ck_assert_int_eq(parse(text), -1);
+  char want[32];
+  snprintf(want, sizeof want, "op.txt:%u: error:", line);
+  ck_assert_msg(strstr(errbuf, want) != NULL, "'%s': expected '%s' in '%s'", text, want, errbuf);
+  ck_assert_uint_eq(sc.n, 0);
+  ck_assert_ptr_null(sc.v);
+}
+
+START_TEST(answer_positive_and_negative)
+{
+  const struct op_action *a = one("answer 35000");
+  ck_assert_int_eq(a->kind, OA_ANSWER);
+  ck_assert_int_eq(a->n, 35000);
+  ck_assert_int_eq(a->at_number, -1);
+  ck_assert_int_eq(ops_is_waiting(a), 1);
+  a = one("answer -120   ; a negative number");
+  ck_assert_int_eq(a->n, -120);
+  a = one("answer 9999999");
+  ck_assert_int_eq(a->n, 9999999);
+}
+END_TEST
+
+START_TEST(keys)
+{
+  static const struct { const char *t; int key, waiting; } k[] = {
+    {"key PUSK", KEY_PUSK, 1}, {"key PS", KEY_PS, 1}, {"key EXIT", KEY_EXIT, 0}, {"key STOP", KEY_STOP, 0},
+  };
+  for (size_t i = 0; i < 4; i++) {
+    const struct op_action *a = one(k[i].t);
+    ck_assert_int_eq(a->kind, OA_KEY);
+    ck_assert_int_eq(a->key, k[i].key);
+    ck_assert_int_eq(ops_is_waiting(a), k[i].waiting);
+  }
+}
+END_TEST
+
+START_TEST(at_block)
+{
+  ck_assert_int_eq(parse("at N54 key EXIT\n"), 0);
+  ck_assert_uint_eq(sc.n, 0);
+  ck_assert_uint_eq(sc.nat, 1);
+  ck_assert_int_eq(sc.at[0].at_number, 54);
+  ck_assert_uint_eq(sc.at[0].at_run, 1);
+  ck_assert_int_eq(sc.at[0].kind, OA_KEY);
+  ck_assert_int_eq(sc.at[0].key, KEY_EXIT);
+  ck_assert_uint_eq(sc.at[0].line, 1);
+}
+END_TEST
+
+START_TEST(at_block_run)
+{
+  ck_assert_int_eq(parse("key PUSK\nat N54#3 key EXIT\nat N7 override 50\nat N8 correct A +150\nkey PS\n"), 0);
+  ck_assert_uint_eq(sc.n, 2);
+  ck_assert_uint_eq(sc.nat, 3);
+  ck_assert_int_eq(sc.at[0].at_number, 54);
+  ck_assert_uint_eq(sc.at[0].at_run, 3);
+  ck_assert_uint_eq(sc.at[0].line, 2);
+  ck_assert_int_eq(sc.at[1].kind, OA_OVERRIDE);
+  ck_assert_int_eq(sc.at[2].kind, OA_CORRECT);
+  ck_assert_int_eq(sc.v[1].key, KEY_PS);
+  ck_assert_uint_eq(sc.v[1].line, 5);
+}
+END_TEST
+
+START_TEST(jog)
+{
+  const struct op_action *a = one("jog X -20000");
+  ck_assert_int_eq(a->kind, OA_JOG);
+  ck_assert_int_eq(a->axis, AX_X);
+  ck_assert_int_eq(a->n, -20000);
+  ck_assert_int_eq(ops_is_waiting(a), 1);
+  a = one("jog A +5");
+  ck_assert_int_eq(a->axis, AX_A);
+  ck_assert_int_eq(a->n, 5);
+}
+END_TEST
+
+START_TEST(correct)
+{
+  const struct op_action *a = one("correct A +150");
+  ck_assert_int_eq(a->kind, OA_CORRECT);
+  ck_assert_int_eq(a->axis, AX_A);
+  ck_assert_int_eq(a->n, 150);
+  ck_assert_int_eq(ops_is_waiting(a), 0);
+}
+END_TEST
+
+START_TEST(override)
+{
+  const struct op_action *a = one("override 50");
+  ck_assert_int_eq(a->kind, OA_OVERRIDE);
+  ck_assert_int_eq(a->n, 50);
+  ck_assert_int_eq(ops_is_waiting(a), 0);
+  ck_assert_int_eq(one("override 0")->n, 0);
+  ck_assert_int_eq(one("override 150")->n, 150);
+}
+END_TEST
+
+START_TEST(section_one_axis)
+{
+  const struct op_action *a = one("section X +30000");
+  ck_assert_int_eq(a->kind, OA_SECTION);
+  ck_assert_int_eq(a->axis, AX_X);
+  ck_assert_int_eq(a->n, 30000);
+  ck_assert_int_eq(a->axis2, -1);
+  ck_assert_int_eq(ops_is_waiting(a), 1);
+}
+END_TEST
+
+START_TEST(section_two_axes)
+{
+  const struct op_action *a = one("section X +30000 A +36000  ; and turn A");
+  ck_assert_int_eq(a->axis, AX_X);
+  ck_assert_int_eq(a->n, 30000);
+  ck_assert_int_eq(a->axis2, AX_A);
+  ck_assert_int_eq(a->n2, 36000);
+}
+END_TEST
+
+START_TEST(comments_and_blank_lines)
+{
+  ck_assert_int_eq(parse("; a script\n\n   \n\tkey PUSK ; go\n;key PS\nanswer 1"), 0);
+  ck_assert_uint_eq(sc.n, 2);
+  ck_assert_uint_eq(sc.v[0].line, 4);
+  ck_assert_uint_eq(sc.v[1].line, 6);
+  ck_assert_int_eq(parse(""), 0);
+  ck_assert_uint_eq(sc.n, 0);
+}
+END_TEST
+
+START_TEST(order_kept)
+{
+  ck_assert_int_eq(parse("answer 1\nkey PS\njog Z -5\noverride 10\nkey PUSK\n"), 0);
+  ck_assert_uint_eq(sc.n, 5);
+  static const int kinds[] = {OA_ANSWER, OA_KEY, OA_JOG, OA_OVERRIDE, OA_KEY};
+  for (int i = 0; i < 5; i++)
+    ck_assert_int_eq(sc.v[i].kind, kinds[i]);
+}
+END_TEST
+
+START_TEST(describe)
+{
+  char buf[64];
+  ck_assert_str_eq(ops_describe(one("jog X -20000"), buf, sizeof buf), "jog X -20000");
+  ck_assert_str_eq(ops_describe(one("key PUSK"), buf, sizeof buf), "key PUSK");
+  ck_assert_str_eq(ops_describe(one("section X +30000 A +36000"), buf, sizeof buf), "section X +30000 A +36000");
+  ck_assert_str_eq(ops_describe(one("answer -5"), buf, sizeof buf), "answer -5");
+}
+END_TEST
+
+START_TEST(reject_unknown_action)
+{
+  refused("key PUSK\npress PUSK\n", 2);
+  refused("Key PUSK", 1);
+}
+END_TEST
+
+START_TEST(reject_answer_8_digits)
+{
+  refused("answer 1\nanswer 12345678\n", 2);
+  refused("answer -12345678", 1);
+  refused("answer 12a", 1);
+  refused("answer", 1);
+}
+END_TEST
+
+START_TEST(reject_bad_axis)
+{
+  refused("jog Q +5", 1);
+  refused("\n\njog x +5", 3);
+  refused("correct XY +5", 1);
+  refused("section X +1 X +2", 1);
+  refused("section X +1 B +2", 1);
+  refused("jog X", 1);
+}
+END_TEST
+
+START_TEST(reject_override_151)
+{
+  refused("override 151", 1);
+  refused("override -1", 1);
+  refused("override", 1);
+}
+END_TEST
+
+START_TEST(reject_unknown_key)
+{
+  refused("key ENTER", 1);
+  refused("key", 1);
+}
+END_TEST
+
+START_TEST(reject_at_with_waiting_action)
+{
+  refused("at N54 key PUSK", 1);
+  refused("at N54 answer 5", 1);
+  refused("at N54 jog X +1", 1);
+  refused("at N54 key PS", 1);
+  refused("at N54 section X +1", 1);
+}
+END_TEST
+
+START_TEST(reject_bad_at)
+{
+  refused("at 54 key EXIT", 1);
+  refused("at N0 key EXIT", 1);
+  refused("at N1000 key EXIT", 1);
+  refused("at N5#0 key EXIT", 1);
+  refused("at N5# key EXIT", 1);
+  refused("at N-5 key EXIT", 1);
+}
+END_TEST
+
+START_TEST(reject_trailing_text)
+{
+  refused("key PUSK now", 1);
+  refused("override 50 %", 1);
+}
+END_TEST
+
+START_TEST(reject_reports_every_bad_line)
+{
+  ck_assert_int_eq(parse("bogus\nkey PUSK\noverride 200\n"), -1);
+  ck_assert_ptr_nonnull(strstr(errbuf, "op.txt:1:"));
+  ck_assert_ptr_nonnull(strstr(errbuf, "op.txt:3:"));
+  ck_assert_ptr_null(strstr(errbuf, "op.txt:2:"));
+}
+END_TEST
+
+Suite *suite_operator(void)
+{
+  Suite *s = suite_create("operator");
+  TCase *tc = tcase_create("actions");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, answer_positive_and_negative);
+  tcase_add_test(tc, keys);
+  tcase_add_test(tc, at_block);
+  tcase_add_test(tc, at_block_run);
+  tcase_add_test(tc, jog);
+  tcase_add_test(tc, correct);
+  tcase_add_test(tc, override);
+  tcase_add_test(tc, section_one_axis);
+  tcase_add_test(tc, section_two_axes);
+  tcase_add_test(tc, comments_and_blank_lines);
+  tcase_add_test(tc, order_kept);
+  tcase_add_test(tc, describe);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("refusals");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, reject_unknown_action);
+  tcase_add_test(tc, reject_answer_8_digits);
+  tcase_add_test(tc, reject_bad_axis);
+  tcase_add_test(tc, reject_override_151);
+  tcase_add_test(tc, reject_unknown_key);
+  tcase_add_test(tc, reject_at_with_waiting_action);
+  tcase_add_test(tc, reject_bad_at);
+  tcase_add_test(tc, reject_trailing_text);
+  tcase_add_test(tc, reject_reports_every_bad_line);
+  suite_add_tcase(s, tc);
+  return s;
+}

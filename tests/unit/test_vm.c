@@ -1,0 +1,826 @@
+/* The VM (vm/vm.h) on compiled programs, driven directly: arithmetic,
+ * functions and their domains, arrays, transactions, subs, limits, the
+ * operational jump, watched blocks, and many VMs on one program. */
+#include "suites.h"
+#include "ast.h"
+#include "errors.h"
+#include "kp.h"
+#include "vmmath.h"
+#include "opcodes.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static struct tprog t;
+static struct vm *vm;
+
+static void setup(void)
+{
+  memset(&t, 0, sizeof t);
+  prog_init(&t.p);
+  diag_init(&t.d, "t.kp");
+  vm = calloc(1, sizeof *vm);
+}
+
+static void teardown(void)
+{
+  tp_free(&t);
+  free(vm);
+}
+
+/* Compile (must succeed) and start a VM on it. */
+static void load(const char *src)
+{
+  tp_free(&t);
+  tp_compile(&t, src);
+  ck_assert_msg(t.rc == 0, "does not compile:\n%s", tp_diags(&t.d));
+  vm_init(vm, &t.p);
+}
+
+static enum vm_event run(const char *src)
+{
+  load(src);
+  return tp_run(vm);
+}
+
+#define R(n) (vm->reg[(n)])
+
+static void assert_error(int code, int number)
+{
+  ck_assert_msg(vm->err.code == code, "error %s (%s), expected %s", err_code(vm->err.code), vm->err.msg,
+                err_code(code));
+  ck_assert_uint_eq(vm_block_number(vm, vm->err.block), (unsigned)number);
+}
+
+/* ---- arithmetic ---- */
+
+START_TEST(seed_expression_1)
+{
+  ck_assert_int_eq(run("N1 R0+10000 R1-200 G01 X+20100-R0/R1 R2+X F1\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(2), 20150);
+  ck_assert_double_eq(R(1), -200);
+}
+END_TEST
+
+START_TEST(seed_expression_2)
+{
+  ck_assert_int_eq(run("N1 R10+30000\nN2 X+600%SI(20000) Y+800%CO(20000)/TG(R10) R1+X R2+Y F1\nN3 M2\n"),
+                   VM_EV_END);
+  ck_assert_double_eq(R(1), 205);
+  ck_assert_double_eq(R(2), 1302);
+}
+END_TEST
+
+START_TEST(seed_expression_3)
+{
+  ck_assert_int_eq(run("N1 R1+100 R2+200 R3+50 G01 A+20%ASI(R1/R2) X-1000%R3 R4+A R5+X F1\nN2 M2\n"),
+                   VM_EV_END);
+  ck_assert_double_eq(R(4), 600000);
+  ck_assert_double_eq(R(5), -50000);
+}
+END_TEST
+
+START_TEST(seed_expression_garbled_asi)
+{
+  /* language.md 19.5: R0 = 1/(2 P1), A = -10 ASI(R0) = -91578.51 -> -91579 */
+  ck_assert_int_eq(run("N1 R0+1/(2%P1) A-10%ASI(R0) R1+A F1\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), -91579);
+}
+END_TEST
+
+START_TEST(parameters_keep_reals)
+{
+  ck_assert_int_eq(run("N1 R1+1/2 R2+R1+R1 R3-R1%%2\nN2 R4+R3%4 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 0.5);
+  ck_assert_double_eq(R(2), 1);
+  ck_assert_double_eq(R(3), -0.25);
+  ck_assert_double_eq(R(4), -1);
+}
+END_TEST
+
+START_TEST(sign_rules_at_run_time)
+{
+  ck_assert_int_eq(run("N1 R1+2 R8-R1%%2 R9+5%-R1%%2 R10+(R1+1)%%R1\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(8), -4);
+  ck_assert_double_eq(R(9), -20);
+  ck_assert_double_eq(R(10), 9);
+}
+END_TEST
+
+START_TEST(axis_rounds_half_away_from_zero)
+{
+  ck_assert_int_eq(run("N1 R1+5/2 X+R1 Y-R1 Z+R1-1/10 R2+X R3+Y R4+Z F1\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(2), 3);
+  ck_assert_double_eq(R(3), -3);
+  ck_assert_double_eq(R(4), 2);
+}
+END_TEST
+
+START_TEST(assignments_left_to_right)
+{
+  ck_assert_int_eq(run("N1 R1+1 R2+R1+1 R1+R2+R1 R3+R1\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(3), 3);
+}
+END_TEST
+
+START_TEST(condition_sees_later_words)
+{
+  /* the condition is evaluated after every word of the block */
+  ck_assert_int_eq(run("N1 P(X:R:5)3 X+5 F1\nN2 M2\nN3 R1+1 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 1);
+}
+END_TEST
+
+START_TEST(conditions_and_or)
+{
+  const char *src =
+    "N1 P(((R1:R:0) S (R2:R:0)) U (R3:M:1000))5\n"
+    "N2 R9+2 M2\n"
+    "N5 R9+5 M2\n";
+  load(src);
+  vm->reg[1] = 1; vm->reg[2] = 0; vm->reg[3] = 999;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(9), 5);
+  vm_init(vm, &t.p);
+  vm->reg[1] = 1; vm->reg[2] = 1; vm->reg[3] = 999;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(9), 2);
+  vm_init(vm, &t.p);
+  vm->reg[1] = 0; vm->reg[2] = 1; vm->reg[3] = 1000;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(9), 2);
+}
+END_TEST
+
+START_TEST(relations_with_tolerance)
+{
+  ck_assert(vm_rel(1.0, 1.0 + 1e-10, 2));
+  ck_assert(!vm_rel(1.0, 1.0 + 1e-10, 4));
+  ck_assert(!vm_rel(1.0, 1.0 + 1e-10, 1));
+  ck_assert(vm_rel(1e6, 1e6 + 1e-4, 2));
+  ck_assert(vm_rel(0.0, 1e-8, 1));
+  ck_assert(!vm_rel(0.0, 1e-8, 2));
+  ck_assert(vm_rel(5, 3, 4) && vm_rel(5, 3, 6) && vm_rel(5, 3, 5) && vm_rel(5, 3, 7));
+  ck_assert(!vm_rel(5, 3, 0) && !vm_rel(5, 5, 5) && vm_rel(5, 5, 3));
+}
+END_TEST
+
+START_TEST(one_third_times_three_equals_one)
+{
+  ck_assert_int_eq(run("N1 R1+1/3 R2+R1+R1+R1 P(R2:R:1)3\nN2 M2\nN3 R3+1 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(3), 1);
+}
+END_TEST
+
+START_TEST(m20_integer_part)
+{
+  ck_assert_int_eq(run("N1 R1+7/2 R2-7/2 R3+7/2 M20/R1R2/\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 3);
+  ck_assert_double_eq(R(2), -3);
+  ck_assert_double_eq(R(3), 3.5);
+}
+END_TEST
+
+/* ---- functions and their domains ---- */
+
+START_TEST(functions_values)
+{
+  ck_assert_int_eq(run("N1 R0+30000 R1+SI(R0) R2+CO(R0%2) R3+TG(R0+15000) R4+ASI(R1) R5+ACO(R2) "
+                       "R6+ATG(R3) R7+LO(R0)\nN2 M2\n"), VM_EV_END);
+  ck_near(R(1), 0.5, 1e-15);
+  ck_near(R(2), 0.5, 1e-15);
+  ck_near(R(3), 1, 1e-15);
+  ck_near(R(4), 30000, 1e-9);
+  ck_near(R(5), 60000, 1e-9);
+  ck_near(R(6), 45000, 1e-9);
+  ck_near(R(7), log(30000), 1e-15);
+}
+END_TEST
+
+START_TEST(domain_asi)
+{
+  ck_assert_int_eq(run("N1 R1+2\nN2 R2+5 R3+ASI(R1)\nN3 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_DOMAIN, 2);
+  ck_assert_uint_eq(vm->err.col, 12);
+  ck_assert_double_eq(R(2), 0);        /* rolled back */
+  ck_assert_uint_eq(vm->blocks, 1);
+}
+END_TEST
+
+START_TEST(domain_log)
+{
+  ck_assert_int_eq(run("N1 R1+LO(R0)\nN2 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_DOMAIN, 1);
+  ck_assert_int_eq(run("N1 R0-1 R1+LO(R0)\nN2 M2\n"), VM_EV_ERROR);
+  ck_assert_int_eq(run("N1 R0+9999999 R1+LO(R0)\nN2 M2\n"), VM_EV_END);
+}
+END_TEST
+
+START_TEST(domain_trig)
+{
+  ck_assert_int_eq(run("N1 R0+2304001 R1+SI(R0)\nN2 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_DOMAIN, 1);
+  ck_assert_int_eq(run("N1 R0-2304000 R1+CO(R0)\nN2 M2\n"), VM_EV_END);
+  ck_near(R(1), cos(144 * M_PI / 180), 1e-12);   /* -2304 deg = -6 turns - 144 */
+  ck_assert_int_eq(run("N1 R0+90000 R1+TG(R0)\nN2 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_DOMAIN, 1);
+  ck_assert_int_eq(run("N1 R0-270000 R1+TG(R0)\nN2 M2\n"), VM_EV_ERROR);
+  ck_assert_int_eq(run("N1 R0+180000 R1+TG(R0)\nN2 M2\n"), VM_EV_END);
+  ck_near(R(1), 0, 1e-12);
+  ck_assert_int_eq(run("N1 R0+90001 R1+TG(R0)\nN2 M2\n"), VM_EV_END);
+}
+END_TEST
+
+START_TEST(domain_acos_atan)
+{
+  ck_assert_int_eq(run("N1 R0-11/10 R1+ACO(R0)\nN2 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_DOMAIN, 1);
+  ck_assert_int_eq(run("N1 R0+9999999 R1+ATG(R0+1)\nN2 M2\n"), VM_EV_ERROR);
+  ck_assert_int_eq(run("N1 R0-9999999 R1+ATG(R0)\nN2 M2\n"), VM_EV_END);
+  ck_near(R(1), -90000, 0.01);
+}
+END_TEST
+
+START_TEST(div0_at_run_time)
+{
+  ck_assert_int_eq(run("N1 R1+5\nN2 R2+1 R3+R2/R0\nN3 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_DIV0, 2);
+  ck_assert_uint_eq(vm->err.col, 14);
+  ck_assert_double_eq(R(1), 5);
+  ck_assert_double_eq(R(2), 0);
+  ck_assert_uint_eq(vm->blocks, 1);
+}
+END_TEST
+
+START_TEST(power_domain)
+{
+  ck_assert_int_eq(run("N1 R1-4 R2+R1%%(1/2)\nN2 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_DOMAIN, 1);
+  ck_assert_int_eq(run("N1 R1-2 R2+R1%%3\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(2), -8);
+}
+END_TEST
+
+START_TEST(range_at_run_time)
+{
+  ck_assert_int_eq(run("N1 R1+9999999\nN2 R2+R1+1\nN3 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_RANGE, 2);
+  ck_assert_int_eq(run("N1 R1+999999\nN2 X+R1+1 F1\nN3 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_RANGE, 2);
+  ck_assert_uint_eq(vm->err.col, 4);
+}
+END_TEST
+
+START_TEST(feed_clamped_at_run_time)
+{
+  load("N1 R1+7000 F+R1 X+1\nN2 M2\n");
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);
+  ck_assert_double_eq(R(REG_F), 6000);
+  ck_assert_uint_ne(vm->clamped, 0);
+  ck_assert_double_eq(vm->clamped_from, 7000);
+  ck_assert_str_eq(t.p.rules[vm->clamped - 1].name, "F");
+}
+END_TEST
+
+/* ---- arrays ---- */
+
+START_TEST(seed_array_reamer)
+{
+  load("№1 TT1 T11+90000 T11+80000 T11+110000 T11+80000 T11+0 T01 ^\n"
+       "№2 G01 A+50 F100 ^\n"
+       "№3 G01 G09 X+100000 F2000 ^\n"
+       "№4 G01 G09 X-100000 ^\n"
+       "№5 G01 A+T11 P(A:R:0)7 F1000 ^\n"
+       "№6 P3 ^\n"
+       "№7 M02 ^\n");
+  double seen[16];
+  int n = 0;
+  enum vm_event ev;
+  while ((ev = vm_run(vm)) == VM_EV_BLOCK)
+    if (kp_attr(&t.p, vm->cur)->slots & (1u << SL_A))
+      seen[n++] = vm->w[SL_A];
+  ck_assert_int_eq(ev, VM_EV_END);
+  static const double want[] = {50, 90000, 80000, 110000, 80000, 0};
+  ck_assert_int_eq(n, 6);
+  for (int i = 0; i < 6; i++)
+    ck_assert_double_eq(seen[i], want[i]);
+  ck_assert_int_eq(vm->arr[0].ptr, 5);
+  ck_assert_int_eq(vm->arr[0].len, 5);
+}
+END_TEST
+
+START_TEST(array_reads_past_length)
+{
+  ck_assert_int_eq(run("N1 T11+5 T11+6 T01\nN2 R1+T11 R2+T11 R3+T11 R4+T21\nN3 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 5);
+  ck_assert_double_eq(R(2), 6);
+  ck_assert_double_eq(R(3), 0);
+  ck_assert_double_eq(R(4), 0);
+  ck_assert_int_eq(vm->arr[0].ptr, 3);
+  ck_assert_int_eq(vm->arr[0].len, 2);
+}
+END_TEST
+
+START_TEST(array_modes)
+{
+  ck_assert_int_eq(run("N1 T12+1 T12+2 T12+3 T22+4 T32+9\n"
+                       "N2 R1+T32 R2+T22 T04 R3+T32 T02 R4+T12\nN3 M2\n"), VM_EV_END);
+  /* cells: 1 9 3 4? no: T22 wrote 4 at 3, T32 moved back to 2 and wrote 9 */
+  ck_assert_double_eq(vm->arr[1].cell[0], 1);
+  ck_assert_double_eq(vm->arr[1].cell[1], 2);
+  ck_assert_double_eq(vm->arr[1].cell[2], 9);
+  ck_assert_double_eq(vm->arr[1].cell[3], 4);
+  ck_assert_int_eq(vm->arr[1].len, 4);
+  ck_assert_double_eq(R(1), 2);        /* back from 2 to 1 */
+  ck_assert_double_eq(R(2), 2);        /* stays at 1 */
+  ck_assert_double_eq(R(3), 4);        /* T04: pointer to length 4, back to 3 */
+  ck_assert_double_eq(R(4), 1);
+  ck_assert_int_eq(vm->arr[1].ptr, 1);
+  ck_assert_int_eq(vm->arr[0].len, 0);
+}
+END_TEST
+
+START_TEST(array_zero)
+{
+  ck_assert_int_eq(run("N1 T11+5 T12+6\nN2 TT2\nN3 M2\n"), VM_EV_END);
+  ck_assert_double_eq(vm->arr[0].cell[0], 5);
+  ck_assert_double_eq(vm->arr[1].cell[0], 0);
+  ck_assert_int_eq(vm->arr[1].ptr, 0);
+  ck_assert_int_eq(vm->arr[1].len, 0);
+  ck_assert_int_eq(run("N1 T11+5 T12+6\nN2 TT\nN3 M2\n"), VM_EV_END);
+  ck_assert_int_eq(vm->arr[0].len, 0);
+  ck_assert_int_eq(vm->arr[0].ptr, 0);
+}
+END_TEST
+
+START_TEST(array_plus_bound)
+{
+  /* fifteen writes fill the array, the sixteenth fails */
+  ck_assert_int_eq(run("N1 TT1\nN2 R1+R1+1 T11+R1 P(R1:M:20)2\nN3 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_ARRAYP, 2);
+  ck_assert_int_eq(vm->err.aux, 1);
+  ck_assert_uint_eq(vm->err.col, 12);
+  ck_assert_double_eq(R(1), 15);       /* the 16th block rolled back */
+  ck_assert_int_eq(vm->arr[0].ptr, 15);
+  ck_assert_double_eq(vm->arr[0].cell[14], 15);
+  ck_assert_uint_eq(vm->blocks, 16);
+}
+END_TEST
+
+START_TEST(array_plus_bound_on_read)
+{
+  ck_assert_int_eq(run("N1 T12+1 T12+1 T12+1 T12+1 T12+1 T12+1 T12+1 T12+1 T12+1 T12+1 T12+1 T12+1 T12+1 "
+                       "T12+1 T12+1\nN2 R1+T22\nN3 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_ARRAYP, 2);
+  ck_assert_int_eq(vm->err.aux, 2);
+}
+END_TEST
+
+START_TEST(array_minus_bound)
+{
+  ck_assert_int_eq(run("N1 T11+1\nN2 R1+T31 R2+T32\nN3 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_ARRAYM, 2);
+  ck_assert_int_eq(vm->err.aux, 2);
+  ck_assert_double_eq(R(1), 0);
+  ck_assert_int_eq(vm->arr[0].ptr, 1);   /* the T31 of the failed block undone */
+}
+END_TEST
+
+START_TEST(array_cell_range)
+{
+  ck_assert_int_eq(run("N1 R1+9999999 T11+R1+1\nN2 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_RANGE, 1);
+  ck_assert_int_eq(vm->arr[0].len, 0);
+}
+END_TEST
+
+/* ---- transactions ---- */
+
+START_TEST(rollback_registers_and_arrays)
+{
+  ck_assert_int_eq(run("N1 T11+7 R1+1 D1+5\nN2 T11+8 TT1 R1+2 D1+6 R2+R1/R0\nN3 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_DIV0, 2);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_double_eq(R(REG_D1), 5);
+  ck_assert_double_eq(R(2), 0);
+  ck_assert_double_eq(vm->arr[0].cell[0], 7);
+  ck_assert_double_eq(vm->arr[0].cell[1], 0);
+  ck_assert_int_eq(vm->arr[0].ptr, 1);
+  ck_assert_int_eq(vm->arr[0].len, 1);
+}
+END_TEST
+
+START_TEST(rollback_register_written_twice)
+{
+  ck_assert_int_eq(run("N1 R1+1\nN2 R1+2 R1+3 R1+R1/R0\nN3 M2\n"), VM_EV_ERROR);
+  ck_assert_double_eq(R(1), 1);
+}
+END_TEST
+
+START_TEST(host_failure_rolls_back)
+{
+  load("N1 R1+1\nN2 R1+2 M3 T11+4\nN3 M2\n");
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);
+  ck_assert_uint_eq(vm->cur, 1);
+  ck_assert_double_eq(R(1), 2);
+  vm_set_reg(vm, 5, 42);
+  vm_fail(vm, S42_E_WHEEL, "wheel %d", 3);
+  ck_assert_int_eq(vm_run(vm), VM_EV_ERROR);
+  ck_assert_int_eq(vm->err.code, S42_E_WHEEL);
+  ck_assert_str_eq(vm->err.msg, "wheel 3");
+  ck_assert_uint_eq(vm->err.block, 1);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_double_eq(R(5), 0);
+  ck_assert_int_eq(vm->arr[0].len, 0);
+  ck_assert_uint_eq(vm->blocks, 1);
+  ck_assert_int_eq(vm_run(vm), VM_EV_ERROR);   /* stays failed */
+}
+END_TEST
+
+START_TEST(host_register_write_commits)
+{
+  load("N1 M3\nN2 M2\n");
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);
+  vm_set_reg(vm, 7, 12.5);
+  vm_set_reg(vm, 500, 1);              /* ignored */
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(7), 12.5);
+  ck_assert_int_eq(vm_run(vm), VM_EV_END);
+}
+END_TEST
+
+/* ---- subs ---- */
+
+START_TEST(sub_repeats_h_times)
+{
+  ck_assert_int_eq(run("N5 R1+R1+1 M17\nN1 L5 H3\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 3);
+  ck_assert_int_eq(run("N5 R1+R1+1 M17\nN1 L5\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_int_eq(run("N5 R1+R1+1 M17\nN1 L5 H0\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 0);
+  ck_assert_int_eq(run("N5 R1+R1+1 M17\nN1 L5 H+5/2\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 3);        /* 2.5 rounds to 3 */
+  ck_assert_uint_eq(vm->blocks, 5);
+}
+END_TEST
+
+START_TEST(sub_runs_after_calling_block)
+{
+  /* the calling block's own words happen first, the sub sees them */
+  ck_assert_int_eq(run("N5 R2+R1 M17\nN1 L5 R1+7\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(2), 7);
+}
+END_TEST
+
+START_TEST(sub_restores_f)
+{
+  /* F is register 117; record it at every block */
+  load("N5 R1+R1+1 M3\nN6 F200 M17\nN1 F1000 L5 H2\nN2 M2\n");
+  vm->yield_all = 1;
+  double f[16];
+  int n = 0;
+  enum vm_event ev;
+  while ((ev = vm_run(vm)) == VM_EV_BLOCK && n < 16)
+    f[n++] = vm->reg[REG_F];
+  ck_assert_int_eq(ev, VM_EV_END);
+  ck_assert_int_eq(n, 6);             /* 1, 5, 6, 5, 6, 2 */
+  ck_assert_double_eq(f[0], 1000);
+  ck_assert_double_eq(f[1], 1000);    /* the sub starts with its caller's F */
+  ck_assert_double_eq(f[2], 200);
+  ck_assert_double_eq(f[3], 1000);    /* the second run too */
+  ck_assert_double_eq(f[4], 200);
+  ck_assert_double_eq(f[5], 1000);    /* restored on return */
+  ck_assert_double_eq(R(REG_F), 1000);
+  ck_assert_double_eq(R(1), 2);
+}
+END_TEST
+
+START_TEST(seed_subs_nesting_order)
+{
+  load("№10 G02 G19 G09 X-20000 Z+0 I-10000 K+0 F200 L11 H2 M17 ^\n"
+       "№11 G09 Z+20000 M17 ^\n"
+       "№01 G07 A-20000 F5500 ^\n"
+       "№02 G09 X+40000 Y-10000 F1000 L10 H2 M13 ^\n"
+       "№03 G09 Z-80000 M02 ^\n");
+  vm->yield_all = 1;
+  unsigned order[32];
+  double f[32];
+  int depth[32];
+  int n = 0;
+  enum vm_event ev;
+  while ((ev = vm_run(vm)) == VM_EV_BLOCK && n < 32) {
+    f[n] = vm->reg[REG_F];
+    depth[n] = vm->depth;
+    order[n++] = vm_block_number(vm, vm->cur);
+  }
+  ck_assert_int_eq(ev, VM_EV_END);
+  static const unsigned want[] = {1, 2, 10, 11, 11, 10, 11, 11, 3};
+  static const int wdepth[] = {0, 0, 1, 2, 2, 1, 2, 2, 0};
+  ck_assert_int_eq(n, 9);
+  for (int i = 0; i < n; i++) {
+    ck_assert_uint_eq(order[i], want[i]);
+    ck_assert_int_eq(depth[i], wdepth[i]);
+  }
+  ck_assert_double_eq(f[2], 200);
+  ck_assert_double_eq(f[3], 200);
+  ck_assert_double_eq(f[7], 200);
+  ck_assert_double_eq(f[8], 1000);
+}
+END_TEST
+
+START_TEST(m2_in_sub_ends_program)
+{
+  ck_assert_int_eq(run("N5 R1+1 M2\nN1 L5\nN2 R2+1 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_double_eq(R(2), 0);
+  ck_assert_int_eq(vm->depth, 1);
+}
+END_TEST
+
+START_TEST(word_operand_sees_only_left)
+{
+  /* Y+X before X reads 0; after it, the rounded value */
+  ck_assert_int_eq(run("N1 Y+X+1 X+5 Z+X R1+Y R2+Z F1\nN2 X+1/2 A+X%10 R3+A F1\nN3 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_double_eq(R(2), 5);
+  ck_assert_double_eq(R(3), 10);
+}
+END_TEST
+
+START_TEST(sub_keeps_caller_condition)
+{
+  /* the sub's own condition does not leak into the caller's jump */
+  ck_assert_int_eq(run("N5 P(R1:R:0)6\nN6 M17\nN1 R1+1 L5 P(R1:R:1)3\nN2 M2\nN3 R2+1 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(2), 1);
+}
+END_TEST
+
+START_TEST(h_out_of_range_at_run_time)
+{
+  ck_assert_int_eq(run("N5 M17\nN1 R1-1\nN2 L5 H+R1\nN3 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_RANGE, 2);
+}
+END_TEST
+
+/* A chain: MP calls sub 2, sub k calls sub k+1 ... up to sub `last`. */
+static const char *chain(int last, char *buf, size_t n)
+{
+  size_t k = 0;
+  k += (size_t)snprintf(buf + k, n - k, "N%d R1+R1+1 M17\n", last);
+  for (int s = last - 1; s >= 2; s--)
+    k += (size_t)snprintf(buf + k, n - k, "N%d R5+R5+1 L%d M17\n", s, s + 1);
+  snprintf(buf + k, n - k, "N1 L2\nN999 M2\n");
+  return buf;
+}
+
+START_TEST(nest_eight_levels)
+{
+  char src[1024];
+  ck_assert_int_eq(run(chain(9, src, sizeof src)), VM_EV_END);   /* subs 2..9: 8 levels */
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_int_eq(vm->depth, 0);
+}
+END_TEST
+
+START_TEST(nest_ninth_level)
+{
+  char src[1024];
+  ck_assert_int_eq(run(chain(10, src, sizeof src)), VM_EV_ERROR);
+  assert_error(S42_E_NEST, 9);         /* raised at the calling block */
+  ck_assert_double_eq(R(1), 0);
+  ck_assert_double_eq(R(5), 8);        /* the calling block itself ran */
+  ck_assert_uint_eq(vm->blocks, 9);
+}
+END_TEST
+
+/* ---- limits, PP, watch ---- */
+
+START_TEST(limit_max_blocks)
+{
+  load("N1 R1+R1+1 P(R1:M:1000)1\nN2 M2\n");
+  vm->max_blocks = 5;
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_LIMIT, 1);
+  ck_assert_double_eq(R(1), 5);
+  ck_assert_uint_eq(vm->blocks, 5);
+}
+END_TEST
+
+START_TEST(limit_exactly_enough)
+{
+  load("N1 R1+R1+1 P(R1:M:4)1\nN2 M2\n");
+  vm->max_blocks = 5;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_uint_eq(vm->blocks, 5);
+}
+END_TEST
+
+START_TEST(pp_without_latch)
+{
+  ck_assert_int_eq(run("N1 R1+R1+1 PP3 P(R1:M:100)1\nN2 M2\nN3 R2+1 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 100);
+  ck_assert_double_eq(R(2), 0);
+  ck_assert_uint_eq(vm->pp_jumps, 0);
+}
+END_TEST
+
+START_TEST(pp_with_latch_wins_over_p)
+{
+  load("N1 R1+R1+1 PP3 P(R1:M:100)1\nN2 M2\nN3 R2+1 M2\n");
+  vm->exit_latch = 1;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_double_eq(R(2), 1);
+  ck_assert_uint_eq(vm->pp_jumps, 1);
+  ck_assert_int_eq(vm->exit_latch, 0);
+}
+END_TEST
+
+START_TEST(pp_latch_taken_by_next_pp_block)
+{
+  load("N1 R1+R1+1 P(R1:M:100)1\nN2 R3+1 PP4\nN3 M2\nN4 R2+1 M2\n");
+  vm->yield_all = 1;
+  enum vm_event ev;
+  while ((ev = vm_run(vm)) == VM_EV_BLOCK)
+    if (vm->reg[1] == 3)
+      vm->exit_latch = 1;              /* pressed during the loop */
+  ck_assert_int_eq(ev, VM_EV_END);
+  ck_assert_double_eq(R(1), 100);      /* the loop has no PP: it goes on */
+  ck_assert_double_eq(R(3), 1);
+  ck_assert_double_eq(R(2), 1);
+}
+END_TEST
+
+START_TEST(latch_cleared_at_m2)
+{
+  load("N1 R1+1\nN2 M2\n");
+  vm->exit_latch = 1;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_int_eq(vm->exit_latch, 0);
+}
+END_TEST
+
+START_TEST(watch_yields_start)
+{
+  load("N1 R1+1\nN2 R2+1\nN3 M2\n");
+  uint8_t watch[3] = {0, 1, 0};
+  vm->watch = watch;
+  ck_assert_int_eq(vm_run(vm), VM_EV_START);
+  ck_assert_uint_eq(vm->cur, 1);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_double_eq(R(2), 0);        /* not run yet */
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);   /* N3 has M2 */
+  ck_assert_double_eq(R(2), 1);
+  ck_assert_int_eq(vm_run(vm), VM_EV_END);
+}
+END_TEST
+
+START_TEST(start_all_and_yield_all)
+{
+  load("N1 R1+1\nN2 R2+1\nN3 M2\n");
+  vm->start_all = 1;
+  vm->yield_all = 1;
+  enum vm_event want[] = {VM_EV_START, VM_EV_BLOCK, VM_EV_START, VM_EV_BLOCK, VM_EV_START, VM_EV_BLOCK,
+                          VM_EV_END};
+  for (size_t i = 0; i < sizeof want / sizeof want[0]; i++)
+    ck_assert_int_eq(vm_run(vm), want[i]);
+  ck_assert_uint_eq(vm->blocks, 3);
+}
+END_TEST
+
+START_TEST(sync_blocks_do_not_yield)
+{
+  load("N1 R1+1\nN2 R2+1\nN3 M2\n");
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);   /* only N3, for its M2 */
+  ck_assert_uint_eq(vm->cur, 2);
+  ck_assert_uint_eq(vm->blocks, 2);
+}
+END_TEST
+
+START_TEST(many_vms_one_program)
+{
+  load("N1 R1+R0 R2+0\nN2 R2+R2+R1 R3+R3+1 X+1 F1 P(R3:M:10)2\nN3 M2\n");
+  enum { NV = 12 };
+  struct vm *v = calloc(NV, sizeof *v);
+  int done[NV] = {0};
+  for (int i = 0; i < NV; i++) {
+    vm_init(&v[i], &t.p);
+    v[i].reg[0] = i;
+  }
+  /* interleave: one event of each VM in turn */
+  for (int left = NV; left > 0;) {
+    for (int i = 0; i < NV; i++) {
+      if (done[i])
+        continue;
+      enum vm_event ev = vm_run(&v[i]);
+      if (ev == VM_EV_END || ev == VM_EV_ERROR) {
+        ck_assert_int_eq(ev, VM_EV_END);
+        done[i] = 1;
+        left--;
+      }
+    }
+  }
+  for (int i = 0; i < NV; i++) {
+    ck_assert_double_eq(v[i].reg[2], 10.0 * i);
+    ck_assert_uint_eq(v[i].blocks, 12);
+  }
+  free(v);
+}
+END_TEST
+
+START_TEST(vm_math_direct)
+{
+  double r;
+  char msg[100];
+  ck_assert_int_eq(vm_math(OP_DIV, 1, 0, &r, msg, sizeof msg), S42_E_DIV0);
+  ck_assert_int_eq(vm_math(OP_POW, 0, -1, &r, msg, sizeof msg), S42_E_DIV0);
+  ck_assert_int_eq(vm_math(OP_POW, -8, 1.0 / 3, &r, msg, sizeof msg), S42_E_DOMAIN);
+  ck_assert_int_eq(vm_math(OP_MUL, 1e300, 1e300, &r, msg, sizeof msg), S42_E_RANGE);
+  ck_assert_int_eq(vm_math(OP_LOG, 0, 0, &r, msg, sizeof msg), S42_E_DOMAIN);
+  ck_assert_int_eq(vm_math(OP_NEG, 3, 0, &r, msg, sizeof msg), 0);
+  ck_assert_double_eq(r, -3);
+  ck_assert_int_eq(vm_math(OP_POW, 2, 10, &r, msg, sizeof msg), 0);
+  ck_assert_double_eq(r, 1024);
+}
+END_TEST
+
+Suite *suite_vm(void)
+{
+  Suite *s = suite_create("vm");
+  TCase *tc = tcase_create("arithmetic");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, seed_expression_1);
+  tcase_add_test(tc, seed_expression_2);
+  tcase_add_test(tc, seed_expression_3);
+  tcase_add_test(tc, seed_expression_garbled_asi);
+  tcase_add_test(tc, parameters_keep_reals);
+  tcase_add_test(tc, sign_rules_at_run_time);
+  tcase_add_test(tc, axis_rounds_half_away_from_zero);
+  tcase_add_test(tc, assignments_left_to_right);
+  tcase_add_test(tc, condition_sees_later_words);
+  tcase_add_test(tc, word_operand_sees_only_left);
+  tcase_add_test(tc, conditions_and_or);
+  tcase_add_test(tc, relations_with_tolerance);
+  tcase_add_test(tc, one_third_times_three_equals_one);
+  tcase_add_test(tc, m20_integer_part);
+  tcase_add_test(tc, functions_values);
+  tcase_add_test(tc, domain_asi);
+  tcase_add_test(tc, domain_log);
+  tcase_add_test(tc, domain_trig);
+  tcase_add_test(tc, domain_acos_atan);
+  tcase_add_test(tc, div0_at_run_time);
+  tcase_add_test(tc, power_domain);
+  tcase_add_test(tc, range_at_run_time);
+  tcase_add_test(tc, feed_clamped_at_run_time);
+  tcase_add_test(tc, vm_math_direct);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("arrays");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, seed_array_reamer);
+  tcase_add_test(tc, array_reads_past_length);
+  tcase_add_test(tc, array_modes);
+  tcase_add_test(tc, array_zero);
+  tcase_add_test(tc, array_plus_bound);
+  tcase_add_test(tc, array_plus_bound_on_read);
+  tcase_add_test(tc, array_minus_bound);
+  tcase_add_test(tc, array_cell_range);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("transactions");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, rollback_registers_and_arrays);
+  tcase_add_test(tc, rollback_register_written_twice);
+  tcase_add_test(tc, host_failure_rolls_back);
+  tcase_add_test(tc, host_register_write_commits);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("subs");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, sub_repeats_h_times);
+  tcase_add_test(tc, sub_runs_after_calling_block);
+  tcase_add_test(tc, sub_restores_f);
+  tcase_add_test(tc, seed_subs_nesting_order);
+  tcase_add_test(tc, m2_in_sub_ends_program);
+  tcase_add_test(tc, sub_keeps_caller_condition);
+  tcase_add_test(tc, h_out_of_range_at_run_time);
+  tcase_add_test(tc, nest_eight_levels);
+  tcase_add_test(tc, nest_ninth_level);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("control");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, limit_max_blocks);
+  tcase_add_test(tc, limit_exactly_enough);
+  tcase_add_test(tc, pp_without_latch);
+  tcase_add_test(tc, pp_with_latch_wins_over_p);
+  tcase_add_test(tc, pp_latch_taken_by_next_pp_block);
+  tcase_add_test(tc, latch_cleared_at_m2);
+  tcase_add_test(tc, watch_yields_start);
+  tcase_add_test(tc, start_all_and_yield_all);
+  tcase_add_test(tc, sync_blocks_do_not_yield);
+  tcase_add_test(tc, many_vms_one_program);
+  suite_add_tcase(s, tc);
+  return s;
+}
