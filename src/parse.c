@@ -574,7 +574,9 @@ static void slash_arg(struct pstate *s, struct block *b, int isg, int n)
     for (;;) {
       if (b->ng29 >= MAX_LINES)
         fail(s, S42_E_TEXT, 0, "G29: more than %d lines", MAX_LINES);
-      raw_text(s, &b->g29[b->ng29++], fn);
+      struct text *t = &b->g29[b->ng29++];
+      memset(t, 0, sizeof *t);   /* no stale text from an earlier block if this one fails */
+      raw_text(s, t, fn);
       lex_raw_adv(l);
       if (lex_raw_peek(l) == '/') {
         lex_raw_adv(l);
