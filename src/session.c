@@ -4,6 +4,7 @@
 #include "errors.h"
 #include "messages.h"
 #include <math.h>
+#include <stdlib.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -63,15 +64,6 @@ static void emit_row(struct session *s)
 }
 
 /* What of the block this build cannot do yet: a clear error, never a no-op. */
-static int unsupported(struct session *s, const struct kp_attr *at)
-{
-  if (BIT(at->m, 19)) {
-    vm_fail(&s->vm, S42_E_FUNC, "M19 (teach-in move) is not implemented in this build");
-    return 1;
-  }
-  return 0;
-}
-
 /* The rest of a block after its machine work and waits: M16, the row. */
 static void finish_block(struct session *s)
 {
@@ -151,6 +143,91 @@ static int dialog(struct session *s, const struct kp_attr *at)
   return -1;
 }
 
+/* M19: set up the teach-in of the block's line or arc.  Returns -1, or
+ * SE_ERROR when the arc is impossible. */
+static int teach_start(struct session *s, const struct kp_attr *at)
+{
+  memset(&s->teach, 0, sizeof s->teach);
+  s->teach.junior = -1;
+  for (int a = 0; a < 4; a++) {
+    s->teach.given[a] = BIT(at->slots, a);
+    s->teach.inc[a] = s->teach.given[a] ? s->mb.w[a] : 0;
+    if (s->teach.junior < 0 && s->teach.inc[a] != 0)
+      s->teach.junior = a;
+  }
+  if (BIT(at->g, 2) || BIT(at->g, 3)) {
+    struct mach_block ab = s->mb;
+    char msg[200];
+    double len, ys;
+    ab.motion = BIT(at->g, 2) ? MO_G02 : MO_G03;
+    int e = mach_arc(&ab, &len, &ys, msg, sizeof msg);
+    if (e) {
+      vm_fail(&s->vm, e, "%s", msg);
+      return SE_ERROR;
+    }
+    int p = at->plane == 18 ? AX_Y : AX_X, q = at->plane == 17 ? AX_Y : AX_Z;
+    s->teach.arc = 1;
+    s->teach.p = p;
+    s->teach.q = q;
+    s->teach.cp = s->mb.w[SL_I + p];
+    s->teach.cq = s->mb.w[SL_I + q];
+    s->teach.r = hypot(s->teach.cp, s->teach.cq);
+    s->teach.th0 = s->teach.th = atan2(-s->teach.cq, -s->teach.cp);
+    s->teach.ccw = BIT(at->g, 3);
+    if (s->teach.junior < 0)   /* a full circle: the plane's first axis drives it */
+      s->teach.junior = s->teach.given[p] ? p : q;
+  }
+  return -1;
+}
+
+/* M19: a jog of `axis` by d.  The junior axis drives the programmed move
+ * (in its direction when the signs agree, backwards otherwise); another axis
+ * of the block moves nothing; an axis not in the block moves alone. */
+static void teach_jog(struct session *s, int axis, int64_t d)
+{
+  double step[4] = {0, 0, 0, 0};
+  if (!s->teach.given[axis] || s->teach.junior < 0) {
+    step[axis] = (double)d;
+  } else if (axis != s->teach.junior) {
+    return;
+  } else if (!s->teach.arc) {
+    for (int a = 0; a < 4; a++)
+      step[a] = s->teach.inc[a] * (double)d / s->teach.inc[axis];
+  } else {
+    /* the jog is the path length along the arc */
+    double inc = s->teach.inc[axis];
+    int forward = inc == 0 || (d > 0) == (inc > 0);
+    double dth = fabs((double)d) / s->teach.r * (forward ? 1 : -1) * (s->teach.ccw ? 1 : -1);
+    double th1 = s->teach.th + dth;
+    double r = s->teach.r;
+    step[s->teach.p] = r * (cos(th1) - cos(s->teach.th));
+    step[s->teach.q] = r * (sin(th1) - sin(s->teach.th));
+    s->teach.th = th1;
+  }
+  for (int a = 0; a < 4; a++) {
+    if (step[a] == 0)
+      continue;
+    s->teach.exact[a] += step[a];
+    int64_t want = (int64_t)llround(s->teach.exact[a]);
+    int64_t dd = want - s->teach.moved[a];
+    s->teach.moved[a] = want;
+    mach_jog(&s->m, a, dd, s->m.corr_allowed);
+    s->jogs[a] += dd;
+  }
+  s->has_jogs = 1;
+}
+
+/* M19 ended with ПС: the bare-parameter axis words take the moves made. */
+static void teach_end(struct session *s)
+{
+  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
+  for (int a = 0; a < 4; a++)
+    if (at->bare[a]) {
+      int reg = abs(at->bare[a]) - 1;
+      vm_set_reg(&s->vm, (unsigned)reg, at->bare[a] > 0 ? (double)s->teach.moved[a] : -(double)s->teach.moved[a]);
+    }
+}
+
 /* The block's machine work proper, once nothing holds it. */
 static int exec_block(struct session *s)
 {
@@ -174,6 +251,14 @@ static int exec_block(struct session *s)
     s->wait = at->m18 ? W_PS : W_PUSK;
     return SE_WAIT;
   }
+  if (at->motion == MO_M19) {
+    memset(s->m.corr, 0, sizeof s->m.corr);
+    if (teach_start(s, at) == SE_ERROR)
+      return SE_ERROR;
+    s->scr.mode = SCR_MANUAL;
+    s->wait = W_TEACH;
+    return SE_WAIT;
+  }
   if (at->motion == MO_DIALOG || BIT(at->m, 27) || BIT(at->m, 28) || BIT(at->m, 29)) {
     memset(s->m.corr, 0, sizeof s->m.corr);   /* M16 counts from a dialog block */
     int r = dialog(s, at);
@@ -191,8 +276,6 @@ static int do_block(struct session *s)
   const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
   char msg[200];
   s->scr.block = sess_block_number(s);
-  if (unsupported(s, at))
-    return SE_ERROR;
   if (s->vm.clamped) {
     const struct prog_rule *ru = &s->p->rules[s->vm.clamped - 1];
     warn(s, "%s%.10g is over %.0f: clamped to %.0f", ru->name, s->vm.clamped_from, ru->hi, ru->hi);
@@ -284,8 +367,10 @@ void sess_screen(const struct session *s, uint32_t grid[SCR_ROWS][SCR_COLS])
 
 int sess_key_ps(struct session *s)
 {
-  if (s->state != SE_WAIT || s->wait != W_PS)
+  if (s->state != SE_WAIT || (s->wait != W_PS && s->wait != W_TEACH))
     return -1;
+  if (s->wait == W_TEACH)
+    teach_end(s);
   s->wait = W_PUSK;
   return 0;
 }
@@ -306,6 +391,12 @@ int sess_jog(struct session *s, int axis, int64_t d)
 {
   if (s->state != SE_WAIT || axis < 0 || axis > 3)
     return -1;
+  if (s->wait == W_TEACH) {
+    teach_jog(s, axis, d);
+    return 0;
+  }
+  if (s->wait != W_PUSK && s->wait != W_PS)
+    return -1;   /* jogs belong to manual mode */
   mach_jog(&s->m, axis, d, s->m.corr_allowed);
   s->jogs[axis] += d;
   s->has_jogs = 1;
@@ -342,6 +433,7 @@ const char *sess_wait_text(const struct session *s)
   switch (s->wait) {
   case W_PUSK: return s->en ? "Start (key PUSK)" : "Пуск (key PUSK)";
   case W_PS: return s->en ? "PS, then Start (key PS, key PUSK)" : "ПС, потім Пуск (key PS, key PUSK)";
+  case W_TEACH: return s->en ? "teach-in jogs ended by PS (jog, key PS)" : "навчання поштовхами до ПС (jog, key PS)";
   case W_ANSWER: return s->en ? "a number in the input field (answer N)" : "число в полі введення (answer N)";
   case W_FEED: return s->en ? "a feed override above 0 % (override N)" : "корекцію швидкості понад 0 % (override N)";
   default: return "nothing";

@@ -13,7 +13,8 @@
 enum sess_ev { SE_START, SE_WAIT, SE_END, SE_ERROR, SE_STOPPED };
 /* W_PS: ПС first, then Пуск; W_FEED: the feed override is at 0 %, the move waits */
 /* W_ANSWER: a number in the G27 field (G28 asks again after a refusal) */
-enum sess_wait { W_NONE, W_PUSK, W_PS, W_FEED, W_ANSWER };
+/* W_TEACH: M19, jogs follow the programmed path until ПС, then Пуск */
+enum sess_wait { W_NONE, W_PUSK, W_PS, W_FEED, W_ANSWER, W_TEACH };
 
 struct sess_row {
   uint64_t seq;
@@ -28,6 +29,19 @@ struct sess_row {
   int override_pct;
   int64_t jogs[4];
   int has_jogs;
+  /* M19 teach-in in progress */
+  struct {
+    int arc;             /* follows an arc (G02/G03) rather than a line */
+    int junior;          /* the jogged axis that drives the move, -1 none */
+    double inc[4];       /* the block's increments */
+    int given[4];        /* the block has this axis word */
+    int p, q;            /* arc: the plane's axes */
+    double cp, cq, r;    /* arc: centre relative to the start, radius */
+    double th0, th;      /* arc: start angle, current angle */
+    int ccw;
+    double exact[4];     /* exact displacement so far (discretes) */
+    int64_t moved[4];    /* rounded displacement made */
+  } teach;
 };
 
 struct session;
@@ -57,6 +71,19 @@ struct session {
   struct mach_out mo;
   int64_t jogs[4];
   int has_jogs;
+  /* M19 teach-in in progress */
+  struct {
+    int arc;             /* follows an arc (G02/G03) rather than a line */
+    int junior;          /* the jogged axis that drives the move, -1 none */
+    double inc[4];       /* the block's increments */
+    int given[4];        /* the block has this axis word */
+    int p, q;            /* arc: the plane's axes */
+    double cp, cq, r;    /* arc: centre relative to the start, radius */
+    double th0, th;      /* arc: start angle, current angle */
+    int ccw;
+    double exact[4];     /* exact displacement so far (discretes) */
+    int64_t moved[4];    /* rounded displacement made */
+  } teach;
 };
 
 void sess_init(struct session *s, const struct program *p);
