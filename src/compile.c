@@ -288,6 +288,8 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
 {
   double v;
   int failed = 0;
+  if (!e || c->b->bad)
+    return;   /* a block that did not parse is not compiled: it cannot run */
   int k = fold(c, e, &v, &failed);
   if (failed)
     return;
@@ -731,6 +733,8 @@ static void compile_block(struct comp *c)
       }
       break;
     case WK_AWR:
+      if (b->bad || !w->e)
+        break;
       gen(c, w->e);
       emit(c, OP_AWR, w->idx, w->col);
       push(c, -1);
@@ -745,14 +749,14 @@ static void compile_block(struct comp *c)
   if (mo == MO_NONE && has_motion_words)
     mo = MO_G01;
   at->motion = (uint8_t)mo;
-  if (G(28) && b->g28min) {
+  if (G(28) && b->g28min && b->g28max) {
     store(c, b->g28min, VM_NREG + SL_MIN, slot_rule(b, SL_MIN), b->g28col);
     store(c, b->g28max, VM_NREG + SL_MAX, slot_rule(b, SL_MAX), b->g28col);
   }
   if ((G(2) || G(3) || G(12) || G(13)) && at->plane)
     check_arc_const(c, at->plane, b->gcol[G(2) ? 2 : G(3) ? 3 : G(12) ? 12 : 13]);
   const struct word *PC = find_word(b, WK_PCOND);
-  if (b->cond && PC) {
+  if (b->cond && PC && !b->bad) {
     gen(c, b->cond);
     emit(c, OP_COND, 0, PC->col);
     push(c, -1);
