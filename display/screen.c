@@ -128,6 +128,7 @@ void scr_field_backspace(struct screen *s)
 {
   if (!s->editing)
     return;
+  s->has_message = 0;   /* a message stays until the next key */
   if (s->cursor > 0)
     s->cursor--;
   s->digits[s->cursor] = ' ';
@@ -135,12 +136,14 @@ void scr_field_backspace(struct screen *s)
 
 void scr_field_move(struct screen *s, int delta)
 {
+  s->has_message = 0;   /* a message stays until the next key */
   if (s->editing)
     s->cursor = (s->cursor + delta + 7) % 7;
 }
 
 void scr_field_minus(struct screen *s)
 {
+  s->has_message = 0;   /* a message stays until the next key */
   if (s->editing)
     s->neg = !s->neg;
 }
@@ -162,15 +165,22 @@ void scr_field_close(struct screen *s)
   char shown[9];
   double v = scr_field_value(s);
   snprintf(shown, sizeof shown, "%7.0f", fabs(v));
+  int sign_outside = 0;
   if (v < 0) {
-    char *p = shown;
-    while (*p == ' ' && p[1] == ' ')
-      p++;
-    *p = '-';
+    if (shown[0] != ' ') {
+      sign_outside = 1;   /* seven digits: the sign takes column 25 */
+    } else {
+      char *p = shown;
+      while (*p == ' ' && p[1] == ' ')
+        p++;
+      *p = '-';
+    }
   }
   memcpy(s->digits, shown, 7);
-  if (s->fline >= 0 && s->fline < s->nbuf)
+  if (s->fline >= 0 && s->fline < s->nbuf) {
     memcpy(s->buf[s->fline].value, shown, 8);
+    s->buf[s->fline].neg7 = sign_outside;
+  }
   s->editing = 0;
 }
 
@@ -302,6 +312,8 @@ void scr_render(const struct screen *s, const double *regs, int en, uint32_t g[S
         const char *d = edit ? s->digits : l->value;
         for (int c = 0; c < 7; c++)
           g[1 + i][25 + c] = (unsigned char)d[c];
+        if (!edit && l->neg7)
+          g[1 + i][24] = '-';
         if (edit && s->neg)
           g[1 + i][24] = '-';
         if (edit && g[1 + i][25 + s->cursor] == ' ')
@@ -312,27 +324,37 @@ void scr_render(const struct screen *s, const double *regs, int en, uint32_t g[S
   if (s->has_message) {
     memcpy(g[SCR_ROWS - 1], s->message, sizeof g[SCR_ROWS - 1]);
   } else {
-    /* the directive, with ((Rn drawn live */
-    const char *ref = strstr(s->dirtext, "((");
-    if (s->directive[0] && ref && regs) {
-      char head[SCR_COLS * 4 + 1];
-      size_t hn = (size_t)(ref - s->dirtext);
-      memcpy(head, s->dirtext, hn);
-      head[hn] = 0;
-      int k = scr_decode(head, t, SCR_COLS);
-      put(g[SCR_ROWS - 1], 0, t, k);
-      const char *q = ref + 2;
-      while (*q == ' ') q++;
-      q += (*q == 'R') ? 1 : 0;
-      int reg = atoi(q);
-      while (*q == ' ' || (*q >= '0' && *q <= '9')) q++;
-      char v[9];
-      scr_value8(reg <= 113 ? regs[reg] : 0, v);
-      put_ascii(g[SCR_ROWS - 1], k, v);
-      int k2 = scr_decode(q, t, SCR_COLS);
-      put(g[SCR_ROWS - 1], k + 8, t, k2);
-    } else {
-      memcpy(g[SCR_ROWS - 1], s->directive, sizeof g[SCR_ROWS - 1]);
+    /* the directive, every ((Rn drawn live as its 8-character value */
+    int col = 0;
+    for (const char *q = s->dirtext; *q && col < SCR_COLS;) {
+      if (q[0] == '(' && q[1] == '(') {
+        const char *r = q + 2;
+        while (*r == ' ') r++;
+        if (*r == 'R' || strncmp(r, "\xD0\xA0", 2) == 0) {
+          r += *r == 'R' ? 1 : 2;
+          while (*r == ' ') r++;
+          if (*r >= '0' && *r <= '9') {
+            int reg = atoi(r);
+            while (*r >= '0' && *r <= '9') r++;
+            char v[9];
+            scr_value8(regs && reg <= 113 ? regs[reg] : 0, v);
+            put_ascii(g[SCR_ROWS - 1], col, v);
+            col += 8;
+            q = r;
+            continue;
+          }
+        }
+      }
+      uint32_t one[1];
+      const char *start = q;
+      q++;
+      while ((*q & 0xC0) == 0x80) q++;
+      char tmp[8];
+      size_t len = (size_t)(q - start) < sizeof tmp - 1 ? (size_t)(q - start) : sizeof tmp - 1;
+      memcpy(tmp, start, len);
+      tmp[len] = 0;
+      if (scr_decode(tmp, one, 1) == 1)
+        g[SCR_ROWS - 1][col++] = one[0];
     }
   }
 }

@@ -21,6 +21,7 @@ struct scr_line {
   uint32_t ch[SCR_COLS];            /* code points, 0 = blank */
   int field;                        /* this line holds the G27 number field */
   char value[8];                    /* the number it took, as shown */
+  int neg7;                         /* a negative 7-digit number: '-' in column 25 */
 };
 
 struct scr_p3 {                     /* one G29 line */

@@ -59,6 +59,8 @@ static void emit_row(struct session *s)
   r.override_pct = s->m.override_allowed ? s->m.override_pct : 100;
   memcpy(r.jogs, s->jogs, sizeof r.jogs);
   r.has_jogs = s->has_jogs;
+  memcpy(r.start, s->start, sizeof r.start);
+  r.blk = &s->mb;
   if (s->sink.row)
     s->sink.row(s->sink.ctx, s, &r);
 }
@@ -302,6 +304,7 @@ static int do_block(struct session *s)
   }
   memset(s->jogs, 0, sizeof s->jogs);
   s->has_jogs = 0;
+  memcpy(s->start, s->m.pos, sizeof s->start);
   if (mach_held(&s->m, b)) {           /* feed override at 0 %: the move waits */
     s->wait = W_FEED;
     return SE_WAIT;
@@ -371,6 +374,7 @@ int sess_key_ps(struct session *s)
     return -1;
   if (s->wait == W_TEACH)
     teach_end(s);
+  s->scr.has_message = 0;   /* a message stays until the next key */
   s->wait = W_PUSK;
   return 0;
 }
@@ -430,12 +434,13 @@ int sess_override(struct session *s, int pct)
 
 const char *sess_wait_text(const struct session *s)
 {
+  /* for stderr, which speaks English like the rest of the diagnostics */
   switch (s->wait) {
-  case W_PUSK: return s->en ? "Start (key PUSK)" : "Пуск (key PUSK)";
-  case W_PS: return s->en ? "PS, then Start (key PS, key PUSK)" : "ПС, потім Пуск (key PS, key PUSK)";
-  case W_TEACH: return s->en ? "teach-in jogs ended by PS (jog, key PS)" : "навчання поштовхами до ПС (jog, key PS)";
-  case W_ANSWER: return s->en ? "a number in the input field (answer N)" : "число в полі введення (answer N)";
-  case W_FEED: return s->en ? "a feed override above 0 % (override N)" : "корекцію швидкості понад 0 % (override N)";
+  case W_PUSK: return "Пуск (key PUSK)";
+  case W_PS: return "ПС, then Пуск (key PS, key PUSK)";
+  case W_TEACH: return "teach-in jogs ended by ПС (jog, key PS)";
+  case W_ANSWER: return "a number in the input field (answer N)";
+  case W_FEED: return "a feed override above 0 % (override N)";
   default: return "nothing";
   }
 }

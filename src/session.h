@@ -29,19 +29,8 @@ struct sess_row {
   int override_pct;
   int64_t jogs[4];
   int has_jogs;
-  /* M19 teach-in in progress */
-  struct {
-    int arc;             /* follows an arc (G02/G03) rather than a line */
-    int junior;          /* the jogged axis that drives the move, -1 none */
-    double inc[4];       /* the block's increments */
-    int given[4];        /* the block has this axis word */
-    int p, q;            /* arc: the plane's axes */
-    double cp, cq, r;    /* arc: centre relative to the start, radius */
-    double th0, th;      /* arc: start angle, current angle */
-    int ccw;
-    double exact[4];     /* exact displacement so far (discretes) */
-    int64_t moved[4];    /* rounded displacement made */
-  } teach;
+  int64_t start[4];      /* machine position when the block started */
+  const struct mach_block *blk;  /* the block's meaning (plane, centre words) */
 };
 
 struct session;
@@ -71,6 +60,7 @@ struct session {
   struct mach_out mo;
   int64_t jogs[4];
   int has_jogs;
+  int64_t start[4];      /* position when the block started */
   /* M19 teach-in in progress */
   struct {
     int arc;             /* follows an arc (G02/G03) rather than a line */

@@ -19,6 +19,7 @@ Suite *suite_vm(void);
 Suite *suite_machine(void);
 Suite *suite_operator(void);
 Suite *suite_session(void);
+Suite *suite_screen(void);
 
 /* A program compiled from a C string, with its diagnostics. */
 struct tprog {
