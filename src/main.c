@@ -3,8 +3,10 @@
 #include "disasm.h"
 #include "errors.h"
 #include "operator.h"
+#include "plot.h"
 #include "report.h"
 #include "session.h"
+#include "state.h"
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -243,13 +245,19 @@ static void warn_sink(void *ctx, const struct session *s, const char *msg)
   fprintf(stderr, ": %s\n", msg);
 }
 
-struct both_sink { struct trace_ctx tr; struct runner *r; };
+struct both_sink {
+  struct trace_ctx tr;
+  struct runner *r;
+  struct plot *plot;       /* s42 plot: the path is collected here */
+};
 
 static void row_sink(void *ctx, const struct session *s, const struct sess_row *row)
 {
   struct both_sink *b = ctx;
   if (b->tr.out)
     report_row(&b->tr, s, row);
+  if (b->plot)
+    plot_row(b->plot, s, row);
 }
 
 static void sink_warn(void *ctx, const struct session *s, const char *msg)
@@ -335,17 +343,11 @@ static int serve_wait(struct runner *r)
   return 0;
 }
 
-static int cmd_run(int argc, char **argv)
+/* The headless run of `s42 run` and `s42 plot` (plot != NULL). */
+static int headless(const struct opts *opt, struct plot *plot)
 {
-  struct opts o;
-  if (parse_opts(argc, argv, 2, &o, 0))
-    return EXIT_USAGE;
-  if (!o.program) {
-    fprintf(stderr, "s42: run needs a program file\n%s", usage);
-    return EXIT_USAGE;
-  }
-  const char *unsupported = o.modbus ? "--modbus (the Modbus server)" : o.restart ? "--restart (M15 restart)"
-                          : o.state ? "--state (M15 restart state)" : o.realtime ? "--realtime" : NULL;
+  struct opts o = *opt;
+  const char *unsupported = o.modbus ? "--modbus (the Modbus server)" : o.realtime ? "--realtime" : NULL;
   if (unsupported) {
     fprintf(stderr, "s42: %s is not implemented in this build\n", unsupported);
     return EXIT_USAGE;
@@ -400,6 +402,7 @@ static int cmd_run(int argc, char **argv)
   bs.tr.json = o.json;
   bs.tr.file = o.program;
   bs.r = &r;
+  bs.plot = plot;
   r.s.sink.ctx = &bs;
   r.s.sink.row = row_sink;
   r.s.sink.warn = sink_warn;
@@ -414,14 +417,57 @@ static int cmd_run(int argc, char **argv)
     for (size_t b = 0; b < p.nblocks; b++)
       if (p.blocks[b].number == r.ops.at[i].at_number)
         r.watch[b] = 1;
+  /* M15 blocks save the restart state when they start */
+  char *state_path = NULL;
+  uint64_t prog_hash = state_hash(src, n);
+  int has_m15 = 0;
+  for (size_t b = 0; b < p.nblocks; b++)
+    if ((kp_attr(&p, b)->m >> 15) & 1) {
+      r.watch[b] = 1;
+      has_m15 = 1;
+    }
+  if (has_m15 || o.restart) {
+    if (o.state) {
+      state_path = strdup(o.state);
+    } else if ((state_path = malloc(strlen(o.program) + 7)) != NULL) {
+      sprintf(state_path, "%s.state", o.program);
+    }
+    if (!state_path) {
+      fprintf(stderr, "s42: out of memory\n");
+      exit(EXIT_IO);
+    }
+  }
   r.s.vm.watch = r.watch;
-
   int status = EXIT_END;
   const char *st = "end";
-  for (;;) {
+  struct dump_error de, *dep = NULL;
+  char serr[512];
+  if (o.restart && state_load(&r.s, state_path, prog_hash, serr, sizeof serr)) {
+    fprintf(stderr, "%s:1:1: error: N-: restart refused: %s [E-STATE]\n", o.program, serr);
+    memset(&de, 0, sizeof de);
+    de.code = err_code(S42_E_STATE);
+    de.n = -1;
+    de.line = 1;
+    de.col = 1;
+    de.message = serr;
+    report_machine_msg(de.machine, sizeof de.machine, S42_E_STATE, -1, 0, o.en);
+    dep = &de;
+    status = EXIT_PROGRAM;
+    st = "error";
+    r.s.state = SE_ERROR;
+  }
+
+  while (status == EXIT_END) {
     r.s.vm.start_all = r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]);
     enum sess_ev ev = sess_run(&r.s);
     if (ev == SE_START) {
+      if (state_path && ((kp_attr(&p, r.s.vm.cur)->m >> 15) & 1) &&
+          state_save(&r.s, state_path, prog_hash, serr, sizeof serr)) {
+        fprintf(stderr, "s42: cannot save the M15 restart state: %s\n", serr);
+        status = EXIT_IO;
+        st = "error";
+        break;
+      }
       at_boundary(&r);
       if (r.s.state == SE_STOPPED) {
         status = EXIT_STOPPED;
@@ -456,8 +502,7 @@ static int cmd_run(int argc, char **argv)
       fprintf(stderr, "%s:%u:%u: note: %s: the cycle was stopped (key STOP)\n", o.program, b->line, b->col,
               bname(sess_block_number(&r.s), nb));
   }
-  struct dump_error de, *dep = NULL;
-  if (status == EXIT_PROGRAM) {
+  if (status == EXIT_PROGRAM && !dep) {
     const struct vm_error *e = &r.s.vm.err;
     const struct prog_block *b = &p.blocks[e->block];
     struct diag g;
@@ -493,6 +538,7 @@ static int cmd_run(int argc, char **argv)
     fprintf(stderr, "s42: error writing the output\n");
     status = EXIT_IO;
   }
+  free(state_path);
   free(r.watch);
   free(r.runs);
   ops_free(&r.ops);
@@ -500,6 +546,52 @@ static int cmd_run(int argc, char **argv)
   diag_free(&d);
   free(src);
   return status;
+}
+
+static int cmd_run(int argc, char **argv)
+{
+  struct opts o;
+  if (parse_opts(argc, argv, 2, &o, 0))
+    return EXIT_USAGE;
+  if (!o.program) {
+    fprintf(stderr, "s42: run needs a program file\n%s", usage);
+    return EXIT_USAGE;
+  }
+  if (o.out) {
+    fprintf(stderr, "s42: run writes no file (-o is for plot)\n");
+    return EXIT_USAGE;
+  }
+  return headless(&o, NULL);
+}
+
+static int cmd_plot(int argc, char **argv)
+{
+  struct opts o;
+  if (parse_opts(argc, argv, 2, &o, 0))
+    return EXIT_USAGE;
+  if (!o.program || !o.out) {
+    fprintf(stderr, "usage: s42 plot PROGRAM.kp -o FILE.png|.svg|.pdf [--operator FILE] [options]\n");
+    return EXIT_USAGE;
+  }
+  char err[256];
+  if (plot_check_path(o.out, err, sizeof err)) {
+    fprintf(stderr, "s42: %s\n", err);
+    return EXIT_USAGE;
+  }
+  struct plot *pl = plot_new();
+  if (!pl) {
+    fprintf(stderr, "s42: out of memory\n");
+    return EXIT_IO;
+  }
+  int st = headless(&o, pl);
+  if (st != EXIT_USAGE && st != EXIT_IO) {
+    if (plot_write(pl, o.program, o.out, err, sizeof err)) {
+      fprintf(stderr, "s42: %s: %s\n", o.out, err);
+      st = EXIT_IO;
+    }
+  }
+  plot_free(pl);
+  return st;
 }
 
 int main(int argc, char **argv)
@@ -527,7 +619,9 @@ int main(int argc, char **argv)
     vm_opcodes_md(stdout);
     return 0;
   }
-  if (strcmp(cmd, "tui") == 0 || strcmp(cmd, "plot") == 0) {
+  if (strcmp(cmd, "plot") == 0)
+    return cmd_plot(argc, argv);
+  if (strcmp(cmd, "tui") == 0) {
     fprintf(stderr, "s42: %s is not implemented in this build\n", cmd);
     return EXIT_USAGE;
   }

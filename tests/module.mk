@@ -29,6 +29,14 @@ regress: $(S42)
 	  if [ $$st -gt 3 ]; then echo "FAIL regress $$f: status $$st"; exit 1; fi; n=$$((n+1)); \
 	done; echo "regress: $$n passed, 0 failed"
 
+# SIGKILL at many points of a cycle with M15, then restart; damaged states.
+restart: $(S42)
+	sh tests/restart/run.sh $(S42)
+
+# s42 plot on every bundled program: image size, drawn pixels, valid SVG.
+plot: $(S42)
+	sh tests/plot/run.sh $(S42)
+
 shared: $(S42)
 	@if [ -d $(SHARED)/conformance/cases ]; then \
 	  sh tests/shared.sh $(S42) $(SHARED); \

@@ -1,0 +1,1018 @@
+/* `s42 plot`: the tool path of a headless run, drawn with cairo.
+ *
+ * The picture is always 1600 x 1000 (pixels for PNG, points for SVG and
+ * PDF).  Layout, top to bottom (the test tests/plot/run.sh relies on the
+ * frames):
+ *   - a title line with the program's name and a summary line;
+ *   - three panels, the projections XY (plane G17), XZ (G19) and YZ (G18),
+ *     each with the plane's first axis to the right and its second axis up,
+ *     so that G03 turns counter-clockwise on the page.  Frames: x 40..530,
+ *     555..1045, 1070..1560; y 96..676.  Each panel has its own scale (equal
+ *     on both axes), a scale bar in mm, a grid with the bar's step, the
+ *     program start marked by a green dot and the end by a red square;
+ *   - the A panel: A (degrees) against simulated time (s), frame x 90..1560,
+ *     y 724..924;
+ *   - a legend.
+ * Programmed moves are solid blue lines (arcs as true arcs in their plane,
+ * projected point by point in the other panels); manual moves -- jogs in
+ * G20 stops and M19 teach-in -- dashed orange; a position change between
+ * blocks (a correction while the cycle runs) dotted magenta.  Block numbers
+ * label block starts where there is room.
+ *
+ * Every row that moves is kept as one struct seg (about 100 bytes), so
+ * 100,000 blocks take about 10 MB. */
+#include "plot.h"
+#include "ast.h"
+#include "machine.h"
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <locale.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define PW 1600.0
+#define PH 1000.0
+
+enum { K_LINE, K_ARC };                 /* the programmed part's shape */
+enum { F_TEACH_ARC = 1 };               /* the jogs follow an arc (M19 G02/G03) */
+
+struct seg {
+  int64_t start[4];     /* position at the block start, discretes */
+  int32_t d[4];         /* the programmed move */
+  int32_t jog[4];       /* the manual moves after it */
+  float cp, cq;         /* arc: centre relative to the start, plane axes */
+  float sweep;          /* arc: signed sweep, radians (+ counter-clockwise) */
+  double t0, t1;        /* simulated time at the block's start and end */
+  int32_t n;            /* block number, -1 none */
+  uint8_t kind, plane, flags;
+};
+
+struct plot {
+  struct seg *v;
+  size_t n, cap;
+  unsigned long long rows;
+  double t;             /* time at the end of the last row */
+  int64_t pos[4];       /* position at the end of the last row */
+  int oom;
+};
+
+struct plot *plot_new(void)
+{
+  return calloc(1, sizeof(struct plot));
+}
+
+void plot_free(struct plot *pl)
+{
+  if (!pl)
+    return;
+  free(pl->v);
+  free(pl);
+}
+
+static void plane_axes(int plane, int *p, int *q)
+{
+  switch (plane) {
+  case 17: *p = AX_X; *q = AX_Y; break;
+  case 18: *p = AX_Y; *q = AX_Z; break;
+  default: *p = AX_X; *q = AX_Z; break;
+  }
+}
+
+static int32_t clamp32(int64_t v)
+{
+  return v > INT32_MAX ? INT32_MAX : v < -INT32_MAX ? -INT32_MAX : (int32_t)v;
+}
+
+/* The sweep of an arc from the start (0,0) to (ep,eq) round the centre
+ * (cp,cq), in the direction ccw: as mach_arc, end = start is a full turn. */
+static double arc_sweep(double cp, double cq, double ep, double eq, int ccw)
+{
+  if (ep == 0 && eq == 0)
+    return 2 * M_PI;
+  double t0 = atan2(-cq, -cp), t1 = atan2(eq - cq, ep - cp);
+  double s = fmod(ccw ? t1 - t0 : t0 - t1, 2 * M_PI);
+  if (s <= 0)
+    s += 2 * M_PI;
+  return s;
+}
+
+void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r)
+{
+  (void)s;
+  if (!pl || pl->oom)
+    return;
+  pl->rows++;
+  double t0 = pl->t;
+  pl->t = r->t;
+  const struct mach_block *b = r->blk;
+  const char *mo = r->motion ? r->motion : "";
+  int arc = b && (!strcmp(mo, "G02") || !strcmp(mo, "G03") || !strcmp(mo, "G12") || !strcmp(mo, "G13"));
+  int teach = b && r->has_jogs && !strcmp(mo, "M19") && (b->g & (UINT64_C(1) << 2 | UINT64_C(1) << 3));
+  int p = 0, q = 0;
+  double cp = 0, cq = 0;
+  if (arc || teach) {
+    plane_axes(b->plane, &p, &q);
+    cp = b->w[SL_I + p];
+    cq = b->w[SL_I + q];
+    if (cp == 0 && cq == 0)
+      arc = teach = 0;
+  }
+  int moves = arc;   /* a full circle ends where it started */
+  for (int a = 0; a < 4; a++)
+    if (r->d[a] || (r->has_jogs && r->jogs[a]) || r->start[a] != pl->pos[a])
+      moves = 1;
+  for (int a = 0; a < 4; a++)
+    pl->pos[a] = r->start[a] + r->d[a] + (r->has_jogs ? r->jogs[a] : 0);
+  if (!moves)
+    return;
+  if (pl->n == pl->cap) {
+    size_t nc = pl->cap ? pl->cap * 2 : 1024;
+    struct seg *nv = realloc(pl->v, nc * sizeof *nv);
+    if (!nv) {
+      pl->oom = 1;
+      return;
+    }
+    pl->v = nv;
+    pl->cap = nc;
+  }
+  struct seg *g = &pl->v[pl->n++];
+  memset(g, 0, sizeof *g);
+  memcpy(g->start, r->start, sizeof g->start);
+  for (int a = 0; a < 4; a++) {
+    g->d[a] = clamp32(r->d[a]);
+    g->jog[a] = r->has_jogs ? clamp32(r->jogs[a]) : 0;
+  }
+  g->t0 = t0;
+  g->t1 = r->t;
+  g->n = r->n;
+  g->kind = K_LINE;
+  if (!arc && !teach)
+    return;
+  g->plane = (uint8_t)(b->plane == 17 || b->plane == 18 ? b->plane : 19);
+  g->cp = (float)cp;
+  g->cq = (float)cq;
+  if (arc) {
+    int ccw = !strcmp(mo, "G03") || !strcmp(mo, "G13");
+    double sw = arc_sweep(cp, cq, (double)r->d[p], (double)r->d[q], ccw);
+    g->sweep = (float)(ccw ? sw : -sw);
+    g->kind = K_ARC;
+  } else {
+    /* the teach-in followed the arc from its start: how far, and which way */
+    int off = 0;
+    for (int a = 0; a < 4; a++)
+      if (a != p && a != q && r->jogs[a])
+        off = 1;
+    if (!off && (r->jogs[p] || r->jogs[q])) {
+      int ccw = (b->g >> 3) & 1;
+      double prog = arc_sweep(cp, cq, b->w[p], b->w[q], ccw);
+      double done = arc_sweep(cp, cq, (double)r->jogs[p], (double)r->jogs[q], ccw);
+      double sw = done <= prog + 1e-6 ? done : -(2 * M_PI - done);
+      g->sweep = (float)(ccw ? sw : -sw);
+      g->flags |= F_TEACH_ARC;
+    }
+  }
+}
+
+int plot_check_path(const char *path, char *err, size_t n)
+{
+  const char *dot = path ? strrchr(path, '.') : NULL;
+  const char *slash = path ? strrchr(path, '/') : NULL;
+  if (dot && (!slash || dot > slash + 1) &&
+      (!strcasecmp(dot, ".png") || !strcasecmp(dot, ".svg") || !strcasecmp(dot, ".pdf")))
+    return 0;
+  snprintf(err, n, "cannot tell the picture format of '%s': the output file must end in .png, .svg or .pdf",
+           path ? path : "");
+  return -1;
+}
+
+/* ---- numbers, always with a decimal point ---- */
+
+static void fix_point(char *s)
+{
+  const char *dp = localeconv()->decimal_point;
+  if (!dp || !strcmp(dp, "."))
+    return;
+  size_t l = strlen(dp);
+  char *p = strstr(s, dp);
+  if (p) {
+    *p = '.';
+    memmove(p + 1, p + l, strlen(p + l) + 1);
+  }
+}
+
+/* v with at most `dec` decimals, trailing zeros dropped. */
+static void fmt_num(char *buf, size_t n, double v, int dec)
+{
+  if (fabs(v) < 0.5 * pow(10, -dec))
+    v = 0;
+  snprintf(buf, n, "%.*f", dec, v);
+  fix_point(buf);
+  if (strchr(buf, '.')) {
+    char *e = buf + strlen(buf) - 1;
+    while (*e == '0')
+      *e-- = 0;
+    if (*e == '.')
+      *e = 0;
+  }
+}
+
+/* The nice step (1, 2, 5 x 10^k) nearest below x, and its decimals. */
+static double nice_step(double x, int *dec)
+{
+  if (!(x > 0))
+    x = 1;
+  double e = floor(log10(x)), b = pow(10, e), m = x / b;
+  double s = m >= 5 ? 5 : m >= 2 ? 2 : 1;
+  if (dec)
+    *dec = e < 0 ? (int)-e : 0;
+  return s * b;
+}
+
+/* ---- geometry of the path ---- */
+
+/* Point of segment g at fraction u along its programmed part, mm/deg. */
+static void seg_point(const struct seg *g, double u, int teach, double out[4])
+{
+  const int32_t *d = teach ? g->jog : g->d;
+  double base[4];
+  for (int a = 0; a < 4; a++) {
+    base[a] = (double)g->start[a] + (teach ? g->d[a] : 0);
+    out[a] = base[a] + d[a] * u;
+  }
+  if (teach ? (g->flags & F_TEACH_ARC) : g->kind == K_ARC) {
+    int p, q;
+    plane_axes(g->plane, &p, &q);
+    double cp = g->cp, cq = g->cq;
+    double r0 = hypot(cp, cq), r1 = hypot(d[p] - cp, d[q] - cq);
+    double th = atan2(-cq, -cp) + g->sweep * u, rr = r0 + (r1 - r0) * u;
+    out[p] = base[p] + cp + rr * cos(th);
+    out[q] = base[q] + cq + rr * sin(th);
+    if (u >= 1) {
+      out[p] = base[p] + d[p];
+      out[q] = base[q] + d[q];
+    }
+  }
+  for (int a = 0; a < 4; a++)
+    out[a] /= 1000.0;
+}
+
+struct bbox { double lo[4], hi[4]; };
+
+static void bb_add(struct bbox *b, const double p[4])
+{
+  for (int a = 0; a < 4; a++) {
+    if (p[a] < b->lo[a]) b->lo[a] = p[a];
+    if (p[a] > b->hi[a]) b->hi[a] = p[a];
+  }
+}
+
+static void bb_curve(struct bbox *b, const struct seg *g, int teach)
+{
+  double pt[4];
+  int curve = teach ? (g->flags & F_TEACH_ARC) : g->kind == K_ARC;
+  int k = curve ? (int)ceil(fabs(g->sweep) / (M_PI / 36)) + 1 : 1;
+  for (int i = 0; i <= k; i++) {
+    seg_point(g, (double)i / k, teach, pt);
+    bb_add(b, pt);
+  }
+}
+
+/* ---- drawing ---- */
+
+struct panel {
+  int u, v;                 /* axes right and up */
+  const char *name, *plane;
+  double x, y, w, h;        /* the frame */
+  double ix, iy, iw, ih;    /* the area the path is fitted into */
+  double s;                 /* px per mm */
+  double u0, v0;            /* mm at the centre of the inner area */
+  unsigned char *occ;       /* label occupancy, 4x4 px cells */
+  int ocw, och, nlabels;
+  struct { int n; float x, y; } lab[400];   /* the labels placed */
+};
+
+static void pmap(const struct panel *P, double u, double v, double *x, double *y)
+{
+  *x = P->ix + P->iw / 2 + (u - P->u0) * P->s;
+  *y = P->iy + P->ih / 2 - (v - P->v0) * P->s;
+}
+
+static void rgb(cairo_t *cr, unsigned c)
+{
+  cairo_set_source_rgb(cr, ((c >> 16) & 255) / 255.0, ((c >> 8) & 255) / 255.0, (c & 255) / 255.0);
+}
+
+#define CHUNK 128   /* segments per stroke */
+#define C_PATH 0x1f4db3u
+#define C_JOG 0xe67300u
+#define C_CORR 0xbf1a99u
+#define C_START 0x1a9933u
+#define C_END 0xd91a1au
+#define C_GRID 0xe6e6e6u
+#define C_AXIS 0xbfbfbfu
+#define C_TEXT 0x222222u
+#define C_LABEL 0x595959u
+#define C_FRAME 0x8c8c8cu
+
+static void text_at(cairo_t *cr, double x, double y, const char *s, double size, int bold, double align)
+{
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                         bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, size);
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, s, &e);
+  cairo_move_to(cr, x - align * e.x_advance, y);
+  cairo_show_text(cr, s);
+}
+
+static double text_w(cairo_t *cr, const char *s, double size, int bold)
+{
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                         bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, size);
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, s, &e);
+  return e.x_advance;
+}
+
+/* Add the programmed part (teach 0) or the teach-in/jog part (teach 1) of
+ * g to the current path in panel P; *have: there is a current point at
+ * (*lx, *ly). */
+static void path_seg(cairo_t *cr, const struct panel *P, const struct seg *g, int teach, int *have,
+                     double *lx, double *ly)
+{
+  double a[4], b[4], x0, y0, x1, y1;
+  seg_point(g, 0, teach, a);
+  seg_point(g, 1, teach, b);
+  pmap(P, a[P->u], a[P->v], &x0, &y0);
+  pmap(P, b[P->u], b[P->v], &x1, &y1);
+  int curve = teach ? (g->flags & F_TEACH_ARC) : g->kind == K_ARC;
+  if (a[P->u] == b[P->u] && a[P->v] == b[P->v] && !curve)
+    return;   /* does not move in this panel */
+  if (!*have || *lx != x0 || *ly != y0)
+    cairo_move_to(cr, x0, y0);
+  int p = 0, q = 0;
+  if (curve)
+    plane_axes(g->plane, &p, &q);
+  if (curve && P->u == p && P->v == q) {
+    const int32_t *d = teach ? g->jog : g->d;
+    double r = hypot(g->cp, g->cq) / 1000.0 * P->s;
+    double cx = x0 + g->cp / 1000.0 * P->s, cy = y0 - g->cq / 1000.0 * P->s;
+    double th0 = atan2(-(double)g->cq, -(double)g->cp);
+    (void)d;
+    /* page y runs down: a counter-clockwise turn decreases the page angle */
+    if (g->sweep > 0)
+      cairo_arc_negative(cr, cx, cy, r, -th0, -th0 - g->sweep);
+    else
+      cairo_arc(cr, cx, cy, r, -th0, -th0 - g->sweep);
+    cairo_line_to(cr, x1, y1);
+  } else if (curve) {
+    double r = hypot(g->cp, g->cq) / 1000.0 * P->s;
+    int k = (int)ceil(fabs(g->sweep) * r / 2.0);
+    if (k < 2) k = 2;
+    if (k > 360) k = 360;
+    for (int i = 1; i <= k; i++) {
+      double pt[4], x, y;
+      seg_point(g, (double)i / k, teach, pt);
+      pmap(P, pt[P->u], pt[P->v], &x, &y);
+      cairo_line_to(cr, x, y);
+    }
+  } else {
+    cairo_line_to(cr, x1, y1);
+  }
+  *have = 1;
+  *lx = x1;
+  *ly = y1;
+}
+
+static void end_of(const struct seg *g, double out[4])
+{
+  for (int a = 0; a < 4; a++)
+    out[a] = ((double)g->start[a] + g->d[a] + g->jog[a]) / 1000.0;
+}
+
+static int seg_has_jog(const struct seg *g)
+{
+  return g->jog[0] || g->jog[1] || g->jog[2] || g->jog[3];
+}
+
+static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
+{
+  double lx = 0, ly = 0;
+  int have = 0;
+  /* programmed moves: solid.  Stroked in pieces: cairo strokes one huge
+   * path slowly and with much memory. */
+  rgb(cr, C_PATH);
+  cairo_set_line_width(cr, 1.4);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (size_t i = 0; i < pl->n; i++) {
+    path_seg(cr, P, &pl->v[i], 0, &have, &lx, &ly);
+    if (i % CHUNK == CHUNK - 1) {
+      cairo_stroke(cr);
+      have = 0;
+    }
+  }
+  cairo_stroke(cr);
+
+  /* manual moves: dashed */
+  have = 0;
+  rgb(cr, C_JOG);
+  cairo_set_line_width(cr, 2.0);
+  double dash[] = {6.0, 3.5};
+  cairo_set_dash(cr, dash, 2, 0);
+  for (size_t i = 0, k = 0; i < pl->n; i++)
+    if (seg_has_jog(&pl->v[i])) {
+      path_seg(cr, P, &pl->v[i], 1, &have, &lx, &ly);
+      if (++k % CHUNK == 0) {
+        cairo_stroke(cr);
+        have = 0;
+      }
+    }
+  cairo_stroke(cr);
+  cairo_set_dash(cr, NULL, 0, 0);
+  /* corrections between blocks: dotted */
+  rgb(cr, C_CORR);
+  cairo_set_line_width(cr, 1.6);
+  double dots[] = {1.0, 3.0};
+  cairo_set_dash(cr, dots, 2, 0);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  double prev[4] = {0, 0, 0, 0};
+  for (size_t i = 0, k = 0; i < pl->n; i++) {
+    const struct seg *g = &pl->v[i];
+    double st[4], x0, y0, x1, y1;
+    for (int a = 0; a < 4; a++)
+      st[a] = g->start[a] / 1000.0;
+    if (st[P->u] != prev[P->u] || st[P->v] != prev[P->v]) {
+      pmap(P, prev[P->u], prev[P->v], &x0, &y0);
+      pmap(P, st[P->u], st[P->v], &x1, &y1);
+      cairo_move_to(cr, x0, y0);
+      cairo_line_to(cr, x1, y1);
+      if (++k % CHUNK == 0)
+        cairo_stroke(cr);
+    }
+    end_of(g, prev);
+  }
+  cairo_stroke(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+  cairo_set_dash(cr, NULL, 0, 0);
+}
+
+/* Block numbers at block starts, where there is room. */
+static void draw_labels(cairo_t *cr, struct panel *P, const struct plot *pl)
+{
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, 9.5);
+  for (size_t i = 0; i < pl->n && P->nlabels < 400; i++) {
+    const struct seg *g = &pl->v[i];
+    if (g->n < 0)
+      continue;
+    double a[4], b[4], x0, y0, x1, y1;
+    seg_point(g, 0, 0, a);
+    end_of(g, b);
+    pmap(P, a[P->u], a[P->v], &x0, &y0);
+    pmap(P, b[P->u], b[P->v], &x1, &y1);
+    if (fabs(x1 - x0) < 1 && fabs(y1 - y0) < 1 && g->kind != K_ARC)
+      continue;   /* the block does not move in this panel */
+    char s[16];
+    snprintf(s, sizeof s, "%d", (int)g->n);
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, s, &e);
+    double lx = x0 + 3, ly = y0 - 3;   /* baseline left */
+    double rx0 = lx - 1, ry0 = ly - 10, rx1 = lx + e.x_advance + 1, ry1 = ly + 2;
+    if (rx0 < P->x + 2 || rx1 > P->x + P->w - 2 || ry0 < P->y + 2 || ry1 > P->y + P->h - 40)
+      continue;
+    int c0 = (int)((rx0 - P->x) / 4), c1 = (int)((rx1 - P->x) / 4);
+    int r0 = (int)((ry0 - P->y) / 4), r1 = (int)((ry1 - P->y) / 4);
+    int free_ = 1;
+    for (int r = r0; r <= r1 && free_; r++)
+      for (int c = c0; c <= c1; c++)
+        if (r < 0 || c < 0 || r >= P->och || c >= P->ocw || P->occ[r * P->ocw + c]) {
+          free_ = 0;
+          break;
+        }
+    for (int k = 0; k < P->nlabels && free_; k++)
+      if (P->lab[k].n == g->n && fabs(P->lab[k].x - x0) < 70 && fabs(P->lab[k].y - y0) < 70)
+        free_ = 0;   /* the same block again close by: once is enough */
+    if (!free_)
+      continue;
+    P->lab[P->nlabels].n = g->n;
+    P->lab[P->nlabels].x = (float)x0;
+    P->lab[P->nlabels].y = (float)y0;
+    for (int r = r0 - 1; r <= r1 + 1; r++)
+      for (int c = c0 - 1; c <= c1 + 1; c++)
+        if (r >= 0 && c >= 0 && r < P->och && c < P->ocw)
+          P->occ[r * P->ocw + c] = 1;
+    P->nlabels++;
+    rgb(cr, C_LABEL);
+    cairo_new_path(cr);
+    cairo_arc(cr, x0, y0, 1.6, 0, 2 * M_PI);
+    cairo_fill(cr);
+    /* a white halo keeps the number readable over the path */
+    cairo_move_to(cr, lx, ly);
+    cairo_text_path(cr, s);
+    cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+    cairo_set_line_width(cr, 2.5);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_stroke_preserve(cr);
+    rgb(cr, C_LABEL);
+    cairo_fill(cr);
+  }
+}
+
+static void draw_scale(cairo_t *cr, const struct panel *P, double step)
+{
+  /* grid at multiples of the step, axes through the program start */
+  double xa, ya;
+  cairo_save(cr);
+  cairo_rectangle(cr, P->x, P->y, P->w, P->h);
+  cairo_clip(cr);
+  double umin = P->u0 - (P->iw / 2 + 40) / P->s, umax = P->u0 + (P->iw / 2 + 40) / P->s;
+  double vmin = P->v0 - (P->ih / 2 + 60) / P->s, vmax = P->v0 + (P->ih / 2 + 40) / P->s;
+  if ((umax - umin) / step < 200 && (vmax - vmin) / step < 200) {
+    for (double u = ceil(umin / step) * step; u <= umax; u += step) {
+      pmap(P, u, 0, &xa, &ya);
+      cairo_move_to(cr, floor(xa) + 0.5, P->y);
+      cairo_line_to(cr, floor(xa) + 0.5, P->y + P->h);
+    }
+    for (double v = ceil(vmin / step) * step; v <= vmax; v += step) {
+      pmap(P, 0, v, &xa, &ya);
+      cairo_move_to(cr, P->x, floor(ya) + 0.5);
+      cairo_line_to(cr, P->x + P->w, floor(ya) + 0.5);
+    }
+    rgb(cr, C_GRID);
+    cairo_set_line_width(cr, 1);
+    cairo_stroke(cr);
+  }
+  pmap(P, 0, 0, &xa, &ya);
+  cairo_move_to(cr, floor(xa) + 0.5, P->y);
+  cairo_line_to(cr, floor(xa) + 0.5, P->y + P->h);
+  cairo_move_to(cr, P->x, floor(ya) + 0.5);
+  cairo_line_to(cr, P->x + P->w, floor(ya) + 0.5);
+  rgb(cr, C_AXIS);
+  cairo_set_line_width(cr, 1);
+  cairo_stroke(cr);
+  cairo_restore(cr);
+}
+
+static void draw_panel_furniture(cairo_t *cr, const struct panel *P, double step, int dec)
+{
+  /* white band for the scale bar and axis arrows */
+  cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+  cairo_rectangle(cr, P->x + 1, P->y + P->h - 34, P->w - 2, 33);
+  cairo_fill(cr);
+  /* the scale bar, bottom right */
+  double len = step * P->s, bx1 = P->x + P->w - 16, bx0 = bx1 - len, by = P->y + P->h - 12;
+  rgb(cr, C_TEXT);
+  cairo_set_line_width(cr, 2);
+  cairo_move_to(cr, bx0, by);
+  cairo_line_to(cr, bx1, by);
+  cairo_stroke(cr);
+  cairo_set_line_width(cr, 1.2);
+  cairo_move_to(cr, bx0, by - 5);
+  cairo_line_to(cr, bx0, by + 3);
+  cairo_move_to(cr, bx1, by - 5);
+  cairo_line_to(cr, bx1, by + 3);
+  cairo_stroke(cr);
+  char num[32], lab[48];
+  fmt_num(num, sizeof num, step, dec);
+  snprintf(lab, sizeof lab, "%s mm", num);
+  text_at(cr, (bx0 + bx1) / 2, by - 6, lab, 11, 0, 0.5);
+  /* axis arrows, bottom left */
+  static const char *const names = "XYZA";
+  double ox = P->x + 14, oy = P->y + P->h - 10;
+  cairo_set_line_width(cr, 1.3);
+  cairo_move_to(cr, ox, oy);
+  cairo_line_to(cr, ox + 26, oy);
+  cairo_move_to(cr, ox, oy);
+  cairo_line_to(cr, ox, oy - 22);
+  cairo_stroke(cr);
+  cairo_move_to(cr, ox + 30, oy);
+  cairo_line_to(cr, ox + 24, oy - 3);
+  cairo_line_to(cr, ox + 24, oy + 3);
+  cairo_close_path(cr);
+  cairo_move_to(cr, ox, oy - 26);
+  cairo_line_to(cr, ox - 3, oy - 20);
+  cairo_line_to(cr, ox + 3, oy - 20);
+  cairo_close_path(cr);
+  cairo_fill(cr);
+  char a[2] = {names[P->u], 0}, b[2] = {names[P->v], 0};
+  text_at(cr, ox + 34, oy + 4, a, 11, 1, 0);
+  text_at(cr, ox + 6, oy - 18, b, 11, 1, 0);
+  /* the frame and the title */
+  rgb(cr, C_FRAME);
+  cairo_set_line_width(cr, 1);
+  cairo_rectangle(cr, P->x + 0.5, P->y + 0.5, P->w - 1, P->h - 1);
+  cairo_stroke(cr);
+  rgb(cr, C_TEXT);
+  text_at(cr, P->x, P->y - 8, P->name, 15, 1, 0);
+  text_at(cr, P->x + text_w(cr, P->name, 15, 1) + 8, P->y - 8, P->plane, 12, 0, 0);
+}
+
+static void marker(cairo_t *cr, const struct panel *P, const double pt[4], int end)
+{
+  double x, y;
+  pmap(P, pt[P->u], pt[P->v], &x, &y);
+  if (end) {
+    cairo_new_path(cr);
+    cairo_rectangle(cr, x - 4, y - 4, 8, 8);
+    rgb(cr, C_END);
+    cairo_fill(cr);
+  } else {
+    /* a ring: an end at the start still shows inside it */
+    cairo_new_path(cr);
+    cairo_arc(cr, x, y, 6, 0, 2 * M_PI);
+    rgb(cr, C_START);
+    cairo_set_line_width(cr, 2.4);
+    cairo_stroke(cr);
+  }
+}
+
+static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
+{
+  static const struct { int u, v; const char *name, *plane; } def[3] = {
+    {AX_X, AX_Y, "XY", "plane G17"},
+    {AX_X, AX_Z, "XZ", "plane G19"},
+    {AX_Y, AX_Z, "YZ", "plane G18"},
+  };
+  static const double fx[3] = {40, 555, 1070};
+  for (int k = 0; k < 3; k++) {
+    struct panel P;
+    memset(&P, 0, sizeof P);
+    P.u = def[k].u;
+    P.v = def[k].v;
+    P.name = def[k].name;
+    P.plane = def[k].plane;
+    P.x = fx[k];
+    P.y = 96;
+    P.w = 490;
+    P.h = 580;
+    P.ix = P.x + 28;
+    P.iy = P.y + 24;
+    P.iw = P.w - 56;
+    P.ih = P.h - 24 - 46;
+    double du = bb->hi[P.u] - bb->lo[P.u], dv = bb->hi[P.v] - bb->lo[P.v];
+    const double minext = 0.02;   /* mm: never zoom in further than this */
+    double su = du > minext ? du : minext, sv = dv > minext ? dv : minext;
+    P.s = fmin(P.iw / su, P.ih / sv);
+    if (du < minext && dv < minext)
+      P.s = fmin(P.iw, P.ih) / 1.0;   /* nothing moves here: 1 mm across */
+    P.u0 = (bb->lo[P.u] + bb->hi[P.u]) / 2;
+    P.v0 = (bb->lo[P.v] + bb->hi[P.v]) / 2;
+    P.ocw = (int)(P.w / 4) + 1;
+    P.och = (int)(P.h / 4) + 1;
+    P.occ = calloc((size_t)P.ocw * (size_t)P.och, 1);
+    int dec;
+    double step = nice_step(P.iw / 4 / P.s, &dec);
+
+    cairo_save(cr);
+    cairo_rectangle(cr, P.x, P.y, P.w, P.h);
+    cairo_clip(cr);
+    draw_scale(cr, &P, step);
+    draw_panel_path(cr, &P, pl);
+    double z[4] = {0, 0, 0, 0}, e[4];
+    for (int a = 0; a < 4; a++)
+      e[a] = pl->pos[a] / 1000.0;
+    if (pl->n)
+      marker(cr, &P, e, 1);
+    marker(cr, &P, z, 0);
+    if (P.occ)
+      draw_labels(cr, &P, pl);
+    if (du < minext && dv < minext) {
+      rgb(cr, C_LABEL);
+      text_at(cr, P.x + P.w / 2, P.y + P.h / 2 + 28, "no move in this plane", 13, 0, 0.5);
+    }
+    cairo_restore(cr);
+    draw_panel_furniture(cr, &P, step, dec);
+    free(P.occ);
+  }
+}
+
+/* A against simulated time. */
+static void draw_a(cairo_t *cr, const struct plot *pl)
+{
+  const double X = 90, Y = 724, W = 1470, H = 200;
+  double tend = pl->t > 0 ? pl->t : 1;
+  double amin = 0, amax = 0, a = 0;
+  for (size_t i = 0; i < pl->n; i++) {
+    const struct seg *g = &pl->v[i];
+    double v[3] = {g->start[3] / 1000.0, (g->start[3] + g->d[3]) / 1000.0,
+                   (g->start[3] + g->d[3] + g->jog[3]) / 1000.0};
+    for (int k = 0; k < 3; k++) {
+      if (v[k] < amin) amin = v[k];
+      if (v[k] > amax) amax = v[k];
+    }
+  }
+  int moves = amax - amin > 0;
+  if (amax - amin < 1) {
+    double c = (amax + amin) / 2;
+    amin = c - 0.5;
+    amax = c + 0.5;
+  }
+  double pad = (amax - amin) * 0.06;
+  amin -= pad;
+  amax += pad;
+  double sx = (W - 20) / tend, sy = (H - 16) / (amax - amin);
+#define TX(t) (X + 10 + (t) * sx)
+#define AY(v) (Y + H - 8 - ((v) - amin) * sy)
+  /* grid and ticks */
+  int dt_dec, da_dec;
+  double dt = nice_step(tend / 8, &dt_dec), da = nice_step((amax - amin) / 4, &da_dec);
+  char num[32], lab[48];
+  cairo_set_line_width(cr, 1);
+  for (double t = 0; t <= tend * 1.0001; t += dt) {
+    double x = floor(TX(t)) + 0.5;
+    rgb(cr, C_GRID);
+    cairo_move_to(cr, x, Y);
+    cairo_line_to(cr, x, Y + H);
+    cairo_stroke(cr);
+    rgb(cr, C_TEXT);
+    fmt_num(num, sizeof num, t, dt_dec);
+    text_at(cr, x, Y + H + 15, num, 11, 0, 0.5);
+  }
+  for (double v = ceil(amin / da) * da; v <= amax; v += da) {
+    double y = floor(AY(v)) + 0.5;
+    rgb(cr, fabs(v) < da / 1e6 ? C_AXIS : C_GRID);
+    cairo_move_to(cr, X, y);
+    cairo_line_to(cr, X + W, y);
+    cairo_stroke(cr);
+    rgb(cr, C_TEXT);
+    fmt_num(num, sizeof num, fabs(v) < da / 1e6 ? 0 : v, da_dec);
+    snprintf(lab, sizeof lab, "%s°", num);
+    text_at(cr, X - 6, y + 4, lab, 11, 0, 1);
+  }
+  rgb(cr, C_TEXT);
+  text_at(cr, X + W, Y + H + 32, "time, s", 12, 0, 1);
+  text_at(cr, 40, Y - 8, "A", 15, 1, 0);
+  text_at(cr, 40 + text_w(cr, "A", 15, 1) + 8, Y - 8, "workpiece spindle, degrees, against simulated time", 12, 0, 0);
+
+  cairo_save(cr);
+  cairo_rectangle(cr, X, Y, W, H);
+  cairo_clip(cr);
+  /* corrections of A between blocks: dotted; jogs: dashed; the trace: solid */
+  rgb(cr, C_CORR);
+  cairo_set_line_width(cr, 1.6);
+  double dots[] = {1.0, 3.0};
+  cairo_set_dash(cr, dots, 2, 0);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  a = 0;
+  for (size_t i = 0, k = 0; i < pl->n; i++) {
+    const struct seg *g = &pl->v[i];
+    double s0 = g->start[3] / 1000.0;
+    if (s0 != a) {
+      cairo_move_to(cr, TX(g->t0), AY(a));
+      cairo_line_to(cr, TX(g->t0), AY(s0));
+      if (++k % CHUNK == 0)
+        cairo_stroke(cr);
+    }
+    a = (g->start[3] + g->d[3] + g->jog[3]) / 1000.0;
+  }
+  cairo_stroke(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+  rgb(cr, C_JOG);
+  cairo_set_line_width(cr, 2);
+  double dash[] = {6.0, 3.5};
+  cairo_set_dash(cr, dash, 2, 0);
+  for (size_t i = 0, k = 0; i < pl->n; i++) {
+    const struct seg *g = &pl->v[i];
+    if (g->jog[3]) {
+      double m = (g->start[3] + g->d[3]) / 1000.0;
+      cairo_move_to(cr, TX(g->t1), AY(m));
+      cairo_line_to(cr, TX(g->t1), AY(m + g->jog[3] / 1000.0));
+      if (++k % CHUNK == 0)
+        cairo_stroke(cr);
+    }
+  }
+  cairo_stroke(cr);
+  cairo_set_dash(cr, NULL, 0, 0);
+  rgb(cr, C_PATH);
+  cairo_set_line_width(cr, 1.4);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  a = 0;
+  cairo_move_to(cr, TX(0), AY(0));
+  for (size_t i = 0; i < pl->n; i++) {
+    const struct seg *g = &pl->v[i];
+    double s0 = g->start[3] / 1000.0, e0 = (g->start[3] + g->d[3]) / 1000.0;
+    if (s0 != a)
+      cairo_move_to(cr, TX(g->t0), AY(s0));
+    else
+      cairo_line_to(cr, TX(g->t0), AY(s0));
+    cairo_line_to(cr, TX(g->t1), AY(e0));
+    a = e0 + g->jog[3] / 1000.0;
+    if (i % CHUNK == CHUNK - 1) {
+      cairo_stroke(cr);
+      cairo_move_to(cr, TX(g->t1), AY(e0));
+    }
+    if (g->jog[3])
+      cairo_move_to(cr, TX(g->t1), AY(a));
+  }
+  cairo_line_to(cr, TX(tend), AY(a));
+  cairo_stroke(cr);
+  if (!moves) {
+    rgb(cr, C_LABEL);
+    text_at(cr, X + W / 2, Y + H / 2 - 14, "A does not move", 13, 0, 0.5);
+  }
+  cairo_restore(cr);
+  rgb(cr, C_FRAME);
+  cairo_rectangle(cr, X + 0.5, Y + 0.5, W - 1, H - 1);
+  cairo_stroke(cr);
+#undef TX
+#undef AY
+}
+
+static void legend(cairo_t *cr, double x, double y)
+{
+  static const struct { unsigned c; int style; const char *text; } items[] = {
+    {C_PATH, 0, "programmed move (arcs as arcs)"},
+    {C_JOG, 1, "manual move: G20 jog, M19 teach-in"},
+    {C_CORR, 2, "position change between blocks (correction)"},
+    {C_START, 3, "program start"},
+    {C_END, 4, "end"},
+    {C_LABEL, 5, "block number at the block's start"},
+  };
+  for (size_t i = 0; i < sizeof items / sizeof items[0]; i++) {
+    rgb(cr, items[i].c);
+    cairo_new_path(cr);
+    switch (items[i].style) {
+    case 0: case 1: case 2: {
+      double dash[] = {6.0, 3.5}, dots[] = {1.0, 3.0};
+      cairo_set_line_width(cr, items[i].style == 0 ? 1.4 : items[i].style == 1 ? 2 : 1.6);
+      if (items[i].style == 1) cairo_set_dash(cr, dash, 2, 0);
+      if (items[i].style == 2) {
+        cairo_set_dash(cr, dots, 2, 0);
+        cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+      }
+      cairo_move_to(cr, x, y - 4);
+      cairo_line_to(cr, x + 28, y - 4);
+      cairo_stroke(cr);
+      cairo_set_dash(cr, NULL, 0, 0);
+      cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+      break;
+    }
+    case 3:
+      cairo_arc(cr, x + 14, y - 4, 6, 0, 2 * M_PI);
+      cairo_set_line_width(cr, 2.4);
+      cairo_stroke(cr);
+      break;
+    case 4:
+      cairo_rectangle(cr, x + 10, y - 8, 8, 8);
+      cairo_fill(cr);
+      break;
+    default:
+      cairo_arc(cr, x + 4, y - 4, 1.6, 0, 2 * M_PI);
+      cairo_fill(cr);
+      text_at(cr, x + 8, y - 1, "12", 9.5, 0, 0);
+      break;
+    }
+    rgb(cr, C_TEXT);
+    text_at(cr, x + 34, y, items[i].text, 12, 0, 0);
+    x += 34 + text_w(cr, items[i].text, 12, 0) + 26;
+  }
+}
+
+static void draw(cairo_t *cr, const struct plot *pl, const char *program)
+{
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  /* the extent of the path on X, Y, Z (mm) */
+  struct bbox bb;
+  for (int a = 0; a < 4; a++)
+    bb.lo[a] = bb.hi[a] = 0;
+  for (size_t i = 0; i < pl->n; i++) {
+    const struct seg *g = &pl->v[i];
+    double p[4];
+    for (int a = 0; a < 4; a++)
+      p[a] = g->start[a] / 1000.0;
+    bb_add(&bb, p);
+    bb_curve(&bb, g, 0);
+    if (seg_has_jog(g))
+      bb_curve(&bb, g, 1);
+  }
+  draw_xyz(cr, pl, &bb);
+  draw_a(cr, pl);
+  legend(cr, 40, 984);
+
+  /* title and summary */
+  const char *base = strrchr(program, '/');
+  base = base ? base + 1 : program;
+  char title[300], line[400], n[4][40], tt[32];
+  snprintf(title, sizeof title, "%s", base);
+  rgb(cr, C_TEXT);
+  text_at(cr, 40, 34, title, 22, 1, 0);
+  text_at(cr, 40 + text_w(cr, title, 22, 1) + 14, 34, "tool path of a headless run of s42 (2С42-65)", 13, 0, 0);
+  for (int a = 0; a < 4; a++) {
+    char v[32];
+    fmt_num(v, sizeof v, pl->pos[a] / 1000.0, 3);
+    snprintf(n[a], sizeof n[a], "%s%s", pl->pos[a] > 0 ? "+" : "", v);
+  }
+  fmt_num(tt, sizeof tt, pl->t, 1);
+  snprintf(line, sizeof line, "%llu blocks, %s s simulated; end position X %s  Y %s  Z %s mm  A %s°",
+           pl->rows, tt, n[0], n[1], n[2], n[3]);
+  rgb(cr, C_LABEL);
+  text_at(cr, 1560, 34, line, 13, 0, 1);
+  if (pl->oom) {
+    rgb(cr, C_END);
+    text_at(cr, 1560, 56, "out of memory: the path is cut short", 13, 1, 1);
+  }
+}
+
+/* ---- output ---- */
+
+static cairo_status_t write_fn(void *closure, const unsigned char *data, unsigned int len)
+{
+  FILE *f = closure;
+  return fwrite(data, 1, len, f) == len ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
+int plot_write(struct plot *pl, const char *program, const char *path, char *err, size_t n)
+{
+  if (plot_check_path(path, err, n))
+    return -1;
+  const char *ext = strrchr(path, '.');
+  int kind = !strcasecmp(ext, ".png") ? 0 : !strcasecmp(ext, ".svg") ? 1 : 2;
+  size_t pl_len = strlen(path);
+  char *tmp = malloc(pl_len + 16);
+  if (!tmp) {
+    snprintf(err, n, "out of memory");
+    return -1;
+  }
+  snprintf(tmp, pl_len + 16, "%s.tmpXXXXXX", path);
+  int fd = mkstemp(tmp);
+  if (fd < 0) {
+    snprintf(err, n, "cannot create a file next to it: %s", strerror(errno));
+    free(tmp);
+    return -1;
+  }
+  mode_t um = umask(0);
+  umask(um);
+  if (fchmod(fd, 0666 & ~um) != 0) {
+    /* not fatal: the file keeps mkstemp's 0600 */
+  }
+  FILE *f = fdopen(fd, "wb");
+  if (!f) {
+    snprintf(err, n, "%s", strerror(errno));
+    close(fd);
+    unlink(tmp);
+    free(tmp);
+    return -1;
+  }
+  cairo_surface_t *sf;
+  if (kind == 0)
+    sf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, (int)PW, (int)PH);
+  else if (kind == 1)
+    sf = cairo_svg_surface_create_for_stream(write_fn, f, PW, PH);
+  else
+    sf = cairo_pdf_surface_create_for_stream(write_fn, f, PW, PH);
+  cairo_status_t st = cairo_surface_status(sf);
+  if (st == CAIRO_STATUS_SUCCESS) {
+    if (kind == 2)
+      cairo_pdf_surface_set_metadata(sf, CAIRO_PDF_METADATA_TITLE, program);
+    cairo_t *cr = cairo_create(sf);
+    draw(cr, pl, program);
+    st = cairo_status(cr);
+    cairo_destroy(cr);
+    if (st == CAIRO_STATUS_SUCCESS && kind == 0)
+      st = cairo_surface_write_to_png_stream(sf, write_fn, f);
+    cairo_surface_finish(sf);
+    if (st == CAIRO_STATUS_SUCCESS)
+      st = cairo_surface_status(sf);
+  }
+  cairo_surface_destroy(sf);
+  /* nothing of cairo is left: let it drop its font caches (leak checkers
+   * would count them) */
+  cairo_debug_reset_static_data();
+  int ioerr = 0;
+  if (fflush(f) != 0 || fsync(fileno(f)) != 0)
+    ioerr = errno ? errno : EIO;
+  if (fclose(f) != 0 && !ioerr)
+    ioerr = errno ? errno : EIO;
+  if (st != CAIRO_STATUS_SUCCESS || ioerr) {
+    if (st != CAIRO_STATUS_SUCCESS)
+      snprintf(err, n, "cairo: %s", cairo_status_to_string(st));
+    else
+      snprintf(err, n, "%s", strerror(ioerr));
+    unlink(tmp);
+    free(tmp);
+    return -1;
+  }
+  if (rename(tmp, path) != 0) {
+    snprintf(err, n, "cannot rename the finished picture into place: %s", strerror(errno));
+    unlink(tmp);
+    free(tmp);
+    return -1;
+  }
+  free(tmp);
+  return 0;
+}

@@ -1,0 +1,22 @@
+/* `s42 plot`: the tool path of a headless run drawn with cairo (PNG, SVG or
+ * PDF by the file's extension): the planes XY, XZ and YZ side by side with
+ * scale bars, block numbers at block starts, arcs as true arcs, manual and
+ * jog moves drawn apart from programmed ones, and A against time. */
+#ifndef S42_PLOT_H
+#define S42_PLOT_H
+
+#include "session.h"
+#include <stddef.h>
+
+struct plot;
+
+struct plot *plot_new(void);
+/* A session row sink: record the block's path. */
+void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r);
+/* Is the output path's extension one we can write (.png .svg .pdf)? */
+int plot_check_path(const char *path, char *err, size_t n);
+/* Draw and write the file (title: the program's name).  0, or -1 with err. */
+int plot_write(struct plot *pl, const char *program, const char *path, char *err, size_t n);
+void plot_free(struct plot *pl);
+
+#endif

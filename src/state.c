@@ -1,0 +1,209 @@
+/* The M15 restart state file (src/state.h). */
+#include "state.h"
+#include <errno.h>
+#include <fcntl.h>
+#include <libgen.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define MAGIC "S42STATE"
+#define VERSION 1u
+
+/* Everything a restart needs, in one fixed record (zeroed before filling,
+ * so the checksum covers no stray padding bytes). */
+struct payload {
+  uint64_t prog_hash;
+  uint32_t block, pc;
+  uint64_t blocks;
+  double reg[VM_NREG];
+  struct vm_array arr[2];
+  int32_t depth;
+  struct vm_frame frames[VM_MAXDEPTH];
+  int64_t pos[4];
+  double t;
+  int32_t wheel, override_pct, override_allowed, corr_allowed;
+  struct mach_osc osc;
+  int32_t p3, np3;
+  struct scr_p3 p3l[SCR_WORK];
+  uint32_t directive;
+  char dirtext[SCR_COLS * 4 + 1];
+};
+
+struct header {
+  char magic[8];
+  uint32_t version, size;
+  uint64_t sum;
+};
+
+uint64_t state_hash(const void *data, size_t n)
+{
+  /* FNV-1a, 64 bits */
+  const unsigned char *p = data;
+  uint64_t h = 1469598103934665603ULL;
+  for (size_t i = 0; i < n; i++) {
+    h ^= p[i];
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+static int write_all(int fd, const void *buf, size_t n)
+{
+  const char *p = buf;
+  while (n) {
+    ssize_t w = write(fd, p, n);
+    if (w < 0) {
+      if (errno == EINTR)
+        continue;
+      return -1;
+    }
+    p += w;
+    n -= (size_t)w;
+  }
+  return 0;
+}
+
+int state_save(const struct session *s, const char *path, uint64_t prog_hash, char *err, size_t n)
+{
+  struct payload *pl = calloc(1, sizeof *pl);
+  if (!pl) {
+    snprintf(err, n, "out of memory");
+    return -1;
+  }
+  const struct vm *vm = &s->vm;
+  pl->prog_hash = prog_hash;
+  pl->block = vm->cur;
+  pl->pc = s->p->blocks[vm->cur].code;
+  pl->blocks = vm->blocks;
+  memcpy(pl->reg, vm->reg, sizeof pl->reg);
+  memcpy(pl->arr, vm->arr, sizeof pl->arr);
+  pl->depth = vm->depth;
+  for (int i = 0; i < vm->depth; i++)
+    pl->frames[i] = vm->frames[i];
+  memcpy(pl->pos, s->m.pos, sizeof pl->pos);
+  pl->t = s->m.t;
+  pl->wheel = s->m.wheel;
+  pl->override_pct = s->m.override_pct;
+  pl->override_allowed = s->m.override_allowed;
+  pl->corr_allowed = s->m.corr_allowed;
+  pl->osc = s->m.osc;
+  pl->p3 = s->scr.p3;
+  pl->np3 = s->scr.np3;
+  memcpy(pl->p3l, s->scr.p3l, sizeof pl->p3l);
+  pl->directive = s->directive;
+  memcpy(pl->dirtext, s->scr.dirtext, sizeof pl->dirtext);
+
+  struct header h;
+  memset(&h, 0, sizeof h);
+  memcpy(h.magic, MAGIC, 8);
+  h.version = VERSION;
+  h.size = (uint32_t)sizeof *pl;
+  h.sum = state_hash(pl, sizeof *pl);
+
+  size_t plen = strlen(path);
+  char *tmp = malloc(plen + 32);
+  char *dir = strdup(path);
+  if (!tmp || !dir) {
+    free(tmp);
+    free(dir);
+    free(pl);
+    snprintf(err, n, "out of memory");
+    return -1;
+  }
+  snprintf(tmp, plen + 32, "%s.tmp.%ld", path, (long)getpid());
+  int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  int rc = -1;
+  if (fd < 0) {
+    snprintf(err, n, "%s: %s", tmp, strerror(errno));
+  } else if (write_all(fd, &h, sizeof h) || write_all(fd, pl, sizeof *pl) || fsync(fd)) {
+    snprintf(err, n, "%s: %s", tmp, strerror(errno));
+    close(fd);
+    unlink(tmp);
+  } else if (close(fd)) {
+    snprintf(err, n, "%s: %s", tmp, strerror(errno));
+    unlink(tmp);
+  } else if (rename(tmp, path)) {
+    snprintf(err, n, "%s: %s", path, strerror(errno));
+    unlink(tmp);
+  } else {
+    /* the rename itself must reach the disk */
+    int dfd = open(dirname(dir), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dfd >= 0) {
+      fsync(dfd);
+      close(dfd);
+    }
+    rc = 0;
+  }
+  free(tmp);
+  free(dir);
+  free(pl);
+  return rc;
+}
+
+static int frames_fit(const struct program *p, const struct payload *pl)
+{
+  for (int i = 0; i < pl->depth; i++)
+    if (pl->frames[i].ret >= p->ncode || pl->frames[i].start >= p->ncode || pl->frames[i].block >= p->nblocks)
+      return 0;
+  return 1;
+}
+
+int state_load(struct session *s, const char *path, uint64_t prog_hash, char *err, size_t n)
+{
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    snprintf(err, n, "no restart state: %s: %s", path, strerror(errno));
+    return -1;
+  }
+  struct header h;
+  struct payload *pl = malloc(sizeof *pl);
+  int rc = -1;
+  int extra;
+  if (!pl) {
+    snprintf(err, n, "out of memory");
+  } else if (fread(&h, sizeof h, 1, f) != 1 || memcmp(h.magic, MAGIC, 8) != 0) {
+    snprintf(err, n, "%s is not an s42 restart state", path);
+  } else if (h.version != VERSION || h.size != sizeof *pl) {
+    snprintf(err, n, "%s was written by another version of s42", path);
+  } else if (fread(pl, sizeof *pl, 1, f) != 1 || (extra = fgetc(f)) != EOF ||
+             state_hash(pl, sizeof *pl) != h.sum) {
+    snprintf(err, n, "%s is damaged (checksum)", path);
+  } else if (pl->prog_hash != prog_hash) {
+    snprintf(err, n, "the program text changed since the restart point was saved in %s", path);
+  } else if (pl->block >= s->p->nblocks || pl->pc != s->p->blocks[pl->block].code || pl->depth < 0 ||
+             pl->depth > VM_MAXDEPTH || pl->np3 < 0 || pl->np3 > SCR_WORK || pl->wheel < 0 || pl->wheel > 2 ||
+             !frames_fit(s->p, pl)) {
+    snprintf(err, n, "%s does not fit this program", path);
+  } else {
+    struct vm *vm = &s->vm;
+    vm->pc = pl->pc;
+    vm->cur = pl->block;
+    vm->blocks = pl->blocks;
+    memcpy(vm->reg, pl->reg, sizeof vm->reg);
+    memcpy(vm->arr, pl->arr, sizeof vm->arr);
+    vm->depth = pl->depth;
+    for (int i = 0; i < pl->depth; i++)
+      vm->frames[i] = pl->frames[i];
+    memcpy(s->m.pos, pl->pos, sizeof s->m.pos);
+    s->m.t = pl->t;
+    s->m.wheel = pl->wheel;
+    s->m.override_pct = pl->override_pct;
+    s->m.override_allowed = pl->override_allowed;
+    s->m.corr_allowed = pl->corr_allowed;
+    s->m.osc = pl->osc;
+    s->scr.p3 = pl->p3;
+    s->scr.np3 = pl->np3;
+    memcpy(s->scr.p3l, pl->p3l, sizeof s->scr.p3l);
+    s->directive = pl->directive;
+    pl->dirtext[sizeof pl->dirtext - 1] = 0;
+    if (pl->dirtext[0])
+      scr_set_directive(&s->scr, pl->dirtext, vm->reg);
+    s->m15_seen = 1;
+    rc = 0;
+  }
+  fclose(f);
+  free(pl);
+  return rc;
+}

@@ -1,0 +1,266 @@
+#!/usr/bin/env python3
+"""Check the pictures of `s42 plot` (tests/plot/run.sh calls this).
+
+check.py PNG SVG TRACE.jsonl DUMP.json
+  PNG: must be 1600 x 1000; its pixels are decoded here (zlib, no PIL) and
+  each panel is checked against what the trace says moved:
+    - a panel whose axes the program moves holds path pixels (the blue of
+      programmed moves), and the path is fitted to the panel: the inked
+      pixels span nearly the whole width or height of its inner area;
+    - a panel whose axes nothing moves holds no path pixels;
+    - without arcs and corrections, every block's start and end maps (by the
+      documented fitting rule) to a pixel with ink next to it;
+    - the A panel: a trace that spans the time axis, and at least half the
+      panel's height when A moves by 1 degree or more; flat when A never moves.
+  SVG: well-formed XML, an <svg> root of 1600pt x 1000pt.
+Prints nothing and exits 0 when all is well; otherwise prints the failures
+and exits 1.
+"""
+import json
+import struct
+import sys
+import xml.etree.ElementTree as ET
+import zlib
+
+W, H = 1600, 1000
+# The frames of src/plot.c: (name, u axis, v axis, x).  y 96..676, w 490.
+PANELS = [("XY", 0, 1, 40), ("XZ", 0, 2, 555), ("YZ", 1, 2, 1070)]
+PY, PW_, PH_ = 96, 490, 580
+IN_L, IN_T, IN_R, IN_B = 28, 24, 28, 46      # inner area margins
+MINEXT = 0.02                                 # mm
+A_FRAME = (90, 724, 1560, 924)                # x0, y0, x1, y1
+A_TEND_X = 90 + 10 + (1470 - 20)              # where the A trace ends
+
+
+def decode_png(data):
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise ValueError("not a PNG (bad signature)")
+    pos, idat, ihdr = 8, [], None
+    while pos < len(data):
+        ln, typ = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + ln]
+        if typ == b"IHDR":
+            ihdr = struct.unpack(">IIBBBBB", body)
+        elif typ == b"IDAT":
+            idat.append(body)
+        elif typ == b"IEND":
+            break
+        pos += 12 + ln
+    if ihdr is None:
+        raise ValueError("no IHDR")
+    w, h, depth, ctype, _, _, interlace = ihdr
+    if depth != 8 or ctype not in (2, 6) or interlace:
+        raise ValueError("unexpected PNG format: depth %d colour type %d" % (depth, ctype))
+    bpp = 3 if ctype == 2 else 4
+    raw = zlib.decompress(b"".join(idat))
+    stride = w * bpp
+    rows, prev = [], bytearray(stride)
+    for y in range(h):
+        f = raw[y * (stride + 1)]
+        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        if f == 1:
+            for i in range(bpp, stride):
+                line[i] = (line[i] + line[i - bpp]) & 255
+        elif f == 2:
+            line = bytearray((a + b) & 255 for a, b in zip(line, prev))
+        elif f == 3:
+            for i in range(stride):
+                left = line[i - bpp] if i >= bpp else 0
+                line[i] = (line[i] + ((left + prev[i]) >> 1)) & 255
+        elif f == 4:
+            for i in range(stride):
+                a = line[i - bpp] if i >= bpp else 0
+                b = prev[i]
+                c = prev[i - bpp] if i >= bpp else 0
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                pr = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+                line[i] = (line[i] + pr) & 255
+        elif f != 0:
+            raise ValueError("bad filter %d" % f)
+        rows.append(bytes(line))
+        prev = line
+    return w, h, bpp, rows
+
+
+def classify(r, g, b):
+    """'P' programmed path blue, 'M' manual orange, 'C' correction magenta,
+    'S' start green, 'E' end red, None otherwise (white, grey, text)."""
+    if b - r > 50 and b - g > 30:
+        return "P"
+    if r - b > 80 and r > 150 and 60 < g < 200 and r - g > 40:
+        return "M"
+    if r - g > 60 and b - g > 50:
+        return "C"
+    if g - r > 50 and g - b > 40:
+        return "S"
+    if r - g > 100 and r - b > 100 and g < 120:
+        return "E"
+    return None
+
+
+class Img:
+    def __init__(self, w, h, bpp, rows):
+        self.w, self.h, self.bpp, self.rows = w, h, bpp, rows
+
+    def px(self, x, y):
+        o = x * self.bpp
+        row = self.rows[y]
+        return classify(row[o], row[o + 1], row[o + 2])
+
+    def scan(self, x0, y0, x1, y1):
+        """Classified pixels in [x0,x1) x [y0,y1): {kind: [count, bbox]}."""
+        out = {}
+        bpp = self.bpp
+        for y in range(y0, y1):
+            row = self.rows[y]
+            for x in range(x0, x1):
+                o = x * bpp
+                r, g, b = row[o], row[o + 1], row[o + 2]
+                if r == g == b:
+                    continue
+                k = classify(r, g, b)
+                if k:
+                    e = out.get(k)
+                    if e is None:
+                        out[k] = [1, [x, y, x, y]]
+                    else:
+                        e[0] += 1
+                        bb = e[1]
+                        if x < bb[0]: bb[0] = x
+                        if x > bb[2]: bb[2] = x
+                        if y < bb[1]: bb[1] = y
+                        if y > bb[3]: bb[3] = y
+        return out
+
+    def ink_near(self, x, y, rad=3):
+        for yy in range(max(0, y - rad), min(self.h, y + rad + 1)):
+            for xx in range(max(0, x - rad), min(self.w, x + rad + 1)):
+                if self.px(xx, yy):
+                    return True
+        return False
+
+
+def check(png, svg, trace, dump):
+    fails = []
+    data = open(png, "rb").read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n" or data[12:16] != b"IHDR":
+        return ["PNG: bad signature or no IHDR first"]
+    w, h = struct.unpack(">II", data[16:24])
+    if (w, h) != (W, H):
+        return ["PNG: size %dx%d, want %dx%d" % (w, h, W, H)]
+    img = Img(*decode_png(data))
+
+    rows = [json.loads(l) for l in open(trace) if l.strip()]
+    final = json.load(open(dump))["pos"]
+    axes = "xyza"
+    pos = [0, 0, 0, 0]
+    pts = [tuple(pos)]
+    moved = [False] * 4       # programmed moves
+    manual = [False] * 4      # jogs
+    arcs = False
+    for r in rows:
+        d = [r.get(a, 0) for a in axes]
+        if r.get("motion") in ("G02", "G03", "G12", "G13") or \
+           (r.get("motion") == "M19" and "jogs" in r):
+            arcs = True
+        for i in range(4):
+            if d[i]:
+                moved[i] = True
+            pos[i] += d[i]
+        pts.append(tuple(pos))
+        j = r.get("jogs")
+        if j:
+            for i in range(4):
+                if j[axes[i]]:
+                    manual[i] = True
+                pos[i] += j[axes[i]]
+            pts.append(tuple(pos))
+    corr = [pos[i] != final[axes[i]] for i in range(4)]
+    exact = not arcs and not any(corr) and len(pts) < 4000
+
+    for name, u, v, x in PANELS:
+        found = img.scan(x, PY, x + PW_, PY + PH_)
+        ix0, iy0 = x + IN_L, PY + IN_T
+        iw, ih = PW_ - IN_L - IN_R, PH_ - IN_T - IN_B
+        blue = found.get("P", [0, None])[0]
+        if "S" not in found:
+            fails.append("%s: no start marker" % name)
+        if moved[u] or moved[v]:
+            if blue < 20:
+                fails.append("%s: the program moves %s/%s but the panel has %d path pixels"
+                             % (name, axes[u].upper(), axes[v].upper(), blue))
+            lo_u = min(p[u] for p in pts); hi_u = max(p[u] for p in pts)
+            lo_v = min(p[v] for p in pts); hi_v = max(p[v] for p in pts)
+            if max(hi_u - lo_u, hi_v - lo_v) / 1000.0 >= MINEXT:
+                bb = None
+                for k, (n, b) in found.items():
+                    bb = list(b) if bb is None else [min(bb[0], b[0]), min(bb[1], b[1]),
+                                                     max(bb[2], b[2]), max(bb[3], b[3])]
+                spanw, spanh = bb[2] - bb[0], bb[3] - bb[1]
+                if spanw < 0.9 * iw and spanh < 0.9 * ih:
+                    fails.append("%s: the path is not fitted to the panel: it spans %dx%d px of %dx%d"
+                                 % (name, spanw, spanh, iw, ih))
+                if found.get("P") and not arcs:
+                    b = found["P"][1]
+                    if b[0] < ix0 - 3 or b[2] > ix0 + iw + 3 or b[1] < iy0 - 3 or b[3] > iy0 + ih + 3:
+                        fails.append("%s: path pixels outside the fitted area: %s" % (name, b))
+        elif not (manual[u] or manual[v] or corr[u] or corr[v] or arcs):
+            if blue:
+                fails.append("%s: nothing moves %s/%s but the panel has %d path pixels"
+                             % (name, axes[u].upper(), axes[v].upper(), blue))
+        if exact and (moved[u] or moved[v] or manual[u] or manual[v]):
+            lo_u = min(p[u] for p in pts) / 1000.0; hi_u = max(p[u] for p in pts) / 1000.0
+            lo_v = min(p[v] for p in pts) / 1000.0; hi_v = max(p[v] for p in pts) / 1000.0
+            du, dv = hi_u - lo_u, hi_v - lo_v
+            s = min(iw / max(du, MINEXT), ih / max(dv, MINEXT))
+            if du < MINEXT and dv < MINEXT:
+                s = min(iw, ih) / 1.0
+            u0, v0 = (lo_u + hi_u) / 2, (lo_v + hi_v) / 2
+            miss = 0
+            for p in pts:
+                px = int(round(ix0 + iw / 2 + (p[u] / 1000.0 - u0) * s))
+                py = int(round(iy0 + ih / 2 - (p[v] / 1000.0 - v0) * s))
+                if py > PY + PH_ - 36:
+                    continue   # under the scale-bar band
+                if not img.ink_near(px, py):
+                    miss += 1
+            if miss:
+                fails.append("%s: %d block end points have no path drawn at their pixel" % (name, miss))
+
+    x0, y0, x1, y1 = A_FRAME
+    found = img.scan(x0, y0, x1, y1)
+    if "P" not in found:
+        fails.append("A: no trace")
+    else:
+        b = found["P"][1]
+        if b[2] < A_TEND_X - 2:
+            fails.append("A: the trace ends at x=%d, not at the end of the time axis (%d)" % (b[2], A_TEND_X))
+        ys = [found[k][1] for k in "PMC" if k in found]
+        top, bot = min(q[1] for q in ys), max(q[3] for q in ys)
+        a_ext = max(p[3] for p in pts) - min(p[3] for p in pts)
+        if moved[3] and a_ext >= 1000 and bot - top < 0.5 * (y1 - y0):
+            fails.append("A: A moves but the trace spans only %d px in height" % (bot - top))
+        if not (moved[3] or manual[3] or corr[3]) and b[3] - b[1] > 4:
+            fails.append("A: A never moves but the trace spans %d px in height" % (b[3] - b[1]))
+
+    try:
+        root = ET.parse(svg).getroot()
+        if not root.tag.endswith("svg"):
+            fails.append("SVG: root is <%s>" % root.tag)
+        wa, ha = root.get("width", ""), root.get("height", "")
+        if wa.replace("pt", "") not in ("1600", "1600.0") or ha.replace("pt", "") not in ("1000", "1000.0"):
+            fails.append("SVG: size %s x %s, want 1600pt x 1000pt" % (wa, ha))
+    except ET.ParseError as e:
+        fails.append("SVG: not well-formed XML: %s" % e)
+    return fails
+
+
+if __name__ == "__main__":
+    try:
+        f = check(*sys.argv[1:5])
+    except Exception as e:  # a broken file is a failure, not a crash
+        f = ["%s: %s" % (type(e).__name__, e)]
+    for m in f:
+        print(m)
+    sys.exit(1 if f else 0)

@@ -1,0 +1,90 @@
+#!/bin/sh
+# s42 plot: for every programs/*.kp (with programs/NAME.operator when there
+# is one) draw a PNG and an SVG and check them with check.py: the PNG's size
+# from its header, path pixels where the run moved, nothing where it did
+# not, the SVG well-formed.  Also: the PDF, the refusal of an unknown
+# extension, and that a failed plot leaves no file behind.
+#   sh tests/plot/run.sh ./s42
+S42=${1:-./s42}
+PY=${PYTHON:-python3}
+HERE=$(dirname "$0")
+PROGS=${PROGRAMS:-programs}
+# under ASan: fontconfig's process-long configuration is not ours
+LSAN_OPTIONS="suppressions=$(cd "$HERE" && pwd)/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
+export LSAN_OPTIONS
+T=$(mktemp -d "${TMPDIR:-/tmp}/s42plot.XXXXXX") || exit 1
+trap 'rm -rf "$T"' EXIT INT TERM
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL $1"; shift; [ $# -gt 0 ] && printf '%s\n' "$@" | sed 's/^/  /'; }
+
+for kp in "$PROGS"/*.kp; do
+  [ -f "$kp" ] || continue
+  name=$(basename "$kp" .kp)
+  set -- "$kp"
+  [ -f "$PROGS/$name.operator" ] && set -- "$kp" --operator "$PROGS/$name.operator"
+  "$S42" run "$@" --trace=json >"$T/$name.jsonl" 2>/dev/null
+  want=$?
+  "$S42" run "$@" --dump >"$T/$name.dump" 2>/dev/null
+  "$S42" plot "$@" -o "$T/$name.png" 2>"$T/$name.err"
+  st_png=$?
+  "$S42" plot "$@" -o "$T/$name.svg" 2>>"$T/$name.err"
+  st_svg=$?
+  if [ $st_png -ne $want ] || [ $st_svg -ne $want ]; then
+    bad "$name" "plot exit $st_png (png) / $st_svg (svg), run exit $want" "$(cat "$T/$name.err")"
+    continue
+  fi
+  if [ ! -s "$T/$name.png" ] || [ ! -s "$T/$name.svg" ]; then
+    bad "$name" "no picture written" "$(cat "$T/$name.err")"
+    continue
+  fi
+  if msg=$("$PY" "$HERE/check.py" "$T/$name.png" "$T/$name.svg" "$T/$name.jsonl" "$T/$name.dump"); then
+    ok
+  else
+    bad "$name" "$msg"
+  fi
+done
+
+# the same picture as PDF
+first=$(ls "$PROGS"/*.kp | head -n 1)
+name=$(basename "$first" .kp)
+set -- "$first"
+[ -f "$PROGS/$name.operator" ] && set -- "$first" --operator "$PROGS/$name.operator"
+"$S42" plot "$@" -o "$T/out.pdf" 2>/dev/null
+if head -c 5 "$T/out.pdf" 2>/dev/null | grep -q '%PDF-' && tail -c 8 "$T/out.pdf" | grep -q '%%EOF'; then
+  ok
+else
+  bad "pdf" "$T/out.pdf is not a PDF"
+fi
+
+# an unknown extension: usage error, a clear message, no file
+"$S42" plot "$@" -o "$T/out.jpg" 2>"$T/jpg.err"
+st=$?
+if [ $st -eq 2 ] && grep -q '\.png' "$T/jpg.err" && [ ! -e "$T/out.jpg" ]; then
+  ok
+else
+  bad "extension" "exit $st for .jpg, want 2 with a message naming .png/.svg/.pdf" "$(cat "$T/jpg.err")"
+fi
+
+# a directory that does not exist: an I/O error, nothing left behind
+"$S42" plot "$@" -o "$T/nodir/out.png" 2>"$T/nodir.err"
+st=$?
+if [ $st -eq 4 ] && [ -s "$T/nodir.err" ]; then
+  ok
+else
+  bad "io-error" "exit $st for a missing directory, want 4" "$(cat "$T/nodir.err")"
+fi
+
+# an existing picture is replaced whole, and no temporary file is left
+printf 'old' >"$T/keep.png"
+"$S42" plot "$@" -o "$T/keep.png" 2>/dev/null
+left=$(ls "$T" | grep -c '\.tmp' || true)
+if [ "$(head -c 4 "$T/keep.png" | od -An -c | tr -d ' ')" = '211PNG' ] && [ "$left" -eq 0 ]; then
+  ok
+else
+  bad "atomic" "keep.png not replaced by a PNG, or $left temporary files left"
+fi
+
+echo "plot: $pass passed, $fail failed"
+[ $fail -eq 0 ]
