@@ -8,7 +8,9 @@
   MSG(BELOW,  "знач. менше допустимого", "value below the minimum") \
   MSG(ABOVE,  "знач. більше допустимого", "value above the maximum") \
   MSG(DONE,   "Введення завершено",       "Input complete") \
-  MSG(LIMIT,  "Обмеження введення",       "Input buffer full")
+  MSG(LIMIT,  "Обмеження введення",       "Input buffer full") \
+  MSG(NOCORR, "корекцію заборонено M23",  "corrections forbidden: M23") \
+  MSG(NOOVR,  "корекцію F заборонено M25", "feed override forbidden: M25")
 
 enum scr_msg {
 #define MSG_ENUM(id, uk, en) MSG_##id,

@@ -410,8 +410,8 @@ int sess_jog(struct session *s, int axis, int64_t d)
 int sess_correct(struct session *s, int axis, int64_t d)
 {
   if (!s->m.corr_allowed) {
-    warn(s, s->en ? "correction refused: operational corrections are forbidden (M23)"
-                  : "корекцію відхилено: оперативні корекції заборонені (M23)");
+    warn(s, "correction refused: operational corrections are forbidden (M23)");
+    scr_message(&s->scr, scr_msg_text(MSG_NOCORR, s->en));
     return -1;
   }
   mach_jog(&s->m, axis, d, 1);
@@ -421,7 +421,8 @@ int sess_correct(struct session *s, int axis, int64_t d)
 int sess_override(struct session *s, int pct)
 {
   if (!s->m.override_allowed) {
-    warn(s, s->en ? "feed override refused: forbidden by M25" : "корекцію швидкості відхилено: заборонено M25");
+    warn(s, "feed override refused: forbidden by M25");
+    scr_message(&s->scr, scr_msg_text(MSG_NOOVR, s->en));
     return -1;
   }
   s->m.override_pct = pct;
