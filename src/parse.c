@@ -11,7 +11,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAX_DEPTH 100          /* nested parentheses / signs in one expression */
+#define MAX_DEPTH 200          /* nested parentheses / signs in one expression */
+/* A block of 320 characters holds far fewer nodes; the bound keeps the
+ * compiler's walks over a left-deep chain (1+1+1+...) from exhausting the
+ * stack on a garbage file, which is still parsed to report its errors. */
+#define MAX_NODES 4096
 
 struct arena_chunk { struct arena_chunk *next; size_t size; };
 
@@ -177,6 +181,8 @@ static long number(struct pstate *s, int maxdig, const char *what)
 
 static struct expr *node(struct pstate *s, int kind, unsigned col)
 {
+  if (++s->p->nodes > MAX_NODES)
+    fail(s, S42_E_BLOCKLEN, col, "block too long to analyse (over %d terms)", MAX_NODES);
   struct expr *e = arena_alloc(&s->p->ar, sizeof *e);
   memset(e, 0, sizeof *e);
   e->kind = (uint8_t)kind;
@@ -335,7 +341,7 @@ static struct expr *power(struct pstate *s)
 }
 
 /* A sign applies to the factor that follows, power included: -2%%2 = -4. */
-static struct expr *unary(struct pstate *s)
+static struct expr *unary_inner(struct pstate *s)
 {
   int32_t c = peek(s);
   if (c == '+' || c == '-') {
@@ -359,6 +365,17 @@ static struct expr *unary(struct pstate *s)
     return e;
   }
   return power(s);
+}
+
+/* Every way an expression nests (signs, parentheses, functions, powers)
+ * passes through here: bound the recursion, whatever the text. */
+static struct expr *unary(struct pstate *s)
+{
+  if (++s->p->depth > MAX_DEPTH)
+    fail(s, S42_E_SYNTAX, 0, "expression nested too deeply");
+  struct expr *e = unary_inner(s);
+  s->p->depth--;
+  return e;
 }
 
 static struct expr *term(struct pstate *s)
@@ -893,6 +910,7 @@ int parse_block(struct parser *p, struct block *b)
   s.b = b;
   arena_reset(&p->ar);
   clear_block(b);
+  p->nodes = 0;
   int32_t c;
   for (;;) {
     c = lex_peek(l);
@@ -927,7 +945,7 @@ int parse_block(struct parser *p, struct block *b)
   } else {
     lex_skip_block(l);
   }
-  p->depth = p->paren = p->slash_ends = 0;
+  p->depth = p->paren = p->slash_ends = p->nodes = 0;
   b->len = l->blen;
   if (lex_peek(l) == LX_EOB)
     lex_adv(l);

@@ -11,6 +11,7 @@ struct parser {
   struct diag_list *d;
   int depth;              /* expression nesting, bounded */
   int paren;              /* open parentheses in the current expression */
+  int nodes;              /* expression nodes in the current block, bounded */
   int slash_ends;         /* G28 /min:max/: a '/' outside parentheses closes it */
 };
 

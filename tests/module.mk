@@ -24,7 +24,8 @@ programs: $(S42)
 
 # Inputs that once crashed a fuzzer: each must give a clean status (0-3).
 regress: $(S42)
-	@n=0; for f in tests/fuzz/regress/*; do \
+	@$(PYTHON) tests/fuzz/deep.py $(BUILD)/deep
+	@n=0; for f in tests/fuzz/regress/* $(BUILD)/deep/*; do \
 	  $(S42) run "$$f" --max-blocks 100000 --dump >/dev/null 2>&1; st=$$?; \
 	  if [ $$st -gt 3 ]; then echo "FAIL regress $$f: status $$st"; exit 1; fi; n=$$((n+1)); \
 	done; echo "regress: $$n passed, 0 failed"
