@@ -49,9 +49,10 @@ FUZZ_TARGETS := fuzz_program fuzz_operator
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Ivm -Idisplay -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/%)
-$(BUILD)/fuzz/%: tests/fuzz/%.c $(VM_SRCS) $(DISP_SRCS) $(SRC_SRCS)
+FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c,$(SRC_SRCS))
+$(BUILD)/fuzz/%: tests/fuzz/%.c $(FUZZ_SRCS)
 	@mkdir -p $(@D)
-	clang $(FUZZ_FLAGS) -o $@ $< $(VM_SRCS) $(DISP_SRCS) $(SRC_SRCS) -lm
+	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) -lm
 fuzz: fuzz-bin
 	@mkdir -p $(BUILD)/fuzz/corpus-program $(BUILD)/fuzz/corpus-operator
 	@cp programs/*.kp tests/conformance/cases/*/program.kp $(BUILD)/fuzz/corpus-program/ 2>/dev/null || true
