@@ -91,6 +91,11 @@ static void step(struct lex *l, size_t len, int32_t c)
 
 int32_t lex_peek(struct lex *l)
 {
+  /* the parser peeks the same character many times: answer from the cache
+   * while the cursor has not moved */
+  if (l->peeked && l->pos == l->cpos && l->line == l->cline && l->col == l->ccol)
+    return l->c;
+  l->peeked = 1;
   for (;;) {
     if (l->pos >= l->n) {
       l->c = LX_EOF;

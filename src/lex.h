@@ -22,6 +22,7 @@ struct lex {
   int noted;              /* look-alike note given */
   unsigned blen;          /* significant characters of the current block */
   /* what lex_peek saw: */
+  int peeked;
   int32_t c;
   size_t cpos, cnext;
   unsigned cline, ccol, cnline, cncol;
