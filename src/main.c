@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #ifndef S42_VERSION
 #define S42_VERSION "0.1.0"
@@ -249,13 +250,37 @@ struct both_sink {
   struct trace_ctx tr;
   struct runner *r;
   struct plot *plot;       /* s42 plot: the path is collected here */
+  int realtime;            /* --realtime: wait until the wall clock reaches the simulated time */
+  struct timespec t0;      /* wall clock when the run (or restart) began */
+  double sim0;             /* simulated time then */
 };
+
+/* --realtime: each block ends when the machine would have finished it. */
+static void pace(struct both_sink *b, double sim)
+{
+  struct timespec now;
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  double wall = (double)(now.tv_sec - b->t0.tv_sec) + (double)(now.tv_nsec - b->t0.tv_nsec) / 1e9;
+  double wait = sim - b->sim0 - wall;
+  if (wait > 0) {
+    struct timespec ts;
+    ts.tv_sec = (time_t)wait;
+    ts.tv_nsec = (long)((wait - (double)ts.tv_sec) * 1e9);
+    while (nanosleep(&ts, &ts) && errno == EINTR)
+      ;
+  }
+}
 
 static void row_sink(void *ctx, const struct session *s, const struct sess_row *row)
 {
   struct both_sink *b = ctx;
-  if (b->tr.out)
+  if (b->realtime)
+    pace(b, row->t);
+  if (b->tr.out) {
     report_row(&b->tr, s, row);
+    if (b->realtime)
+      fflush(b->tr.out);
+  }
   if (b->plot)
     plot_row(b->plot, s, row);
 }
@@ -347,7 +372,7 @@ static int serve_wait(struct runner *r)
 static int headless(const struct opts *opt, struct plot *plot)
 {
   struct opts o = *opt;
-  const char *unsupported = o.modbus ? "--modbus (the Modbus server)" : o.realtime ? "--realtime" : NULL;
+  const char *unsupported = o.modbus ? "--modbus (the Modbus server)" : NULL;
   if (unsupported) {
     fprintf(stderr, "s42: %s is not implemented in this build\n", unsupported);
     return EXIT_USAGE;
@@ -403,6 +428,8 @@ static int headless(const struct opts *opt, struct plot *plot)
   bs.tr.file = o.program;
   bs.r = &r;
   bs.plot = plot;
+  bs.realtime = o.realtime;
+  clock_gettime(CLOCK_MONOTONIC, &bs.t0);
   r.s.sink.ctx = &bs;
   r.s.sink.row = row_sink;
   r.s.sink.warn = sink_warn;
@@ -456,6 +483,8 @@ static int headless(const struct opts *opt, struct plot *plot)
     st = "error";
     r.s.state = SE_ERROR;
   }
+  bs.sim0 = r.s.m.t;     /* a restart goes on from the saved time */
+  clock_gettime(CLOCK_MONOTONIC, &bs.t0);
 
   while (status == EXIT_END) {
     r.s.vm.start_all = r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]);

@@ -34,6 +34,10 @@ regress: $(S42)
 restart: $(S42)
 	sh tests/restart/run.sh $(S42)
 
+# --realtime paces the run at machine speed (a lower bound on the wall time)
+realtime: $(S42)
+	sh tests/realtime/run.sh $(S42)
+
 # s42 plot on every bundled program: image size, drawn pixels, valid SVG.
 plot: $(S42)
 	sh tests/plot/run.sh $(S42)
