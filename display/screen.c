@@ -79,7 +79,7 @@ void scr_center(struct screen *s, const char *text)
   s->last = idx;
 }
 
-int scr_prompt(struct screen *s, const char *text, int wrapped)
+void scr_prompt(struct screen *s, const char *text, int wrapped)
 {
   uint32_t t[64];
   int n = scr_decode(text, t, 64), idx;
@@ -112,7 +112,6 @@ int scr_prompt(struct screen *s, const char *text, int wrapped)
   memset(s->digits, ' ', 7);
   s->cursor = 0;
   s->neg = 0;
-  return 0;
 }
 
 void scr_field_digit(struct screen *s, int d)
@@ -234,17 +233,13 @@ void scr_p3_add(struct screen *s, const char *text)
   s->p3 = 1;
 }
 
-void scr_set_directive(struct screen *s, const char *text, const double *regs)
+void scr_set_directive(struct screen *s, const char *text)
 {
-  (void)regs;
-  memset(s->directive, 0, sizeof s->directive);
-  scr_decode(text, s->directive, SCR_COLS);
   snprintf(s->dirtext, sizeof s->dirtext, "%s", text);
 }
 
 void scr_clear_directive(struct screen *s)
 {
-  memset(s->directive, 0, sizeof s->directive);
   s->dirtext[0] = 0;
 }
 

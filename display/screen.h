@@ -42,7 +42,6 @@ struct screen {
   int p3;                           /* the work area shows the P3 display */
   struct scr_p3 p3l[SCR_WORK];
   int np3;
-  uint32_t directive[SCR_COLS];
   char dirtext[SCR_COLS * 4 + 1];   /* the directive as written, ((Rn drawn live */
   uint32_t message[SCR_COLS];
   int has_message;                  /* a message hides the directive until the next key */
@@ -60,7 +59,7 @@ void scr_center(struct screen *s, const char *text);
 /* G27: text from the start of the line, dots to column 25, the field at
  * 26-32 (wrapped: the text runs over two lines, the field on the second).
  * When four screens are full the oldest line goes, with "Обмеження введення". */
-int scr_prompt(struct screen *s, const char *text, int wrapped);
+void scr_prompt(struct screen *s, const char *text, int wrapped);
 /* The field: digits, ЗБ, arrows, minus; the value when ПС ends it. */
 void scr_field_digit(struct screen *s, int d);
 void scr_field_backspace(struct screen *s);
@@ -74,7 +73,8 @@ void scr_field_type(struct screen *s, long long v);
 /* G29: start (or, after M15, extend) the P3 layout. */
 void scr_p3_clear(struct screen *s);
 void scr_p3_add(struct screen *s, const char *text);
-void scr_set_directive(struct screen *s, const char *text, const double *regs);
+/* M18: the directive as written; its ((Rn are drawn live by scr_render. */
+void scr_set_directive(struct screen *s, const char *text);
 void scr_clear_directive(struct screen *s);
 void scr_message(struct screen *s, const char *text);
 void scr_scroll(struct screen *s, int delta);

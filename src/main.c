@@ -231,7 +231,6 @@ struct runner {
   const char *file;
   unsigned *runs;            /* runs per block number, for `at` */
   uint8_t *watch;
-  int stopped_by_script;
 };
 
 static void warn_sink(void *ctx, const struct session *s, const char *msg)
@@ -425,7 +424,6 @@ static int headless(const struct opts *opt, struct plot *plot)
   struct both_sink bs;
   bs.tr.out = o.trace ? stdout : NULL;
   bs.tr.json = o.json;
-  bs.tr.file = o.program;
   bs.r = &r;
   bs.plot = plot;
   bs.realtime = o.realtime;

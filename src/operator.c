@@ -55,7 +55,7 @@ static int word(struct cur *c, char *buf, size_t n)
   return k > 0;
 }
 
-/* A signed integer; `need_sign` demands + or -. */
+/* A whole number with an optional sign, within lo..hi. */
 static int integer(const char *w, int64_t lo, int64_t hi, int64_t *out)
 {
   if (!*w)

@@ -10,7 +10,6 @@
 struct trace_ctx {
   FILE *out;
   int json;
-  const char *file;
 };
 
 void report_row(void *ctx, const struct session *s, const struct sess_row *r);

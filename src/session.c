@@ -245,7 +245,7 @@ static int exec_block(struct session *s)
   }
   if (at->m18) {
     s->directive = at->m18;
-    scr_set_directive(&s->scr, kp_str(s->p, at->m18), s->vm.reg);
+    scr_set_directive(&s->scr, kp_str(s->p, at->m18));
   }
   if (at->motion == MO_G20) {
     memset(s->m.corr, 0, sizeof s->m.corr);   /* M16 counts from here */

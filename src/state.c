@@ -199,7 +199,7 @@ int state_load(struct session *s, const char *path, uint64_t prog_hash, char *er
     s->directive = pl->directive;
     pl->dirtext[sizeof pl->dirtext - 1] = 0;
     if (pl->dirtext[0])
-      scr_set_directive(&s->scr, pl->dirtext, vm->reg);
+      scr_set_directive(&s->scr, pl->dirtext);
     s->m15_seen = 1;
     rc = 0;
   }
