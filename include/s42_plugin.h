@@ -1,0 +1,242 @@
+/* s42_plugin.h -- the s42 plugin ABI, version 1.0.  This header is the whole
+ * of what a plugin author needs: a plugin includes nothing else of s42.
+ *
+ * A plugin is a shared object that exports one function,
+ *
+ *     const struct s42_plugin *s42_plugin_entry(void);
+ *
+ * returning a constant descriptor: the ABI it was built for, its name and
+ * version, the G and M functions it implements and its callbacks.  s42
+ * loads it with dlopen(RTLD_NOW | RTLD_LOCAL), checks abi_major, abi_minor
+ * and the fingerprint before it calls anything else, and refuses a plugin
+ * built for another major version (or a newer minor one) with a message
+ * naming both versions.  Reading the descriptor costs nothing: init() runs
+ * only when a program uses one of the plugin's functions, so a plugin with
+ * heavy dependencies keeps them in a second library that init() dlopens
+ * (see plugins/toothsearch/ in the s42 sources).
+ *
+ * Host services arrive as a function table (struct s42_host) in init(); the
+ * plugin never links against the s42 executable.  Every struct here carries
+ * its own size as its first member and grows only by appending members, so
+ * a plugin built against an older 1.x header keeps working: the host reads
+ * only the members the plugin's `size` covers, and a plugin must check
+ * host->size before it calls a host service added after 1.0.
+ *
+ * Units are those of the 2С42: lengths in discretes (1 µm; A in 0.001°),
+ * speeds in mm/min (deg/min for A), time in seconds.
+ *
+ * Errors never unwind across the boundary: a callback that fails calls
+ * host->error() with an error code of the language ("E-ARC", "E-OSC", ...)
+ * and returns S42_FAIL; the block then has not run and the cycle stops with
+ * that error.  A plugin written in C++ catches every exception at its edge.
+ *
+ * A minimal plugin, built with `cc -shared -fPIC -o hello.so hello.c`:
+ *
+ *     #include <s42_plugin.h>
+ *     static const struct s42_host *host;
+ *     static int init(const struct s42_host *h, const char *dir, void **self)
+ *     { (void)dir; *self = NULL; host = h; return S42_OK; }
+ *     static int run(void *self, struct s42_block *b)
+ *     { (void)self; host->log(b, "hello from block %d", host->number(b));
+ *       return S42_OK; }
+ *     static const struct s42_function fn[] = {
+ *       { sizeof(struct s42_function), 'M', 50, 0, "", 0, "say hello" } };
+ *     static const struct s42_plugin desc = {
+ *       .size = sizeof desc, .abi_major = S42_ABI_MAJOR,
+ *       .abi_minor = S42_ABI_MINOR, .fingerprint = S42_ABI_FINGERPRINT,
+ *       .name = "hello", .version = "1.0", .summary = "M50 logs a line",
+ *       .functions = fn, .nfunctions = 1, .init = init, .run = run };
+ *     S42_EXPORT const struct s42_plugin *s42_plugin_entry(void)
+ *     { return &desc; }
+ */
+#ifndef S42_PLUGIN_H
+#define S42_PLUGIN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define S42_ABI_MAJOR 1
+#define S42_ABI_MINOR 0
+/* "s42-abi\1": guards against a stray symbol of the same name */
+#define S42_ABI_FINGERPRINT 0x7334322d61626901ull
+#define S42_PLUGIN_ENTRY_NAME "s42_plugin_entry"
+
+#if defined(__GNUC__)
+#define S42_EXPORT __attribute__((visibility("default")))
+#else
+#define S42_EXPORT
+#endif
+
+/* What callbacks return. */
+enum s42_status {
+  S42_OK = 0,
+  S42_FAIL = -1,       /* after host->error(); the block has not run */
+  S42_WAIT_PUSK = 1,   /* run(): wait for Пуск, then run() is called again */
+  S42_WAIT_PS = 2      /* run(): wait for ПС, then run() is called again */
+};
+
+enum s42_axis { S42_X, S42_Y, S42_Z, S42_A };
+
+/* Parameter numbers for param()/set_param() beyond R0..R113. */
+enum s42_param { S42_D1 = 114, S42_TK = 115, S42_UG = 116, S42_F = 117 };
+
+/* Service-line modes for mode(). */
+enum s42_mode { S42_MODE_AUTO, S42_MODE_MANUAL, S42_MODE_RESULTS };
+
+/* struct s42_function.flags */
+enum {
+  S42_FN_SEPARATE = 1,  /* stands in a separate block (language.md sec. 8) */
+  S42_FN_PLANE = 2,     /* needs G17, G18 or G19 in the block */
+  S42_FN_MOTION = 4     /* moves the axes: run() calls host->move() */
+};
+
+/* One G or M function the plugin implements. */
+struct s42_function {
+  uint32_t size;          /* sizeof(struct s42_function) */
+  char kind;              /* 'G' or 'M' */
+  int number;             /* 0..99 */
+  int group;              /* G: its group, 1..4 (language.md sec. 8); M: 0 */
+  const char *operands;   /* letters of the words the block may carry with
+                             it besides functions, jumps and parameters
+                             ("XYZAIJKF"); NULL: any */
+  uint32_t flags;         /* S42_FN_* */
+  const char *summary;    /* one line for `s42 plugins` */
+};
+
+/* The block being run, as the host sees it: opaque to plugins. */
+struct s42_block;
+
+/* A contour move for host->move(): the host applies F, the feed override,
+ * the 6000 clamp and the limit, advances simulated time by length / speed,
+ * and adds the increments to the position. */
+struct s42_move {
+  uint32_t size;          /* sizeof(struct s42_move) */
+  double d[4];            /* increments of X Y Z A, discretes */
+  double length;          /* path length, mm (for A alone: degrees) */
+  double limit;           /* the highest contour speed at which no axis
+                             exceeds its own speed on this path, mm/min */
+};
+
+/* Services of the host.  Calls that take a block are valid only during the
+ * callback that received it. */
+struct s42_host {
+  uint32_t size;
+  uint16_t abi_major, abi_minor;
+
+  /* the block */
+  int (*number)(struct s42_block *b);            /* its number, -1 none */
+  int (*has_g)(struct s42_block *b, int g);
+  int (*has_m)(struct s42_block *b, int m);
+  int (*plane)(struct s42_block *b);             /* 0, 17, 18 or 19 */
+  /* Words of the block, by letter: X Y Z A I J K (discretes) and F (the
+   * block's own F: for G07 the oscillation speed, with M12 the search
+   * speed; otherwise the contour speed it sets).  has_word is 0 for a word
+   * the block does not have; word() then returns 0. */
+  int (*has_word)(struct s42_block *b, char letter);
+  double (*word)(struct s42_block *b, char letter);
+  /* run() of a block that waited: 0 on the first call, then 1, 2, ... */
+  int (*resumed)(struct s42_block *b);
+
+  /* parameters (R0..R113, S42_D1, S42_TK, S42_UG, S42_F) and arrays */
+  double (*param)(struct s42_block *b, int n);
+  int (*set_param)(struct s42_block *b, int n, double v);   /* 0, -1 out of range */
+  /* Load array 1 or 2 with n values from the start, pointer at the start. */
+  int (*load_array)(struct s42_block *b, int array, const double *v, int n);
+
+  /* the machine */
+  int64_t (*position)(struct s42_block *b, int axis);
+  double (*time)(struct s42_block *b);
+  double (*axis_speed)(int axis);                /* the axis's maximum, mm/min */
+  /* Does this block's contour move `axis` (a non-zero increment)? */
+  int (*moves_axis)(struct s42_block *b, int axis);
+  int (*move)(struct s42_block *b, const struct s42_move *m);
+  /* Move an axis outside the contour (oscillation): counts in the position,
+   * takes no time of its own; the host records it for plots. */
+  void (*displace)(struct s42_block *b, int axis, int64_t d);
+  /* Let simulated time pass (a search's revolution, a return stroke). */
+  void (*dwell)(struct s42_block *b, double seconds);
+
+  /* reports: error() before returning S42_FAIL; code is "E-OSC" etc. */
+  void (*error)(struct s42_block *b, const char *code, const char *fmt, ...)
+#if defined(__GNUC__)
+      __attribute__((format(printf, 3, 4)))
+#endif
+      ;
+  void (*warn)(struct s42_block *b, const char *fmt, ...)
+#if defined(__GNUC__)
+      __attribute__((format(printf, 2, 3)))
+#endif
+      ;
+  void (*log)(struct s42_block *b, const char *fmt, ...)
+#if defined(__GNUC__)
+      __attribute__((format(printf, 2, 3)))
+#endif
+      ;
+  void *(*alloc)(size_t n);                      /* NULL when out of memory */
+  void (*free)(void *p);
+
+  /* the operator's display */
+  void (*directive)(struct s42_block *b, const char *text);  /* NULL erases */
+  void (*mode)(struct s42_block *b, int mode);               /* S42_MODE_* */
+};
+
+/* The descriptor.  Callbacks other than init may be NULL. */
+struct s42_plugin {
+  uint32_t size;              /* sizeof(struct s42_plugin) as built */
+  uint16_t abi_major, abi_minor;
+  uint64_t fingerprint;       /* S42_ABI_FINGERPRINT */
+  const char *name, *version, *summary;
+  const struct s42_function *functions;
+  uint32_t nfunctions;
+  uint32_t flags;             /* S42_PL_* */
+
+  /* Called once, when a program first needs the plugin; dir is the
+   * directory the plugin was loaded from.  Returns S42_OK or S42_FAIL (then
+   * nothing else is called but fini is not either). */
+  int (*init)(const struct s42_host *host, const char *dir, void **self);
+  void (*fini)(void *self);
+
+  /* The phases of one block (language.md sec. 7), called for a block that
+   * uses one of the plugin's functions -- or for every block while the
+   * program uses the plugin, with S42_PL_EVERY_BLOCK:
+   *   check   before anything changes: raise errors here
+   *   start   modal changes (M13)
+   *   run     the block's own function (motion, search); may wait
+   *   finish  after the motion (M14) */
+  int (*check)(void *self, struct s42_block *b);
+  int (*start)(void *self, struct s42_block *b);
+  int (*run)(void *self, struct s42_block *b);
+  int (*finish)(void *self, struct s42_block *b);
+  /* Simulated time passes by dt seconds (during moves, dwells, run-down). */
+  void (*advance)(void *self, struct s42_block *b, double dt);
+  /* The point at fraction t (0..1) of the path of a block whose run()
+   * moves, as increments from its start; the host uses it for teach-in
+   * (M19: t proportional to the path length) and to draw curves. */
+  int (*path)(void *self, struct s42_block *b, double t, double d[4]);
+  /* The restart state (M15): save returns the bytes needed (and writes
+   * them when they fit in cap); load takes them back. */
+  size_t (*save)(void *self, void *buf, size_t cap);
+  int (*load)(void *self, const void *buf, size_t len);
+  /* A JSON value for the trace row (what = S42_DESCRIBE_TRACE) or the dump
+   * (S42_DESCRIBE_DUMP) under the key trace_key; returns its length, 0 to
+   * leave the key out. */
+  size_t (*describe)(void *self, int what, char *buf, size_t cap);
+  const char *trace_key;
+  /* A new run starts (after init, and before a restart's load). */
+  void (*reset)(void *self);
+};
+
+enum { S42_PL_EVERY_BLOCK = 1 };
+enum { S42_DESCRIBE_TRACE = 1, S42_DESCRIBE_DUMP = 2 };
+
+typedef const struct s42_plugin *(*s42_plugin_entry_fn)(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
