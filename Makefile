@@ -22,11 +22,15 @@ S42      ?= ./s42
 SHARED   ?= ../shared
 VERSION  := $(shell cat VERSION 2>/dev/null || echo 0.1.0)
 
+PLUGINDIR ?= $(PREFIX)/lib/s42/plugins
+INCLUDEDIR ?= $(PREFIX)/include
+
 CPPFLAGS += -DS42_VERSION='"$(VERSION)"'
 
 include vm/module.mk
 include display/module.mk
 include src/module.mk
+include plugins/module.mk
 include tests/module.mk
 
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
@@ -34,7 +38,7 @@ DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
 .PHONY: all check test unit conformance programs regress restart realtime plot shared asan run clean install deps docs
 
-all: $(S42)
+all: $(S42) $(PLUGIN_SOS)
 
 $(S42): $(OBJS) $(SRC_MAIN_OBJ)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
@@ -68,9 +72,12 @@ docs: docs/opcodes.md
 docs/opcodes.md: vm/opcodes.h $(S42)
 	$(S42) --opcodes-md > $@
 
-install: $(S42)
+install: $(S42) $(PLUGIN_SOS) $(PLUGIN_SOS)
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)
 	install -m 755 $(S42) $(DESTDIR)$(BINDIR)/s42
+	install -d $(DESTDIR)$(PLUGINDIR) $(DESTDIR)$(INCLUDEDIR)
+	install -m 644 $(PLUGIN_SOS) $(DESTDIR)$(PLUGINDIR)/
+	install -m 644 include/s42_plugin.h $(DESTDIR)$(INCLUDEDIR)/s42_plugin.h
 	if [ -f docs/s42.1 ]; then install -m 644 docs/s42.1 $(DESTDIR)$(MANDIR)/s42.1; fi
 
 clean:

@@ -63,7 +63,7 @@ struct block {
   int bad;                  /* a parse error was reported */
   uint64_t g;               /* bit n: Gn present */
   uint32_t m;               /* bit n: Mn present */
-  unsigned gcol[38], mcol[30];
+  unsigned gcol[64], mcol[32];
   struct word w[MAX_WORDS];
   int nw;
   struct expr *cond;        /* P(cond) */

@@ -8,6 +8,7 @@
 #include "kp.h"
 #include "opcodes.h"
 #include "parse.h"
+#include "plugin.h"
 #include "vmmath.h"
 #include <math.h>
 #include <stdarg.h>
@@ -16,7 +17,7 @@
 #include <string.h>
 
 const char *const kp_motion_name[MO__COUNT] = {
-  "none", "G01", "G02", "G03", "G04", "G07", "G10", "G11", "G12", "G13", "G20", "G37", "M19", "dialog"
+  "none", "G01", "G02", "G03", "G04", "G07", "G10", "G11", "G12", "G13", "G20", "G37", "M19", "dialog", "plugin"
 };
 
 /* Per-block summary for the structure checks. */
@@ -46,6 +47,9 @@ struct comp {
   uint16_t isconst;
   double kval[SL__COUNT];
   int stack, maxstack;
+  const struct plug_set *plugins;
+  uint32_t plugmask;       /* plugins the current block calls */
+  int plug_g;              /* a group-1 G of a plugin that is not the language's, 0 none */
 };
 
 static void *grow(void *v, size_t *cap, size_t need, size_t elem, int *oom)
@@ -360,6 +364,9 @@ static int motion_of(const struct block *b)
   if (G(13)) return MO_G13;
   if (G(20)) return MO_G20;
   if (G(37)) return MO_G37;
+  for (int n = 0; n < 64; n++)
+    if (G(n) && !kp_valid_g(n))
+      return MO_PLUGIN;    /* a function a plugin adds (check_block knows its group) */
   return MO_NONE;
 }
 
@@ -468,6 +475,55 @@ static int text_refs(struct comp *c, const struct text *t, const char *fn, int g
   return n;
 }
 
+/* The group of Gn: the language's, or the one its plugin declares. */
+static int group_of(const struct comp *c, int n)
+{
+  const struct s42_function *fn;
+  if (!kp_valid_g(n) && plug_find(c->plugins, 'G', n, &fn) >= 0)
+    return fn->group;
+  return kp_g_group(n);
+}
+
+/* A function of the block that lives in a plugin: E-PLUGIN when the plugin
+ * is missing; for a function the language does not name, the rules its
+ * descriptor declares (the words it takes, a separate block, a plane). */
+static void plugin_function(struct comp *c, char kind, int n, unsigned col, int nwords, int plane)
+{
+  const struct block *b = c->b;
+  const struct s42_function *fn = NULL;
+  int i = plug_find(c->plugins, kind, n, &fn);
+  if (i < 0) {
+    if (plug_owner(kind, n, NULL)) {
+      char msg[600];
+      plug_why_missing(c->plugins, kind, n, msg, sizeof msg);
+      err(c, S42_E_PLUGIN, col, "%s", msg);
+    }
+    return;
+  }
+  c->plugmask |= 1u << i;
+  if (kind == 'G' ? kp_valid_g(n) : kp_valid_m(n))
+    return;   /* the language's own rules were checked above */
+  if (kind == 'G' && fn->group == 1)
+    c->plug_g = n;
+  if ((fn->flags & S42_FN_SEPARATE) && nwords && !fn->operands)
+    err(c, S42_E_BLOCK, col, "%c%02d stands in a separate block: no axis or centre words beside it", kind, n);
+  if ((fn->flags & S42_FN_PLANE) && !plane)
+    err(c, S42_E_PLANE, col, "%c%02d needs a plane in the same block: G17 (XY), G18 (YZ) or G19 (XZ)", kind, n);
+  if (!fn->operands)
+    return;
+  static const char letters[] = "XYZAIJK";
+  for (int w = 0; w < b->nw; w++) {
+    char l = 0;
+    if (b->w[w].kind == WK_SLOT && b->w[w].idx < 7)
+      l = letters[b->w[w].idx];
+    else if (b->w[w].kind == WK_REG && (b->w[w].letter == 'F' || b->w[w].letter == 'D'))
+      l = (char)b->w[w].letter;
+    if (l && !strchr(fn->operands, l))
+      err(c, S42_E_BLOCK, b->w[w].col, "%c%02d takes no %c word (it takes %s)", kind, n, l,
+          *fn->operands ? fn->operands : "none");
+  }
+}
+
 static void check_block(struct comp *c)
 {
   struct block *b = c->b;
@@ -478,7 +534,7 @@ static void check_block(struct comp *c)
     const struct word *w = &b->w[i];
     if (w->kind != WK_G)
       continue;
-    int grp = kp_g_group(w->num);
+    int grp = group_of(c, w->num);
     if (seen[grp])
       err(c, S42_E_GROUP, w->col, "G%02d and G%02d are both group %d functions", seen[grp], w->num, grp);
     else
@@ -628,15 +684,15 @@ static void check_block(struct comp *c)
   if (b->len > 320)
     err(c, S42_E_BLOCKLEN, b->col, "block of %u characters; at most 320 (ten display lines)", b->len);
 
-  /* functions whose plugins this build does not have */
-  static const struct { int g; const char *what, *plugin; } plug[] = {
-    {10, "tooth-step search", "toothsearch"}, {11, "tooth-step search", "toothsearch"},
-    {12, "helical interpolation", "helix"}, {13, "helical interpolation", "helix"},
-  };
-  for (size_t i = 0; i < sizeof plug / sizeof plug[0]; i++)
-    if (G(plug[i].g))
-      err(c, S42_E_PLUGIN, b->gcol[plug[i].g], "G%d (%s) needs the %s plugin, which is not installed",
-          plug[i].g, plug[i].what, plug[i].plugin);
+  /* functions that plugins implement */
+  c->plugmask = 0;
+  c->plug_g = 0;
+  for (int n = 0; n < 64; n++)
+    if (G(n))
+      plugin_function(c, 'G', n, b->gcol[n], naxis + ncentre, plane);
+  for (int n = 0; n < 32; n++)
+    if (M(n))
+      plugin_function(c, 'M', n, b->mcol[n], naxis + ncentre, plane);
 }
 
 /* ---- one block ---- */
@@ -685,6 +741,8 @@ static void compile_block(struct comp *c)
 
   at->g = b->g;
   at->m = b->m;
+  at->plugins = c->plugmask;
+  at->plug_g = (uint8_t)c->plug_g;
   at->plane = (uint8_t)(G(17) ? 17 : G(18) ? 18 : G(19) ? 19 : 0);
   at->g28reg = (int16_t)b->g28reg;
   at->g27form = b->g27form;
@@ -1043,6 +1101,12 @@ static void structure(struct comp *c)
 
 int comp_program(const char *src, size_t n, struct diag_list *d, struct program *p)
 {
+  return comp_program_with(src, n, d, p, NULL);
+}
+
+int comp_program_with(const char *src, size_t n, struct diag_list *d, struct program *p,
+                      const struct plug_set *plugins)
+{
   struct comp c;
   memset(&c, 0, sizeof c);
   c.p = p;
@@ -1061,6 +1125,8 @@ int comp_program(const char *src, size_t n, struct diag_list *d, struct program 
   p->file = d->file;
   struct parser ps;
   parse_init(&ps, src, n, d);
+  ps.plugins = plugins;
+  c.plugins = plugins;
   while (!c.oom && parse_block(&ps, c.b)) {
     c.maxstack = 0;
     compile_block(&c);

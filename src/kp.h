@@ -10,7 +10,7 @@
 
 enum motion {
   MO_NONE, MO_G01, MO_G02, MO_G03, MO_G04, MO_G07, MO_G10, MO_G11, MO_G12, MO_G13,
-  MO_G20, MO_G37, MO_M19, MO_DIALOG, MO__COUNT
+  MO_G20, MO_G37, MO_M19, MO_DIALOG, MO_PLUGIN, MO__COUNT
 };
 extern const char *const kp_motion_name[MO__COUNT];
 
@@ -27,7 +27,9 @@ struct kp_attr {
   uint32_t g27, g33, m18;   /* string offsets + 1 into kp_ext.str; 0 none */
   uint32_t g29, ng29;       /* first index into kp_ext.lines, count */
   uint32_t m16, nm16;       /* first index into kp_ext.m16, count */
-  int8_t bare[4];      /* M19: axis word X Y Z A is +Rn (n+1) or -Rn (-(n+1)); 0 not bare */
+  int8_t bare[4];
+  uint32_t plugins;    /* bit i: plugin i of the session's set runs in this block */
+  uint8_t plug_g;      /* MO_PLUGIN: the plugin's group-1 G number */      /* M19: axis word X Y Z A is +Rn (n+1) or -Rn (-(n+1)); 0 not bare */
 };
 
 struct kp_ext {

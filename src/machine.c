@@ -16,22 +16,9 @@ void mach_init(struct machine *m)
   m->override_allowed = 1;
 }
 
-static double axis_max(int axis)
+double mach_axis_max(int axis)
 {
   return axis == AX_Y ? MACH_Y_MAX : MACH_AXIS_MAX;
-}
-
-int64_t mach_osc_offset(const struct machine *m)
-{
-  const struct mach_osc *o = &m->osc;
-  if (!o->active)
-    return 0;
-  double s = fabs(o->stroke);
-  if (s == 0)
-    return 0;
-  double p = fmod(o->travel, 2 * s);
-  double off = p <= s ? p : 2 * s - p;
-  return (int64_t)llround(o->stroke < 0 ? -off : off);
 }
 
 void mach_advance(struct machine *m, double dt)
@@ -39,10 +26,8 @@ void mach_advance(struct machine *m, double dt)
   if (!(dt > 0))
     return;
   m->t += dt;
-  if (m->osc.active) {
-    m->osc.travel += dt * m->osc.speed * 1000.0 / 60.0;
-    m->pos[m->osc.axis] = m->osc.base + mach_osc_offset(m);
-  }
+  if (m->tick)
+    m->tick(m->tick_ctx, dt);
 }
 
 void mach_jog(struct machine *m, int axis, int64_t d, int correction)
@@ -160,39 +145,7 @@ int mach_check(const struct machine *m, const struct mach_block *b, char *msg, s
     snprintf(msg, n, "M4 while the wheel turns clockwise: stop it with M5 first");
     return S42_E_WHEEL;
   }
-  int osc_axis = -1;
-  double oscf = 0;
-  if (b->motion == MO_G07) {
-    for (int a = AX_X; a <= AX_A; a++)
-      if (BIT(b->given, a))
-        osc_axis = a;
-    oscf = b->w[SL_OSCF];
-    if (b->w[osc_axis] == 0) {
-      snprintf(msg, n, "G07: oscillation stroke 0");
-      return S42_E_OSC;
-    }
-    if (oscf <= 0) {
-      snprintf(msg, n, "G07: oscillation speed F must be above 0");
-      return S42_E_OSC;
-    }
-    if (m->osc.active && osc_axis != m->osc.axis) {
-      snprintf(msg, n, "G07 changes the oscillating axis while it oscillates: M14 first");
-      return S42_E_OSC;
-    }
-  }
-  int defined = m->osc.defined || b->motion == MO_G07;
-  if (BIT(b->m, 13) && !defined) {
-    snprintf(msg, n, "M13 before any G07: the oscillation is not defined");
-    return S42_E_OSC;
-  }
   if (contour(b)) {
-    int active = m->osc.active || BIT(b->m, 13);
-    int axis = b->motion == MO_G07 ? osc_axis : m->osc.axis;
-    static const char an[] = "XYZA";
-    if (active && b->w[axis] != 0 && BIT(b->given, axis)) {
-      snprintf(msg, n, "%c oscillates and may not move in the contour", an[axis]);
-      return S42_E_OSC;
-    }
     double len = 0, ys;
     if (b->motion == MO_G01) {
       for (int a = 0; a < 4; a++)
@@ -210,10 +163,8 @@ int mach_check(const struct machine *m, const struct mach_block *b, char *msg, s
   return 0;
 }
 
-void mach_exec(struct machine *m, const struct mach_block *b, struct mach_out *o)
+void mach_modal(struct machine *m, const struct mach_block *b)
 {
-  memset(o, 0, sizeof *o);
-  /* modal changes: the wheel first */
   if (BIT(b->m, 5)) {
     if (m->wheel != WHEEL_OFF)
       mach_advance(m, MACH_WHEEL_RUNDOWN);
@@ -223,34 +174,31 @@ void mach_exec(struct machine *m, const struct mach_block *b, struct mach_out *o
     m->wheel = WHEEL_CW;
   if (BIT(b->m, 4))
     m->wheel = WHEEL_CCW;
-  if (b->motion == MO_G07) {
-    int axis = 0;
-    for (int a = AX_X; a <= AX_A; a++)
-      if (BIT(b->given, a))
-        axis = a;
-    double sp = b->w[SL_OSCF];
-    if (sp > axis_max(axis)) {
-      snprintf(o->warn, sizeof o->warn, "G07: oscillation speed %.0f is over the %c axis's %.2f: clamped",
-               sp, "XYZA"[axis], axis_max(axis));
-      sp = axis_max(axis);
-    }
-    m->osc.defined = 1;
-    m->osc.axis = axis;
-    m->osc.stroke = b->w[axis];
-    m->osc.speed = sp;
-  }
-  if (BIT(b->m, 13) && !m->osc.active) {
-    m->osc.active = 1;
-    m->osc.travel = 0;
-    m->osc.base = m->pos[m->osc.axis];
-  }
   if (BIT(b->m, 22)) m->corr_allowed = 1;
   if (BIT(b->m, 23)) m->corr_allowed = 0;
   if (BIT(b->m, 25)) m->override_allowed = 0;
   if (BIT(b->m, 26)) m->override_allowed = 1;
+}
 
-  /* the motion */
+void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o)
+{
   double dt = 0;
+  if (len > 0) {
+    f = effective(m, f);
+    o->feed = f < limit ? f : limit;
+    if (o->feed > 0)
+      dt = len / o->feed * 60.0;
+  }
+  mach_advance(m, dt);
+  for (int a = 0; a < 4; a++) {
+    o->d[a] = (int64_t)llround(d[a]);
+    m->pos[a] += o->d[a];
+  }
+}
+
+void mach_motion(struct machine *m, const struct mach_block *b, struct mach_out *o)
+{
+  memset(o, 0, sizeof *o);
   if (contour(b)) {
     double d[4] = {0, 0, 0, 0};
     for (int a = 0; a < 4; a++)
@@ -272,25 +220,13 @@ void mach_exec(struct machine *m, const struct mach_block *b, struct mach_out *o
         if (a != p && a != q)
           d[a] = 0;
     }
-    if (len > 0) {
-      double f = effective(m, b->f);
-      o->feed = f < lim ? f : lim;
-      if (o->feed > 0)
-        dt = len / o->feed * 60.0;
-      double lin2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-      if (d[3] != 0 && lin2 > 0 && b->motion == MO_G01) {
-        double ad = d[3] * M_PI * (b->d1 / 1000.0) / 360.0;
-        o->v = o->feed * sqrt((lin2 + ad * ad) / (lin2 + d[3] * d[3]));
-        o->has_v = 1;
-      }
+    mach_move(m, d, len, lim, b->f, o);
+    double lin2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (len > 0 && d[3] != 0 && lin2 > 0 && b->motion == MO_G01) {
+      double ad = d[3] * M_PI * (b->d1 / 1000.0) / 360.0;
+      o->v = o->feed * sqrt((lin2 + ad * ad) / (lin2 + d[3] * d[3]));
+      o->has_v = 1;
     }
-    mach_advance(m, dt);
-    for (int a = 0; a < 4; a++) {
-      o->d[a] = (int64_t)llround(d[a]);
-      m->pos[a] += o->d[a];
-    }
-    if (m->osc.active)
-      m->osc.base += o->d[m->osc.axis];
   } else if (b->motion == MO_G04) {
     mach_advance(m, b->w[SL_X] / 10.0);
   } else if (b->motion == MO_G37) {
@@ -298,14 +234,5 @@ void mach_exec(struct machine *m, const struct mach_block *b, struct mach_out *o
     mach_advance(m, fabs((double)dy) / 1000.0 / MACH_Y_MAX * 60.0);
     m->pos[AX_Y] += dy;
     o->d[AX_Y] = dy;
-  }
-
-  /* after the motion: M14 (and M2, which includes it) */
-  if ((BIT(b->m, 14) || BIT(b->m, 2)) && m->osc.active) {
-    int64_t off = mach_osc_offset(m);
-    m->osc.active = 0;
-    if (off != 0 && m->osc.speed > 0)
-      m->t += fabs((double)off) / 1000.0 / m->osc.speed * 60.0;
-    m->pos[m->osc.axis] = m->osc.base;
   }
 }

@@ -1,7 +1,8 @@
 /* The simulated ВЗ-208Ф3: positions of X, Y, Z, A in discretes, simulated
- * time, the wheel, oscillation, the feed override and the contour-speed
- * limits of language.md section 16.  It knows nothing of bytecode: the
- * session hands it one block's meaning (struct mach_block) at a time. */
+ * time, the wheel, the feed override and the contour-speed limits of
+ * language.md section 16.  It knows nothing of bytecode or plugins: the
+ * session hands it one block's meaning (struct mach_block) at a time, and
+ * hears of passing time through the tick hook (oscillation runs there). */
 #ifndef S42_MACHINE_H
 #define S42_MACHINE_H
 
@@ -31,15 +32,6 @@ struct mach_out {
   double feed;         /* effective contour speed, mm/min */
   double v;            /* surface speed with A (when has_v) */
   int has_v;
-  char warn[160];      /* a warning to show (clamped oscillation speed) */
-};
-
-struct mach_osc {
-  int defined, active, axis;
-  double stroke;       /* discretes, signed: the first direction */
-  double speed;        /* mm/min (deg/min) after clamping */
-  double travel;       /* discretes travelled since it started */
-  int64_t base;        /* the axis position where it started */
 };
 
 struct machine {
@@ -50,16 +42,23 @@ struct machine {
   int override_allowed;/* M26 (default) / M25 */
   int corr_allowed;    /* M22 / M23 (default) */
   int64_t corr[4];     /* corrections since the last mark (G20, M19, dialog, PP) */
-  struct mach_osc osc;
+  /* called whenever simulated time passes, with the seconds */
+  void (*tick)(void *ctx, double dt);
+  void *tick_ctx;
 };
 
 void mach_init(struct machine *m);
 /* Check a block against the machine's state; nothing changes.  Returns 0 or
  * an error code (vm/errors.h) with the message in msg. */
 int mach_check(const struct machine *m, const struct mach_block *b, char *msg, size_t n);
-/* Carry the block out (it passed mach_check): modal changes, the motion or
- * dwell, then M14 and M2's end of oscillation. */
-void mach_exec(struct machine *m, const struct mach_block *b, struct mach_out *o);
+/* Carry the block out (it passed mach_check), in two steps: the modal
+ * changes (the wheel first, M22/M23, M25/M26), then the core's motion or
+ * dwell (G01 G02 G03 G04 G37). */
+void mach_modal(struct machine *m, const struct mach_block *b);
+void mach_motion(struct machine *m, const struct mach_block *b, struct mach_out *o);
+/* A contour move a plugin computed: increments d (discretes), its length
+ * (mm) and speed limit (mm/min); F and the override apply as for G01. */
+void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o);
 /* Is the block's contour move held by a feed override of 0 %? */
 int mach_held(const struct machine *m, const struct mach_block *b);
 /* Effective speed of a linear move (increments in discretes) at speed f. */
@@ -69,9 +68,9 @@ double mach_linear_limit(const double d[4]);
 int mach_arc(const struct mach_block *b, double *len_mm, double *yshare, char *msg, size_t n);
 /* Move an axis by hand (jog, correction); counts in the position. */
 void mach_jog(struct machine *m, int axis, int64_t d, int correction);
-/* Advance simulated time by dt seconds (oscillation runs meanwhile). */
+/* Advance simulated time by dt seconds (the tick hook runs). */
 void mach_advance(struct machine *m, double dt);
-/* The oscillating axis's current offset from where it started. */
-int64_t mach_osc_offset(const struct machine *m);
+/* The maximum speed of an axis, mm/min (deg/min). */
+double mach_axis_max(int axis);
 
 #endif

@@ -4,6 +4,7 @@
 #include "errors.h"
 #include "operator.h"
 #include "plot.h"
+#include "plugin.h"
 #include "report.h"
 #include "session.h"
 #include "state.h"
@@ -11,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #ifndef S42_VERSION
@@ -25,6 +27,7 @@ static const char usage[] =
   "       s42 check  PROGRAM.kp...          compile only, print diagnostics\n"
   "       s42 disasm PROGRAM.kp             print the bytecode, block by block\n"
   "       s42 plot   PROGRAM.kp -o FILE.png run headless and draw the tool path\n"
+  "       s42 plugins                       list the plugins found and their functions\n"
   "       s42 --help | --version\n"
   "\n"
   "options of run, tui and plot:\n"
@@ -151,6 +154,30 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
   return 0;
 }
 
+/* The plugins of this process: scanned once, on first need, from --plugins
+ * (the first command-line option that gave it), S42_PLUGIN_PATH, the build
+ * tree and the installed directory. */
+static struct plug_set plugins;
+static int plugins_scanned;
+
+static void plugins_free(void)
+{
+  plug_free(&plugins);
+}
+
+static struct plug_set *plugins_init(const char *dir)
+{
+  if (!plugins_scanned) {
+    plugins_scanned = 1;
+    struct stat st;
+    if (dir && (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)))
+      fprintf(stderr, "s42: warning: --plugins %s: not a directory\n", dir);
+    plug_scan(&plugins, dir);
+    atexit(plugins_free);
+  }
+  return &plugins;
+}
+
 /* Compile a file; diagnostics to stderr.  Returns 0 ok, 1 program errors,
  * 4 I/O.  On success *src stays allocated for the caller. */
 static int load(const char *path, struct program *p, struct diag_list *d, char **src, size_t *n)
@@ -159,14 +186,47 @@ static int load(const char *path, struct program *p, struct diag_list *d, char *
   diag_init(d, path);
   if (read_file(path, src, n))
     return EXIT_IO;
-  int r = comp_program(*src, *n, d, p);
+  int r = comp_program_with(*src, *n, d, p, plugins_init(NULL));
   diag_print(stderr, d);
   return r ? EXIT_PROGRAM : 0;
+}
+
+/* `--plugins DIR` among a command's arguments: taken out of argv. */
+static int take_plugins_opt(int *argc, char **argv)
+{
+  for (int i = 2; i < *argc; i++) {
+    if (strcmp(argv[i], "--plugins") != 0)
+      continue;
+    if (i + 1 >= *argc) {
+      fprintf(stderr, "s42: --plugins needs a directory\n");
+      return -1;
+    }
+    plugins_init(argv[i + 1]);
+    for (int k = i; k + 2 <= *argc; k++)
+      argv[k] = argv[k + 2];
+    *argc -= 2;
+    i--;
+  }
+  return 0;
+}
+
+static int cmd_plugins(int argc, char **argv)
+{
+  if (take_plugins_opt(&argc, argv))
+    return EXIT_USAGE;
+  if (argc != 2) {
+    fprintf(stderr, "usage: s42 plugins [--plugins DIR]\n");
+    return EXIT_USAGE;
+  }
+  plug_list(plugins_init(NULL), stdout);
+  return 0;
 }
 
 static int cmd_check(int argc, char **argv)
 {
   int worst = 0, any = 0;
+  if (take_plugins_opt(&argc, argv))
+    return EXIT_USAGE;
   for (int i = 2; i < argc; i++) {
     if (argv[i][0] == '-' && argv[i][1]) {
       fprintf(stderr, "s42: check takes only program files ('%s')\n", argv[i]);
@@ -195,6 +255,8 @@ static int cmd_check(int argc, char **argv)
 
 static int cmd_disasm(int argc, char **argv)
 {
+  if (take_plugins_opt(&argc, argv))
+    return EXIT_USAGE;
   if (argc != 3 || argv[2][0] == '-') {
     fprintf(stderr, "usage: s42 disasm PROGRAM.kp\n");
     return EXIT_USAGE;
@@ -288,6 +350,20 @@ static void sink_warn(void *ctx, const struct session *s, const char *msg)
 {
   struct both_sink *b = ctx;
   warn_sink(b->r, s, msg);
+}
+
+static void sink_log(void *ctx, const struct session *s, const char *msg)
+{
+  (void)ctx;
+  (void)s;
+  fprintf(stderr, "s42: note: %s\n", msg);
+}
+
+static void sink_moved(void *ctx, const struct session *s, int axis, int64_t d)
+{
+  struct both_sink *b = ctx;
+  if (b->plot)
+    plot_sample(b->plot, s, axis, d);
 }
 
 static void apply_immediate(struct runner *r, const struct op_action *a)
@@ -418,6 +494,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
 
   sess_init(&r.s, &p);
+  r.s.plugins = plugins_init(NULL);
   r.s.en = o.en;
   r.s.scr.en = o.en;
   r.s.vm.max_blocks = o.max_blocks;
@@ -431,6 +508,8 @@ static int headless(const struct opts *opt, struct plot *plot)
   r.s.sink.ctx = &bs;
   r.s.sink.row = row_sink;
   r.s.sink.warn = sink_warn;
+  r.s.sink.log = sink_log;
+  r.s.sink.moved = sink_moved;
   r.s.vm.yield_all = o.trace;
   r.watch = calloc(p.nblocks ? p.nblocks : 1, 1);
   r.runs = calloc(1000, sizeof *r.runs);
@@ -580,6 +659,7 @@ static int cmd_run(int argc, char **argv)
   struct opts o;
   if (parse_opts(argc, argv, 2, &o, 0))
     return EXIT_USAGE;
+  plugins_init(o.plugins);
   if (!o.program) {
     fprintf(stderr, "s42: run needs a program file\n%s", usage);
     return EXIT_USAGE;
@@ -596,6 +676,7 @@ static int cmd_plot(int argc, char **argv)
   struct opts o;
   if (parse_opts(argc, argv, 2, &o, 0))
     return EXIT_USAGE;
+  plugins_init(o.plugins);
   if (!o.program || !o.out) {
     fprintf(stderr, "usage: s42 plot PROGRAM.kp -o FILE.png|.svg|.pdf [--operator FILE] [options]\n");
     return EXIT_USAGE;
@@ -648,6 +729,8 @@ int main(int argc, char **argv)
   }
   if (strcmp(cmd, "plot") == 0)
     return cmd_plot(argc, argv);
+  if (strcmp(cmd, "plugins") == 0)
+    return cmd_plugins(argc, argv);
   if (strcmp(cmd, "tui") == 0) {
     fprintf(stderr, "s42: %s is not implemented in this build\n", cmd);
     return EXIT_USAGE;

@@ -2,9 +2,12 @@
 SRC_SRCS     := $(filter-out src/main.c,$(wildcard src/*.c))
 SRC_OBJS     := $(SRC_SRCS:%.c=$(BUILD)/%.o)
 SRC_MAIN_OBJ := $(BUILD)/src/main.o
-$(SRC_OBJS) $(SRC_MAIN_OBJ): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay
+$(SRC_OBJS) $(SRC_MAIN_OBJ): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude
 # plot.c draws with cairo (the only part of src/ that needs it)
 CAIRO_CFLAGS := $(shell pkg-config --cflags cairo 2>/dev/null)
 CAIRO_LIBS   := $(shell pkg-config --libs cairo 2>/dev/null || echo -lcairo)
-$(BUILD)/src/plot.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay $(CAIRO_CFLAGS)
+$(BUILD)/src/plot.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(CAIRO_CFLAGS)
 LDLIBS += $(CAIRO_LIBS)
+LDLIBS += -ldl
+# where `make install` puts the plugins: s42 looks there last
+$(BUILD)/src/plugin.o: CPPFLAGS += -DS42_PLUGINDIR='"$(PLUGINDIR)"'

@@ -3,6 +3,7 @@
  * (longjmp to parse_block); the next block is parsed as usual, so one run
  * reports the mistakes of every block. */
 #include "parse.h"
+#include "plugin.h"
 #include "errors.h"
 #include "opcodes.h"
 #include <setjmp.h>
@@ -709,9 +710,11 @@ static void word(struct pstate *s)
     adv(s);
     long n = number(s, 2, c == 'G' ? "a G function number" : "an M function number");
     int valid = c == 'G' ? kp_valid_g((int)n) : kp_valid_m((int)n);
+    if (!valid && n < (c == 'G' ? 64 : 32))   /* a function a plugin adds */
+      valid = plug_find(s->p->plugins, (char)c, (int)n, NULL) >= 0;
     if (!valid) {
       diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, s->p->lx.cline, col, b->number,
-               "%c%02ld is not a function of the 2С42", (char)c, n);
+               "%c%02ld is not a function of the 2С42 or of a plugin found", (char)c, n);
       b->bad = 1;
       return;
     }

@@ -60,9 +60,20 @@ struct seg {
   uint8_t kind, plane, flags;
 };
 
+/* A point of an oscillation: the axis's displacement from the contour. */
+struct osc_pt {
+  double t;
+  int64_t off;
+  int axis, start;      /* start: where an oscillation begins */
+};
+
 struct plot {
   struct seg *v;
   size_t n, cap;
+  struct osc_pt *osc;
+  size_t nosc, caposc;
+  int64_t disp[4];      /* displacement outside the contour so far */
+  int64_t disp_row[4];  /* ... at the end of the last row */
   unsigned long long rows;
   double t;             /* time at the end of the last row */
   int64_t pos[4];       /* position at the end of the last row */
@@ -79,6 +90,7 @@ void plot_free(struct plot *pl)
   if (!pl)
     return;
   free(pl->v);
+  free(pl->osc);
   free(pl);
 }
 
@@ -109,11 +121,35 @@ static double arc_sweep(double cp, double cq, double ep, double eq, int ccw)
   return s;
 }
 
-void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r)
+void plot_sample(struct plot *pl, const struct session *s, int axis, int64_t d)
+{
+  if (!pl || pl->oom || axis < 0 || axis > 3)
+    return;
+  pl->disp[axis] += d;
+  if (pl->nosc == pl->caposc) {
+    size_t nc = pl->caposc ? pl->caposc * 2 : 1024;
+    struct osc_pt *nv = realloc(pl->osc, nc * sizeof *nv);
+    if (!nv) {
+      pl->oom = 1;
+      return;
+    }
+    pl->osc = nv;
+    pl->caposc = nc;
+  }
+  pl->osc[pl->nosc++] = (struct osc_pt){s->m.t, pl->disp[axis], axis, d == 0};
+}
+
+void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r_in)
 {
   (void)s;
   if (!pl || pl->oom)
     return;
+  /* the programmed path leaves out what oscillation added: drawn apart */
+  struct sess_row rr = *r_in;
+  const struct sess_row *r = &rr;
+  for (int a = 0; a < 4; a++)
+    rr.start[a] -= pl->disp_row[a];
+  memcpy(pl->disp_row, pl->disp, sizeof pl->disp_row);
   pl->rows++;
   double t0 = pl->t;
   pl->t = r->t;
@@ -319,6 +355,7 @@ static void rgb(cairo_t *cr, unsigned c)
 #define C_PATH 0x1f4db3u
 #define C_JOG 0xe67300u
 #define C_CORR 0xbf1a99u
+#define C_OSC 0x2e9e44u
 #define C_START 0x1a9933u
 #define C_END 0xd91a1au
 #define C_GRID 0xe6e6e6u
@@ -468,6 +505,43 @@ static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
   cairo_stroke(cr);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
   cairo_set_dash(cr, NULL, 0, 0);
+}
+
+/* The programmed point at time t (the segment walk starts at *j). */
+static void point_at(const struct plot *pl, double t, size_t *j, double out[4])
+{
+  while (*j + 1 < pl->n && pl->v[*j].t1 < t)
+    (*j)++;
+  const struct seg *g = &pl->v[*j];
+  double u = g->t1 > g->t0 ? (t - g->t0) / (g->t1 - g->t0) : 1;
+  if (t < g->t0)
+    u = 0;   /* between blocks: where this one starts */
+  seg_point(g, u < 0 ? 0 : u > 1 ? 1 : u, 0, out);
+}
+
+/* Oscillation: the programmed path plus the axis's displacement. */
+static void draw_panel_osc(cairo_t *cr, const struct panel *P, const struct plot *pl)
+{
+  if (!pl->nosc || !pl->n)
+    return;
+  rgb(cr, C_OSC);
+  cairo_set_line_width(cr, 1.0);
+  size_t j = 0;
+  for (size_t i = 0; i < pl->nosc; i++) {
+    double pt[4], x, y;
+    point_at(pl, pl->osc[i].t, &j, pt);
+    pt[pl->osc[i].axis] += pl->osc[i].off / 1000.0;
+    pmap(P, pt[P->u], pt[P->v], &x, &y);
+    if (i == 0 || pl->osc[i].start)
+      cairo_move_to(cr, x, y);
+    else
+      cairo_line_to(cr, x, y);
+    if (i % CHUNK == CHUNK - 1) {
+      cairo_stroke(cr);
+      cairo_move_to(cr, x, y);
+    }
+  }
+  cairo_stroke(cr);
 }
 
 /* Block numbers at block starts, where there is room. */
@@ -682,6 +756,7 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
     cairo_clip(cr);
     draw_scale(cr, &P, step);
     draw_panel_path(cr, &P, pl);
+    draw_panel_osc(cr, &P, pl);
     double z[4] = {0, 0, 0, 0}, e[4];
     for (int a = 0; a < 4; a++)
       e[a] = pl->pos[a] / 1000.0;
@@ -715,6 +790,12 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
       if (v[k] > amax) amax = v[k];
     }
   }
+  for (size_t i = 0; i < pl->nosc; i++)
+    if (pl->osc[i].axis == 3) {
+      double v = pl->osc[i].off / 1000.0;
+      if (v < amin) amin = v;
+      if (v > amax) amax = v;
+    }
   int moves = amax - amin > 0;
   if (amax - amin < 1) {
     double c = (amax + amin) / 2;
@@ -820,6 +901,22 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
   }
   cairo_line_to(cr, TX(tend), AY(a));
   cairo_stroke(cr);
+  /* A oscillating: the programmed A plus its displacement */
+  rgb(cr, C_OSC);
+  cairo_set_line_width(cr, 1.0);
+  size_t j = 0;
+  for (size_t i = 0; i < pl->nosc && pl->n; i++) {
+    if (pl->osc[i].axis != 3)
+      continue;
+    double pt[4];
+    point_at(pl, pl->osc[i].t, &j, pt);
+    double y = AY(pt[3] + pl->osc[i].off / 1000.0), x = TX(pl->osc[i].t);
+    if (pl->osc[i].start)
+      cairo_move_to(cr, x, y);
+    else
+      cairo_line_to(cr, x, y);
+  }
+  cairo_stroke(cr);
   if (!moves) {
     rgb(cr, C_LABEL);
     text_at(cr, X + W / 2, Y + H / 2 - 14, "A does not move", 13, 0, 0.5);
@@ -838,6 +935,7 @@ static void legend(cairo_t *cr, double x, double y)
     {C_PATH, 0, "programmed move (arcs as arcs)"},
     {C_JOG, 1, "manual move: G20 jog, M19 teach-in"},
     {C_CORR, 2, "position change between blocks (correction)"},
+    {C_OSC, 0, "oscillation (G07 M13)"},
     {C_START, 3, "program start"},
     {C_END, 4, "end"},
     {C_LABEL, 5, "block number at the block's start"},

@@ -13,6 +13,9 @@ struct plot;
 struct plot *plot_new(void);
 /* A session row sink: record the block's path. */
 void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r);
+/* A session `moved` sink: a plugin moved an axis outside the contour
+ * (oscillation), by d discretes; drawn apart from the programmed path. */
+void plot_sample(struct plot *pl, const struct session *s, int axis, int64_t d);
 /* Is the output path's extension one we can write (.png .svg .pdf)? */
 int plot_check_path(const char *path, char *err, size_t n);
 /* Draw and write the file (title: the program's name).  0, or -1 with err. */

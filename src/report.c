@@ -36,6 +36,19 @@ void json_num(FILE *f, double v)
 
 static const char axes[] = "xyza";
 
+/* The plugins' trace members (,"osc":"on") in the text trace: " osc=on". */
+static void text_members(FILE *f, const char *m)
+{
+  for (; m && *m; m++) {
+    if (*m == ',' && m[1] == '"')
+      fputc(' ', f);
+    else if (*m == ':' && m[-1] == '"')
+      fputc('=', f);
+    else if (*m != '"')
+      fputc(*m, f);
+  }
+}
+
 void report_row(void *ctx, const struct session *s, const struct sess_row *r)
 {
   struct trace_ctx *t = ctx;
@@ -53,8 +66,7 @@ void report_row(void *ctx, const struct session *s, const struct sess_row *r)
     fprintf(f, ",\"f\":%.0f,\"feed\":%.3f,\"t\":%.4f", r->f, r->feed, r->t);
     if (r->has_v)
       fprintf(f, ",\"v\":%.3f", r->v);
-    if (r->osc)
-      fputs(",\"osc\":\"on\"", f);
+    fputs(r->extra ? r->extra : "", f);
     if (r->override_pct != 100)
       fprintf(f, ",\"override\":%d", r->override_pct);
     if (r->has_jogs)
@@ -76,8 +88,7 @@ void report_row(void *ctx, const struct session *s, const struct sess_row *r)
       fprintf(f, " feed %.3f", r->feed);
     if (r->has_v)
       fprintf(f, " v %.3f", r->v);
-    if (r->osc)
-      fputs(" osc", f);
+    text_members(f, r->extra);
     if (r->override_pct != 100)
       fprintf(f, " override %d%%", r->override_pct);
     if (r->has_jogs)
@@ -158,8 +169,8 @@ void report_dump(FILE *f, const char *status, const struct dump_error *err, cons
     fputs("]}", f);
   }
   fputs("]", f);
-  if (s->m.osc.defined)
-    fprintf(f, ",\"osc\":{\"axis\":\"%c\",\"stroke\":%.0f,\"speed\":%.3f,\"on\":%s}", "xyza"[s->m.osc.axis],
-            s->m.osc.stroke, s->m.osc.speed, s->m.osc.active ? "true" : "false");
+  char extra[320];
+  sess_plugin_json(s, S42_DESCRIBE_DUMP, extra, sizeof extra);
+  fputs(extra, f);
   fputs("}\n", f);
 }

@@ -11,14 +11,19 @@
 
 #define BIT(x, n) (((x) >> (n)) & 1)
 
+static void tick(void *ctx, double dt);
+
 void sess_init(struct session *s, const struct program *p)
 {
   memset(s, 0, sizeof *s);
   s->p = p;
   vm_init(&s->vm, p);
   mach_init(&s->m);
+  s->m.tick = tick;
+  s->m.tick_ctx = s;
   scr_init(&s->scr);
   s->state = SE_START;
+  s->blk.s = s;
 }
 
 int sess_block_number(const struct session *s)
@@ -55,7 +60,12 @@ static void emit_row(struct session *s)
   r.t = s->m.t;
   r.v = s->mo.v;
   r.has_v = s->mo.has_v;
-  r.osc = s->m.osc.active;
+  sess_plugin_json(s, S42_DESCRIBE_TRACE, s->extra, sizeof s->extra);
+  r.extra = s->extra;
+  if (at->motion == MO_PLUGIN) {
+    snprintf(s->gname, sizeof s->gname, "G%02d", at->plug_g % 100);
+    r.motion = s->gname;
+  }
   r.override_pct = s->m.override_allowed ? s->m.override_pct : 100;
   memcpy(r.jogs, s->jogs, sizeof r.jogs);
   r.has_jogs = s->has_jogs;
@@ -65,7 +75,387 @@ static void emit_row(struct session *s)
     s->sink.row(s->sink.ctx, s, &r);
 }
 
-/* What of the block this build cannot do yet: a clear error, never a no-op. */
+
+/* ---- plugins: the host services (include/s42_plugin.h) ---- */
+
+#define PLUG(b) (&(b)->s->plugins->v[(b)->plug])
+#define EACH_PLUGIN(mask, i) for (int i = 0; i < PLUG_MAX; i++) if (((mask) >> i) & 1)
+
+static const struct kp_attr *cur_attr(const struct session *s)
+{
+  return kp_attr(s->p, s->vm.cur);
+}
+
+static int h_number(struct s42_block *b) { return sess_block_number(b->s); }
+static int h_has_g(struct s42_block *b, int g) { return g >= 0 && g < 64 && BIT(cur_attr(b->s)->g, g); }
+static int h_has_m(struct s42_block *b, int m) { return m >= 0 && m < 32 && BIT(cur_attr(b->s)->m, m); }
+static int h_plane(struct s42_block *b) { return cur_attr(b->s)->plane; }
+
+/* The slot of a word letter, or -1; F: the slot its value went to. */
+static int word_slot(const struct session *s, char l)
+{
+  const struct kp_attr *at = cur_attr(s);
+  static const char letters[] = "XYZAIJK";
+  const char *p = l ? strchr(letters, l) : NULL;
+  if (p)
+    return (int)(p - letters);
+  if (l == 'F' && BIT(at->slots, SL_OSCF))
+    return SL_OSCF;
+  if (l == 'F' && BIT(at->slots, SL_SRCHF))
+    return SL_SRCHF;
+  return -1;
+}
+
+static int h_has_word(struct s42_block *b, char l)
+{
+  const struct kp_attr *at = cur_attr(b->s);
+  int sl = word_slot(b->s, l);
+  if (sl >= 0)
+    return BIT(at->slots, sl);
+  return l == 'F' && at->has_f;
+}
+
+static double h_word(struct s42_block *b, char l)
+{
+  if (!h_has_word(b, l))
+    return 0;
+  int sl = word_slot(b->s, l);
+  return sl >= 0 ? b->s->mb.w[sl] : b->s->vm.reg[REG_F];
+}
+
+static int h_resumed(struct s42_block *b) { return b->s->resumed; }
+
+static double h_param(struct s42_block *b, int n)
+{
+  return n >= 0 && n < VM_NREG ? b->s->vm.reg[n] : 0;
+}
+
+static int h_set_param(struct s42_block *b, int n, double v)
+{
+  if (n < 0 || n > REG_F || !isfinite(v))
+    return -1;
+  vm_set_reg(&b->s->vm, (unsigned)n, v);
+  return 0;
+}
+
+static int h_load_array(struct s42_block *b, int array, const double *v, int n)
+{
+  if (array < 1 || array > 2 || n < 0 || n > VM_ACELLS)
+    return -1;
+  struct vm_array *a = &b->s->vm.arr[array - 1];
+  memset(a, 0, sizeof *a);
+  for (int i = 0; i < n; i++)
+    a->cell[i] = v[i];
+  a->len = n;
+  a->ptr = 0;
+  return 0;
+}
+
+static int64_t h_position(struct s42_block *b, int axis) { return axis >= 0 && axis < 4 ? b->s->m.pos[axis] : 0; }
+static double h_time(struct s42_block *b) { return b->s->m.t; }
+static double h_axis_speed(int axis) { return mach_axis_max(axis); }
+
+/* Is the block's motion a contour move (the core's or a plugin's)? */
+static int contour_block(const struct session *s)
+{
+  const struct kp_attr *at = cur_attr(s);
+  switch (at->motion) {
+  case MO_G01: case MO_G02: case MO_G03: case MO_G12: case MO_G13: return 1;
+  case MO_PLUGIN: {
+    const struct s42_function *fn;
+    return plug_find(s->plugins, 'G', at->plug_g, &fn) >= 0 && (fn->flags & S42_FN_MOTION);
+  }
+  default: return 0;
+  }
+}
+
+static int h_moves_axis(struct s42_block *b, int axis)
+{
+  const struct session *s = b->s;
+  return axis >= 0 && axis < 4 && contour_block(s) && BIT(cur_attr(s)->slots, axis) && s->mb.w[axis] != 0;
+}
+
+static int h_move(struct s42_block *b, const struct s42_move *mv)
+{
+  struct session *s = b->s;
+  if (!mv || mv->size < sizeof *mv)
+    return -1;
+  for (int a = 0; a < 4; a++)
+    if (!isfinite(mv->d[a]) || fabs(mv->d[a]) > 1e12)
+      return -1;
+  if (!isfinite(mv->length) || mv->length < 0 || !(mv->limit > 0))
+    return -1;
+  struct mach_out o;
+  memset(&o, 0, sizeof o);
+  double lim = mv->limit < MACH_AXIS_MAX ? mv->limit : MACH_AXIS_MAX;
+  mach_move(&s->m, mv->d, mv->length, lim, s->mb.f, &o);
+  for (int a = 0; a < 4; a++)
+    s->mo.d[a] += o.d[a];
+  s->mo.feed = o.feed;
+  return 0;
+}
+
+static void h_displace(struct s42_block *b, int axis, int64_t d)
+{
+  struct session *s = b->s;
+  if (axis < 0 || axis > 3)
+    return;
+  s->m.pos[axis] += d;
+  if (s->sink.moved)
+    s->sink.moved(s->sink.ctx, s, axis, d);
+}
+
+static void h_dwell(struct s42_block *b, double sec)
+{
+  if (isfinite(sec) && sec > 0 && sec < 1e9)
+    mach_advance(&b->s->m, sec);
+}
+
+static void h_error(struct s42_block *b, const char *code, const char *fmt, ...)
+{
+  struct session *s = b->s;
+  int e = code ? err_from_code(code) : -1;
+  s->perr = e > 0 ? e : S42_E_PLUGIN;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(s->perrmsg, sizeof s->perrmsg, fmt ? fmt : "", ap);
+  va_end(ap);
+}
+
+static void h_warn(struct s42_block *b, const char *fmt, ...)
+{
+  char msg[240];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt ? fmt : "", ap);
+  va_end(ap);
+  warn(b->s, "%s", msg);
+}
+
+static void h_log(struct s42_block *b, const char *fmt, ...)
+{
+  char msg[240];
+  int k = snprintf(msg, sizeof msg, "%s: ", PLUG(b)->d->name);
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg + k, sizeof msg - (size_t)k, fmt ? fmt : "", ap);
+  va_end(ap);
+  if (b->s->sink.log)
+    b->s->sink.log(b->s->sink.ctx, b->s, msg);
+}
+
+static void *h_alloc(size_t n) { return malloc(n ? n : 1); }
+static void h_free(void *p) { free(p); }
+
+static void h_directive(struct s42_block *b, const char *text)
+{
+  struct session *s = b->s;
+  s->directive = 0;
+  if (text)
+    scr_set_directive(&s->scr, text);
+  else
+    scr_clear_directive(&s->scr);
+}
+
+static void h_mode(struct s42_block *b, int mode)
+{
+  b->s->scr.mode = mode == S42_MODE_MANUAL ? SCR_MANUAL : mode == S42_MODE_RESULTS ? SCR_RESULTS : SCR_AUTO;
+}
+
+static const struct s42_host host = {
+  .size = sizeof(struct s42_host),
+  .abi_major = S42_ABI_MAJOR,
+  .abi_minor = S42_ABI_MINOR,
+  .number = h_number,
+  .has_g = h_has_g,
+  .has_m = h_has_m,
+  .plane = h_plane,
+  .has_word = h_has_word,
+  .word = h_word,
+  .resumed = h_resumed,
+  .param = h_param,
+  .set_param = h_set_param,
+  .load_array = h_load_array,
+  .position = h_position,
+  .time = h_time,
+  .axis_speed = h_axis_speed,
+  .moves_axis = h_moves_axis,
+  .move = h_move,
+  .displace = h_displace,
+  .dwell = h_dwell,
+  .error = h_error,
+  .warn = h_warn,
+  .log = h_log,
+  .alloc = h_alloc,
+  .free = h_free,
+  .directive = h_directive,
+  .mode = h_mode,
+};
+
+/* The plugin that owns the block's group-1 G (G12, a plugin's own G), -1. */
+static int motion_plugin(const struct session *s)
+{
+  const struct kp_attr *at = cur_attr(s);
+  if (!at->plugins)
+    return -1;
+  for (int g = 0; g < 64; g++)
+    if (BIT(at->g, g)) {
+      const struct s42_function *fn;
+      int i = plug_find(s->plugins, 'G', g, &fn);
+      if (i >= 0 && fn->group == 1 && (fn->flags & S42_FN_MOTION))
+        return i;
+    }
+  return -1;
+}
+
+/* A callback's status: 0 to go on, or SE_ERROR with the VM failed. */
+static int plug_status(struct session *s, int i, int r, const char *phase)
+{
+  if (r == S42_OK || (r > 0 && strcmp(phase, "run") == 0))
+    return 0;
+  if (r > 0) {
+    vm_fail(&s->vm, S42_E_PLUGIN, "the %s plugin asked for the operator in %s(), which only run() may",
+            s->plugins->v[i].d->name, phase);
+  } else if (s->perr) {
+    vm_fail(&s->vm, s->perr, "%s", s->perrmsg);
+  } else {
+    vm_fail(&s->vm, S42_E_PLUGIN, "the %s plugin failed in %s() without saying why", s->plugins->v[i].d->name,
+            phase);
+  }
+  return SE_ERROR;
+}
+
+/* Call one phase of the block's plugins; 0, or SE_ERROR. */
+static int plug_phase(struct session *s, uint32_t mask, int which)
+{
+  static const char *const names[] = {"check", "start", "finish"};
+  EACH_PLUGIN(mask, i) {
+    struct plug *pl = &s->plugins->v[i];
+    if (pl->state != PLUG_READY)
+      continue;
+    int (*cb)(void *, struct s42_block *) =
+      which == 0 ? pl->d->check : which == 1 ? pl->d->start : pl->d->finish;
+    if (!cb)
+      continue;
+    s->blk.plug = i;
+    s->perr = 0;
+    int e = plug_status(s, i, cb(pl->self, &s->blk), names[which]);
+    if (e)
+      return e;
+  }
+  return 0;
+}
+
+/* The plugin's first block in this run: it starts afresh. */
+static void mark_started(struct session *s, int i)
+{
+  if ((s->started >> i) & 1)
+    return;
+  struct plug *pl = &s->plugins->v[i];
+  if (pl->d->reset)
+    pl->d->reset(pl->self);
+  s->started |= 1u << i;
+  if (s->plugins->v[i].d->flags & S42_PL_EVERY_BLOCK)
+    s->every |= 1u << i;
+}
+
+/* Start the plugins the block uses (init on first use); 0 or SE_ERROR. */
+static int plug_start_block(struct session *s, uint32_t mask)
+{
+  if (mask && !s->plugins) {
+    vm_fail(&s->vm, S42_E_PLUGIN, "this block needs plugins and none are loaded");
+    return SE_ERROR;
+  }
+  EACH_PLUGIN(mask, i) {
+    if (plug_use(s->plugins, i, &host)) {
+      vm_fail(&s->vm, S42_E_PLUGIN, "%s", s->plugins->v[i].err);
+      return SE_ERROR;
+    }
+    mark_started(s, i);
+  }
+  return 0;
+}
+
+int sess_plugin_state(const struct session *s, int k, char *name, size_t nname, void *buf, size_t cap,
+                      size_t *len)
+{
+  if (!s->plugins || k < 0 || k >= PLUG_MAX)
+    return 1;
+  int seen = 0;
+  EACH_PLUGIN(s->started, i) {
+    if (seen++ < k)
+      continue;
+    struct plug *pl = &s->plugins->v[i];
+    if (pl->state != PLUG_READY || !pl->d->save)
+      return 2;
+    *len = pl->d->save(pl->self, buf, cap);
+    if (*len > cap)
+      return -1;
+    snprintf(name, nname, "%s", pl->d->name);
+    return 0;
+  }
+  return 1;
+}
+
+int sess_plugin_restore(struct session *s, const char *name, const void *buf, size_t len, char *err, size_t n)
+{
+  for (size_t i = 0; s->plugins && i < s->plugins->n; i++) {
+    struct plug *pl = &s->plugins->v[i];
+    if (strcmp(pl->d->name, name) != 0)
+      continue;
+    if (plug_use(s->plugins, (int)i, &host)) {
+      snprintf(err, n, "%s", pl->err);
+      return -1;
+    }
+    mark_started(s, (int)i);
+    if (!pl->d->load || pl->d->load(pl->self, buf, len) != S42_OK) {
+      snprintf(err, n, "the %s plugin cannot take back its saved state", name);
+      return -1;
+    }
+    return 0;
+  }
+  snprintf(err, n, "the restart state needs the %s plugin, which is not loaded", name);
+  return -1;
+}
+
+static void tick(void *ctx, double dt)
+{
+  struct session *s = ctx;
+  if (!s->plugins)
+    return;
+  EACH_PLUGIN(s->started, i) {
+    struct plug *pl = &s->plugins->v[i];
+    if (pl->state == PLUG_READY && pl->d->advance) {
+      s->blk.plug = i;
+      pl->d->advance(pl->self, &s->blk, dt);
+    }
+  }
+}
+
+void sess_plugin_json(const struct session *s, int what, char *buf, size_t n)
+{
+  size_t k = 0;
+  buf[0] = 0;
+  if (!s->plugins)
+    return;
+  EACH_PLUGIN(s->started, i) {
+    struct plug *pl = &s->plugins->v[i];
+    if (pl->state != PLUG_READY || !pl->d->describe || !pl->d->trace_key)
+      continue;
+    char v[200];
+    size_t len = pl->d->describe(pl->self, what, v, sizeof v);
+    if (len == 0 || len >= sizeof v)
+      continue;
+    v[len] = 0;
+    int w = snprintf(buf + k, n - k, ",\"%s\":%s", pl->d->trace_key, v);
+    if (w < 0 || (size_t)w >= n - k) {
+      buf[k] = 0;
+      return;
+    }
+    k += (size_t)w;
+  }
+}
+
 /* The rest of a block after its machine work and waits: M16, the row. */
 static void finish_block(struct session *s)
 {
@@ -157,6 +547,25 @@ static int teach_start(struct session *s, const struct kp_attr *at)
     if (s->teach.junior < 0 && s->teach.inc[a] != 0)
       s->teach.junior = a;
   }
+  int mp = motion_plugin(s);
+  if (mp >= 0 && s->plugins->v[mp].state == PLUG_READY && s->plugins->v[mp].d->path) {
+    /* a plugin's curve (a helix): follow its path, measured along it */
+    const struct plug *pl = &s->plugins->v[mp];
+    double prev[4] = {0, 0, 0, 0}, pt[4];
+    s->blk.plug = mp;
+    s->perr = 0;
+    for (int k = 1; k <= 4096; k++) {
+      if (pl->d->path(pl->self, &s->blk, k / 4096.0, pt) != S42_OK)
+        return plug_status(s, mp, S42_FAIL, "path");
+      s->teach.len += sqrt((pt[0] - prev[0]) * (pt[0] - prev[0]) + (pt[1] - prev[1]) * (pt[1] - prev[1]) +
+                           (pt[2] - prev[2]) * (pt[2] - prev[2]) + (pt[3] - prev[3]) * (pt[3] - prev[3]));
+      memcpy(prev, pt, sizeof prev);
+    }
+    s->teach.plug = mp + 1;
+    if (s->teach.junior < 0)   /* a closed path: the plane's first axis drives it */
+      s->teach.junior = at->plane == 18 ? AX_Y : AX_X;
+    return -1;
+  }
   if (BIT(at->g, 2) || BIT(at->g, 3)) {
     struct mach_block ab = s->mb;
     char msg[200];
@@ -192,6 +601,19 @@ static void teach_jog(struct session *s, int axis, int64_t d)
     step[axis] = (double)d;
   } else if (axis != s->teach.junior) {
     return;
+  } else if (s->teach.plug && s->teach.len > 0) {
+    /* the jog is the path length along the plugin's curve */
+    const struct plug *pl = &s->plugins->v[s->teach.plug - 1];
+    double inc = s->teach.inc[axis], from[4], to[4];
+    int forward = inc == 0 || (d > 0) == (inc > 0);
+    double u1 = s->teach.u + fabs((double)d) / s->teach.len * (forward ? 1 : -1);
+    s->blk.plug = s->teach.plug - 1;
+    if (pl->d->path(pl->self, &s->blk, s->teach.u, from) != S42_OK ||
+        pl->d->path(pl->self, &s->blk, u1, to) != S42_OK)
+      return;
+    s->teach.u = u1;
+    for (int a = 0; a < 4; a++)
+      step[a] = to[a] - from[a];
   } else if (!s->teach.arc) {
     for (int a = 0; a < 4; a++)
       step[a] = s->teach.inc[a] * (double)d / s->teach.inc[axis];
@@ -230,13 +652,55 @@ static void teach_end(struct session *s)
     }
 }
 
+static int after_motion(struct session *s);
+
+/* The block's plugins' run() from the one that waited (or the first), then
+ * finish(); returns the session event or -1. */
+static int run_plugins(struct session *s)
+{
+  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
+  for (int i = s->run_next; i < PLUG_MAX; i++) {
+    if (!((at->plugins >> i) & 1))
+      continue;
+    struct plug *pl = &s->plugins->v[i];
+    if (!pl->d->run || (at->motion == MO_M19 && i == motion_plugin(s)))
+      continue;   /* under M19 the operator's jogs make the move */
+    s->blk.plug = i;
+    s->perr = 0;
+    int r = pl->d->run(pl->self, &s->blk);
+    if (r == S42_WAIT_PUSK || r == S42_WAIT_PS) {
+      s->run_next = i;
+      s->plug_wait = 1;
+      s->wait = r == S42_WAIT_PUSK ? W_PUSK : W_PS;
+      return SE_WAIT;
+    }
+    if (plug_status(s, i, r, "run"))
+      return SE_ERROR;
+    s->resumed = 0;
+  }
+  s->plug_wait = 0;
+  s->run_next = 0;
+  if (plug_phase(s, at->plugins | s->every, 2))
+    return SE_ERROR;
+  return after_motion(s);
+}
+
 /* The block's machine work proper, once nothing holds it. */
 static int exec_block(struct session *s)
 {
   const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  mach_exec(&s->m, &s->mb, &s->mo);
-  if (s->mo.warn[0])
-    warn(s, "%s", s->mo.warn);
+  mach_modal(&s->m, &s->mb);
+  if (plug_phase(s, at->plugins | s->every, 1))
+    return SE_ERROR;
+  mach_motion(&s->m, &s->mb, &s->mo);
+  s->run_next = 0;
+  s->resumed = 0;
+  return run_plugins(s);
+}
+
+static int after_motion(struct session *s)
+{
+  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
   if (BIT(at->m, 15))
     s->m15_seen = 1;
   if (BIT(at->m, 21)) {
@@ -271,6 +735,17 @@ static int exec_block(struct session *s)
   return -1;
 }
 
+/* A plugin's contour move waits at a feed override of 0 % as G01 does. */
+static int held_plugin_move(const struct session *s)
+{
+  if (!s->m.override_allowed || s->m.override_pct > 0)
+    return 0;
+  for (int a = 0; a < 4; a++)
+    if (BIT(s->mb.given, a) && s->mb.w[a] != 0)
+      return 1;
+  return 0;
+}
+
 /* A VM_EV_BLOCK: do the block's machine work.  Returns the session event
  * when the host must act, or -1 to keep running. */
 static int do_block(struct session *s)
@@ -302,10 +777,14 @@ static int do_block(struct session *s)
     vm_fail(&s->vm, e, "%s", msg);
     return SE_ERROR;
   }
+  if (at->plugins | s->every) {
+    if (plug_start_block(s, at->plugins) || plug_phase(s, at->plugins | s->every, 0))
+      return SE_ERROR;
+  }
   memset(s->jogs, 0, sizeof s->jogs);
   s->has_jogs = 0;
   memcpy(s->start, s->m.pos, sizeof s->start);
-  if (mach_held(&s->m, b)) {           /* feed override at 0 %: the move waits */
+  if (mach_held(&s->m, b) || (contour_block(s) && at->motion >= MO_G12 && held_plugin_move(s))) {           /* feed override at 0 %: the move waits */
     s->wait = W_FEED;
     return SE_WAIT;
   }
@@ -335,11 +814,25 @@ enum sess_ev sess_run(struct session *s)
   }
 }
 
+/* The operator did what a plugin's run() waited for: run it again. */
+static void resume_plugin(struct session *s)
+{
+  s->resumed++;
+  s->wait = W_NONE;
+  int r = run_plugins(s);
+  if (r >= 0)
+    s->state = r;
+}
+
 int sess_key_pusk(struct session *s)
 {
   if (s->state != SE_WAIT || s->wait != W_PUSK)
     return -1;
   s->scr.has_message = 0;
+  if (s->plug_wait) {
+    resume_plugin(s);
+    return 0;
+  }
   finish_block(s);
   return 0;
 }
@@ -375,6 +868,10 @@ int sess_key_ps(struct session *s)
   if (s->wait == W_TEACH)
     teach_end(s);
   s->scr.has_message = 0;   /* a message stays until the next key */
+  if (s->plug_wait && s->wait == W_PS) {
+    resume_plugin(s);
+    return 0;
+  }
   s->wait = W_PUSK;
   return 0;
 }

@@ -7,8 +7,16 @@
 
 #include "kp.h"
 #include "machine.h"
+#include "plugin.h"
 #include "screen.h"
 #include "vm.h"
+
+struct session;
+/* What a plugin's callbacks get as "the block" (include/s42_plugin.h). */
+struct s42_block {
+  struct session *s;
+  int plug;              /* the plugin being called */
+};
 
 enum sess_ev { SE_START, SE_WAIT, SE_END, SE_ERROR, SE_STOPPED };
 /* W_PS: ПС first, then Пуск; W_FEED: the feed override is at 0 %, the move waits */
@@ -25,7 +33,7 @@ struct sess_row {
   int64_t d[4];
   double f, feed, t, v;
   int has_v;
-  int osc;               /* oscillation on after the block */
+  const char *extra;     /* JSON members the plugins add (",\"osc\":\"on\""), or "" */
   int override_pct;
   int64_t jogs[4];
   int has_jogs;
@@ -38,6 +46,11 @@ struct sess_sink {
   void *ctx;
   void (*row)(void *ctx, const struct session *s, const struct sess_row *r);
   void (*warn)(void *ctx, const struct session *s, const char *msg);
+  /* a plugin's log line */
+  void (*log)(void *ctx, const struct session *s, const char *msg);
+  /* a plugin moved an axis outside the contour (oscillation) by d (0: a
+   * mark where it starts); s->m.pos and s->m.t are the new point (plots) */
+  void (*moved)(void *ctx, const struct session *s, int axis, int64_t d);
 };
 
 struct session {
@@ -55,6 +68,18 @@ struct session {
   int have_answer;       /* a G27 took a number that no G28 stored yet */
   int m15_seen;          /* a restart point passed: G29 extends the display */
   uint32_t pp_seen;
+  /* plugins: the host sets `plugins` before the first sess_run */
+  struct plug_set *plugins;
+  uint32_t every;        /* started plugins that see every block */
+  uint32_t started;      /* plugins this run has started (reset done) */
+  struct s42_block blk;
+  int plug_wait;         /* a plugin's run() waits for the operator */
+  int run_next;          /* the plugin whose run() goes on after the wait */
+  int resumed;
+  int perr;              /* host->error() during a callback: the code, 0 none */
+  char perrmsg[240];
+  char extra[320];       /* the current row's plugin members */
+  char gname[4];         /* "G50": the motion name of a plugin's G */
   /* the block in progress while waiting */
   struct mach_block mb;
   struct mach_out mo;
@@ -71,6 +96,8 @@ struct session {
     double cp, cq, r;    /* arc: centre relative to the start, radius */
     double th0, th;      /* arc: start angle, current angle */
     int ccw;
+    int plug;            /* follows a plugin's path (helix): its index + 1 */
+    double len, u;       /* the plugin's path: length (discretes), fraction done */
     double exact[4];     /* exact displacement so far (discretes) */
     int64_t moved[4];    /* rounded displacement made */
   } teach;
@@ -93,6 +120,15 @@ void sess_screen(const struct session *s, uint32_t grid[SCR_ROWS][SCR_COLS]);
  * says why). */
 int sess_correct(struct session *s, int axis, int64_t d);
 int sess_override(struct session *s, int pct);
+/* The plugins' JSON members for the dump (",\"osc\":{...}"), into buf. */
+void sess_plugin_json(const struct session *s, int what, char *buf, size_t n);
+/* The M15 state of the k-th started plugin that keeps one: 0 with its name
+ * and bytes, 2 when that plugin keeps none, 1 when there is no k-th plugin,
+ * -1 when it does not fit in cap. */
+int sess_plugin_state(const struct session *s, int k, char *name, size_t nname, void *buf, size_t cap,
+                      size_t *len);
+/* Give a restarted run a plugin's saved state (starting the plugin). */
+int sess_plugin_restore(struct session *s, const char *name, const void *buf, size_t len, char *err, size_t n);
 /* What the machine waits for, in words, for messages. */
 const char *sess_wait_text(const struct session *s);
 /* The current block's number (-1 none) and line. */

@@ -9,7 +9,9 @@
 #include <unistd.h>
 
 #define MAGIC "S42STATE"
-#define VERSION 1u
+#define VERSION 2u
+#define PLUG_STATES 8
+#define PLUG_STATE_MAX 512
 
 /* Everything a restart needs, in one fixed record (zeroed before filling,
  * so the checksum covers no stray padding bytes). */
@@ -24,7 +26,12 @@ struct payload {
   int64_t pos[4];
   double t;
   int32_t wheel, override_pct, override_allowed, corr_allowed;
-  struct mach_osc osc;
+  uint32_t nplug;       /* the plugins' own states (oscillation) */
+  struct {
+    char name[48];
+    uint32_t len;
+    unsigned char data[PLUG_STATE_MAX];
+  } plug[PLUG_STATES];
   int32_t p3, np3;
   struct scr_p3 p3l[SCR_WORK];
   uint32_t directive;
@@ -88,7 +95,22 @@ int state_save(const struct session *s, const char *path, uint64_t prog_hash, ch
   pl->override_pct = s->m.override_pct;
   pl->override_allowed = s->m.override_allowed;
   pl->corr_allowed = s->m.corr_allowed;
-  pl->osc = s->m.osc;
+  for (int k = 0;; k++) {
+    size_t len = 0;
+    int r = pl->nplug < PLUG_STATES
+              ? sess_plugin_state(s, k, pl->plug[pl->nplug].name, sizeof pl->plug[0].name,
+                                  pl->plug[pl->nplug].data, PLUG_STATE_MAX, &len)
+              : 1;
+    if (r == 1)
+      break;
+    if (r < 0 || pl->nplug == PLUG_STATES) {
+      snprintf(err, n, "a plugin's restart state is too large");
+      free(pl);
+      return -1;
+    }
+    if (r == 0)
+      pl->plug[pl->nplug++].len = (uint32_t)len;
+  }
   pl->p3 = s->scr.p3;
   pl->np3 = s->scr.np3;
   memcpy(pl->p3l, s->scr.p3l, sizeof pl->p3l);
@@ -173,7 +195,7 @@ int state_load(struct session *s, const char *path, uint64_t prog_hash, char *er
   } else if (pl->prog_hash != prog_hash) {
     snprintf(err, n, "the program text changed since the restart point was saved in %s", path);
   } else if (pl->block >= s->p->nblocks || pl->pc != s->p->blocks[pl->block].code || pl->depth < 0 ||
-             pl->depth > VM_MAXDEPTH || pl->np3 < 0 || pl->np3 > SCR_WORK || pl->wheel < 0 || pl->wheel > 2 ||
+             pl->depth > VM_MAXDEPTH || pl->nplug > PLUG_STATES || pl->np3 < 0 || pl->np3 > SCR_WORK || pl->wheel < 0 || pl->wheel > 2 ||
              !frames_fit(s->p, pl)) {
     snprintf(err, n, "%s does not fit this program", path);
   } else {
@@ -192,7 +214,6 @@ int state_load(struct session *s, const char *path, uint64_t prog_hash, char *er
     s->m.override_pct = pl->override_pct;
     s->m.override_allowed = pl->override_allowed;
     s->m.corr_allowed = pl->corr_allowed;
-    s->m.osc = pl->osc;
     s->scr.p3 = pl->p3;
     s->scr.np3 = pl->np3;
     memcpy(s->scr.p3l, pl->p3l, sizeof s->scr.p3l);
@@ -202,6 +223,10 @@ int state_load(struct session *s, const char *path, uint64_t prog_hash, char *er
       scr_set_directive(&s->scr, pl->dirtext);
     s->m15_seen = 1;
     rc = 0;
+    for (uint32_t k = 0; k < pl->nplug && rc == 0; k++) {
+      pl->plug[k].name[sizeof pl->plug[k].name - 1] = 0;
+      rc = sess_plugin_restore(s, pl->plug[k].name, pl->plug[k].data, pl->plug[k].len, err, n);
+    }
   }
   fclose(f);
   free(pl);

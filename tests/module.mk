@@ -5,16 +5,17 @@ CHECK_LIBS   := $(shell pkg-config --libs check 2>/dev/null || echo -lcheck)
 TEST_SRCS    := $(wildcard tests/unit/*.c)
 TEST_OBJS    := $(TEST_SRCS:%.c=$(BUILD)/%.o)
 UNIT_BIN     := $(BUILD)/tests/unit/run-unit
-$(TEST_OBJS): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay $(CHECK_CFLAGS)
+$(TEST_OBJS): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(CHECK_CFLAGS)
 
-.PHONY: unit-bin
-unit-bin: $(UNIT_BIN)
+.PHONY: unit-bin fixtures
+fixtures: $(FIXTURE_SOS)
+unit-bin: $(UNIT_BIN) $(PLUGIN_SOS) $(FIXTURE_SOS)
 $(UNIT_BIN): $(TEST_OBJS) $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) $(LDLIBS)
 
-unit: $(UNIT_BIN)
-	S42_SRCDIR=$(CURDIR) $(UNIT_BIN)
+unit: $(UNIT_BIN) $(PLUGIN_SOS) $(FIXTURE_SOS)
+	S42_SRCDIR=$(CURDIR) S42_FIXTURES=$(CURDIR)/$(BUILD)/test-plugins S42_PLUGINS=$(CURDIR)/$(BUILD)/plugins $(UNIT_BIN)
 
 conformance: $(S42)
 	$(PYTHON) tests/conformance/run.py --s42 $(S42) tests/conformance/cases

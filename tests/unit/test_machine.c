@@ -1,5 +1,5 @@
 /* The simulated machine (src/machine.h): contour-speed limits, arcs,
- * checks, simulated time, the wheel and oscillation. */
+ * checks, simulated time and the wheel (oscillation: test_plugin.c). */
 #include "suites.h"
 #include "ast.h"
 #include "errors.h"
@@ -45,7 +45,8 @@ static int check(void) { return mach_check(&m, &b, msg, sizeof msg); }
 static void exec(void)
 {
   ck_assert_msg(check() == 0, "mach_check: %s", msg);
-  mach_exec(&m, &b, &o);
+  mach_modal(&m, &b);
+  mach_motion(&m, &b, &o);
 }
 
 /* ---- linear limit ---- */
@@ -296,32 +297,6 @@ START_TEST(check_feed_zero)
 }
 END_TEST
 
-START_TEST(check_osc)
-{
-  block(MO_NONE, 0, 0, -1);
-  with_m(13);
-  ck_assert_int_eq(check(), S42_E_OSC);     /* M13 before any G07 */
-  block(MO_G07, 0, 0, SL_A, 0.0, SL_OSCF, 5500.0, -1);
-  ck_assert_int_eq(check(), S42_E_OSC);     /* stroke 0 */
-  block(MO_G07, 0, 0, SL_A, -20000.0, SL_OSCF, 0.0, -1);
-  ck_assert_int_eq(check(), S42_E_OSC);     /* speed 0 */
-  block(MO_G07, 0, 0, SL_A, -20000.0, SL_OSCF, 5500.0, -1);
-  exec();
-  ck_assert_int_eq(m.osc.defined, 1);
-  ck_assert_int_eq(m.osc.active, 0);
-  block(MO_G01, 0, 1000, SL_X, 40000.0, -1);
-  with_m(13);
-  exec();
-  ck_assert_int_eq(m.osc.active, 1);
-  block(MO_G01, 0, 1000, SL_A, 5.0, -1);
-  ck_assert_int_eq(check(), S42_E_OSC);     /* the oscillating axis in the contour */
-  block(MO_G07, 0, 0, SL_X, 100.0, SL_OSCF, 50.0, -1);
-  ck_assert_int_eq(check(), S42_E_OSC);     /* another axis while it oscillates */
-  block(MO_G01, 0, 1000, SL_Z, 5.0, -1);
-  ck_assert_int_eq(check(), 0);
-}
-END_TEST
-
 /* ---- time ---- */
 
 START_TEST(time_dwell)
@@ -376,62 +351,6 @@ START_TEST(jog_counts_in_position)
 }
 END_TEST
 
-/* ---- oscillation ---- */
-
-START_TEST(osc_offset_and_return)
-{
-  block(MO_G07, 0, 0, SL_A, -20000.0, SL_OSCF, 5500.0, -1);
-  exec();
-  block(MO_NONE, 0, 0, -1);
-  with_m(13);
-  exec();
-  ck_assert_int_eq(mach_osc_offset(&m), 0);
-  mach_advance(&m, 0.1);               /* 5500 deg/min: 9166.7 discretes */
-  ck_assert_int_eq(mach_osc_offset(&m), -9167);
-  ck_assert_int_eq(m.pos[AX_A], -9167);
-  mach_advance(&m, 0.2);               /* 27500: back from -20000 by 7500 */
-  ck_assert_int_eq(mach_osc_offset(&m), -12500);
-  double t0 = m.t;
-  block(MO_NONE, 0, 0, -1);
-  with_m(14);
-  exec();
-  ck_assert_int_eq(m.osc.active, 0);
-  ck_assert_int_eq(m.pos[AX_A], 0);
-  ck_near(m.t - t0, 12.5 / 5500 * 60, 1e-9);
-}
-END_TEST
-
-START_TEST(osc_runs_during_moves)
-{
-  block(MO_G07, 0, 0, SL_A, 20000.0, SL_OSCF, 6000.0, -1);
-  exec();
-  block(MO_G01, 0, 1000, SL_X, 1000.0, -1);   /* 0.06 s: 6000 discretes of A */
-  with_m(13);
-  exec();
-  ck_assert_int_eq(m.pos[AX_A], 6000);
-  ck_assert_int_eq(m.pos[AX_X], 1000);
-  block(MO_G01, 0, 1000, SL_X, 1000.0, -1);
-  with_m(2);                            /* M2 includes M14 */
-  exec();
-  ck_assert_int_eq(m.osc.active, 0);
-  ck_assert_int_eq(m.pos[AX_A], 0);
-  ck_near(m.t, 0.12 + 12.0 / 6000 * 60, 1e-9);
-}
-END_TEST
-
-START_TEST(osc_speed_clamped)
-{
-  block(MO_G07, 0, 0, SL_Y, 1000.0, SL_OSCF, 500.0, -1);
-  exec();
-  ck_near(m.osc.speed, 6000.0 / 36, 1e-9);
-  ck_assert_str_ne(o.warn, "");
-  block(MO_G07, 0, 0, SL_Z, 1000.0, SL_OSCF, 5500.0, -1);
-  exec();
-  ck_near(m.osc.speed, 5500, 0);
-  ck_assert_str_eq(o.warn, "");
-}
-END_TEST
-
 Suite *suite_machine(void)
 {
   Suite *s = suite_create("machine");
@@ -462,7 +381,6 @@ Suite *suite_machine(void)
   tcase_add_checked_fixture(tc, setup, NULL);
   tcase_add_test(tc, check_wheel);
   tcase_add_test(tc, check_feed_zero);
-  tcase_add_test(tc, check_osc);
   suite_add_tcase(s, tc);
 
   tc = tcase_create("time");
@@ -471,9 +389,6 @@ Suite *suite_machine(void)
   tcase_add_test(tc, time_wheel_rundown);
   tcase_add_test(tc, time_g37_return);
   tcase_add_test(tc, jog_counts_in_position);
-  tcase_add_test(tc, osc_offset_and_return);
-  tcase_add_test(tc, osc_runs_during_moves);
-  tcase_add_test(tc, osc_speed_clamped);
   suite_add_tcase(s, tc);
   return s;
 }

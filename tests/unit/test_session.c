@@ -302,40 +302,6 @@ START_TEST(g37_returns_y)
 }
 END_TEST
 
-START_TEST(seed_subs_with_oscillation)
-{
-  load("№10 G02 G19 G09 X-20000 Z+0 I-10000 K+0 F200 L11 H2 M17 ^\n"
-       "№11 G09 Z+20000 M17 ^\n"
-       "№01 G07 A-20000 F5500 ^\n"
-       "№02 G09 X+40000 Y-10000 F1000 L10 H2 M13 ^\n"
-       "№03 G09 Z-80000 M02 ^\n");
-  ck_assert_int_eq(go(), SE_END);
-  static const int want[] = {1, 2, 10, 11, 11, 10, 11, 11, 3};
-  ck_assert_int_eq(nrows, 9);
-  for (int i = 0; i < 9; i++)
-    ck_assert_int_eq(rows[i].n, want[i]);
-  ck_near(rows[2].f, 200, 0);
-  ck_near(rows[3].f, 200, 0);
-  ck_near(rows[8].f, 1000, 0);
-  ck_assert_int_eq(rows[0].osc, 0);
-  ck_assert_int_eq(rows[1].osc, 1);
-  ck_assert_int_eq(rows[7].osc, 1);
-  ck_assert_int_eq(rows[8].osc, 0);    /* M2 ends it */
-  ck_assert_int_eq(s->m.pos[3], 0);    /* A back where it started */
-  ck_assert_str_eq(motions[0], "G07");
-}
-END_TEST
-
-START_TEST(g07_keeps_contour_f)
-{
-  load("N1 G01 X+1000 F100\nN2 G07 A-20000 F5500\nN3 G01 X+1000 M2\n");
-  ck_assert_int_eq(go(), SE_END);
-  ck_near(rows[2].f, 100, 0);
-  ck_near(rows[2].feed, 100, 0);
-  ck_assert_int_eq(nwarn, 0);
-}
-END_TEST
-
 START_TEST(m16_counts_from_g20)
 {
   load("N1 M22\nN2 R5+1\nN3 G20\nN4 M16 /R1+X// M2\n");
@@ -386,8 +352,6 @@ Suite *suite_session(void)
   tcase_add_test(tc, key_exit_latches_for_pp);
   tcase_add_test(tc, watched_block_starts);
   tcase_add_test(tc, g37_returns_y);
-  tcase_add_test(tc, seed_subs_with_oscillation);
-  tcase_add_test(tc, g07_keeps_contour_f);
   tcase_add_test(tc, m16_counts_from_g20);
   tcase_add_test(tc, m16_counts_from_start);
   suite_add_tcase(su, tc);

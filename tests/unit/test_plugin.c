@@ -1,0 +1,428 @@
+/* Plugins: the loader against the fixture plugins (tests/plugins: good,
+ * wrong ABI, no entry symbol, init fails, callbacks fail), E-PLUGIN when a
+ * plugin is missing, and the oscillation and helix plugins run through
+ * sessions.  The make target passes the directories: S42_FIXTURES (one
+ * folder per fixture) and S42_PLUGINS (the built plugins). */
+#include "suites.h"
+#include "errors.h"
+#include "plugin.h"
+#include "session.h"
+#include <stdlib.h>
+#include <string.h>
+
+#define MAXROWS 64
+
+static struct plug_set ps;
+static struct tprog t;
+static struct session *s;
+static struct sess_row rows[MAXROWS];
+static char extras[MAXROWS][64];
+static int nrows, nwarn, nmoved;
+static char lastwarn[240];
+
+static const char *dir_of(const char *env, const char *sub)
+{
+  static char buf[4096];
+  const char *d = getenv(env);
+  ck_assert_msg(d != NULL, "%s is not set (run through make unit)", env);
+  snprintf(buf, sizeof buf, "%s%s%s", d, sub ? "/" : "", sub ? sub : "");
+  return buf;
+}
+
+static void on_row(void *ctx, const struct session *ss, const struct sess_row *r)
+{
+  (void)ctx;
+  (void)ss;
+  ck_assert_int_lt(nrows, MAXROWS);
+  rows[nrows] = *r;
+  snprintf(extras[nrows], sizeof extras[nrows], "%s", r->extra ? r->extra : "");
+  nrows++;
+}
+
+static void on_warn(void *ctx, const struct session *ss, const char *msg)
+{
+  (void)ctx;
+  (void)ss;
+  nwarn++;
+  snprintf(lastwarn, sizeof lastwarn, "%s", msg);
+}
+
+static void on_moved(void *ctx, const struct session *ss, int axis, int64_t d)
+{
+  (void)ctx;
+  (void)ss;
+  (void)axis;
+  (void)d;
+  nmoved++;
+}
+
+static void setup(void)
+{
+  memset(&t, 0, sizeof t);
+  memset(&ps, 0, sizeof ps);
+  prog_init(&t.p);
+  diag_init(&t.d, "t.kp");
+  s = calloc(1, sizeof *s);
+  nrows = nwarn = nmoved = 0;
+  lastwarn[0] = 0;
+}
+
+static void teardown(void)
+{
+  tp_free(&t);
+  free(s);
+  plug_free(&ps);
+}
+
+static void compile_with(const char *src)
+{
+  tp_free(&t);
+  t.src = src;
+  prog_init(&t.p);
+  diag_init(&t.d, "t.kp");
+  t.rc = comp_program_with(src, strlen(src), &t.d, &t.p, &ps);
+}
+
+static void load(const char *src)
+{
+  compile_with(src);
+  ck_assert_msg(t.rc == 0, "does not compile:\n%s", tp_diags(&t.d));
+  sess_init(s, &t.p);
+  s->plugins = &ps;
+  s->sink.row = on_row;
+  s->sink.warn = on_warn;
+  s->sink.moved = on_moved;
+}
+
+static enum sess_ev go(void)
+{
+  enum sess_ev ev;
+  while ((ev = sess_run(s)) == SE_START)
+    ;
+  return ev;
+}
+
+/* ---- the loader and the fixtures ---- */
+
+START_TEST(good_plugin_loads_and_runs)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "good"));
+  const struct s42_function *fn;
+  int i = plug_find(&ps, 'G', 50, &fn);
+  ck_assert_int_ge(i, 0);
+  ck_assert_str_eq(ps.v[i].d->name, "good");
+  ck_assert_int_eq(fn->group, 1);
+  ck_assert_int_eq(ps.v[i].state, PLUG_FOUND);     /* init waits for a program that needs it */
+  load("N1 G50 X+5000 F1000 M30\nN2 M30\nN3 M2\n");
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_int_eq(ps.v[i].state, PLUG_READY);
+  ck_assert_double_eq(s->vm.reg[1], 2);
+  ck_assert_int_eq(s->m.pos[0], 5000);
+  ck_near(s->m.t, 0.3, 1e-9);
+  ck_assert_int_eq(nrows, 3);          /* each block has machine work */
+  ck_assert_str_eq(rows[0].motion, "G50");
+}
+END_TEST
+
+START_TEST(good_plugin_check_error)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "good"));
+  load("N1 R1+7\nN2 G50 X+13 F1000\nN3 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_RANGE);
+  ck_assert_str_eq(s->vm.err.msg, "G50: X+13 is unlucky");
+  ck_assert_int_eq(s->m.pos[0], 0);
+}
+END_TEST
+
+START_TEST(plugin_functions_take_their_words)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "good"));
+  compile_with("N1 G50 Z+10 F100\nN2 M2\n");
+  ck_assert_int_ge(tp_find(&t.d, DIAG_ERROR, S42_E_BLOCK, 1, 8), 0);
+  compile_with("N1 G50 G01 X+10 F100\nN2 M2\n");
+  ck_assert_int_ge(tp_find(&t.d, DIAG_ERROR, S42_E_GROUP, 1, 0), 0);
+}
+END_TEST
+
+START_TEST(unknown_function_without_plugin)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "initfail"));
+  compile_with("N1 G50 X+10 F100\nN2 M2\n");
+  ck_assert_int_ge(tp_find(&t.d, DIAG_ERROR, S42_E_FUNC, 1, 4), 0);
+}
+END_TEST
+
+START_TEST(wrong_abi_refused)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "wrongabi"));
+  ck_assert_int_eq(plug_find(&ps, 'G', 51, NULL), -1);
+  ck_assert_uint_eq(ps.nbad, 1);
+  ck_assert_ptr_nonnull(strstr(ps.bad[0].msg, "built for plugin ABI 2.0"));
+  ck_assert_ptr_nonnull(strstr(ps.bad[0].msg, "this s42 has ABI 1.0"));
+}
+END_TEST
+
+START_TEST(no_entry_refused)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "noentry"));
+  ck_assert_uint_eq(ps.nbad, 1);
+  ck_assert_ptr_nonnull(strstr(ps.bad[0].msg, "no entry symbol s42_plugin_entry"));
+}
+END_TEST
+
+START_TEST(init_failure_is_e_plugin)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "initfail"));
+  load("N1 G01 X+10 F100\nN2 M2\n");       /* does not use it: never started */
+  ck_assert_int_eq(go(), SE_END);
+  int i = plug_find(&ps, 'M', 31, NULL);
+  ck_assert_int_eq(ps.v[i].state, PLUG_FOUND);
+  load("N1 G01 X+10 F100\nN2 M31\nN3 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_PLUGIN);
+  ck_assert_ptr_nonnull(strstr(s->vm.err.msg, "initfail plugin"));
+  ck_assert_int_eq(s->m.pos[0], 10);
+}
+END_TEST
+
+START_TEST(failing_callbacks)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "cbfail"));
+  load("N1 M24\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_TEETH);
+  ck_assert_str_eq(s->vm.err.msg, "no teeth found (fixture)");
+  load("N1 G52\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_PLUGIN);
+  ck_assert_ptr_nonnull(strstr(s->vm.err.msg, "cbfail plugin failed in check()"));
+}
+END_TEST
+
+START_TEST(missing_plugin_is_e_plugin_at_check)
+{
+  plug_scan(&ps, "/nonexistent/plugins");
+  compile_with("N1 G12 G17 X+0 Y+0 I-1000 J+0 Z+10 F100\nN2 G07 Z+10 F10\nN3 M2\n");
+  int k = tp_find(&t.d, DIAG_ERROR, S42_E_PLUGIN, 1, 4);
+  ck_assert_int_ge(k, 0);
+  ck_assert_ptr_nonnull(strstr(t.d.v[k].msg, "G12 (helical interpolation) needs the helix plugin"));
+  ck_assert_ptr_nonnull(strstr(t.d.v[k].msg, "/nonexistent/plugins"));
+  k = tp_find(&t.d, DIAG_ERROR, S42_E_PLUGIN, 2, 4);
+  ck_assert_int_ge(k, 0);
+  ck_assert_ptr_nonnull(strstr(t.d.v[k].msg, "oscillation plugin"));
+  /* with no plugin set at all */
+  t.rc = 0;
+  tp_free(&t);
+  tp_compile(&t, "N1 G13 G18 Y+0 Z+0 J-1000 K+0 F100\nN2 M2\n");
+  ck_assert_int_ge(tp_find(&t.d, DIAG_ERROR, S42_E_PLUGIN, 1, 4), 0);
+}
+END_TEST
+
+/* ---- oscillation ---- */
+
+static void with_plugins(void)
+{
+  plug_scan(&ps, dir_of("S42_PLUGINS", NULL));
+  ck_assert_int_ge(plug_find(&ps, 'G', 7, NULL), 0);
+  ck_assert_int_ge(plug_find(&ps, 'G', 12, NULL), 0);
+}
+
+START_TEST(osc_seed_subs)
+{
+  with_plugins();
+  load("№10 G02 G19 G09 X-20000 Z+0 I-10000 K+0 F200 L11 H2 M17 ^\n"
+       "№11 G09 Z+20000 M17 ^\n"
+       "№01 G07 A-20000 F5500 ^\n"
+       "№02 G09 X+40000 Y-10000 F1000 L10 H2 M13 ^\n"
+       "№03 G09 Z-80000 M02 ^\n");
+  ck_assert_int_eq(go(), SE_END);
+  static const int want[] = {1, 2, 10, 11, 11, 10, 11, 11, 3};
+  ck_assert_int_eq(nrows, 9);
+  for (int i = 0; i < 9; i++)
+    ck_assert_int_eq(rows[i].n, want[i]);
+  ck_near(rows[2].f, 200, 0);
+  ck_near(rows[8].f, 1000, 0);
+  ck_assert_str_eq(extras[0], "");
+  ck_assert_str_eq(extras[1], ",\"osc\":\"on\"");
+  ck_assert_str_eq(extras[7], ",\"osc\":\"on\"");
+  ck_assert_str_eq(extras[8], "");     /* M2 ends it */
+  ck_assert_int_eq(s->m.pos[3], 0);    /* A back where it started */
+  ck_assert_int_gt(nmoved, 100);       /* the turning points reached the sink */
+}
+END_TEST
+
+START_TEST(osc_offset_and_return)
+{
+  with_plugins();
+  /* 5500 deg/min = 91666.7 discretes/s: after 0.3 s 27500 travelled, the
+   * offset is -20000 + 7500 = -12500; the return takes 12.5/5500 min */
+  load("N1 G07 A-20000 F5500\nN2 M13\nN3 G04 X+3\nN4 M14\nN5 M2\n");
+  uint8_t watch[5] = {0, 0, 0, 1, 0};
+  s->vm.watch = watch;
+  ck_assert_int_eq(sess_run(s), SE_START);   /* N4 starts */
+  ck_assert_int_eq(s->m.pos[3], -12500);
+  ck_near(s->m.t, 0.3, 1e-12);
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_int_eq(s->m.pos[3], 0);
+  ck_near(s->m.t, 0.3 + 12.5 / 5500 * 60, 1e-9);
+}
+END_TEST
+
+START_TEST(osc_runs_during_moves)
+{
+  with_plugins();
+  load("N1 G07 A+20000 F6000\nN2 G01 X+1000 F1000 M13\nN3 G01 X+1000 M2\n");
+  uint8_t watch[3] = {0, 0, 1};
+  s->vm.watch = watch;
+  ck_assert_int_eq(sess_run(s), SE_START);
+  ck_assert_int_eq(s->m.pos[3], 6000);       /* 0.06 s at 6000 deg/min */
+  ck_assert_int_eq(s->m.pos[0], 1000);
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_int_eq(s->m.pos[3], 0);          /* M2 includes M14 */
+  ck_near(s->m.t, 0.12 + 12.0 / 6000 * 60, 1e-9);
+}
+END_TEST
+
+START_TEST(osc_errors)
+{
+  with_plugins();
+  load("N1 M13\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_OSC);      /* M13 before any G07 */
+  load("N1 G07 A+0 F100\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_OSC);      /* stroke 0 */
+  load("N1 G07 A-20000 F5500\nN2 G01 X+100 F100 M13\nN3 G01 A+5\nN4 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_OSC);      /* the oscillating axis in the contour */
+  ck_assert_int_eq(sess_block_number(s), 3);
+  load("N1 G07 A-20000 F5500\nN2 M13\nN3 G07 X+100 F50\nN4 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_OSC);      /* another axis while it oscillates */
+  load("N1 G07 A-20000 F5500\nN2 M13\nN3 G12 G17 X+0 Y+0 I-1000 J+0 A+10 F100\nN4 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_OSC);      /* ... also along a helix */
+}
+END_TEST
+
+START_TEST(osc_speed_clamped_warns)
+{
+  with_plugins();
+  load("N1 G07 Y+1000 F500\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_int_eq(nwarn, 1);
+  ck_assert_ptr_nonnull(strstr(lastwarn, "clamped"));
+  load("N1 G07 Z+1000 F5500\nN2 M2\n");
+  nwarn = 0;
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_int_eq(nwarn, 0);
+}
+END_TEST
+
+START_TEST(osc_keeps_contour_f)
+{
+  with_plugins();
+  load("N1 G01 X+1000 F100\nN2 G07 A-20000 F5500\nN3 G01 X+1000 M2\n");
+  ck_assert_int_eq(go(), SE_END);
+  ck_near(rows[2].f, 100, 0);
+  ck_near(rows[2].feed, 100, 0);
+}
+END_TEST
+
+/* ---- helix ---- */
+
+START_TEST(helix_half_turn_seed)
+{
+  with_plugins();
+  /* language.md 19 item 2: half circle R10 in YZ, X rising 20 mm */
+  load("№1 G12 G18 G09 Y+0 Z-20000 J+0 K-10000 X+20000 F1000 ^\n№2 M02 ^\n");
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_int_eq(s->m.pos[0], 20000);
+  ck_assert_int_eq(s->m.pos[2], -20000);
+  double H = 10 * M_PI, L = hypot(H, 20);
+  /* Y is in the plane and the tangent is parallel to Y at the start:
+   * Y's share of the speed is H/L: F = (6000/36) L / H */
+  ck_near(rows[0].feed, 6000.0 * sqrt(L * L / (H * H * 1296 + 400)), 1e-9);
+  ck_near(s->m.t, L / rows[0].feed * 60, 1e-9);
+}
+END_TEST
+
+START_TEST(helix_geometry_errors)
+{
+  with_plugins();
+  load("N1 R1+1000\nN2 G13 G17 X+0 Y+R1 I-1000 J+0 Z+5 F100\nN3 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_ARC);
+  load("N1 G13 G17 X+0 Y+0 I-1000 J+0 Z+5 F0\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_FEED);
+  compile_with("N1 G13 X+0 Y+0 I-1000 J+0 Z+5 F100\nN2 M2\n");
+  ck_assert_int_ge(tp_find(&t.d, DIAG_ERROR, S42_E_PLANE, 1, 0), 0);
+  compile_with("N1 G12 G17 X+0 Y+0 I-1000 J+0 Z+5 A+5 F100\nN2 M2\n");
+  ck_assert_int_ge(tp_find(&t.d, DIAG_ERROR, S42_E_PLANE, 1, 0), 0);
+}
+END_TEST
+
+START_TEST(helix_teach_in)
+{
+  with_plugins();
+  /* M19 along a helix: a quarter turn R10 in XY rising Z 10 mm.  X is the
+   * junior axis; the jog is the path length, the other axes follow. */
+  compile_with("N1 G13 G17 X-10000 Y+10000 I-10000 J+0 Z+10000 M19\nN2 M2\n");
+  ck_assert_msg(t.rc == 0, "%s", tp_diags(&t.d));
+  sess_init(s, &t.p);
+  s->plugins = &ps;
+  s->sink.row = on_row;
+  ck_assert_int_eq(go(), SE_WAIT);
+  ck_assert_int_eq(s->wait, W_TEACH);
+  double L = hypot(10 * M_PI / 2, 10) * 1000;
+  ck_assert_int_eq(sess_jog(s, 0, -(int64_t)llround(L / 2)), 0);   /* half the path, forwards */
+  ck_assert_int_eq(s->m.pos[2], 5000);
+  ck_near((double)s->m.pos[0], -10000 + 10000 * cos(M_PI / 4), 1.0);
+  ck_near((double)s->m.pos[1], 10000 * sin(M_PI / 4), 1.0);
+  ck_assert_int_eq(sess_jog(s, 0, (int64_t)llround(L / 2)), 0);    /* and back */
+  ck_assert_int_eq(s->m.pos[2], 0);
+  ck_assert_int_eq(s->m.pos[0], 0);
+  ck_assert_int_eq(sess_jog(s, 1, 500), 0);    /* another axis of the block: nothing */
+  ck_assert_int_eq(s->m.pos[1], 0);
+  ck_assert_int_eq(sess_jog(s, 3, 700), 0);    /* an axis not in the block: alone */
+  ck_assert_int_eq(s->m.pos[3], 700);
+  ck_assert_int_eq(sess_key_ps(s), 0);
+  ck_assert_int_eq(sess_key_pusk(s), 0);
+  ck_assert_int_eq(go(), SE_END);
+}
+END_TEST
+
+Suite *suite_plugin(void)
+{
+  Suite *su = suite_create("plugin");
+  TCase *tc = tcase_create("loader");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, good_plugin_loads_and_runs);
+  tcase_add_test(tc, good_plugin_check_error);
+  tcase_add_test(tc, plugin_functions_take_their_words);
+  tcase_add_test(tc, unknown_function_without_plugin);
+  tcase_add_test(tc, wrong_abi_refused);
+  tcase_add_test(tc, no_entry_refused);
+  tcase_add_test(tc, init_failure_is_e_plugin);
+  tcase_add_test(tc, failing_callbacks);
+  tcase_add_test(tc, missing_plugin_is_e_plugin_at_check);
+  suite_add_tcase(su, tc);
+  tc = tcase_create("oscillation");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, osc_seed_subs);
+  tcase_add_test(tc, osc_offset_and_return);
+  tcase_add_test(tc, osc_runs_during_moves);
+  tcase_add_test(tc, osc_errors);
+  tcase_add_test(tc, osc_speed_clamped_warns);
+  tcase_add_test(tc, osc_keeps_contour_f);
+  suite_add_tcase(su, tc);
+  tc = tcase_create("helix");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, helix_half_turn_seed);
+  tcase_add_test(tc, helix_geometry_errors);
+  tcase_add_test(tc, helix_teach_in);
+  suite_add_tcase(su, tc);
+  return su;
+}
