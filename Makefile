@@ -36,7 +36,7 @@ include tests/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: all check test unit conformance programs regress restart realtime plot shared asan run clean install deps docs
+.PHONY: all check test unit conformance programs regress restart realtime plot plugins shared asan run clean install deps docs
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -58,15 +58,16 @@ check: deps
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot shared
+test: unit conformance programs regress restart realtime plot plugins shared
 
+ASAN_MAKE = $(MAKE) BUILD=build-asan S42=build-asan/s42 \
+	  CFLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
+	  LDFLAGS="-fsanitize=address,undefined"
 asan:
 	@sh scripts/deps.sh
-	$(MAKE) BUILD=build-asan S42=build-asan/s42 \
-	  CFLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
-	  LDFLAGS="-fsanitize=address,undefined" all unit-bin
+	$(ASAN_MAKE) all unit-bin
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  $(MAKE) BUILD=build-asan S42=build-asan/s42 test
+	  $(ASAN_MAKE) test
 
 docs: docs/opcodes.md
 docs/opcodes.md: vm/opcodes.h $(S42)

@@ -30,24 +30,16 @@
  * and returns S42_FAIL; the block then has not run and the cycle stops with
  * that error.  A plugin written in C++ catches every exception at its edge.
  *
- * A minimal plugin, built with `cc -shared -fPIC -o hello.so hello.c`:
+ * A plugin may add G functions 0..63 and M functions 0..31 that the language
+ * does not have, or implement those the language leaves to plugins (G07
+ * G10-G13, M10 M12-M14).  The first plugin found for a function wins.
  *
- *     #include <s42_plugin.h>
- *     static const struct s42_host *host;
- *     static int init(const struct s42_host *h, const char *dir, void **self)
- *     { (void)dir; *self = NULL; host = h; return S42_OK; }
- *     static int run(void *self, struct s42_block *b)
- *     { (void)self; host->log(b, "hello from block %d", host->number(b));
- *       return S42_OK; }
- *     static const struct s42_function fn[] = {
- *       { sizeof(struct s42_function), 'M', 50, 0, "", 0, "say hello" } };
- *     static const struct s42_plugin desc = {
- *       .size = sizeof desc, .abi_major = S42_ABI_MAJOR,
- *       .abi_minor = S42_ABI_MINOR, .fingerprint = S42_ABI_FINGERPRINT,
- *       .name = "hello", .version = "1.0", .summary = "M50 logs a line",
- *       .functions = fn, .nfunctions = 1, .init = init, .run = run };
- *     S42_EXPORT const struct s42_plugin *s42_plugin_entry(void)
- *     { return &desc; }
+ * One instance per process: init() runs once, reset() starts every run,
+ * fini() ends it.  s42 runs one program at a time with a loaded plugin.
+ *
+ * A minimal plugin is docs/plugin-example/hello.c in the s42 sources:
+ * descriptor, init and run, built with `cc -shared -fPIC -o hello.so
+ * hello.c`, no other header and no library of s42.
  */
 #ifndef S42_PLUGIN_H
 #define S42_PLUGIN_H

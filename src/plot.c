@@ -528,14 +528,23 @@ static void draw_panel_osc(cairo_t *cr, const struct panel *P, const struct plot
   cairo_set_line_width(cr, 1.0);
   size_t j = 0;
   for (size_t i = 0; i < pl->nosc; i++) {
+    const struct osc_pt *o = &pl->osc[i];
     double pt[4], x, y;
-    point_at(pl, pl->osc[i].t, &j, pt);
-    pt[pl->osc[i].axis] += pl->osc[i].off / 1000.0;
-    pmap(P, pt[P->u], pt[P->v], &x, &y);
-    if (i == 0 || pl->osc[i].start)
-      cairo_move_to(cr, x, y);
-    else
-      cairo_line_to(cr, x, y);
+    /* between two points the axis moves evenly while the contour may curve:
+     * a few steps in between follow it */
+    int steps = i == 0 || o->start ? 1 : 16;
+    for (int k = 1; k <= steps; k++) {
+      double f = (double)k / steps;
+      double t = i == 0 || o->start ? o->t : pl->osc[i - 1].t + (o->t - pl->osc[i - 1].t) * f;
+      double off = i == 0 || o->start ? (double)o->off : pl->osc[i - 1].off + (o->off - pl->osc[i - 1].off) * f;
+      point_at(pl, t, &j, pt);
+      pt[o->axis] += off / 1000.0;
+      pmap(P, pt[P->u], pt[P->v], &x, &y);
+      if (i == 0 || o->start)
+        cairo_move_to(cr, x, y);
+      else
+        cairo_line_to(cr, x, y);
+    }
     if (i % CHUNK == CHUNK - 1) {
       cairo_stroke(cr);
       cairo_move_to(cr, x, y);

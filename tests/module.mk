@@ -43,6 +43,11 @@ realtime: $(S42)
 plot: $(S42)
 	sh tests/plot/run.sh $(S42)
 
+# plugins from the outside: built against the installed header, searched,
+# refused, missing; OpenCV only for programs that search teeth
+plugins: $(S42) $(PLUGIN_SOS) $(FIXTURE_SOS)
+	sh tests/plugins/run.sh $(S42) $(BUILD)
+
 shared: $(S42)
 	@if [ -d $(SHARED)/conformance/cases ]; then \
 	  sh tests/shared.sh $(S42) $(SHARED); \
@@ -51,13 +56,13 @@ shared: $(S42)
 # Fuzzing with libFuzzer (clang): make fuzz FUZZ_SECONDS=60
 FUZZ_SECONDS ?= 30
 FUZZ_TARGETS := fuzz_program fuzz_operator
-FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Ivm -Idisplay -D_GNU_SOURCE
+FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Ivm -Idisplay -Iinclude -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/%)
 FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c,$(SRC_SRCS))
 $(BUILD)/fuzz/%: tests/fuzz/%.c $(FUZZ_SRCS)
 	@mkdir -p $(@D)
-	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) -lm
+	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) -lm -ldl
 fuzz: fuzz-bin
 	@mkdir -p $(BUILD)/fuzz/corpus-program $(BUILD)/fuzz/corpus-operator
 	@cp programs/*.kp tests/conformance/cases/*/program.kp $(BUILD)/fuzz/corpus-program/ 2>/dev/null || true
