@@ -28,6 +28,7 @@ include vm/module.mk
 include display/module.mk
 include src/module.mk
 include tests/module.mk
+include bench/module.mk
 
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
