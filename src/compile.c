@@ -180,6 +180,19 @@ static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
   return 1;
 }
 
+/* The superinstruction for binary `op` with a right operand pushed by
+ * `push` (INT, CONST or REG), or -1. */
+static int fuse_operand(int op, int push)
+{
+  static const uint8_t tab[4][3] = {
+    {OP_ADDI, OP_ADDK, OP_ADDR}, {OP_SUBI, OP_SUBK, OP_SUBR},
+    {OP_MULI, OP_MULK, OP_MULR}, {OP_DIVI, OP_DIVK, OP_DIVR},
+  };
+  int row = op == OP_ADD ? 0 : op == OP_SUB ? 1 : op == OP_MUL ? 2 : op == OP_DIV ? 3 : -1;
+  int col = push == OP_INT ? 0 : push == OP_CONST ? 1 : push == OP_REG ? 2 : -1;
+  return row < 0 || col < 0 ? -1 : tab[row][col];
+}
+
 static void gen(struct comp *c, const struct expr *e)
 {
   double v;
@@ -220,12 +233,22 @@ static void gen(struct comp *c, const struct expr *e)
     gen(c, e->a);
     emit(c, e->op, 0, e->col);
     return;
-  case EX_BIN:
+  case EX_BIN: {
     gen(c, e->a);
+    size_t mark = c->p->ncode;
     gen(c, e->b);
-    emit(c, e->op, 0, e->col);
     push(c, -1);
+    /* superinstruction: an operator whose right operand is one push */
+    uint32_t last = mark < c->p->ncode ? c->p->code[mark] : 0;
+    int fused = fuse_operand(e->op, (int)INS_OP(last));
+    if (c->p->ncode == mark + 1 && fused >= 0) {
+      c->p->code[mark] = INS(fused, INS_A(last));
+      c->p->cols[mark] = (uint16_t)(e->col > 0xffff ? 0xffff : e->col);
+      return;
+    }
+    emit(c, e->op, 0, e->col);
     return;
+  }
   case EX_CMP:
     gen(c, e->a);
     gen(c, e->b);
@@ -318,9 +341,13 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
     }
   }
   gen(c, e);
+  push(c, -1);
+  if (dest <= 113 && w.lo == -9999999 && w.hi == 9999999 && !w.round && !w.clamp) {
+    emit(c, OP_SETP, dest, col);   /* a parameter: its rule is implied */
+    return;
+  }
   uint32_t r = rule(c, w.name, w.lo, w.hi, w.round, w.clamp, S42_E_RANGE);
   emit(c, OP_SET, dest | r << 10, col);
-  push(c, -1);
 }
 
 /* ---- static checks of one block ---- */
@@ -758,8 +785,12 @@ static void compile_block(struct comp *c)
   const struct word *PC = find_word(b, WK_PCOND);
   if (b->cond && PC && !b->bad) {
     gen(c, b->cond);
-    emit(c, OP_COND, 0, PC->col);
     push(c, -1);
+    size_t last = c->p->ncode - 1;
+    if (b->cond->kind == EX_CMP && c->p->ncode > 0 && INS_OP(c->p->code[last]) == OP_CMP)
+      c->p->code[last] = INS(OP_CMPC, INS_A(c->p->code[last]));   /* CMP; COND */
+    else
+      emit(c, OP_COND, 0, PC->col);
   }
   /* Blocks with anything for the machine or the display always yield;
    * the rest only when the host watches every block (trace, operator). */
@@ -792,7 +823,14 @@ static void compile_block(struct comp *c)
     int always = P || (b->cond && fold(c, b->cond, &v, &failed) && v != 0);
     if (always)
       sm->flags |= SF_UNCOND;
-    sm->jpc = emit(c, P ? OP_JMP : OP_JCOND, 0, j->col);
+    if (!L && !PP && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
+      /* COMMIT; JMP / JCOND in one instruction */
+      sm->jpc = (long)c->p->ncode - 1;
+      c->p->code[sm->jpc] = INS(P ? OP_CJMP : OP_CJCOND, 0);
+      c->p->cols[sm->jpc] = (uint16_t)(j->col > 0xffff ? 0xffff : j->col);
+    } else {
+      sm->jpc = emit(c, P ? OP_JMP : OP_JCOND, 0, j->col);
+    }
   }
   if (M(17)) {
     sm->flags |= SF_M17;

@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #define MAGIC "S42STATE"
-#define VERSION 1u
+#define VERSION 2u   /* 2: code addresses of the superinstructions */
 
 /* Everything a restart needs, in one fixed record (zeroed before filling,
  * so the checksum covers no stray padding bytes). */

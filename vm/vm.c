@@ -14,6 +14,7 @@
 
 #define STACK 512        /* a block is <= 320 characters: it cannot nest deeper */
 #define CELL_MAX 9999999.0
+#define PARAM_MAX 9999999.0   /* SETP: the range of a parameter R0..R113 */
 
 const struct vm_opinfo vm_ops[OP__COUNT] = {
 #define OP_INFO(name, opd, pop, push, doc) {#name, OPD_##opd, pop, push, doc},
@@ -188,6 +189,10 @@ enum vm_event vm_run(struct vm *vm)
   uint32_t pc = vm->pc;
   uint32_t ins;
   double a, b, r;
+  /* the host sets these only between calls */
+  const uint64_t limit = vm->max_blocks ? vm->max_blocks : UINT64_MAX;
+  const int watching = vm->start_all || vm->watch;
+  const int yield_all = vm->yield_all;
 
   if (vm->done)
     return vm->err.code ? VM_EV_ERROR : VM_EV_END;
@@ -206,12 +211,12 @@ enum vm_event vm_run(struct vm *vm)
     vmdispatch(INS_OP(ins)) {
       vmcase(BLOCK) {
         vm->cur = INS_A(ins);
-        if (vm->max_blocks && vm->blocks >= vm->max_blocks) {
+        if (vm->blocks >= limit) {
           raise_at(vm, pc - 1, S42_E_LIMIT, "the budget of %llu blocks ran out (--max-blocks)",
                    (unsigned long long)vm->max_blocks);
           RAISED;
         }
-        if (vm->start_all || (vm->watch && vm->watch[vm->cur])) {
+        if (watching && (vm->start_all || vm->watch[vm->cur])) {
           vm->pc = pc;
           return VM_EV_START;
         }
@@ -241,8 +246,9 @@ enum vm_event vm_run(struct vm *vm)
         vmbreak;
       }
       vmcase(DIV) {
-        b = POP(); a = st[sp - 1];
-        if (math_at(vm, pc - 1, OP_DIV, a, b, &st[sp - 1])) RAISED;
+        b = POP(); a = st[sp - 1]; r = a / b;
+        if ((b == 0.0 || !isfinite(r)) && math_at(vm, pc - 1, OP_DIV, a, b, &r)) RAISED;
+        st[sp - 1] = r;
         vmbreak;
       }
       vmcase(POW) {
@@ -317,7 +323,7 @@ enum vm_event vm_run(struct vm *vm)
         return VM_EV_BLOCK;
       }
       vmcase(SYNC) {
-        if (vm->yield_all) {
+        if (yield_all) {
           vm->pc = pc;
           return VM_EV_BLOCK;
         }
@@ -388,6 +394,67 @@ enum vm_event vm_run(struct vm *vm)
         vm->exit_latch = 0;
         vm->done = 1;
         return VM_EV_END;
+      }
+      /* superinstructions: exactly what their two instructions did */
+#define ARITH(L, BASE, OPER, OPERAND) \
+      vmcase(L) { \
+        b = (OPERAND); a = st[sp - 1]; r = a OPER b; \
+        if (!isfinite(r) && math_at(vm, pc - 1, BASE, a, b, &r)) RAISED; \
+        st[sp - 1] = r; \
+        vmbreak; \
+      }
+#define DIVIDE(L, OPERAND) \
+      vmcase(L) { \
+        b = (OPERAND); a = st[sp - 1]; r = a / b; \
+        if ((b == 0.0 || !isfinite(r)) && math_at(vm, pc - 1, OP_DIV, a, b, &r)) RAISED; \
+        st[sp - 1] = r; \
+        vmbreak; \
+      }
+      ARITH(ADDI, OP_ADD, +, (double)INS_A(ins))
+      ARITH(SUBI, OP_SUB, -, (double)INS_A(ins))
+      ARITH(MULI, OP_MUL, *, (double)INS_A(ins))
+      DIVIDE(DIVI, (double)INS_A(ins))
+      ARITH(ADDK, OP_ADD, +, k[INS_A(ins)])
+      ARITH(SUBK, OP_SUB, -, k[INS_A(ins)])
+      ARITH(MULK, OP_MUL, *, k[INS_A(ins)])
+      DIVIDE(DIVK, k[INS_A(ins)])
+      ARITH(ADDR, OP_ADD, +, vm->reg[INS_A(ins)])
+      ARITH(SUBR, OP_SUB, -, vm->reg[INS_A(ins)])
+      ARITH(MULR, OP_MUL, *, vm->reg[INS_A(ins)])
+      DIVIDE(DIVR, vm->reg[INS_A(ins)])
+#undef ARITH
+#undef DIVIDE
+      vmcase(SETP) {
+        a = POP();
+        if (!(a >= -PARAM_MAX && a <= PARAM_MAX)) {
+          char b1[32];
+          raise_at(vm, pc - 1, S42_E_RANGE, "R%u = %s is outside -9999999..9999999", INS_A(ins),
+                   num(b1, sizeof b1, a));
+          RAISED;
+        }
+        journal(vm, INS_A(ins));
+        vm->reg[INS_A(ins)] = a;
+        vmbreak;
+      }
+      vmcase(CMPC) {
+        b = POP(); a = POP();
+        vm->jflag = (uint8_t)vm_rel(a, b, INS_A(ins));
+        vmbreak;
+      }
+      vmcase(CJMP) {
+        vm->nundo = 0;
+        vm->arr_saved = 0;
+        vm->blocks++;
+        pc = INS_A(ins);
+        vmbreak;
+      }
+      vmcase(CJCOND) {
+        vm->nundo = 0;
+        vm->arr_saved = 0;
+        vm->blocks++;
+        if (vm->jflag)
+          pc = INS_A(ins);
+        vmbreak;
       }
     }
 #if !(defined(__GNUC__) && !defined(S42_SWITCH_DISPATCH))
