@@ -242,6 +242,16 @@ static void gen(struct comp *c, const struct expr *e)
     uint32_t last = mark < c->p->ncode ? c->p->code[mark] : 0;
     int fused = fuse_operand(e->op, (int)INS_OP(last));
     if (c->p->ncode == mark + 1 && fused >= 0) {
+      /* x / 2^n is x * 2^-n to the bit: a multiplication is cheaper */
+      double dv = fused == OP_DIVI ? (double)INS_A(last) : fused == OP_DIVK ? c->p->k[INS_A(last)] : 0;
+      int ex;
+      if (dv > 0 && frexp(dv, &ex) == 0.5) {
+        long k = prog_const(c->p, 1.0 / dv);
+        if (k >= 0) {
+          fused = OP_MULK;
+          last = INS(OP_CONST, (uint32_t)k);
+        }
+      }
       c->p->code[mark] = INS(fused, INS_A(last));
       c->p->cols[mark] = (uint16_t)(e->col > 0xffff ? 0xffff : e->col);
       return;

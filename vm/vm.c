@@ -176,15 +176,19 @@ static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, doubl
 #endif
 
 #define RAISED goto fail
-#define POP() (st[--sp])
-#define PUSH(v) (st[sp++] = (v))
+/* The top of the stack lives in a local (tos), the rest in st[]: most
+ * instructions then never touch memory for their operands.  st[0] is a
+ * scratch cell that takes the undefined tos of an empty stack. */
+#define POP() (popped = tos, tos = st[--sp], popped)
+#define PUSH(v) (st[sp++] = tos, tos = (v))
 
 enum vm_event vm_run(struct vm *vm)
 {
   const struct program *p = vm->p;
   const uint32_t *code = p->code;
   const double *k = p->k;
-  double st[STACK];
+  double st[STACK + 1];
+  double tos = 0.0, popped, out;
   int sp = 0;
   uint32_t pc = vm->pc;
   uint32_t ins;
@@ -226,43 +230,39 @@ enum vm_event vm_run(struct vm *vm)
       vmcase(INT) { PUSH((double)INS_A(ins)); vmbreak; }
       vmcase(REG) { PUSH(vm->reg[INS_A(ins)]); vmbreak; }
       vmcase(WORD) { PUSH(vm->w[INS_A(ins)]); vmbreak; }
-      vmcase(NEG) { st[sp - 1] = -st[sp - 1]; vmbreak; }
-      vmcase(ADD) {
-        b = POP(); a = st[sp - 1]; r = a + b;
-        if (!isfinite(r) && math_at(vm, pc - 1, OP_ADD, a, b, &r)) RAISED;
-        st[sp - 1] = r;
-        vmbreak;
+      vmcase(NEG) { tos = -tos; vmbreak; }
+      /* a non-finite result or a zero divisor is always an error: vm_math
+       * then says which, exactly as constant folding does */
+#define BINARY(L, BASE, OPER, OPERAND) \
+      vmcase(L) { \
+        b = (OPERAND); a = tos; r = a OPER b; \
+        if (!isfinite(r) || (BASE == OP_DIV && b == 0.0)) { \
+          math_at(vm, pc - 1, BASE, a, b, &out); \
+          RAISED; \
+        } \
+        tos = r; \
+        vmbreak; \
       }
-      vmcase(SUB) {
-        b = POP(); a = st[sp - 1]; r = a - b;
-        if (!isfinite(r) && math_at(vm, pc - 1, OP_SUB, a, b, &r)) RAISED;
-        st[sp - 1] = r;
-        vmbreak;
-      }
-      vmcase(MUL) {
-        b = POP(); a = st[sp - 1]; r = a * b;
-        if (!isfinite(r) && math_at(vm, pc - 1, OP_MUL, a, b, &r)) RAISED;
-        st[sp - 1] = r;
-        vmbreak;
-      }
-      vmcase(DIV) {
-        b = POP(); a = st[sp - 1]; r = a / b;
-        if ((b == 0.0 || !isfinite(r)) && math_at(vm, pc - 1, OP_DIV, a, b, &r)) RAISED;
-        st[sp - 1] = r;
-        vmbreak;
-      }
+      BINARY(ADD, OP_ADD, +, POP())
+      BINARY(SUB, OP_SUB, -, POP())
+      BINARY(MUL, OP_MUL, *, POP())
+      BINARY(DIV, OP_DIV, /, POP())
       vmcase(POW) {
-        b = POP(); a = st[sp - 1];
-        if (math_at(vm, pc - 1, OP_POW, a, b, &st[sp - 1])) RAISED;
+        b = POP(); a = tos;
+        if (math_at(vm, pc - 1, OP_POW, a, b, &out)) RAISED;
+        tos = out;
         vmbreak;
       }
-      vmcase(SIN) { if (math_at(vm, pc - 1, OP_SIN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(COS) { if (math_at(vm, pc - 1, OP_COS, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(TAN) { if (math_at(vm, pc - 1, OP_TAN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(ASIN) { if (math_at(vm, pc - 1, OP_ASIN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(ACOS) { if (math_at(vm, pc - 1, OP_ACOS, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(ATAN) { if (math_at(vm, pc - 1, OP_ATAN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(LOG) { if (math_at(vm, pc - 1, OP_LOG, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
+#define FUNCTION(L) \
+      vmcase(L) { if (math_at(vm, pc - 1, OP_##L, tos, 0, &out)) RAISED; tos = out; vmbreak; }
+      FUNCTION(SIN)
+      FUNCTION(COS)
+      FUNCTION(TAN)
+      FUNCTION(ASIN)
+      FUNCTION(ACOS)
+      FUNCTION(ATAN)
+      FUNCTION(LOG)
+#undef FUNCTION
       vmcase(SET) {
         if (do_set(vm, pc - 1, INS_A(ins), POP())) RAISED;
         vmbreak;
@@ -311,12 +311,12 @@ enum vm_event vm_run(struct vm *vm)
         vmbreak;
       }
       vmcase(CMP) {
-        b = POP(); a = st[sp - 1];
-        st[sp - 1] = vm_rel(a, b, INS_A(ins)) ? 1.0 : 0.0;
+        b = POP(); a = tos;
+        tos = vm_rel(a, b, INS_A(ins)) ? 1.0 : 0.0;
         vmbreak;
       }
-      vmcase(AND) { b = POP(); st[sp - 1] = (st[sp - 1] != 0.0 && b != 0.0); vmbreak; }
-      vmcase(OR) { b = POP(); st[sp - 1] = (st[sp - 1] != 0.0 || b != 0.0); vmbreak; }
+      vmcase(AND) { b = POP(); tos = (tos != 0.0 && b != 0.0); vmbreak; }
+      vmcase(OR) { b = POP(); tos = (tos != 0.0 || b != 0.0); vmbreak; }
       vmcase(COND) { vm->jflag = POP() != 0.0; vmbreak; }
       vmcase(MACH) {
         vm->pc = pc;
@@ -396,34 +396,19 @@ enum vm_event vm_run(struct vm *vm)
         return VM_EV_END;
       }
       /* superinstructions: exactly what their two instructions did */
-#define ARITH(L, BASE, OPER, OPERAND) \
-      vmcase(L) { \
-        b = (OPERAND); a = st[sp - 1]; r = a OPER b; \
-        if (!isfinite(r) && math_at(vm, pc - 1, BASE, a, b, &r)) RAISED; \
-        st[sp - 1] = r; \
-        vmbreak; \
-      }
-#define DIVIDE(L, OPERAND) \
-      vmcase(L) { \
-        b = (OPERAND); a = st[sp - 1]; r = a / b; \
-        if ((b == 0.0 || !isfinite(r)) && math_at(vm, pc - 1, OP_DIV, a, b, &r)) RAISED; \
-        st[sp - 1] = r; \
-        vmbreak; \
-      }
-      ARITH(ADDI, OP_ADD, +, (double)INS_A(ins))
-      ARITH(SUBI, OP_SUB, -, (double)INS_A(ins))
-      ARITH(MULI, OP_MUL, *, (double)INS_A(ins))
-      DIVIDE(DIVI, (double)INS_A(ins))
-      ARITH(ADDK, OP_ADD, +, k[INS_A(ins)])
-      ARITH(SUBK, OP_SUB, -, k[INS_A(ins)])
-      ARITH(MULK, OP_MUL, *, k[INS_A(ins)])
-      DIVIDE(DIVK, k[INS_A(ins)])
-      ARITH(ADDR, OP_ADD, +, vm->reg[INS_A(ins)])
-      ARITH(SUBR, OP_SUB, -, vm->reg[INS_A(ins)])
-      ARITH(MULR, OP_MUL, *, vm->reg[INS_A(ins)])
-      DIVIDE(DIVR, vm->reg[INS_A(ins)])
-#undef ARITH
-#undef DIVIDE
+      BINARY(ADDI, OP_ADD, +, (double)INS_A(ins))
+      BINARY(SUBI, OP_SUB, -, (double)INS_A(ins))
+      BINARY(MULI, OP_MUL, *, (double)INS_A(ins))
+      BINARY(DIVI, OP_DIV, /, (double)INS_A(ins))
+      BINARY(ADDK, OP_ADD, +, k[INS_A(ins)])
+      BINARY(SUBK, OP_SUB, -, k[INS_A(ins)])
+      BINARY(MULK, OP_MUL, *, k[INS_A(ins)])
+      BINARY(DIVK, OP_DIV, /, k[INS_A(ins)])
+      BINARY(ADDR, OP_ADD, +, vm->reg[INS_A(ins)])
+      BINARY(SUBR, OP_SUB, -, vm->reg[INS_A(ins)])
+      BINARY(MULR, OP_MUL, *, vm->reg[INS_A(ins)])
+      BINARY(DIVR, OP_DIV, /, vm->reg[INS_A(ins)])
+#undef BINARY
       vmcase(SETP) {
         a = POP();
         if (!(a >= -PARAM_MAX && a <= PARAM_MAX)) {

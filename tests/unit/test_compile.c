@@ -264,7 +264,7 @@ START_TEST(disasm_registers_and_late_condition)
   expect_disasm(
     "N1 R5+1 D1+60000 X+D1/2 P(R5:BR:X)4 F7000\n"
     "N4 M3 M2\n",
-    "; 2 blocks, 20 instructions, 0 constants, entry 0000\n"
+    "; 2 blocks, 20 instructions, 1 constants, entry 0000\n"
     "\n"
     "; N1 line 1: N1 R5+1 D1+60000 X+D1/2 P(R5:BR:X)4 F7000\n"
     "0000  BLOCK   0\n"
@@ -273,7 +273,7 @@ START_TEST(disasm_registers_and_late_condition)
     "0003  INT     60000\n"
     "0004  SET     r114\t; D1 0..400000\n"
     "0005  REG     r114\n"
-    "0006  DIVI    2\n"
+    "0006  MULK    0\t; 0.5\n"
     "0007  SET     w0\t; X -999999..999999 round\n"
     "0008  INT     7000\n"
     "0009  SET     r117\t; F 0..6000 round clamp\n"
