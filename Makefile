@@ -33,7 +33,7 @@ include bench/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: all check test unit conformance programs regress restart realtime plot shared asan run clean install deps docs
+.PHONY: all check test unit conformance programs regress restart realtime plot shared limits asan run clean install deps docs
 
 all: $(S42)
 
@@ -55,7 +55,7 @@ check: deps
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot shared
+test: unit conformance programs regress restart realtime plot shared limits
 
 asan:
 	@sh scripts/deps.sh

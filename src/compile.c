@@ -19,6 +19,10 @@ const char *const kp_motion_name[MO__COUNT] = {
   "none", "G01", "G02", "G03", "G04", "G07", "G10", "G11", "G12", "G13", "G20", "G37", "M19", "dialog"
 };
 
+/* The most blocks a program may have (README "Limits"): a million-block
+ * program compiles in well under a second, twice that is the ceiling. */
+#define COMP_MAX_BLOCKS (1 << 21)
+
 /* Per-block summary for the structure checks, kept small: it lives for the
  * whole compile (number, line and column are in program.blocks). */
 enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8 };
@@ -1136,15 +1140,22 @@ int comp_program(const char *src, size_t n, struct diag_list *d, struct program 
   p->saved_reg = REG_F;
   p->file = d->file;
   struct parser ps;
+  int toolong = 0;
   parse_init(&ps, src, n, d);
   while (!c.oom && parse_block(&ps, c.b)) {
+    if (c.ns >= COMP_MAX_BLOCKS) {
+      diag_add(d, DIAG_ERROR, S42_E_LIMIT, c.b->line, c.b->col, c.b->number,
+               "more than %d blocks: the program is too long", COMP_MAX_BLOCKS);
+      toolong = 1;   /* its structure is not checked: it cannot run */
+      break;
+    }
     c.maxstack = 0;
     compile_block(&c);
   }
   /* a last instruction so that nothing runs off the code */
   emit(&c, OP_END, 0, 0);
   parse_free(&ps);
-  if (!c.oom)
+  if (!c.oom && !toolong)
     structure(&c);
   if (c.x->uses_tk && !c.x->has_m10)
     diag_add(d, DIAG_WARNING, 0, c.x->tk_line, c.x->tk_col, c.x->tk_number,

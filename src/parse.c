@@ -555,6 +555,11 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
       lex_peek(l);
       fail(s, S42_E_TEXT, t->col, "%s: text not closed with '/' before the end of the block", fn);
     }
+    if (c == 0 || c == 0xFFFD) {   /* a C string cannot hold a NUL; U+FFFD stands for bad bytes */
+      unsigned col = l->col;
+      lex_peek(l);
+      fail(s, S42_E_TEXT, col, "%s: text holds %s", fn, c ? "invalid UTF-8" : "a NUL byte");
+    }
     char u[4];
     int k = lex_utf8(c, u);
     if (n + (size_t)k < sizeof buf - 1) {

@@ -42,6 +42,21 @@ realtime: $(S42)
 plot: $(S42)
 	sh tests/plot/run.sh $(S42)
 
+# Limits and bad input: deep nesting, huge blocks, files and scripts, bytes
+# that are not UTF-8, NUL, CRLF, an empty file, a directory.
+limits: $(S42)
+	sh tests/limits/run.sh $(S42)
+
+# A valgrind leak check of a representative run (.ci/run).
+VALGRIND_RUN := $(S42) run programs/endmill_flute.kp --operator programs/endmill_flute.operator --dump --screen
+.PHONY: valgrind
+valgrind: $(S42)
+	valgrind -q --leak-check=full --show-leak-kinds=definite,indirect,possible --errors-for-leak-kinds=definite,indirect,possible \
+	  --error-exitcode=99 $(VALGRIND_RUN) >/dev/null
+	valgrind -q --leak-check=full --show-leak-kinds=definite,indirect,possible --errors-for-leak-kinds=definite,indirect,possible \
+	  --error-exitcode=99 $(S42) check programs/*.kp
+	@echo "valgrind: no leaks, no errors"
+
 shared: $(S42)
 	@if [ -d $(SHARED)/conformance/cases ]; then \
 	  sh tests/shared.sh $(S42) $(SHARED); \
