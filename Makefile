@@ -32,11 +32,12 @@ include display/module.mk
 include src/module.mk
 include plugins/module.mk
 include tests/module.mk
+include bench/module.mk
 
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: all check test unit conformance programs regress restart realtime plot plugins shared asan run clean install deps docs
+.PHONY: all check test unit conformance programs regress restart realtime plot plugins shared limits asan run clean install deps docs
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -58,7 +59,7 @@ check: deps
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot plugins shared
+test: unit conformance programs regress restart realtime plot plugins shared limits
 
 ASAN_MAKE = $(MAKE) BUILD=build-asan S42=build-asan/s42 \
 	  CFLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \

@@ -20,16 +20,19 @@ const char *const kp_motion_name[MO__COUNT] = {
   "none", "G01", "G02", "G03", "G04", "G07", "G10", "G11", "G12", "G13", "G20", "G37", "M19", "dialog", "plugin"
 };
 
-/* Per-block summary for the structure checks. */
+/* The most blocks a program may have (README "Limits"): a million-block
+ * program compiles in well under a second, twice that is the ceiling. */
+#define COMP_MAX_BLOCKS (1 << 21)
+
+/* Per-block summary for the structure checks, kept small: it lives for the
+ * whole compile (number, line and column are in program.blocks). */
 enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8 };
+#define NOPC 0xffffu       /* no instruction to patch */
 struct summ {
-  int number;
-  unsigned line, col;
+  int16_t L, P, PP;        /* targets, -1 none */
+  uint16_t Lcol, Pcol, PPcol;
+  uint16_t callpc, jpc, pppc;  /* instructions to patch, from the block's first; NOPC none */
   uint8_t flags;
-  int L, P, PP;            /* targets, -1 none */
-  unsigned Lcol, Pcol, PPcol;
-  long callpc, jpc, pppc;  /* instructions to patch, -1 none */
-  int unit;
 };
 
 struct comp {
@@ -50,7 +53,25 @@ struct comp {
   const struct plug_set *plugins;
   uint32_t plugmask;       /* plugins the current block calls */
   int plug_g;              /* a group-1 G of a plugin that is not the language's, 0 none */
+  size_t bstart;           /* the current block's first instruction */
+#define RCACHE 16
+  struct rcache { const char *name; double lo, hi; int round, clamp, code; uint32_t idx; } rcache[RCACHE];
 };
+
+static uint16_t col16(unsigned col)
+{
+  return (uint16_t)(col > 0xffff ? 0xffff : col);
+}
+
+/* An instruction of the current block, as an offset for struct summ. */
+static uint16_t boff(struct comp *c, long pc)
+{
+  if (pc < 0 || (size_t)pc - c->bstart >= NOPC) {
+    c->oom = 1;   /* cannot happen within MAX_NODES; refuse rather than patch wrongly */
+    return NOPC;
+  }
+  return (uint16_t)((size_t)pc - c->bstart);
+}
 
 static void *grow(void *v, size_t *cap, size_t need, size_t elem, int *oom)
 {
@@ -184,6 +205,19 @@ static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
   return 1;
 }
 
+/* The superinstruction for binary `op` with a right operand pushed by
+ * `push` (INT, CONST or REG), or -1. */
+static int fuse_operand(int op, int push)
+{
+  static const uint8_t tab[4][3] = {
+    {OP_ADDI, OP_ADDK, OP_ADDR}, {OP_SUBI, OP_SUBK, OP_SUBR},
+    {OP_MULI, OP_MULK, OP_MULR}, {OP_DIVI, OP_DIVK, OP_DIVR},
+  };
+  int row = op == OP_ADD ? 0 : op == OP_SUB ? 1 : op == OP_MUL ? 2 : op == OP_DIV ? 3 : -1;
+  int col = push == OP_INT ? 0 : push == OP_CONST ? 1 : push == OP_REG ? 2 : -1;
+  return row < 0 || col < 0 ? -1 : tab[row][col];
+}
+
 static void gen(struct comp *c, const struct expr *e)
 {
   double v;
@@ -224,12 +258,32 @@ static void gen(struct comp *c, const struct expr *e)
     gen(c, e->a);
     emit(c, e->op, 0, e->col);
     return;
-  case EX_BIN:
+  case EX_BIN: {
     gen(c, e->a);
+    size_t mark = c->p->ncode;
     gen(c, e->b);
-    emit(c, e->op, 0, e->col);
     push(c, -1);
+    /* superinstruction: an operator whose right operand is one push */
+    uint32_t last = mark < c->p->ncode ? c->p->code[mark] : 0;
+    int fused = fuse_operand(e->op, (int)INS_OP(last));
+    if (c->p->ncode == mark + 1 && fused >= 0) {
+      /* x / 2^n is x * 2^-n to the bit: a multiplication is cheaper */
+      double dv = fused == OP_DIVI ? (double)INS_A(last) : fused == OP_DIVK ? c->p->k[INS_A(last)] : 0;
+      int ex;
+      if (dv > 0 && frexp(dv, &ex) == 0.5) {
+        long k = prog_const(c->p, 1.0 / dv);
+        if (k >= 0) {
+          fused = OP_MULK;
+          last = INS(OP_CONST, (uint32_t)k);
+        }
+      }
+      c->p->code[mark] = INS(fused, INS_A(last));
+      c->p->cols[mark] = (uint16_t)(e->col > 0xffff ? 0xffff : e->col);
+      return;
+    }
+    emit(c, e->op, 0, e->col);
     return;
+  }
   case EX_CMP:
     gen(c, e->a);
     gen(c, e->b);
@@ -249,6 +303,13 @@ static void gen(struct comp *c, const struct expr *e)
 
 static uint32_t rule(struct comp *c, const char *name, double lo, double hi, int round_, int clamp, int code)
 {
+  /* Every axis word asks for its rule: remember the last answer for each
+   * name (the names are string literals) instead of searching and
+   * formatting again. */
+  struct rcache *rc = &c->rcache[((uintptr_t)name >> 3) % RCACHE];
+  if (rc->name == name && rc->lo == lo && rc->hi == hi && rc->round == round_ && rc->clamp == clamp &&
+      rc->code == code)
+    return rc->idx;
   struct prog_rule r;
   memset(&r, 0, sizeof r);
   r.lo = lo;
@@ -262,6 +323,7 @@ static uint32_t rule(struct comp *c, const char *name, double lo, double hi, int
     c->oom = 1;
     return 0;
   }
+  *rc = (struct rcache){name, lo, hi, round_, clamp, code, (uint32_t)i};
   return (uint32_t)i;
 }
 
@@ -322,9 +384,13 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
     }
   }
   gen(c, e);
+  push(c, -1);
+  if (dest <= 113 && w.lo == -9999999 && w.hi == 9999999 && !w.round && !w.clamp) {
+    emit(c, OP_SETP, dest, col);   /* a parameter: its rule is implied */
+    return;
+  }
   uint32_t r = rule(c, w.name, w.lo, w.hi, w.round, w.clamp, S42_E_RANGE);
   emit(c, OP_SET, dest | r << 10, col);
-  push(c, -1);
 }
 
 /* ---- static checks of one block ---- */
@@ -731,11 +797,9 @@ static void compile_block(struct comp *c)
   struct summ *sm = &c->s[c->ns++];
   memset(at, 0, sizeof *at);
   memset(sm, 0, sizeof *sm);
-  sm->number = b->number;
-  sm->line = b->line;
-  sm->col = b->col;
   sm->L = sm->P = sm->PP = -1;
-  sm->callpc = sm->jpc = sm->pppc = -1;
+  sm->callpc = sm->jpc = sm->pppc = NOPC;
+  c->bstart = pb.code;
   if (b->bad)
     sm->flags |= SF_BAD;
 
@@ -771,8 +835,10 @@ static void compile_block(struct comp *c)
       } else if (w->letter == 'D') {
         store(c, w->e, REG_D1, (struct wrule){"D1", 0, 400000, 0, 0}, w->col);
       } else {
-        char name[8];
-        snprintf(name, sizeof name, "R%d", w->num);
+        char name[8] = {'R'};   /* "R12", without printf: this runs for every R word */
+        unsigned n = (unsigned)w->num % 1000, k = n >= 100 ? 3 : n >= 10 ? 2 : 1;
+        for (unsigned d = k; d > 0; d--, n /= 10)
+          name[d] = (char)('0' + n % 10);
         store(c, w->e, w->idx, (struct wrule){name, -9999999, 9999999, 0, 0}, w->col);
       }
       break;
@@ -816,8 +882,12 @@ static void compile_block(struct comp *c)
   const struct word *PC = find_word(b, WK_PCOND);
   if (b->cond && PC && !b->bad) {
     gen(c, b->cond);
-    emit(c, OP_COND, 0, PC->col);
     push(c, -1);
+    size_t last = c->p->ncode - 1;
+    if (b->cond->kind == EX_CMP && c->p->ncode > 0 && INS_OP(c->p->code[last]) == OP_CMP)
+      c->p->code[last] = INS(OP_CMPC, INS_A(c->p->code[last]));   /* CMP; COND */
+    else
+      emit(c, OP_COND, 0, PC->col);
   }
   /* Blocks with anything for the machine or the display always yield;
    * the rest only when the host watches every block (trace, operator). */
@@ -832,25 +902,32 @@ static void compile_block(struct comp *c)
       emit(c, OP_WORD, SL_H, L->col);
     else
       emit(c, OP_INT, 1, L->col);
-    sm->L = L->num;
-    sm->Lcol = L->col;
-    sm->callpc = emit(c, OP_CALL, 0, L->col);
+    sm->L = (int16_t)L->num;
+    sm->Lcol = col16(L->col);
+    sm->callpc = boff(c, emit(c, OP_CALL, 0, L->col));
   }
   if (PP) {
-    sm->PP = PP->num;
-    sm->PPcol = PP->col;
-    sm->pppc = emit(c, OP_PPJ, 0, PP->col);
+    sm->PP = (int16_t)PP->num;
+    sm->PPcol = col16(PP->col);
+    sm->pppc = boff(c, emit(c, OP_PPJ, 0, PP->col));
   }
   if (P || PC) {
     const struct word *j = P ? P : PC;
-    sm->P = j->num;
-    sm->Pcol = j->col;
+    sm->P = (int16_t)j->num;
+    sm->Pcol = col16(j->col);
     double v;
     int failed = 0;
     int always = P || (b->cond && fold(c, b->cond, &v, &failed) && v != 0);
     if (always)
       sm->flags |= SF_UNCOND;
-    sm->jpc = emit(c, P ? OP_JMP : OP_JCOND, 0, j->col);
+    if (!L && !PP && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
+      /* COMMIT; JMP / JCOND in one instruction */
+      c->p->code[c->p->ncode - 1] = INS(P ? OP_CJMP : OP_CJCOND, 0);
+      c->p->cols[c->p->ncode - 1] = col16(j->col);
+      sm->jpc = boff(c, (long)c->p->ncode - 1);
+    } else {
+      sm->jpc = boff(c, emit(c, P ? OP_JMP : OP_JCOND, 0, j->col));
+    }
   }
   if (M(17)) {
     sm->flags |= SF_M17;
@@ -897,16 +974,18 @@ static void compile_block(struct comp *c)
 
 /* ---- program structure ---- */
 
-static void serr(struct comp *c, const struct summ *s, unsigned col, int code, const char *fmt, ...)
+static void serr(struct comp *c, size_t i, unsigned col, int code, const char *fmt, ...)
   __attribute__((format(printf, 5, 6)));
-static void serr(struct comp *c, const struct summ *s, unsigned col, int code, const char *fmt, ...)
+static void serr(struct comp *c, size_t i, unsigned col, int code, const char *fmt, ...)
 {
   char msg[240];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  diag_add(c->d, code ? DIAG_ERROR : DIAG_WARNING, code, s->line, col ? col : s->col, s->number, "%s", msg);
+  const struct prog_block *s = &c->p->blocks[i];
+  diag_add(c->d, code ? DIAG_ERROR : DIAG_WARNING, code, s->line, col ? col : s->col, s->number ? s->number : -1,
+           "%s", msg);
 }
 
 static void ext_free(void *v)
@@ -925,6 +1004,7 @@ static void structure(struct comp *c)
 {
   size_t n = c->ns;
   struct summ *S = c->s;
+  const struct prog_block *B = c->p->blocks;
   if (n == 0) {
     diag_add(c->d, DIAG_ERROR, S42_E_SUB, 1, 1, -1, "the program is empty: it needs block 1 and M2");
     return;
@@ -936,10 +1016,10 @@ static void structure(struct comp *c)
     count[i] = 0;
   }
   for (size_t i = 0; i < n; i++)
-    if (S[i].number > 0 && S[i].number < 1000) {
-      if (first[S[i].number] < 0)
-        first[S[i].number] = (int)i;
-      count[S[i].number]++;
+    if (B[i].number > 0 && B[i].number < 1000) {
+      if (first[B[i].number] < 0)
+        first[B[i].number] = (int)i;
+      count[B[i].number]++;
     }
   /* unit starts: block 1 and every L target */
   char *start = calloc(n, 1);
@@ -952,12 +1032,12 @@ static void structure(struct comp *c)
   }
   int mp = first[1];
   if (mp < 0)
-    diag_add(c->d, DIAG_ERROR, S42_E_SUB, S[0].line, S[0].col, S[0].number,
+    diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[0].line, B[0].col, B[0].number ? B[0].number : -1,
              "no block 1: the main program starts at block 1");
   else if (count[1] > 1)
     for (size_t i = 0; i < n; i++)
-      if (S[i].number == 1 && (int)i != mp)
-        serr(c, &S[i], 0, S42_E_SUB, "block 1 appears twice: the main program starts at block 1");
+      if (B[i].number == 1 && (int)i != mp)
+        serr(c, i, 0, S42_E_SUB, "block 1 appears twice: the main program starts at block 1");
   if (mp >= 0)
     start[mp] = 1;
   for (size_t i = 0; i < n; i++) {
@@ -965,13 +1045,13 @@ static void structure(struct comp *c)
       continue;
     int t = S[i].L;
     if (count[t] == 0)
-      serr(c, &S[i], S[i].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
+      serr(c, i, S[i].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
     else if (count[t] > 1)
-      serr(c, &S[i], S[i].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
+      serr(c, i, S[i].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
            t, t, count[t]);
     else {
       if (mp >= 0 && first[t] > mp)
-        serr(c, &S[first[t]], 0, S42_E_SUB, "sub %d starts after block 1: subs come before the main program", t);
+        serr(c, (size_t)first[t], 0, S42_E_SUB, "sub %d starts after block 1: subs come before the main program", t);
       start[first[t]] = 1;
     }
   }
@@ -981,7 +1061,6 @@ static void structure(struct comp *c)
     if (start[i])
       u = ((int)i == mp) ? 0 : ++nsub;
     unit[i] = u;
-    S[i].unit = u;
     c->p->blocks[i].unit = (uint16_t)(u < 0 ? 0xffff : u);
   }
   /* jumps */
@@ -993,28 +1072,28 @@ static void structure(struct comp *c)
       if (t < 1)
         continue;
       if (t > 999 || count[t] == 0)
-        serr(c, &S[i], tc[k], S42_E_TARGET, "%s%d: there is no block %d", k ? "PP" : "P", t, t);
+        serr(c, i, tc[k], S42_E_TARGET, "%s%d: there is no block %d", k ? "PP" : "P", t, t);
       else if (count[t] > 1)
-        serr(c, &S[i], tc[k], S42_E_TARGET, "%s%d: block %d appears %d times; a jump target must be unique",
+        serr(c, i, tc[k], S42_E_TARGET, "%s%d: block %d appears %d times; a jump target must be unique",
              k ? "PP" : "P", t, t, count[t]);
       else if (unit[first[t]] != unit[i])
-        serr(c, &S[i], tc[k], S42_E_SCOPE, "%s%d: block %d is in another %s", k ? "PP" : "P", t, t,
+        serr(c, i, tc[k], S42_E_SCOPE, "%s%d: block %d is in another %s", k ? "PP" : "P", t, t,
              unit[i] == 0 ? "unit (a sub)" : "unit");
     }
   }
   /* M17 in the MP, running off the end of a unit */
   for (size_t i = 0; i < n; i++) {
     if ((S[i].flags & SF_M17) && unit[i] == 0)
-      serr(c, &S[i], 0, S42_E_SUB, "M17 (end of sub) in the main program");
+      serr(c, i, 0, S42_E_SUB, "M17 (end of sub) in the main program");
     int last = i + 1 == n || start[i + 1];
     if (!last || unit[i] < 0 || (S[i].flags & SF_BAD))
       continue;
     int ok = (S[i].flags & (SF_M2 | SF_UNCOND)) || (unit[i] > 0 && (S[i].flags & SF_M17));
     if (!ok) {
       if (unit[i] == 0)
-        serr(c, &S[i], 0, S42_E_SUB, "the main program can run off its end here: its last block needs M2 or an unconditional jump");
+        serr(c, i, 0, S42_E_SUB, "the main program can run off its end here: its last block needs M2 or an unconditional jump");
       else
-        serr(c, &S[i], 0, S42_E_SUB, "this sub can run off its end here: its last block needs M17, M2 or an unconditional jump");
+        serr(c, i, 0, S42_E_SUB, "this sub can run off its end here: its last block needs M17, M2 or an unconditional jump");
     }
   }
   int anym2 = 0;
@@ -1022,18 +1101,18 @@ static void structure(struct comp *c)
     if ((S[i].flags & SF_M2) && unit[i] >= 0)
       anym2 = 1;
   if (!anym2 && mp >= 0)
-    diag_add(c->d, DIAG_ERROR, S42_E_SUB, S[n - 1].line, S[n - 1].col, S[n - 1].number,
+    diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[n - 1].line, B[n - 1].col, B[n - 1].number ? B[n - 1].number : -1,
              "no M2: the program never ends");
 
   /* reachability, per unit, for the dead-code warning */
   char *reach = calloc(n, 1);
-  size_t *work = malloc(n * sizeof *work);
+  uint32_t *work = malloc(n * sizeof *work);
   if (reach && work && !c->d->nerr) {
     size_t top = 0;
     for (size_t i = 0; i < n; i++)
       if (start[i]) {
         reach[i] = 1;
-        work[top++] = i;
+        work[top++] = (uint32_t)i;
       }
     while (top) {
       size_t i = work[--top];
@@ -1048,7 +1127,7 @@ static void structure(struct comp *c)
       for (int k = 0; k < nn; k++)
         if (!reach[nx[k]]) {
           reach[nx[k]] = 1;
-          work[top++] = nx[k];
+          work[top++] = (uint32_t)nx[k];
         }
     }
     for (size_t i = 0; i < n; i++)
@@ -1056,7 +1135,7 @@ static void structure(struct comp *c)
         size_t j = i;
         while (j + 1 < n && !reach[j + 1])
           j++;
-        serr(c, &S[i], 0, 0, "%s never run%s", unit[i] < 0 ? "blocks before the first unit are" : "this code is",
+        serr(c, i, 0, 0, "%s never run%s", unit[i] < 0 ? "blocks before the first unit are" : "this code is",
              j > i ? " (up to the next reachable block)" : "");
         i = j;
       }
@@ -1075,8 +1154,8 @@ static void structure(struct comp *c)
                 calls[i * nu + j] = 1;
       for (size_t i = 0; i < n; i++)
         if (start[i] && unit[i] > 0 && calls[unit[i] * nu + unit[i]])
-          serr(c, &S[i], 0, 0, "sub %d can call itself: more than 8 nested calls stop the run with E-NEST",
-               S[i].number);
+          serr(c, i, 0, 0, "sub %d can call itself: more than 8 nested calls stop the run with E-NEST",
+               B[i].number);
       free(calls);
     }
   }
@@ -1086,12 +1165,13 @@ static void structure(struct comp *c)
   /* patch targets */
   if (!c->d->nerr) {
     for (size_t i = 0; i < n; i++) {
-      if (S[i].callpc >= 0)
-        c->p->code[S[i].callpc] = INS(OP_CALL, c->p->blocks[first[S[i].L]].code);
-      if (S[i].jpc >= 0)
-        c->p->code[S[i].jpc] = INS(INS_OP(c->p->code[S[i].jpc]), c->p->blocks[first[S[i].P]].code);
-      if (S[i].pppc >= 0)
-        c->p->code[S[i].pppc] = INS(OP_PPJ, c->p->blocks[first[S[i].PP]].code);
+      uint32_t *code = c->p->code + B[i].code;
+      if (S[i].callpc != NOPC)
+        code[S[i].callpc] = INS(OP_CALL, B[first[S[i].L]].code);
+      if (S[i].jpc != NOPC)
+        code[S[i].jpc] = INS(INS_OP(code[S[i].jpc]), B[first[S[i].P]].code);
+      if (S[i].pppc != NOPC)
+        code[S[i].pppc] = INS(OP_PPJ, B[first[S[i].PP]].code);
     }
     c->p->entry = c->p->blocks[mp].code;
   }
@@ -1124,17 +1204,24 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   p->saved_reg = REG_F;
   p->file = d->file;
   struct parser ps;
+  int toolong = 0;
   parse_init(&ps, src, n, d);
   ps.plugins = plugins;
   c.plugins = plugins;
   while (!c.oom && parse_block(&ps, c.b)) {
+    if (c.ns >= COMP_MAX_BLOCKS) {
+      diag_add(d, DIAG_ERROR, S42_E_LIMIT, c.b->line, c.b->col, c.b->number,
+               "more than %d blocks: the program is too long", COMP_MAX_BLOCKS);
+      toolong = 1;   /* its structure is not checked: it cannot run */
+      break;
+    }
     c.maxstack = 0;
     compile_block(&c);
   }
   /* a last instruction so that nothing runs off the code */
   emit(&c, OP_END, 0, 0);
   parse_free(&ps);
-  if (!c.oom)
+  if (!c.oom && !toolong)
     structure(&c);
   if (c.x->uses_tk && !c.x->has_m10)
     diag_add(d, DIAG_WARNING, 0, c.x->tk_line, c.x->tk_col, c.x->tk_number,

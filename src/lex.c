@@ -93,7 +93,7 @@ int32_t lex_peek(struct lex *l)
 {
   /* the parser peeks the same character many times: answer from the cache
    * while the cursor has not moved */
-  if (l->peeked && l->pos == l->cpos && l->line == l->cline && l->col == l->ccol)
+  if (l->peeked)   /* cleared by everything that moves the cursor */
     return l->c;
   l->peeked = 1;
   for (;;) {
@@ -157,6 +157,7 @@ int32_t lex_peek(struct lex *l)
 
 void lex_adv(struct lex *l)
 {
+  l->peeked = 0;
   if (l->c != LX_EOB && l->c != LX_EOF)
     l->blen++;
   l->pos = l->cnext;
@@ -179,6 +180,7 @@ int32_t lex_raw_peek(struct lex *l)
 
 void lex_raw_adv(struct lex *l)
 {
+  l->peeked = 0;
   size_t len;
   int32_t c = decode(l, l->pos, &len);
   l->blen++;
@@ -207,5 +209,6 @@ void lex_reset(struct lex *l, struct lex_mark m)
   l->line = m.line;
   l->col = m.col;
   l->blen = m.blen;
+  l->peeked = 0;
   lex_peek(l);   /* what lex_adv consumes must be this position's character */
 }

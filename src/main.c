@@ -54,36 +54,60 @@ struct opts {
   unsigned long long max_blocks;
 };
 
-static int read_file(const char *path, char **buf, size_t *len)
+/* Limits of the files s42 reads (README "Limits"): a program of the
+ * largest size compiles in well under a second; anything larger is a
+ * mistake, not a program. */
+#define MAX_PROGRAM_BYTES ((size_t)64 << 20)
+#define MAX_OPERATOR_BYTES ((size_t)1 << 20)
+
+/* Read a whole regular file (or a pipe) of at most `max` bytes, NUL-terminated. */
+static int read_file(const char *path, size_t max, char **buf, size_t *len)
 {
   FILE *f = fopen(path, "rb");
   if (!f) {
     fprintf(stderr, "s42: %s: %s\n", path, strerror(errno));
     return -1;
   }
-  size_t cap = 65536, n = 0;
+  struct stat st;
+  if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+    fprintf(stderr, "s42: %s: is a directory, not a file\n", path);
+    fclose(f);
+    return -1;
+  }
+  /* a regular file is read in one piece of its size; a pipe grows */
+  size_t cap = S_ISREG(st.st_mode) && (uint64_t)st.st_size <= max ? (size_t)st.st_size + 1 : 65536, n = 0;
   char *b = malloc(cap);
+  int toobig = 0;
   while (b) {
     size_t got = fread(b + n, 1, cap - n, f);
     n += got;
+    if (n > max) {
+      toobig = 1;
+      break;
+    }
     if (n < cap)
       break;
-    char *nb = cap > ((size_t)1 << 31) ? NULL : realloc(b, cap * 2);
+    size_t nc = cap * 2 > max + 2 ? max + 2 : cap * 2;
+    char *nb = realloc(b, nc);
     if (!nb) {
       free(b);
       b = NULL;
       break;
     }
     b = nb;
-    cap *= 2;
+    cap = nc;
   }
   int bad = ferror(f);
   fclose(f);
-  if (!b || bad) {
-    fprintf(stderr, "s42: %s: %s\n", path, b ? "read error" : "too large or out of memory");
+  if (!b || bad || toobig) {
+    if (toobig)
+      fprintf(stderr, "s42: %s: too large: at most %zu bytes are read [E-LIMIT]\n", path, max);
+    else
+      fprintf(stderr, "s42: %s: %s\n", path, b ? strerror(errno ? errno : EIO) : "out of memory");
     free(b);
     return -1;
   }
+  b[n] = 0;
   *buf = b;
   *len = n;
   return 0;
@@ -184,7 +208,7 @@ static int load(const char *path, struct program *p, struct diag_list *d, char *
 {
   prog_init(p);
   diag_init(d, path);
-  if (read_file(path, src, n))
+  if (read_file(path, MAX_PROGRAM_BYTES, src, n))
     return EXIT_IO;
   int r = comp_program_with(*src, *n, d, p, plugins_init(NULL));
   diag_print(stderr, d);
@@ -458,7 +482,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   if (o.operator_file) {
     char *text;
     size_t n;
-    if (read_file(o.operator_file, &text, &n))
+    if (read_file(o.operator_file, MAX_OPERATOR_BYTES, &text, &n))
       return EXIT_IO;
     int bad = ops_parse(text, n, o.operator_file, &r.ops, stderr);
     free(text);

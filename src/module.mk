@@ -5,9 +5,9 @@ SRC_MAIN_OBJ := $(BUILD)/src/main.o
 $(SRC_OBJS) $(SRC_MAIN_OBJ): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude
 # plot.c draws with cairo (the only part of src/ that needs it)
 CAIRO_CFLAGS := $(shell pkg-config --cflags cairo 2>/dev/null)
-CAIRO_LIBS   := $(shell pkg-config --libs cairo 2>/dev/null || echo -lcairo)
-$(BUILD)/src/plot.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(CAIRO_CFLAGS)
-LDLIBS += $(CAIRO_LIBS)
+# cairo is loaded with dlopen when a plot is drawn (src/cairo_dl.c): linking
+# it would load two dozen libraries at every start-up
+$(BUILD)/src/plot.o $(BUILD)/src/cairo_dl.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(CAIRO_CFLAGS)
 LDLIBS += -ldl
 # where `make install` puts the plugins: s42 looks there last
 $(BUILD)/src/plugin.o: CPPFLAGS += -DS42_PLUGINDIR='"$(PLUGINDIR)"'

@@ -157,6 +157,17 @@ static int accept(struct pstate *s, int32_t c)
 
 static int isdig(int32_t c) { return c >= '0' && c <= '9'; }
 
+/* n (< 1000) in decimal, NUL-terminated. */
+static void fmt_uint(char *p, unsigned n)
+{
+  char t[4];
+  int k = 0;
+  do t[k++] = (char)('0' + n % 10); while ((n /= 10) && k < 3);
+  while (k)
+    *p++ = t[--k];
+  *p = 0;
+}
+
 /* An unsigned integer of at most `maxdig` digits (whitespace between digits
  * is insignificant, as everywhere outside text). */
 static long number(struct pstate *s, int maxdig, const char *what)
@@ -545,6 +556,11 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
       lex_peek(l);
       fail(s, S42_E_TEXT, t->col, "%s: text not closed with '/' before the end of the block", fn);
     }
+    if (c == 0 || c == 0xFFFD) {   /* a C string cannot hold a NUL; U+FFFD stands for bad bytes */
+      unsigned col = l->col;
+      lex_peek(l);
+      fail(s, S42_E_TEXT, col, "%s: text holds %s", fn, c ? "invalid UTF-8" : "a NUL byte");
+    }
     char u[4];
     int k = lex_utf8(c, u);
     if (n + (size_t)k < sizeof buf - 1) {
@@ -770,8 +786,8 @@ static void word(struct pstate *s)
     long n = number(s, 3, "a parameter number after R");
     if (n > 113)
       fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
-    char name[24];
-    snprintf(name, sizeof name, "R%ld", n);
+    char name[8] = {'R'};   /* "R12", without printf: this runs for every R word */
+    fmt_uint(name + 1, (unsigned)n);
     if (b->g28reg == -2) {        /* G28 /min:max/ Rn: where the answer goes */
       b->g28reg = (int)n;
       return;

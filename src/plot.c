@@ -24,9 +24,7 @@
 #include "plot.h"
 #include "ast.h"
 #include "machine.h"
-#include <cairo-pdf.h>
-#include <cairo-svg.h>
-#include <cairo.h>
+#include "cairo_dl.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <locale.h>
@@ -1045,7 +1043,7 @@ static cairo_status_t write_fn(void *closure, const unsigned char *data, unsigne
 
 int plot_write(struct plot *pl, const char *program, const char *path, char *err, size_t n)
 {
-  if (plot_check_path(path, err, n))
+  if (plot_check_path(path, err, n) || s42_cairo_load(err, n))
     return -1;
   const char *ext = strrchr(path, '.');
   int kind = !strcasecmp(ext, ".png") ? 0 : !strcasecmp(ext, ".svg") ? 1 : 2;

@@ -48,25 +48,43 @@ plot: $(S42)
 plugins: $(S42) $(PLUGIN_SOS) $(FIXTURE_SOS)
 	sh tests/plugins/run.sh $(S42) $(BUILD)
 
+# Limits and bad input: deep nesting, huge blocks, files and scripts, bytes
+# that are not UTF-8, NUL, CRLF, an empty file, a directory.
+limits: $(S42)
+	sh tests/limits/run.sh $(S42)
+
+# A valgrind leak check of a representative run (.ci/run).
+VALGRIND_RUN := $(S42) run programs/endmill_flute.kp --operator programs/endmill_flute.operator --dump --screen
+.PHONY: valgrind
+valgrind: $(S42)
+	valgrind -q --leak-check=full --show-leak-kinds=definite,indirect,possible --errors-for-leak-kinds=definite,indirect,possible \
+	  --error-exitcode=99 $(VALGRIND_RUN) >/dev/null
+	valgrind -q --leak-check=full --show-leak-kinds=definite,indirect,possible --errors-for-leak-kinds=definite,indirect,possible \
+	  --error-exitcode=99 $(S42) check programs/*.kp
+	@echo "valgrind: no leaks, no errors"
+
 shared: $(S42)
 	@if [ -d $(SHARED)/conformance/cases ]; then \
 	  sh tests/shared.sh $(S42) $(SHARED); \
 	else echo "shared: $(SHARED) is not here; the shared conformance cases were skipped"; fi
 
-# Fuzzing with libFuzzer (clang): make fuzz FUZZ_SECONDS=60
+# Fuzzing with libFuzzer (clang): make fuzz FUZZ_SECONDS=60 runs each harness
+# that long, from the committed seeds in tests/fuzz/corpus/<harness>/ (new
+# inputs go to $(BUILD)/fuzz/corpus-<harness>/); crashes land in $(BUILD)/fuzz/.
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := fuzz_program fuzz_operator
-FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Ivm -Idisplay -Iinclude -D_GNU_SOURCE
+FUZZ_TARGETS := compile vm operator
+FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc -Ivm -Idisplay -Iinclude -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
-fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/%)
-FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c,$(SRC_SRCS))
-$(BUILD)/fuzz/%: tests/fuzz/%.c $(FUZZ_SRCS)
+fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
+FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c src/cairo_dl.c,$(SRC_SRCS))
+$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRCS) $(wildcard src/*.h vm/*.h display/*.h)
 	@mkdir -p $(@D)
 	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) -lm -ldl
 fuzz: fuzz-bin
-	@mkdir -p $(BUILD)/fuzz/corpus-program $(BUILD)/fuzz/corpus-operator
-	@cp programs/*.kp tests/conformance/cases/*/program.kp $(BUILD)/fuzz/corpus-program/ 2>/dev/null || true
-	@for f in tests/conformance/cases/*/program.kp; do cp $$f $(BUILD)/fuzz/corpus-program/$$(basename $$(dirname $$f)).kp; done
-	@for f in programs/*.operator tests/conformance/cases/*/operator.txt; do [ -f $$f ] && cp $$f $(BUILD)/fuzz/corpus-operator/$$(echo $$f | tr / _); done; true
-	$(BUILD)/fuzz/fuzz_program -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 $(BUILD)/fuzz/corpus-program
-	$(BUILD)/fuzz/fuzz_operator -max_total_time=$(FUZZ_SECONDS) -max_len=2048 -timeout=10 $(BUILD)/fuzz/corpus-operator
+	@for t in $(FUZZ_TARGETS); do \
+	  mkdir -p $(BUILD)/fuzz/corpus-$$t; \
+	  echo "fuzz $$t: $(FUZZ_SECONDS) s"; \
+	  $(BUILD)/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -max_len=8192 -timeout=10 -rss_limit_mb=2048 \
+	    -artifact_prefix=$(BUILD)/fuzz/$$t- -print_final_stats=1 \
+	    $(BUILD)/fuzz/corpus-$$t tests/fuzz/corpus/$$t || exit 1; \
+	done

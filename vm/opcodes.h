@@ -49,7 +49,24 @@
   OP(JMP,    PC,   0, 0, "jump to A") \
   OP(JCOND,  PC,   0, 0, "jump to A if the block's condition held") \
   OP(RET,    NONE, 0, 0, "end of sub: run it again or return to the caller") \
-  OP(END,    NONE, 0, 0, "end of program")
+  OP(END,    NONE, 0, 0, "end of program") \
+  /* superinstructions: the common shapes of a block in one dispatch */ \
+  OP(ADDI,   I,    1, 1, "add the integer A (INT A; ADD)") \
+  OP(SUBI,   I,    1, 1, "subtract the integer A (INT A; SUB)") \
+  OP(MULI,   I,    1, 1, "multiply by the integer A (INT A; MUL)") \
+  OP(DIVI,   I,    1, 1, "divide by the integer A (INT A; DIV)") \
+  OP(ADDK,   K,    1, 1, "add constant K[A] (CONST A; ADD)") \
+  OP(SUBK,   K,    1, 1, "subtract constant K[A] (CONST A; SUB)") \
+  OP(MULK,   K,    1, 1, "multiply by constant K[A] (CONST A; MUL)") \
+  OP(DIVK,   K,    1, 1, "divide by constant K[A] (CONST A; DIV)") \
+  OP(ADDR,   REG,  1, 1, "add register A (REG A; ADD)") \
+  OP(SUBR,   REG,  1, 1, "subtract register A (REG A; SUB)") \
+  OP(MULR,   REG,  1, 1, "multiply by register A (REG A; MUL)") \
+  OP(DIVR,   REG,  1, 1, "divide by register A (REG A; DIV)") \
+  OP(SETP,   REG,  1, 0, "pop into parameter register A, E-RANGE outside -9999999..9999999 (SET with a parameter's rule)") \
+  OP(CMPC,   REL,  2, 0, "the block's jump condition is the relation A between two values (CMP A; COND)") \
+  OP(CJMP,   PC,   0, 0, "close the block's transaction, then jump to A (COMMIT; JMP)") \
+  OP(CJCOND, PC,   0, 0, "close the block's transaction, then jump to A if the block's condition held (COMMIT; JCOND)")
 
 enum vm_opd { OPD_NONE, OPD_K, OPD_I, OPD_REG, OPD_SLOT, OPD_SET, OPD_ARR,
               OPD_MASK, OPD_REL, OPD_PC, OPD_BLK };

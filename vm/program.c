@@ -37,13 +37,15 @@ static int grow(void **ptr, size_t *cap, size_t need, size_t elem)
   return 0;
 }
 
-long prog_emit(struct program *p, uint32_t ins, unsigned col)
+long prog_emit_grow(struct program *p, uint32_t ins, unsigned col)
 {
   if (p->ncode >= INS_AMAX)
     return -1;
   size_t cap = p->capcode;
   if (grow((void **)&p->code, &p->capcode, p->ncode + 1, sizeof *p->code))
     return -1;
+  if (p->capcode > INS_AMAX)
+    p->capcode = INS_AMAX;   /* prog_emit's fast path stops at the operand space */
   if (cap != p->capcode) {
     uint16_t *c = realloc(p->cols, p->capcode * sizeof *c);
     if (!c)

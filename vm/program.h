@@ -46,7 +46,15 @@ void prog_init(struct program *p);
 void prog_free(struct program *p);
 /* Appending; each returns the new index, or -1 when out of memory or out of
  * the 24-bit operand space (the caller reports it). */
-long prog_emit(struct program *p, uint32_t ins, unsigned col);
+long prog_emit_grow(struct program *p, uint32_t ins, unsigned col);
+static inline long prog_emit(struct program *p, uint32_t ins, unsigned col)
+{
+  if (p->ncode >= p->capcode)   /* full (or at the 24-bit operand space) */
+    return prog_emit_grow(p, ins, col);
+  p->code[p->ncode] = ins;
+  p->cols[p->ncode] = (uint16_t)(col > 0xffff ? 0xffff : col);
+  return (long)p->ncode++;
+}
 long prog_const(struct program *p, double v);
 long prog_rule(struct program *p, const struct prog_rule *r);
 long prog_block_add(struct program *p, const struct prog_block *b);

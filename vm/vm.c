@@ -14,6 +14,7 @@
 
 #define STACK 512        /* a block is <= 320 characters: it cannot nest deeper */
 #define CELL_MAX 9999999.0
+#define PARAM_MAX 9999999.0   /* SETP: the range of a parameter R0..R113 */
 
 const struct vm_opinfo vm_ops[OP__COUNT] = {
 #define OP_INFO(name, opd, pop, push, doc) {#name, OPD_##opd, pop, push, doc},
@@ -175,19 +176,27 @@ static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, doubl
 #endif
 
 #define RAISED goto fail
-#define POP() (st[--sp])
-#define PUSH(v) (st[sp++] = (v))
+/* The top of the stack lives in a local (tos), the rest in st[]: most
+ * instructions then never touch memory for their operands.  st[0] is a
+ * scratch cell that takes the undefined tos of an empty stack. */
+#define POP() (popped = tos, tos = st[--sp], popped)
+#define PUSH(v) (st[sp++] = tos, tos = (v))
 
 enum vm_event vm_run(struct vm *vm)
 {
   const struct program *p = vm->p;
   const uint32_t *code = p->code;
   const double *k = p->k;
-  double st[STACK];
+  double st[STACK + 1];
+  double tos = 0.0, popped, out;
   int sp = 0;
   uint32_t pc = vm->pc;
   uint32_t ins;
   double a, b, r;
+  /* the host sets these only between calls */
+  const uint64_t limit = vm->max_blocks ? vm->max_blocks : UINT64_MAX;
+  const int watching = vm->start_all || vm->watch;
+  const int yield_all = vm->yield_all;
 
   if (vm->done)
     return vm->err.code ? VM_EV_ERROR : VM_EV_END;
@@ -206,12 +215,12 @@ enum vm_event vm_run(struct vm *vm)
     vmdispatch(INS_OP(ins)) {
       vmcase(BLOCK) {
         vm->cur = INS_A(ins);
-        if (vm->max_blocks && vm->blocks >= vm->max_blocks) {
+        if (vm->blocks >= limit) {
           raise_at(vm, pc - 1, S42_E_LIMIT, "the budget of %llu blocks ran out (--max-blocks)",
                    (unsigned long long)vm->max_blocks);
           RAISED;
         }
-        if (vm->start_all || (vm->watch && vm->watch[vm->cur])) {
+        if (watching && (vm->start_all || vm->watch[vm->cur])) {
           vm->pc = pc;
           return VM_EV_START;
         }
@@ -221,42 +230,39 @@ enum vm_event vm_run(struct vm *vm)
       vmcase(INT) { PUSH((double)INS_A(ins)); vmbreak; }
       vmcase(REG) { PUSH(vm->reg[INS_A(ins)]); vmbreak; }
       vmcase(WORD) { PUSH(vm->w[INS_A(ins)]); vmbreak; }
-      vmcase(NEG) { st[sp - 1] = -st[sp - 1]; vmbreak; }
-      vmcase(ADD) {
-        b = POP(); a = st[sp - 1]; r = a + b;
-        if (!isfinite(r) && math_at(vm, pc - 1, OP_ADD, a, b, &r)) RAISED;
-        st[sp - 1] = r;
-        vmbreak;
+      vmcase(NEG) { tos = -tos; vmbreak; }
+      /* a non-finite result or a zero divisor is always an error: vm_math
+       * then says which, exactly as constant folding does */
+#define BINARY(L, BASE, OPER, OPERAND) \
+      vmcase(L) { \
+        b = (OPERAND); a = tos; r = a OPER b; \
+        if (!isfinite(r) || (BASE == OP_DIV && b == 0.0)) { \
+          math_at(vm, pc - 1, BASE, a, b, &out); \
+          RAISED; \
+        } \
+        tos = r; \
+        vmbreak; \
       }
-      vmcase(SUB) {
-        b = POP(); a = st[sp - 1]; r = a - b;
-        if (!isfinite(r) && math_at(vm, pc - 1, OP_SUB, a, b, &r)) RAISED;
-        st[sp - 1] = r;
-        vmbreak;
-      }
-      vmcase(MUL) {
-        b = POP(); a = st[sp - 1]; r = a * b;
-        if (!isfinite(r) && math_at(vm, pc - 1, OP_MUL, a, b, &r)) RAISED;
-        st[sp - 1] = r;
-        vmbreak;
-      }
-      vmcase(DIV) {
-        b = POP(); a = st[sp - 1];
-        if (math_at(vm, pc - 1, OP_DIV, a, b, &st[sp - 1])) RAISED;
-        vmbreak;
-      }
+      BINARY(ADD, OP_ADD, +, POP())
+      BINARY(SUB, OP_SUB, -, POP())
+      BINARY(MUL, OP_MUL, *, POP())
+      BINARY(DIV, OP_DIV, /, POP())
       vmcase(POW) {
-        b = POP(); a = st[sp - 1];
-        if (math_at(vm, pc - 1, OP_POW, a, b, &st[sp - 1])) RAISED;
+        b = POP(); a = tos;
+        if (math_at(vm, pc - 1, OP_POW, a, b, &out)) RAISED;
+        tos = out;
         vmbreak;
       }
-      vmcase(SIN) { if (math_at(vm, pc - 1, OP_SIN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(COS) { if (math_at(vm, pc - 1, OP_COS, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(TAN) { if (math_at(vm, pc - 1, OP_TAN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(ASIN) { if (math_at(vm, pc - 1, OP_ASIN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(ACOS) { if (math_at(vm, pc - 1, OP_ACOS, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(ATAN) { if (math_at(vm, pc - 1, OP_ATAN, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
-      vmcase(LOG) { if (math_at(vm, pc - 1, OP_LOG, st[sp - 1], 0, &st[sp - 1])) RAISED; vmbreak; }
+#define FUNCTION(L) \
+      vmcase(L) { if (math_at(vm, pc - 1, OP_##L, tos, 0, &out)) RAISED; tos = out; vmbreak; }
+      FUNCTION(SIN)
+      FUNCTION(COS)
+      FUNCTION(TAN)
+      FUNCTION(ASIN)
+      FUNCTION(ACOS)
+      FUNCTION(ATAN)
+      FUNCTION(LOG)
+#undef FUNCTION
       vmcase(SET) {
         if (do_set(vm, pc - 1, INS_A(ins), POP())) RAISED;
         vmbreak;
@@ -305,19 +311,19 @@ enum vm_event vm_run(struct vm *vm)
         vmbreak;
       }
       vmcase(CMP) {
-        b = POP(); a = st[sp - 1];
-        st[sp - 1] = vm_rel(a, b, INS_A(ins)) ? 1.0 : 0.0;
+        b = POP(); a = tos;
+        tos = vm_rel(a, b, INS_A(ins)) ? 1.0 : 0.0;
         vmbreak;
       }
-      vmcase(AND) { b = POP(); st[sp - 1] = (st[sp - 1] != 0.0 && b != 0.0); vmbreak; }
-      vmcase(OR) { b = POP(); st[sp - 1] = (st[sp - 1] != 0.0 || b != 0.0); vmbreak; }
+      vmcase(AND) { b = POP(); tos = (tos != 0.0 && b != 0.0); vmbreak; }
+      vmcase(OR) { b = POP(); tos = (tos != 0.0 || b != 0.0); vmbreak; }
       vmcase(COND) { vm->jflag = POP() != 0.0; vmbreak; }
       vmcase(MACH) {
         vm->pc = pc;
         return VM_EV_BLOCK;
       }
       vmcase(SYNC) {
-        if (vm->yield_all) {
+        if (yield_all) {
           vm->pc = pc;
           return VM_EV_BLOCK;
         }
@@ -388,6 +394,52 @@ enum vm_event vm_run(struct vm *vm)
         vm->exit_latch = 0;
         vm->done = 1;
         return VM_EV_END;
+      }
+      /* superinstructions: exactly what their two instructions did */
+      BINARY(ADDI, OP_ADD, +, (double)INS_A(ins))
+      BINARY(SUBI, OP_SUB, -, (double)INS_A(ins))
+      BINARY(MULI, OP_MUL, *, (double)INS_A(ins))
+      BINARY(DIVI, OP_DIV, /, (double)INS_A(ins))
+      BINARY(ADDK, OP_ADD, +, k[INS_A(ins)])
+      BINARY(SUBK, OP_SUB, -, k[INS_A(ins)])
+      BINARY(MULK, OP_MUL, *, k[INS_A(ins)])
+      BINARY(DIVK, OP_DIV, /, k[INS_A(ins)])
+      BINARY(ADDR, OP_ADD, +, vm->reg[INS_A(ins)])
+      BINARY(SUBR, OP_SUB, -, vm->reg[INS_A(ins)])
+      BINARY(MULR, OP_MUL, *, vm->reg[INS_A(ins)])
+      BINARY(DIVR, OP_DIV, /, vm->reg[INS_A(ins)])
+#undef BINARY
+      vmcase(SETP) {
+        a = POP();
+        if (!(a >= -PARAM_MAX && a <= PARAM_MAX)) {
+          char b1[32];
+          raise_at(vm, pc - 1, S42_E_RANGE, "R%u = %s is outside -9999999..9999999", INS_A(ins),
+                   num(b1, sizeof b1, a));
+          RAISED;
+        }
+        journal(vm, INS_A(ins));
+        vm->reg[INS_A(ins)] = a;
+        vmbreak;
+      }
+      vmcase(CMPC) {
+        b = POP(); a = POP();
+        vm->jflag = (uint8_t)vm_rel(a, b, INS_A(ins));
+        vmbreak;
+      }
+      vmcase(CJMP) {
+        vm->nundo = 0;
+        vm->arr_saved = 0;
+        vm->blocks++;
+        pc = INS_A(ins);
+        vmbreak;
+      }
+      vmcase(CJCOND) {
+        vm->nundo = 0;
+        vm->arr_saved = 0;
+        vm->blocks++;
+        if (vm->jflag)
+          pc = INS_A(ins);
+        vmbreak;
       }
     }
 #if !(defined(__GNUC__) && !defined(S42_SWITCH_DISPATCH))

@@ -109,15 +109,6 @@ static int arith(int op, double a, double b, double *out, char *msg, size_t n)
   return 0;
 }
 
-int vm_rel(double a, double b, unsigned mask)
-{
-  double m = fabs(a) > fabs(b) ? fabs(a) : fabs(b);
-  if (m < 1.0)
-    m = 1.0;
-  unsigned got = fabs(a - b) <= 1e-9 * m ? 2u : (a < b ? 1u : 4u);
-  return (mask & got) != 0;
-}
-
 int vm_math(int op, double a, double b, double *out, char *msg, size_t n)
 {
   switch (op) {

@@ -149,42 +149,40 @@ START_TEST(disasm_expr_and_condition)
     "N1 R1+2%3 X-R1+1/2 Y+X\n"
     "N2 P(R1:B:0) S (X:R:1)1\n"
     "N3 M2\n",
-    "; 3 blocks, 29 instructions, 1 constants, entry 0000\n"
+    "; 3 blocks, 27 instructions, 1 constants, entry 0000\n"
     "\n"
     "; N1 line 1: N1 R1+2%3 X-R1+1/2 Y+X\n"
     "0000  BLOCK   0\n"
     "0001  INT     6\n"
-    "0002  SET     r1\t; R1 -9999999..9999999\n"
+    "0002  SETP    r1\n"
     "0003  REG     r1\n"
     "0004  NEG\n"
-    "0005  CONST   0\t; 0.5\n"
-    "0006  ADD\n"
-    "0007  SET     w0\t; X -999999..999999 round\n"
-    "0008  WORD    w0\n"
-    "0009  SET     w1\t; Y -999999..999999 round\n"
-    "0010  MACH\n"
-    "0011  COMMIT\n"
+    "0005  ADDK    0\t; 0.5\n"
+    "0006  SET     w0\t; X -999999..999999 round\n"
+    "0007  WORD    w0\n"
+    "0008  SET     w1\t; Y -999999..999999 round\n"
+    "0009  MACH\n"
+    "0010  COMMIT\n"
     "\n"
     "; N2 line 2: N2 P(R1:B:0) S (X:R:1)1\n"
-    "0012  BLOCK   1\n"
-    "0013  REG     r1\n"
-    "0014  INT     0\n"
-    "0015  CMP     >\n"
-    "0016  INT     0\n"
-    "0017  INT     1\n"
-    "0018  CMP     =\n"
-    "0019  OR\n"
-    "0020  COND\n"
-    "0021  SYNC\n"
-    "0022  COMMIT\n"
-    "0023  JCOND   0000\t; N1\n"
+    "0011  BLOCK   1\n"
+    "0012  REG     r1\n"
+    "0013  INT     0\n"
+    "0014  CMP     >\n"
+    "0015  INT     0\n"
+    "0016  INT     1\n"
+    "0017  CMP     =\n"
+    "0018  OR\n"
+    "0019  COND\n"
+    "0020  SYNC\n"
+    "0021  CJCOND  0000\t; N1\n"
     "\n"
     "; N3 line 3: N3 M2\n"
-    "0024  BLOCK   2\n"
-    "0025  MACH\n"
-    "0026  COMMIT\n"
-    "0027  END\n"
-    "0028  END\n");
+    "0022  BLOCK   2\n"
+    "0023  MACH\n"
+    "0024  COMMIT\n"
+    "0025  END\n"
+    "0026  END\n");
 }
 END_TEST
 
@@ -198,9 +196,9 @@ START_TEST(disasm_folding)
     "; N1 line 1: N1 R1+SI(30000)%%2 R2+5%-2%%2\n"
     "0000  BLOCK   0\n"
     "0001  CONST   0\t; 0.25\n"
-    "0002  SET     r1\t; R1 -9999999..9999999\n"
+    "0002  SETP    r1\n"
     "0003  CONST   1\t; -20\n"
-    "0004  SET     r2\t; R2 -9999999..9999999\n"
+    "0004  SETP    r2\n"
     "0005  SYNC\n"
     "0006  COMMIT\n"
     "\n"
@@ -266,34 +264,31 @@ START_TEST(disasm_registers_and_late_condition)
   expect_disasm(
     "N1 R5+1 D1+60000 X+D1/2 P(R5:BR:X)4 F7000\n"
     "N4 M3 M2\n",
-    "; 2 blocks, 23 instructions, 0 constants, entry 0000\n"
+    "; 2 blocks, 20 instructions, 1 constants, entry 0000\n"
     "\n"
     "; N1 line 1: N1 R5+1 D1+60000 X+D1/2 P(R5:BR:X)4 F7000\n"
     "0000  BLOCK   0\n"
     "0001  INT     1\n"
-    "0002  SET     r5\t; R5 -9999999..9999999\n"
+    "0002  SETP    r5\n"
     "0003  INT     60000\n"
     "0004  SET     r114\t; D1 0..400000\n"
     "0005  REG     r114\n"
-    "0006  INT     2\n"
-    "0007  DIV\n"
-    "0008  SET     w0\t; X -999999..999999 round\n"
-    "0009  INT     7000\n"
-    "0010  SET     r117\t; F 0..6000 round clamp\n"
-    "0011  REG     r5\n"
-    "0012  WORD    w0\n"
-    "0013  CMP     >=\n"
-    "0014  COND\n"
-    "0015  MACH\n"
-    "0016  COMMIT\n"
-    "0017  JCOND   0018\t; N4\n"
+    "0006  MULK    0\t; 0.5\n"
+    "0007  SET     w0\t; X -999999..999999 round\n"
+    "0008  INT     7000\n"
+    "0009  SET     r117\t; F 0..6000 round clamp\n"
+    "0010  REG     r5\n"
+    "0011  WORD    w0\n"
+    "0012  CMPC    >=\n"
+    "0013  MACH\n"
+    "0014  CJCOND  0015\t; N4\n"
     "\n"
     "; N4 line 2: N4 M3 M2\n"
-    "0018  BLOCK   1\n"
-    "0019  MACH\n"
-    "0020  COMMIT\n"
-    "0021  END\n"
-    "0022  END\n");
+    "0015  BLOCK   1\n"
+    "0016  MACH\n"
+    "0017  COMMIT\n"
+    "0018  END\n"
+    "0019  END\n");
 }
 END_TEST
 
@@ -307,9 +302,9 @@ static double folded(const char *expr)
   struct tprog t;
   tp_compile(&t, src);
   ck_assert_msg(t.rc == 0, "%s:\n%s", src, tp_diags(&t.d));
-  /* BLOCK, one push, SET */
+  /* BLOCK, one push, SETP (SET with a parameter's rule) */
   uint32_t push = t.p.code[1];
-  ck_assert_msg(INS_OP(t.p.code[2]) == OP_SET, "%s: not folded to one value", expr);
+  ck_assert_msg(INS_OP(t.p.code[2]) == OP_SETP, "%s: not folded to one value", expr);
   double v;
   if (INS_OP(push) == OP_INT)
     v = (double)INS_A(push);
@@ -372,14 +367,13 @@ END_TEST
 
 START_TEST(rounded_where_used)
 {
-  /* X rounds at SET (rule), the parameter keeps 0.5 */
+  /* X rounds at SET (rule), the parameter keeps 0.5: SETP never rounds */
   struct tprog t;
   tp_compile(&t, "N1 R1+1/2 X+1/2 F1\nN2 M2\n");
   ck_assert_int_eq(t.rc, 0);
-  long set1 = find_op(&t.p, OP_SET, 0), set2 = find_op(&t.p, OP_SET, (uint32_t)set1 + 1);
-  const struct prog_rule *r1 = &t.p.rules[INS_A(t.p.code[set1]) >> 10];
+  long set1 = find_op(&t.p, OP_SETP, 0), set2 = find_op(&t.p, OP_SET, 0);
+  ck_assert_int_eq(INS_A(t.p.code[set1]), 1);
   const struct prog_rule *r2 = &t.p.rules[INS_A(t.p.code[set2]) >> 10];
-  ck_assert_int_eq(r1->round, 0);
   ck_assert_int_eq(r2->round, 1);
   ck_assert_str_eq(r2->name, "X");
   tp_free(&t);

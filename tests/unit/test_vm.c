@@ -271,6 +271,30 @@ START_TEST(range_at_run_time)
 }
 END_TEST
 
+/* The superinstructions (ADDI, DIVI, MULR, SETP...) fail exactly as the
+ * instructions they replace did: code, message and column. */
+START_TEST(superinstructions_same_errors)
+{
+  ck_assert_int_eq(run("N1 R1+5\nN2 R2+R1/0\nN3 M2\n"), VM_EV_ERROR);
+  assert_error(S42_E_DIV0, 2);
+  ck_assert_str_eq(vm->err.msg, "division of 5 by zero");
+  ck_assert_uint_eq(vm->err.col, 9);
+  ck_assert_int_eq(run("N1 R1+9999999\nN2 R2+R1+1\nN3 M2\n"), VM_EV_ERROR);
+  ck_assert_str_eq(vm->err.msg, "R2 = 10000000 is outside -9999999..9999999");
+  ck_assert_uint_eq(vm->err.col, 4);
+  ck_assert_int_eq(run("N1 R1+9999999\nN2 R2+R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1"
+                       "%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1%R1\nN3 M2\n"),
+                   VM_EV_ERROR);
+  assert_error(S42_E_RANGE, 2);
+  ck_assert_msg(strncmp(vm->err.msg, "intermediate result too large", 29) == 0, "%s", vm->err.msg);
+  /* a loop through CMPC and CJCOND, with a jump back through CJMP */
+  ck_assert_int_eq(run("N1 R1+0\nN2 R1+R1+1 P(R1:M:10)2\nN3 R2+R2-1/2 P4\nN4 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 10);
+  ck_assert_double_eq(R(2), -0.5);
+  ck_assert_uint_eq(vm->blocks, 13);
+}
+END_TEST
+
 START_TEST(feed_clamped_at_run_time)
 {
   load("N1 R1+7000 F+R1 X+1\nN2 M2\n");
@@ -821,6 +845,7 @@ Suite *suite_vm(void)
   tcase_add_test(tc, start_all_and_yield_all);
   tcase_add_test(tc, sync_blocks_do_not_yield);
   tcase_add_test(tc, many_vms_one_program);
+  tcase_add_test(tc, superinstructions_same_errors);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -1,0 +1,97 @@
+#!/bin/sh
+# Limits and bad input (README "Limits and bad input"): each must end with a
+# clear message and its exit status, never a crash.  Run by make check, and
+# under make asan with the sanitized binary.   usage: run.sh S42
+S42=${1:-./s42}
+T=${TMPDIR:-/tmp}/s42-limits.$$
+mkdir -p "$T"
+trap 'rm -rf "$T"' EXIT
+pass=0 fail=0
+
+# expect NAME STATUS PATTERN FILE [ARGS...]: s42 run FILE ARGS exits with
+# STATUS and says PATTERN (grep -E) on stderr
+expect() {
+  name=$1 want=$2 pat=$3 f=$4
+  shift 4
+  "$S42" run "$f" "$@" >"$T/out" 2>"$T/err"
+  st=$?
+  if [ "$st" -ne "$want" ]; then
+    echo "FAIL limits $name: status $st, expected $want"; sed 's/^/  /' "$T/err" | head -5
+    fail=$((fail + 1))
+  elif ! grep -Eq -- "$pat" "$T/err"; then
+    echo "FAIL limits $name: stderr does not match /$pat/"; sed 's/^/  /' "$T/err" | head -5
+    fail=$((fail + 1))
+  else
+    pass=$((pass + 1))
+  fi
+}
+
+# nesting 10,000 deep: parentheses, signs, functions, a condition
+python3 - "$T" <<'PY'
+import sys
+d = sys.argv[1]
+def w(name, text, mode="w"):
+    with open(d + "/" + name, mode) as f:
+        f.write(text)
+n = 10000
+w("parens.kp", "№1 R1+" + "(" * n + "1" + ")" * n + " ^\n№2 M02 ^\n")
+w("signs.kp", "№1 R1+" + "-" * n + "1 ^\n№2 M02 ^\n")
+w("funcs.kp", "№1 R1+" + "SI(" * n + "1" + ")" * n + " ^\n№2 M02 ^\n")
+w("cond.kp", "№1 P" + "(" * n + "R1:R:1" + ")" * n + "2 ^\n№2 M02 ^\n")
+# a block of a million characters on one line
+w("longblock.kp", "№1 R1+" + "1+" * 500000 + "1 ^\n№2 M02 ^\n")
+# more blocks than the limit (2,097,152)
+w("blocks.kp", "№1 M03 ^\n" + "M03 ^\n" * 2097152 + "M02 ^\n")
+# bytes that are not UTF-8, a NUL byte, both inside text
+w("badutf8.kp", b"\xe2\x84\x961 R1+1 \xff\xfe ^\n\xe2\x84\x962 M02 ^\n", "wb")
+w("nul.kp", b"\xe2\x84\x961 R1+\x00 ^\n\xe2\x84\x962 M02 ^\n", "wb")
+w("textbad.kp", "№1 G33 /ОК\udcff/ ^\n№2 M02 ^\n".encode("utf-8", "surrogateescape"), "wb")
+w("textnul.kp", "№1 G33 /ОК\0/ ^\n№2 M02 ^\n")
+# an empty file, and one with only comments and blank blocks
+w("empty.kp", "")
+w("comments.kp", "; nothing here\n\n ^ ^\n")
+# an operator script over 1 MiB
+w("big.op", "key PUSK\n" * 120000)
+PY
+
+expect deep-parentheses 1 'parens\.kp:1:[0-9]+: error: N1: expression nested too deeply \[E-SYNTAX\]' "$T/parens.kp"
+expect deep-signs 1 'signs\.kp:1:[0-9]+: error: N1: .*nested too deeply \[E-SYNTAX\]' "$T/signs.kp"
+expect deep-functions 1 'funcs\.kp:1:[0-9]+: error: N1: .*nested too deeply \[E-SYNTAX\]' "$T/funcs.kp"
+expect deep-condition 1 'cond\.kp:1:[0-9]+: error: N1: .*nested too deeply \[E-SYNTAX\]' "$T/cond.kp"
+expect long-block 1 'longblock\.kp:1:[0-9]+: error: N1: .*\[E-BLOCKLEN\]' "$T/longblock.kp"
+expect too-many-blocks 1 'blocks\.kp:2097153:1: error: N-: more than 2097152 blocks: the program is too long \[E-LIMIT\]' "$T/blocks.kp"
+expect non-utf8 1 'badutf8\.kp:1:9: error: N1: unexpected invalid UTF-8: not a word of the 2С42 \[E-SYNTAX\]' "$T/badutf8.kp"
+expect nul-byte 1 'nul\.kp:1:7: error: N1: expected a number, parameter or function, found character 0x00 \[E-SYNTAX\]' "$T/nul.kp"
+expect text-non-utf8 1 'textbad\.kp:1:11: error: N1: G33: text holds invalid UTF-8 \[E-TEXT\]' "$T/textbad.kp"
+expect text-nul 1 'textnul\.kp:1:11: error: N1: G33: text holds a NUL byte \[E-TEXT\]' "$T/textnul.kp"
+expect empty-file 1 'empty\.kp:1:1: error: N-: the program is empty: it needs block 1 and M2 \[E-SUB\]' "$T/empty.kp"
+expect only-comments 1 'comments\.kp:1:1: error: N-: the program is empty' "$T/comments.kp"
+expect directory 4 "s42: $T: is a directory, not a file" "$T"
+expect missing-file 4 'no-such\.kp: No such file or directory' "$T/no-such.kp"
+# a program file over 64 MiB (sparse: nothing is written)
+truncate -s 65M "$T/huge.kp"
+expect file-size 4 'huge\.kp: too large: at most 67108864 bytes are read \[E-LIMIT\]' "$T/huge.kp"
+rm -f "$T/huge.kp"
+expect operator-size 4 'big\.op: too large: at most 1048576 bytes are read \[E-LIMIT\]' programs/drill_dialog.kp \
+  --operator "$T/big.op"
+
+# CRLF line ends: the same run, to the byte, as the LF original
+for f in programs/reamer_rake.kp programs/drill_dialog.kp; do
+  b=$(basename "$f" .kp)
+  sed 's/$/\r/' "$f" > "$T/$b-crlf.kp"
+  op=
+  [ -f "programs/$b.operator" ] && op="--operator programs/$b.operator"
+  # shellcheck disable=SC2086
+  "$S42" run "$f" $op --dump --screen > "$T/lf.out" 2>/dev/null
+  # shellcheck disable=SC2086
+  "$S42" run "$T/$b-crlf.kp" $op --dump --screen > "$T/crlf.out" 2>/dev/null
+  if cmp -s "$T/lf.out" "$T/crlf.out"; then
+    pass=$((pass + 1))
+  else
+    echo "FAIL limits crlf-$b: the CRLF file runs differently"; diff "$T/lf.out" "$T/crlf.out" | head -5
+    fail=$((fail + 1))
+  fi
+done
+
+echo "limits: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
