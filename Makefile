@@ -27,12 +27,13 @@ CPPFLAGS += -DS42_VERSION='"$(VERSION)"'
 include vm/module.mk
 include display/module.mk
 include src/module.mk
+include plugins/toothsearch/module.mk
 include tests/module.mk
 
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: all check test unit conformance programs regress restart realtime plot shared asan run clean install deps docs
+.PHONY: all check test unit conformance programs regress restart realtime plot shared toothsearch asan run clean install deps docs
 
 all: $(S42)
 
@@ -54,7 +55,7 @@ check: deps
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot shared
+test: unit conformance programs regress restart realtime plot shared toothsearch
 
 asan:
 	@sh scripts/deps.sh

@@ -5,11 +5,11 @@ CHECK_LIBS   := $(shell pkg-config --libs check 2>/dev/null || echo -lcheck)
 TEST_SRCS    := $(wildcard tests/unit/*.c)
 TEST_OBJS    := $(TEST_SRCS:%.c=$(BUILD)/%.o)
 UNIT_BIN     := $(BUILD)/tests/unit/run-unit
-$(TEST_OBJS): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay $(CHECK_CFLAGS)
+$(TEST_OBJS): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -I$(TS_DIR) $(CHECK_CFLAGS)
 
 .PHONY: unit-bin
 unit-bin: $(UNIT_BIN)
-$(UNIT_BIN): $(TEST_OBJS) $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
+$(UNIT_BIN): $(TEST_OBJS) $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS) $(TS_C_OBJS)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) $(LDLIBS)
 
@@ -49,7 +49,7 @@ shared: $(S42)
 
 # Fuzzing with libFuzzer (clang): make fuzz FUZZ_SECONDS=60
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := fuzz_program fuzz_operator
+FUZZ_TARGETS := fuzz_program fuzz_operator fuzz_toolmodel
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Ivm -Idisplay -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/%)
@@ -57,6 +57,10 @@ FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c,$(SRC_SRCS))
 $(BUILD)/fuzz/%: tests/fuzz/%.c $(FUZZ_SRCS)
 	@mkdir -p $(@D)
 	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) -lm
+# the tool-model parser alone (plugins/toothsearch/toolmodel.c)
+$(BUILD)/fuzz/fuzz_toolmodel: tests/fuzz/fuzz_toolmodel.c $(TS_DIR)/toolmodel.c $(TS_DIR)/toolmodel.h
+	@mkdir -p $(@D)
+	clang $(FUZZ_FLAGS) -I$(TS_DIR) -o $@ $< $(TS_DIR)/toolmodel.c -lm
 fuzz: fuzz-bin
 	@mkdir -p $(BUILD)/fuzz/corpus-program $(BUILD)/fuzz/corpus-operator
 	@cp programs/*.kp tests/conformance/cases/*/program.kp $(BUILD)/fuzz/corpus-program/ 2>/dev/null || true
@@ -64,3 +68,5 @@ fuzz: fuzz-bin
 	@for f in programs/*.operator tests/conformance/cases/*/operator.txt; do [ -f $$f ] && cp $$f $(BUILD)/fuzz/corpus-operator/$$(echo $$f | tr / _); done; true
 	$(BUILD)/fuzz/fuzz_program -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 $(BUILD)/fuzz/corpus-program
 	$(BUILD)/fuzz/fuzz_operator -max_total_time=$(FUZZ_SECONDS) -max_len=2048 -timeout=10 $(BUILD)/fuzz/corpus-operator
+	@mkdir -p $(BUILD)/fuzz/corpus-toolmodel && cp tests/toothsearch/*.tool $(BUILD)/fuzz/corpus-toolmodel/
+	$(BUILD)/fuzz/fuzz_toolmodel -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 $(BUILD)/fuzz/corpus-toolmodel
