@@ -51,7 +51,7 @@ run: deps $(S42)
 	$(S42) run programs/reamer_rake.kp --trace --dump
 
 check: deps
-	@$(MAKE) --no-print-directory all unit-bin
+	@$(MAKE) --no-print-directory all unit-bin toothsearch-bin
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
@@ -61,7 +61,7 @@ asan:
 	@sh scripts/deps.sh
 	$(MAKE) BUILD=build-asan S42=build-asan/s42 \
 	  CFLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
-	  LDFLAGS="-fsanitize=address,undefined" all unit-bin
+	  LDFLAGS="-fsanitize=address,undefined" all unit-bin toothsearch-bin
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  $(MAKE) BUILD=build-asan S42=build-asan/s42 test
 

@@ -7,6 +7,9 @@
 #include "toothsearch.h"
 
 #include <math.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -131,6 +134,70 @@ static int check(const char *path, const struct tm_model *m, int m10, struct wor
   return bad ? 1 : 0;
 }
 
+/* Refusals and the image dump, on one model. */
+static int api_checks(const char *path, const struct tm_model *m)
+{
+  int bad = 0;
+  struct ts_request rq;
+  struct ts_result r;
+  char err[512];
+  memset(&rq, 0, sizeof rq);
+  rq.x2_um = NAN;
+  rq.hand = m->hand;
+#define EXPECT(cond, ...) do { if (!(cond)) { printf("FAIL api (%s): ", path); printf(__VA_ARGS__); printf("\n"); bad++; } } while (0)
+  rq.speed_deg_min = TS_MAX_SPEED * 2;
+  int st = ts_search(m, &rq, &r, err, sizeof err);
+  EXPECT(st == TS_E_ARG && strstr(err, "speed"), "speed above the limit: status %d '%s'", st, err);
+  rq.speed_deg_min = 0;
+  rq.x2_um = rq.x1_um;
+  st = ts_search(m, &rq, &r, err, sizeof err);
+  EXPECT(st == TS_E_ARG && strstr(err, "section 2"), "equal sections: status %d '%s'", st, err);
+  rq.x2_um = NAN;
+  rq.hand = 0;
+  st = ts_search(m, &rq, &r, err, sizeof err);
+  EXPECT(st == TS_E_ARG, "no hand: status %d", st);
+  rq.hand = m->hand;
+  struct tm_model bad_model = *m;
+  bad_model.teeth = 0;
+  st = ts_search(&bad_model, &rq, &r, err, sizeof err);
+  EXPECT(st == TS_E_ARG && strstr(err, "teeth"), "0 teeth in the model: status %d '%s'", st, err);
+  rq.dump_dir = "/nonexistent/dir";
+  st = ts_search(m, &rq, &r, err, sizeof err);
+  EXPECT(st == TS_E_IO, "dump to a missing parent: status %d '%s'", st, err);
+  /* the dump: the images and their annotated twins */
+  char dir[] = "/tmp/s42tsXXXXXX";
+  if (mkdtemp(dir)) {
+    rq.dump_dir = dir;
+    rq.speed_deg_min = 720;
+    st = ts_search(m, &rq, &r, err, sizeof err);
+    EXPECT(st == TS_OK, "dump: status %d '%s'", st, err);
+    EXPECT(fabs(r.time_s - 60.0) < 1e-9, "two revolutions at 720 deg/min: %g s, want 60", r.time_s);
+    const char *names[] = {"section1_shot1.png", "section1_shot1_annotated.png",
+                           "section1_search2_shot4.png", "section1_search2_shot4_annotated.png"};
+    for (int i = 0; i < 4; i++) {
+      char f[256];
+      struct stat sb;
+      snprintf(f, sizeof f, "%s/%s", dir, names[i]);
+      EXPECT(stat(f, &sb) == 0 && sb.st_size > 1000, "dump: %s missing", f);
+    }
+    for (int i = 0; i < TS_SHOTS; i++) {
+      const char *tags[] = {"section1", "section1_search2"};
+      for (int k = 0; k < 4; k++) {
+        char f[256];
+        snprintf(f, sizeof f, "%s/%s_shot%d%s.png", dir, tags[k / 2], i + 1, k % 2 ? "_annotated" : "");
+        unlink(f);
+      }
+    }
+    rmdir(dir);
+  }
+  /* the default speed */
+  rq.dump_dir = NULL;
+  rq.speed_deg_min = 0;
+  st = ts_search(m, &rq, &r, err, sizeof err);
+  EXPECT(st == TS_OK && fabs(r.time_s - 2 * 360.0 / TS_DEFAULT_SPEED * 60) < 1e-9, "default speed: %g s", r.time_s);
+  return bad;
+}
+
 int main(int argc, char **argv)
 {
   int pass = 0, fail = 0;
@@ -143,6 +210,9 @@ int main(int argc, char **argv)
       printf("FAIL %s\n  %s\n", argv[i], err);
       fail++;
       continue;
+    }
+    if (i == 1) {
+      if (api_checks(argv[i], &m)) fail++; else pass++;
     }
     if (check(argv[i], &m, 1, &w)) fail++; else pass++;
     if (i % 3 == 1) {
