@@ -31,13 +31,14 @@ include vm/module.mk
 include display/module.mk
 include src/module.mk
 include plugins/module.mk
+include plugins/toothsearch/module.mk
 include tests/module.mk
 include bench/module.mk
 
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: all check test unit conformance programs regress restart realtime plot plugins shared limits asan run clean install deps docs
+.PHONY: all check test unit conformance programs regress restart realtime plot plugins shared limits toothsearch asan run clean install deps docs
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -55,18 +56,18 @@ run: deps $(S42)
 	$(S42) run programs/reamer_rake.kp --trace --dump
 
 check: deps
-	@$(MAKE) --no-print-directory all unit-bin
+	@$(MAKE) --no-print-directory all unit-bin toothsearch-bin
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot plugins shared limits
+test: unit conformance programs regress restart realtime plot plugins shared limits toothsearch
 
 ASAN_MAKE = $(MAKE) BUILD=build-asan S42=build-asan/s42 \
 	  CFLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
 	  LDFLAGS="-fsanitize=address,undefined"
 asan:
 	@sh scripts/deps.sh
-	$(ASAN_MAKE) all unit-bin
+	$(ASAN_MAKE) all unit-bin toothsearch-bin
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  $(ASAN_MAKE) test
 

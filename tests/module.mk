@@ -5,12 +5,12 @@ CHECK_LIBS   := $(shell pkg-config --libs check 2>/dev/null || echo -lcheck)
 TEST_SRCS    := $(wildcard tests/unit/*.c)
 TEST_OBJS    := $(TEST_SRCS:%.c=$(BUILD)/%.o)
 UNIT_BIN     := $(BUILD)/tests/unit/run-unit
-$(TEST_OBJS): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(CHECK_CFLAGS)
+$(TEST_OBJS): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude -I$(TS_DIR) $(CHECK_CFLAGS)
 
 .PHONY: unit-bin fixtures
 fixtures: $(FIXTURE_SOS)
 unit-bin: $(UNIT_BIN) $(PLUGIN_SOS) $(FIXTURE_SOS)
-$(UNIT_BIN): $(TEST_OBJS) $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
+$(UNIT_BIN): $(TEST_OBJS) $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS) $(TS_C_OBJS)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) $(LDLIBS)
 
@@ -72,7 +72,7 @@ shared: $(S42)
 # that long, from the committed seeds in tests/fuzz/corpus/<harness>/ (new
 # inputs go to $(BUILD)/fuzz/corpus-<harness>/); crashes land in $(BUILD)/fuzz/.
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := compile vm operator
+FUZZ_TARGETS := compile vm operator toolmodel
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc -Ivm -Idisplay -Iinclude -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
@@ -80,6 +80,10 @@ FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c src/cairo_dl.c,$
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRCS) $(wildcard src/*.h vm/*.h display/*.h)
 	@mkdir -p $(@D)
 	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) -lm -ldl
+# the tool-model parser alone (plugins/toothsearch/toolmodel.c)
+$(BUILD)/fuzz/fuzz_toolmodel: tests/fuzz/fuzz_toolmodel.c $(TS_DIR)/toolmodel.c $(TS_DIR)/toolmodel.h
+	@mkdir -p $(@D)
+	clang $(FUZZ_FLAGS) -I$(TS_DIR) -o $@ $< $(TS_DIR)/toolmodel.c -lm
 fuzz: fuzz-bin
 	@for t in $(FUZZ_TARGETS); do \
 	  mkdir -p $(BUILD)/fuzz/corpus-$$t; \

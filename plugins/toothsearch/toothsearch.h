@@ -1,0 +1,81 @@
+/* The tooth-step search of G10/G11 (language.md section 15) as a small C
+ * library: render the probe camera's images of a tool model in one or two
+ * sections, measure the tooth angles in them with OpenCV, and return the
+ * circular steps, TK, UG and the simulated search time.  Every entry point
+ * catches every C++ exception and returns a status; nothing here exits. */
+#ifndef S42_TOOTHSEARCH_H
+#define S42_TOOTHSEARCH_H
+
+#include "toolmodel.h"
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The search turns the tool at this speed unless M12 gives F (deg/min):
+ * 1440 deg/min = 4 rev/min, one revolution in 15 s.  A probe search on the
+ * ВЗ-208Ф3 is slow; the seed's example sets F1000 with M12. */
+#define TS_DEFAULT_SPEED 1440.0
+#define TS_MAX_SPEED 36000.0        /* deg/min: 100 rev/min */
+/* Images the camera takes during one revolution, at evenly spaced A. */
+#define TS_SHOTS 4
+
+enum ts_status {
+  TS_OK = 0,
+  TS_E_TEETH = 1,      /* no tooth found, more than 150, or no consistent count */
+  TS_E_ARG = 2,        /* a bad request: model, speed, equal sections */
+  TS_E_INTERNAL = 3,   /* an exception or no memory inside */
+  TS_E_IO = 4          /* the images could not be written (results are valid) */
+};
+
+struct ts_request {
+  double x1_um;          /* table X of section 1, µm */
+  double x2_um;          /* table X of section 2 (M10); NaN: no M10 */
+  double a1_deg;         /* A when the search in section 1 starts: the probe is
+                            in the flute before the first tooth */
+  double a2_deg;         /* A when the search in section 2 starts (M10) */
+  int hand;              /* programmed: TM_RIGHT (G10) or TM_LEFT (G11) */
+  double diameter_um;    /* D1, for UG; <= 0: the model's diameter */
+  double speed_deg_min;  /* M12 with F; <= 0: TS_DEFAULT_SPEED */
+  const char *dump_dir;  /* NULL, or a directory for the images (PNG) */
+};
+
+struct ts_result {
+  int teeth;                       /* R99 */
+  double steps[TM_MAX_TEETH];      /* degrees, from the first tooth; sum 360 */
+  double tk_um;                    /* TK, µm; 0 without M10 or straight flutes */
+  double ug_mdeg;                  /* UG, 0.001 degree; 0 likewise */
+  double shift_deg;                /* mean angular shift between the sections */
+  int measured_hand;               /* TM_RIGHT / TM_LEFT; 0 straight or no M10 */
+  int hand_mismatch;               /* measured hand disagrees with G10/G11 */
+  double time_s;                   /* simulated time of the search rotations */
+  int images;                      /* images taken */
+  double centre_px[2][2];          /* calibrated axis (x, y) per section */
+  double positions[2][TM_MAX_TEETH]; /* A (deg) where each tooth met the probe,
+                                        per search (section 2 or second search) */
+};
+
+/* The mounting of the tool on the spindle that puts the probe 40 % into the
+ * flute before tooth 1 when section x1 starts at A = a1 (the operator's
+ * placement); ts_search uses it for the renderer. */
+double ts_mount(const struct tm_model *m, double x1_um, double a1_deg);
+/* The A at which an operator who follows the flute from (x1, a1) to section
+ * x2 starts the second search (probe at the same place before tooth 1). */
+double ts_follow_flute(const struct tm_model *m, double x1_um, double a1_deg, double x2_um);
+
+/* Run a search: with M10 (x2 a number) one revolution in each section, else
+ * two revolutions in section 1, averaged.  Returns a ts_status; on an error
+ * err holds a message (E-TEETH: "no teeth found", "more than 150 teeth"). */
+int ts_search(const struct tm_model *m, const struct ts_request *rq, struct ts_result *out,
+              char *err, size_t errlen);
+
+/* Simulated seconds of one revolution at this speed (deg/min, <= 0 default). */
+double ts_revolution_time(double speed_deg_min);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
