@@ -3,6 +3,7 @@
 #include "disasm.h"
 #include "errors.h"
 #include "operator.h"
+#include "pace.h"
 #include "plot.h"
 #include "plugin.h"
 #include "report.h"
@@ -13,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 
 #ifndef S42_VERSION
 #define S42_VERSION "0.1.0"
@@ -336,31 +336,14 @@ struct both_sink {
   struct runner *r;
   struct plot *plot;       /* s42 plot: the path is collected here */
   int realtime;            /* --realtime: wait until the wall clock reaches the simulated time */
-  struct timespec t0;      /* wall clock when the run (or restart) began */
-  double sim0;             /* simulated time then */
+  struct pace pace;
 };
-
-/* --realtime: each block ends when the machine would have finished it. */
-static void pace(struct both_sink *b, double sim)
-{
-  struct timespec now;
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  double wall = (double)(now.tv_sec - b->t0.tv_sec) + (double)(now.tv_nsec - b->t0.tv_nsec) / 1e9;
-  double wait = sim - b->sim0 - wall;
-  if (wait > 0) {
-    struct timespec ts;
-    ts.tv_sec = (time_t)wait;
-    ts.tv_nsec = (long)((wait - (double)ts.tv_sec) * 1e9);
-    while (nanosleep(&ts, &ts) && errno == EINTR)
-      ;
-  }
-}
 
 static void row_sink(void *ctx, const struct session *s, const struct sess_row *row)
 {
   struct both_sink *b = ctx;
   if (b->realtime)
-    pace(b, row->t);
+    pace_sleep_until(&b->pace, row->t);
   if (b->tr.out) {
     report_row(&b->tr, s, row);
     if (b->realtime)
@@ -528,7 +511,6 @@ static int headless(const struct opts *opt, struct plot *plot)
   bs.r = &r;
   bs.plot = plot;
   bs.realtime = o.realtime;
-  clock_gettime(CLOCK_MONOTONIC, &bs.t0);
   r.s.sink.ctx = &bs;
   r.s.sink.row = row_sink;
   r.s.sink.warn = sink_warn;
@@ -584,8 +566,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     st = "error";
     r.s.state = SE_ERROR;
   }
-  bs.sim0 = r.s.m.t;     /* a restart goes on from the saved time */
-  clock_gettime(CLOCK_MONOTONIC, &bs.t0);
+  pace_start(&bs.pace, r.s.m.t);     /* a restart goes on from the saved time */
 
   while (status == EXIT_END) {
     r.s.vm.start_all = r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]);
