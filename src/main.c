@@ -9,6 +9,7 @@
 #include "report.h"
 #include "session.h"
 #include "state.h"
+#include "tui.h"
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -707,6 +708,40 @@ static int cmd_plot(int argc, char **argv)
   return st;
 }
 
+/* s42 tui: the terminal front end (src/tui.c), at machine speed. */
+static int cmd_tui(int argc, char **argv)
+{
+  struct opts o;
+  if (parse_opts(argc, argv, 2, &o, 0))
+    return EXIT_USAGE;
+  const char *bad = o.operator_file ? "--operator (operator scripts are for s42 run)"
+                    : o.trace ? "--trace" : o.dump ? "--dump" : o.screen ? "--screen" : o.out ? "-o" : NULL;
+  if (bad) {
+    fprintf(stderr, "s42: tui does not take %s\n", bad);
+    return EXIT_USAGE;
+  }
+  if (o.modbus) {
+    fprintf(stderr, "s42: --modbus (the Modbus server) is not implemented in this build\n");
+    return EXIT_USAGE;
+  }
+  if (o.restart && !o.program) {
+    fprintf(stderr, "s42: --restart needs the program file\n");
+    return EXIT_USAGE;
+  }
+  if (o.tool)
+    fprintf(stderr, "s42: warning: --tool %s is not used: tooth-step search is not in this build\n", o.tool);
+  struct tui_opts t;
+  memset(&t, 0, sizeof t);
+  t.plugins = plugins_init(o.plugins);
+  t.program = o.program;
+  t.state = o.state;
+  t.restart = o.restart;
+  t.realtime = 1;          /* the operator watches: machine speed (F9 / f toggles) */
+  t.en = o.en;
+  t.max_blocks = o.max_blocks;
+  return tui_main(&t, NULL, 0);
+}
+
 int main(int argc, char **argv)
 {
   if (argc < 2) {
@@ -736,10 +771,8 @@ int main(int argc, char **argv)
     return cmd_plot(argc, argv);
   if (strcmp(cmd, "plugins") == 0)
     return cmd_plugins(argc, argv);
-  if (strcmp(cmd, "tui") == 0) {
-    fprintf(stderr, "s42: %s is not implemented in this build\n", cmd);
-    return EXIT_USAGE;
-  }
+  if (strcmp(cmd, "tui") == 0)
+    return cmd_tui(argc, argv);
   fprintf(stderr, "s42: unknown command '%s'\n%s", cmd, usage);
   return EXIT_USAGE;
 }
