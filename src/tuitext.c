@@ -71,20 +71,24 @@ int tui_text_set(struct tui_text *t, const char *buf, size_t n, char *err, size_
     snprintf(err, errn, "it holds a NUL byte: not a program text");
     return -1;
   }
+  /* \r\n line ends are taken off (and put back on save) only when every
+   * line has one: a stray \r in a mixed file stays where it was */
+  size_t lf = 0, crlf = 0;
+  for (size_t i = 0; i < n; i++)
+    if (buf[i] == '\n') {
+      lf++;
+      crlf += i > 0 && buf[i - 1] == '\r';
+    }
   struct tui_text nt;
   tui_text_init(&nt);
   nt.final_eol = n == 0 || buf[n - 1] == '\n';
-  size_t crlf = 0, lf = 0;
+  nt.crlf = lf && crlf == lf;
   for (size_t i = 0; i < n;) {
     const char *e = memchr(buf + i, '\n', n - i);
     size_t len = e ? (size_t)(e - (buf + i)) : n - i;
-    if (e) {
-      lf++;
-      if (len && buf[i + len - 1] == '\r') {
-        crlf++;
-        len--;
-      }
-    }
+    size_t next = i + len + (e ? 1 : 0);
+    if (e && nt.crlf)
+      len--;
     char *l = malloc(len + 1);
     if (!l || reserve(&nt, nt.n + 1)) {
       free(l);
@@ -95,11 +99,8 @@ int tui_text_set(struct tui_text *t, const char *buf, size_t n, char *err, size_
     memcpy(l, buf + i, len);
     l[len] = 0;
     nt.line[nt.n++] = l;
-    i += len + (e ? 1 + (e > buf + i + len) : 0);
-    if (!e)
-      break;
+    i = next;
   }
-  nt.crlf = lf && crlf == lf;
   tui_text_free(t);
   *t = nt;
   return 0;
