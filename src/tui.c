@@ -1171,9 +1171,14 @@ static void draw_listing(struct tui *t, const struct layout *l)
     else if (cursor)
       a = t->colors ? COLOR_PAIR(2) : A_UNDERLINE | A_BOLD;
     int mk = i < t->nmark ? t->mark[i] : 0;
-    char g[32];
-    snprintf(g, sizeof g, "%c%c%*zu ", mk == 2 ? '!' : mk == 1 ? '~' : ' ', running ? '>' : cursor ? '*' : ' ',
-             digits, i + 1);
+    char num[24], g[48];
+    int nl = snprintf(num, sizeof num, "%zu", i + 1);
+    g[0] = mk == 2 ? '!' : mk == 1 ? '~' : ' ';
+    g[1] = running ? '>' : cursor ? '*' : ' ';
+    int k = 2;
+    for (int pad = digits - nl; pad > 0; pad--)
+      g[k++] = ' ';
+    snprintf(g + k, sizeof g - (size_t)k, "%s ", num);
     int used = text(y, x, cols, g, a, 0);
     text(y, x + used, cols - used, t->text.line[i], a, 1);
   }
@@ -1455,8 +1460,10 @@ static int loop(struct tui *t)
     }
     wint_t c;
     int k;
-    while ((k = get_wch(&c)) != ERR && !t->quit)
+    while ((k = get_wch(&c)) != ERR && !t->quit) {
       key(t, k == KEY_CODE_YES, c);
+      advance(t);   /* what is due now (a dialog's next field) is there for the next key */
+    }
     for (int i = 0; r > 0 && i < t->nsrc && i < 16; i++) {
       int any = 0;
       for (int j = 0; j < count[i]; j++)
