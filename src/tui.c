@@ -69,6 +69,7 @@ struct tui {
   uint64_t hash;
   char *state_path;
   int restart_pending;
+  unsigned long m15_saves;  /* restart points saved in this run */
   struct session s;
   struct pace pace;
   int fast, held;
@@ -379,6 +380,7 @@ static void start_run(struct tui *t)
   t->held = 0;
   t->cur.valid = 0;
   t->nchg = 0;
+  t->m15_saves = 0;
   int has_m15 = 0;
   for (size_t b = 0; b < t->prog.nblocks; b++)
     if ((kp_attr(&t->prog, b)->m >> 15) & 1)
@@ -471,7 +473,11 @@ static int advance(struct tui *t)
           t->run = R_DONE;
           return -1;
         }
-        say(t, "%s: M15 restart point saved in %s", bname(sess_block_number(&t->s), nb), t->state_path);
+        if (t->m15_saves++ == 0)   /* once in the log; a loop would fill it */
+          say(t, "%s: M15 restart point saved in %s", bname(sess_block_number(&t->s), nb), t->state_path);
+        else
+          note(t, "%s: M15 restart point saved in %s (%lu)", bname(sess_block_number(&t->s), nb), t->state_path,
+               t->m15_saves);
       }
       continue;
     case SE_WAIT:

@@ -260,7 +260,35 @@ see_re "│X +9\.000 mm"
 keys q
 ended 0
 
-# ---- 6. no program, then open one; a missing file; not a terminal ----
+# ---- 6. cycle exit in time, the feed override, M15 and --restart ----
+printf '№1 R1+R1+1 ^\n№2 M15 G04 X+2 ^\n№3 PP5 ^\n№4 P1 ^\n№5 M02 ^\n' > "$WORK/loop.kp"
+start loop C.UTF-8 loop.kp
+keys g
+see "M15 restart point saved in loop.kp.state"
+see_re "R1 +[2-9] +N1"                       # going round
+keys "<" "<"
+see "F%         80 %"
+keys e                                       # Вихід з циклу: the next PP5 is taken
+see "end (M2)" 5
+keys q
+ended 0
+start restart C.UTF-8 loop.kp --restart
+keys g
+see "restart: the cycle goes on at th"
+see_re "R1 +[0-9]+ +N1"
+keys F7
+see "end (M2)" 5
+keys q
+ended 0
+printf '\n' >> "$WORK/loop.kp"                # the text changed: no restart
+start refused C.UTF-8 loop.kp --restart
+keys g
+see "помилка в КП №1: повторний пуск"
+see "[E-STATE]"
+keys q
+ended 0
+
+# ---- 7. no program, then open one; a missing file; not a terminal ----
 start empty C.UTF-8
 see "no program: F3 (or o) opens one"
 keys o
