@@ -104,6 +104,7 @@ struct tui {
   char log[LOGN][LOGW];
   int nlog;
   char msg[LOGW];           /* the message line */
+  int msg_wait;             /* it says what the machine waits for */
   int quit;
 };
 
@@ -191,6 +192,7 @@ static void say(struct tui *t, const char *fmt, ...)
   va_start(ap, fmt);
   vsnprintf(t->msg, sizeof t->msg, fmt, ap);
   va_end(ap);
+  t->msg_wait = 0;
   if (t->nlog == LOGN) {
     memmove(t->log[0], t->log[1], sizeof t->log[0] * (LOGN - 1));
     t->nlog--;
@@ -206,6 +208,7 @@ static void note(struct tui *t, const char *fmt, ...)
   va_start(ap, fmt);
   vsnprintf(t->msg, sizeof t->msg, fmt, ap);
   va_end(ap);
+  t->msg_wait = 0;
 }
 
 static const char *bname(int n, char buf[16])
@@ -483,6 +486,7 @@ static int advance(struct tui *t)
     case SE_WAIT:
       t->wait_t = t->s.m.t;
       note(t, "%s waits: %s", bname(sess_block_number(&t->s), nb), wait_hint(&t->s));
+      t->msg_wait = 1;
       return -1;
     case SE_END:
       t->run = R_DONE;
@@ -1350,6 +1354,10 @@ static void draw_help(struct tui *t)
 static void draw(struct tui *t)
 {
   int H = LINES, W = COLS;
+  if (t->msg_wait && !(t->run == R_RUN && t->s.state == SE_WAIT)) {
+    t->msg[0] = 0;   /* the wait is over */
+    t->msg_wait = 0;
+  }
   erase();
   curs_set(0);   /* shown again only on the input line */
   struct layout l = lay_out(W, H);
