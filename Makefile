@@ -2,7 +2,7 @@
 #   make            build ./s42
 #   make check      all tests (unit, conformance, programs)
 #   make asan       the whole test suite under ASan + UBSan
-#   make run        build and run the emulator on a bundled program
+#   make run        build and run the emulator on a bundled program (the TUI on a terminal)
 #   make install PREFIX=/usr/local
 .SUFFIXES:
 .DEFAULT_GOAL := all
@@ -38,7 +38,7 @@ include bench/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: all check test unit conformance programs regress restart realtime plot plugins shared limits toothsearch asan run clean install deps docs
+.PHONY: all check test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch asan run clean install deps docs
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -52,15 +52,17 @@ $(BUILD)/%.o: %.c
 deps:
 	@sh scripts/deps.sh
 
+# On a terminal: the TUI on the drill dialog; otherwise the headless run.
 run: deps $(S42)
-	$(S42) run programs/reamer_rake.kp --trace --dump
+	@if [ -t 0 ] && [ -t 1 ]; then $(S42) tui programs/drill_dialog.kp; \
+	else $(S42) run programs/reamer_rake.kp --trace --dump; fi
 
 check: deps
 	@$(MAKE) --no-print-directory all unit-bin toothsearch-bin
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot plugins shared limits toothsearch
+test: unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch
 
 ASAN_MAKE = $(MAKE) BUILD=build-asan S42=build-asan/s42 \
 	  CFLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \

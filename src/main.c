@@ -3,17 +3,18 @@
 #include "disasm.h"
 #include "errors.h"
 #include "operator.h"
+#include "pace.h"
 #include "plot.h"
 #include "plugin.h"
 #include "report.h"
 #include "session.h"
 #include "state.h"
+#include "tui.h"
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 
 #ifndef S42_VERSION
 #define S42_VERSION "0.1.0"
@@ -336,31 +337,14 @@ struct both_sink {
   struct runner *r;
   struct plot *plot;       /* s42 plot: the path is collected here */
   int realtime;            /* --realtime: wait until the wall clock reaches the simulated time */
-  struct timespec t0;      /* wall clock when the run (or restart) began */
-  double sim0;             /* simulated time then */
+  struct pace pace;
 };
-
-/* --realtime: each block ends when the machine would have finished it. */
-static void pace(struct both_sink *b, double sim)
-{
-  struct timespec now;
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  double wall = (double)(now.tv_sec - b->t0.tv_sec) + (double)(now.tv_nsec - b->t0.tv_nsec) / 1e9;
-  double wait = sim - b->sim0 - wall;
-  if (wait > 0) {
-    struct timespec ts;
-    ts.tv_sec = (time_t)wait;
-    ts.tv_nsec = (long)((wait - (double)ts.tv_sec) * 1e9);
-    while (nanosleep(&ts, &ts) && errno == EINTR)
-      ;
-  }
-}
 
 static void row_sink(void *ctx, const struct session *s, const struct sess_row *row)
 {
   struct both_sink *b = ctx;
   if (b->realtime)
-    pace(b, row->t);
+    pace_sleep_until(&b->pace, row->t);
   if (b->tr.out) {
     report_row(&b->tr, s, row);
     if (b->realtime)
@@ -528,7 +512,6 @@ static int headless(const struct opts *opt, struct plot *plot)
   bs.r = &r;
   bs.plot = plot;
   bs.realtime = o.realtime;
-  clock_gettime(CLOCK_MONOTONIC, &bs.t0);
   r.s.sink.ctx = &bs;
   r.s.sink.row = row_sink;
   r.s.sink.warn = sink_warn;
@@ -584,8 +567,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     st = "error";
     r.s.state = SE_ERROR;
   }
-  bs.sim0 = r.s.m.t;     /* a restart goes on from the saved time */
-  clock_gettime(CLOCK_MONOTONIC, &bs.t0);
+  pace_start(&bs.pace, r.s.m.t);     /* a restart goes on from the saved time */
 
   while (status == EXIT_END) {
     r.s.vm.start_all = r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]);
@@ -726,6 +708,40 @@ static int cmd_plot(int argc, char **argv)
   return st;
 }
 
+/* s42 tui: the terminal front end (src/tui.c), at machine speed. */
+static int cmd_tui(int argc, char **argv)
+{
+  struct opts o;
+  if (parse_opts(argc, argv, 2, &o, 0))
+    return EXIT_USAGE;
+  const char *bad = o.operator_file ? "--operator (operator scripts are for s42 run)"
+                    : o.trace ? "--trace" : o.dump ? "--dump" : o.screen ? "--screen" : o.out ? "-o" : NULL;
+  if (bad) {
+    fprintf(stderr, "s42: tui does not take %s\n", bad);
+    return EXIT_USAGE;
+  }
+  if (o.modbus) {
+    fprintf(stderr, "s42: --modbus (the Modbus server) is not implemented in this build\n");
+    return EXIT_USAGE;
+  }
+  if (o.restart && !o.program) {
+    fprintf(stderr, "s42: --restart needs the program file\n");
+    return EXIT_USAGE;
+  }
+  if (o.tool)
+    fprintf(stderr, "s42: warning: --tool %s is not used: tooth-step search is not in this build\n", o.tool);
+  struct tui_opts t;
+  memset(&t, 0, sizeof t);
+  t.plugins = plugins_init(o.plugins);
+  t.program = o.program;
+  t.state = o.state;
+  t.restart = o.restart;
+  t.realtime = 1;          /* the operator watches: machine speed (F9 / f toggles) */
+  t.en = o.en;
+  t.max_blocks = o.max_blocks;
+  return tui_main(&t, NULL, 0);
+}
+
 int main(int argc, char **argv)
 {
   if (argc < 2) {
@@ -755,10 +771,8 @@ int main(int argc, char **argv)
     return cmd_plot(argc, argv);
   if (strcmp(cmd, "plugins") == 0)
     return cmd_plugins(argc, argv);
-  if (strcmp(cmd, "tui") == 0) {
-    fprintf(stderr, "s42: %s is not implemented in this build\n", cmd);
-    return EXIT_USAGE;
-  }
+  if (strcmp(cmd, "tui") == 0)
+    return cmd_tui(argc, argv);
   fprintf(stderr, "s42: unknown command '%s'\n%s", cmd, usage);
   return EXIT_USAGE;
 }

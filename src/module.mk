@@ -1,7 +1,8 @@
 # src/: the 2С42 front end, the machine, the session, reports and the CLI.
-SRC_SRCS     := $(filter-out src/main.c,$(wildcard src/*.c))
+SRC_SRCS     := $(filter-out src/main.c src/tui.c,$(wildcard src/*.c))
 SRC_OBJS     := $(SRC_SRCS:%.c=$(BUILD)/%.o)
-SRC_MAIN_OBJ := $(BUILD)/src/main.o
+# the curses front end links into s42 only (not the unit tests or fuzzers)
+SRC_MAIN_OBJ := $(BUILD)/src/main.o $(BUILD)/src/tui.o
 $(SRC_OBJS) $(SRC_MAIN_OBJ): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude
 # plot.c draws with cairo (the only part of src/ that needs it)
 CAIRO_CFLAGS := $(shell pkg-config --cflags cairo 2>/dev/null)
@@ -11,3 +12,8 @@ $(BUILD)/src/plot.o $(BUILD)/src/cairo_dl.o: MOD_CPPFLAGS := -Isrc -Ivm -Idispla
 LDLIBS += -ldl
 # where `make install` puts the plugins: s42 looks there last
 $(BUILD)/src/plugin.o: CPPFLAGS += -DS42_PLUGINDIR='"$(PLUGINDIR)"'
+# tui.c draws with ncursesw
+CURSES_CFLAGS := $(shell pkg-config --cflags ncursesw 2>/dev/null)
+CURSES_LIBS   := $(shell pkg-config --libs ncursesw 2>/dev/null || echo -lncursesw)
+$(BUILD)/src/tui.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(CURSES_CFLAGS)
+LDLIBS += $(CURSES_LIBS)

@@ -63,6 +63,10 @@ valgrind: $(S42)
 	  --error-exitcode=99 $(S42) check programs/*.kp
 	@echo "valgrind: no leaks, no errors"
 
+# s42 tui in a real terminal: tmux send-keys, capture-pane
+tui: $(S42)
+	sh tests/tui/run.sh $(S42)
+
 shared: $(S42)
 	@if [ -d $(SHARED)/conformance/cases ]; then \
 	  sh tests/shared.sh $(S42) $(SHARED); \

@@ -22,6 +22,7 @@ Suite *suite_session(void);
 Suite *suite_screen(void);
 Suite *suite_plugin(void);
 Suite *suite_toolmodel(void);
+Suite *suite_tuitext(void);
 
 /* A program compiled from a C string, with its diagnostics. */
 struct tprog {

@@ -1,0 +1,1573 @@
+/* s42 tui (src/tui.h): the curses front end.  It owns the loop: advance the
+ * session at machine speed, draw, then poll the keyboard and the other
+ * sources with a timeout -- never a blocking wait.  The 2С42-65 screen is
+ * the session's rendered grid, only copied here; everything else on the
+ * terminal (listing, editor, machine state, messages) is drawn from the
+ * session and the text buffer each pass. */
+#define NCURSES_WIDECHAR 1
+#include "tui.h"
+#include "compile.h"
+#include "errors.h"
+#include "kp.h"
+#include "pace.h"
+#include "report.h"
+#include "state.h"
+#include "tuitext.h"
+/* curses.h declares its own scr_init (and struct screen only as the
+ * opaque SCREEN, which ncurses never lets us look into): rename its
+ * scr_init away so display/screen.h's stays the one in use. */
+#define scr_init curses_scr_init_unused
+#include <curses.h>
+#undef scr_init
+#include <errno.h>
+#include <langinfo.h>
+#include <locale.h>
+#include <math.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+#include <wchar.h>
+
+#define LOGN 200            /* messages kept */
+#define LOGW 200            /* characters per message */
+#define NCHG 24             /* registers that changed last */
+#define MBMAX 1000          /* characters of the input line */
+#define MAXSRC_FD 64
+#define SCR_H (SCR_ROWS + 2)   /* the framed 2С42 screen */
+#define SCR_W (SCR_COLS + 2)
+#define SIDE_MIN 24         /* narrowest side pane worth drawing */
+
+enum { R_IDLE, R_RUN, R_DONE };                 /* no run yet; a cycle is on; it ended */
+enum { F_PANEL, F_EDIT };                       /* where the keys go */
+enum { MB_NONE, MB_INSERT, MB_REPLACE, MB_OPEN, MB_SAVEAS, MB_QUIT, MB_OPENASK };
+
+struct tui {
+  struct tui_opts o;
+  const struct tui_source *src;
+  int nsrc;
+  int utf8;                 /* the terminal takes UTF-8; otherwise one ASCII stand-in per character */
+  int colors;
+  /* the program text */
+  struct tui_text text;
+  char *path;
+  int dirty;
+  unsigned gen;             /* bumped by every edit */
+  unsigned char *mark;      /* per line after the last check: 0, 1 warning, 2 error */
+  size_t nmark, nerr, nwarn;
+  int checked;
+  /* the run */
+  int run;
+  unsigned run_gen;         /* the text generation the run was compiled from */
+  struct program prog;
+  int have_prog;
+  char *run_src;
+  uint64_t hash;
+  char *state_path;
+  int restart_pending;
+  unsigned long m15_saves;  /* restart points saved in this run */
+  struct session s;
+  struct pace pace;
+  int fast, held;
+  int osc;                  /* the oscillation plugin says it is on */
+  int override;             /* the feed override switch, % */
+  double last_t;            /* simulated time at the end of the last row */
+  double wait_t;            /* simulated time when the machine began to wait */
+  struct {
+    int valid;
+    int64_t from[4], to[4];
+    double t0, t1, feed;
+    unsigned line;
+    int n;
+  } cur;                    /* the last block carried out: its motion in time */
+  double regs[114];
+  struct { int reg, n; double v; } chg[NCHG];
+  int nchg;
+  struct screen idle;       /* what the 2С42 screen shows before the first run */
+  int cyr;                  /* Рус: Cyrillic keyboard mode */
+  int64_t jog_step;
+  /* the terminal */
+  int focus;
+  size_t ecur, etop, ltop;
+  int help;
+  struct {
+    int kind;
+    uint32_t b[MBMAX];
+    int n, cur;
+    int before;             /* MB_INSERT: before the cursor's line */
+    char prompt[96];
+  } mb;
+  char log[LOGN][LOGW];
+  int nlog;
+  char msg[LOGW];           /* the message line */
+  int msg_wait;             /* it says what the machine waits for */
+  int quit;
+};
+
+/* ---- terminal restore on every exit path ---- */
+
+static volatile sig_atomic_t got_sig;
+static int curses_on;
+static struct termios tty0;
+static int tty_saved;
+static char restore_seq[128];  /* rmkx, cnorm, rmcup: written by the fatal-signal handler */
+static size_t restore_len;
+static const int fatal_sigs[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
+static struct sigaction old_fatal[5], old_quit[3];
+static const int quit_sigs[] = {SIGINT, SIGTERM, SIGHUP};
+
+static void on_quit_signal(int sig)
+{
+  got_sig = sig;
+}
+
+/* A crash: put the terminal back with async-signal-safe calls only, then
+ * hand the signal to whoever had it (the default action, or a sanitizer). */
+static void on_fatal_signal(int sig)
+{
+  if (tty_saved)
+    tcsetattr(STDIN_FILENO, TCSANOW, &tty0);
+  if (restore_len) {
+    ssize_t w = write(STDOUT_FILENO, restore_seq, restore_len);
+    (void)w;
+  }
+  for (size_t i = 0; i < sizeof fatal_sigs / sizeof fatal_sigs[0]; i++)
+    if (fatal_sigs[i] == sig)
+      sigaction(sig, &old_fatal[i], NULL);
+  /* returning re-raises: a fault faults again, abort() raises again */
+}
+
+static void curses_off(void)
+{
+  if (curses_on) {
+    curses_on = 0;
+    endwin();
+  }
+}
+
+static void add_restore(const char *cap)
+{
+  const char *s = tigetstr((char *)cap);
+  if (!s || s == (char *)-1)
+    return;
+  size_t n = strlen(s);
+  if (restore_len + n < sizeof restore_seq) {
+    memcpy(restore_seq + restore_len, s, n);
+    restore_len += n;
+  }
+}
+
+static void signals_on(void)
+{
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sigemptyset(&sa.sa_mask);
+  sa.sa_handler = on_quit_signal;   /* no SA_RESTART: poll() returns at once */
+  for (int i = 0; i < 3; i++)
+    sigaction(quit_sigs[i], &sa, &old_quit[i]);
+  sa.sa_handler = on_fatal_signal;
+  sa.sa_flags = SA_NODEFER;
+  for (int i = 0; i < 5; i++)
+    sigaction(fatal_sigs[i], &sa, &old_fatal[i]);
+}
+
+static void signals_off(void)
+{
+  for (int i = 0; i < 3; i++)
+    sigaction(quit_sigs[i], &old_quit[i], NULL);
+  for (int i = 0; i < 5; i++)
+    sigaction(fatal_sigs[i], &old_fatal[i], NULL);
+}
+
+/* ---- messages ---- */
+
+static void say(struct tui *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void say(struct tui *t, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(t->msg, sizeof t->msg, fmt, ap);
+  va_end(ap);
+  t->msg_wait = 0;
+  if (t->nlog == LOGN) {
+    memmove(t->log[0], t->log[1], sizeof t->log[0] * (LOGN - 1));
+    t->nlog--;
+  }
+  snprintf(t->log[t->nlog++], LOGW, "%s", t->msg);
+}
+
+/* The message line only, not the log (hints that repeat at every wait). */
+static void note(struct tui *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void note(struct tui *t, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(t->msg, sizeof t->msg, fmt, ap);
+  va_end(ap);
+  t->msg_wait = 0;
+}
+
+static const char *bname(int n, char buf[16])
+{
+  if (n > 0)
+    snprintf(buf, 16, "N%d", n);
+  else
+    snprintf(buf, 16, "N-");
+  return buf;
+}
+
+/* ---- the check ---- */
+
+/* Compile the text; keep the marks; with loud, every diagnostic goes to the
+ * messages.  Returns the number of errors. */
+static size_t check(struct tui *t, int loud)
+{
+  size_t n;
+  char *src = tui_text_join(&t->text, &n);
+  if (!src) {
+    say(t, "out of memory");
+    return 1;
+  }
+  struct program p;
+  struct diag_list d;
+  prog_init(&p);
+  diag_init(&d, t->path ? t->path : "(new)");
+  comp_program_with(src, n, &d, &p, t->o.plugins);
+  free(t->mark);
+  t->nmark = t->text.n;
+  t->mark = calloc(t->nmark ? t->nmark : 1, 1);
+  for (size_t i = 0; i < d.n; i++) {
+    const struct diag *g = &d.v[i];
+    int lvl = g->sev == DIAG_ERROR ? 2 : g->sev == DIAG_WARNING ? 1 : 0;
+    if (t->mark && g->line >= 1 && g->line <= t->nmark && t->mark[g->line - 1] < lvl)
+      t->mark[g->line - 1] = (unsigned char)lvl;
+    if (loud) {
+      char nb[16];
+      say(t, "%u:%u %s %s: %s%s%s%s", g->line, g->col,
+          g->sev == DIAG_ERROR ? "error" : g->sev == DIAG_WARNING ? "warning" : "note",
+          bname(g->number, nb), g->msg, g->code ? " [" : "", g->code ? err_code(g->code) : "",
+          g->code ? "]" : "");
+    }
+  }
+  t->nerr = d.nerr;
+  t->nwarn = d.nwarn;
+  t->checked = 1;
+  if (loud)
+    say(t, "check: %zu error%s, %zu warning%s", d.nerr, d.nerr == 1 ? "" : "s", d.nwarn,
+        d.nwarn == 1 ? "" : "s");
+  size_t e = d.nerr;
+  prog_free(&p);
+  diag_free(&d);
+  free(src);
+  return e;
+}
+
+/* ---- the run ---- */
+
+static void on_row(void *ctx, const struct session *s, const struct sess_row *r)
+{
+  struct tui *t = ctx;
+  t->cur.valid = 1;
+  memcpy(t->cur.from, r->start, sizeof t->cur.from);
+  memcpy(t->cur.to, s->m.pos, sizeof t->cur.to);
+  t->cur.t0 = t->last_t;
+  t->cur.t1 = r->t;
+  t->cur.feed = r->feed;
+  t->cur.line = r->line;
+  t->cur.n = r->n;
+  t->osc = r->extra && strstr(r->extra, "\"osc\":\"on\"") != NULL;
+  t->last_t = r->t;
+  for (int i = 0; i < 114; i++) {
+    double v = s->vm.reg[i];
+    if (v == t->regs[i] || (isnan(v) && isnan(t->regs[i])))
+      continue;
+    t->regs[i] = v;
+    int k = 0;
+    while (k < t->nchg && t->chg[k].reg != i)
+      k++;
+    if (k == t->nchg)
+      k = t->nchg < NCHG ? t->nchg++ : NCHG - 1;
+    memmove(&t->chg[1], &t->chg[0], (size_t)k * sizeof t->chg[0]);
+    t->chg[0].reg = i;
+    t->chg[0].v = v;
+    t->chg[0].n = r->n;
+  }
+}
+
+static void on_warn(void *ctx, const struct session *s, const char *msg)
+{
+  struct tui *t = ctx;
+  char nb[16];
+  say(t, "%s: warning: %s", bname(sess_block_number(s), nb), msg);
+}
+
+static void on_log(void *ctx, const struct session *s, const char *msg)
+{
+  (void)s;
+  say(ctx, "%s", msg);
+}
+
+static void end_run(struct tui *t)
+{
+  if (t->have_prog)
+    prog_free(&t->prog);
+  t->have_prog = 0;
+  free(t->run_src);
+  t->run_src = NULL;
+  free(t->state_path);
+  t->state_path = NULL;
+  t->run = R_IDLE;
+}
+
+/* The machine's own message for the run's error, on line 16 and below. */
+static void show_error(struct tui *t)
+{
+  const struct vm_error *e = &t->s.vm.err;
+  const struct prog_block *b = e->block < t->prog.nblocks ? &t->prog.blocks[e->block] : NULL;
+  int num = b && b->number ? b->number : -1;
+  char m[200], nb[16];
+  report_machine_msg(m, sizeof m, e->code, num, e->aux, t->o.en);
+  scr_message(&t->s.scr, m);
+  say(t, "%u:%u error %s: %s [%s]", b ? b->line : 1, e->col ? e->col : b ? b->col : 1, bname(num, nb), e->msg,
+      err_code(e->code));
+}
+
+static void start_run(struct tui *t)
+{
+  size_t n;
+  char *src = tui_text_join(&t->text, &n);
+  if (!src) {
+    say(t, "out of memory");
+    return;
+  }
+  if (check(t, 0)) {
+    check(t, 1);
+    say(t, "the program has %zu error%s: the cycle does not start", t->nerr, t->nerr == 1 ? "" : "s");
+    free(src);
+    return;
+  }
+  end_run(t);
+  struct diag_list d;
+  prog_init(&t->prog);
+  diag_init(&d, t->path ? t->path : "(new)");
+  int bad = comp_program_with(src, n, &d, &t->prog, t->o.plugins);
+  diag_free(&d);
+  t->have_prog = 1;
+  if (bad) {   /* check() said it compiles; only memory could fail here */
+    say(t, "the program does not compile: the cycle does not start");
+    free(src);
+    end_run(t);
+    return;
+  }
+  t->run_src = src;
+  t->hash = state_hash(src, n);
+  t->run_gen = t->gen;
+  sess_init(&t->s, &t->prog);
+  t->s.en = t->o.en;
+  t->s.scr.en = t->o.en;
+  t->s.scr.cyr = t->cyr;
+  t->s.vm.max_blocks = t->o.max_blocks;
+  t->s.vm.start_all = 1;   /* one block per sess_run: the loop paces them */
+  t->s.vm.yield_all = 1;   /* a row for every block, for the listing */
+  t->s.sink.ctx = t;
+  t->s.sink.row = on_row;
+  t->s.sink.warn = on_warn;
+  t->s.sink.log = on_log;
+  t->s.plugins = t->o.plugins;
+  t->run = R_RUN;
+  t->osc = 0;
+  t->held = 0;
+  t->cur.valid = 0;
+  t->nchg = 0;
+  t->m15_saves = 0;
+  int has_m15 = 0;
+  for (size_t b = 0; b < t->prog.nblocks; b++)
+    if ((kp_attr(&t->prog, b)->m >> 15) & 1)
+      has_m15 = 1;
+  if ((has_m15 || t->restart_pending) && (t->o.state || t->path)) {
+    if (t->o.state) {
+      t->state_path = strdup(t->o.state);
+    } else if ((t->state_path = malloc(strlen(t->path) + 7)) != NULL) {
+      sprintf(t->state_path, "%s.state", t->path);
+    }
+  } else if (has_m15) {
+    say(t, "M15: the text has no file name yet, so the restart point is not saved (save it first)");
+  }
+  if (t->restart_pending) {
+    t->restart_pending = 0;
+    char err[160];
+    if (!t->state_path) {
+      snprintf(err, sizeof err, "no state file (the text has no file name)");
+    }
+    if (!t->state_path || state_load(&t->s, t->state_path, t->hash, err, sizeof err)) {
+      t->s.vm.err.code = S42_E_STATE;
+      t->s.vm.err.block = 0;
+      t->s.vm.err.col = 1;
+      snprintf(t->s.vm.err.msg, sizeof t->s.vm.err.msg, "restart refused: %s", err);
+      t->s.state = SE_ERROR;
+      t->run = R_DONE;
+      show_error(t);
+      return;
+    }
+    char nb[16];
+    say(t, "restart: the cycle goes on at the M15 block %s", bname(sess_block_number(&t->s), nb));
+  }
+  if (t->override != 100 && sess_override(&t->s, t->override) == 0)
+    say(t, "feed override %d %%", t->override);
+  memcpy(t->regs, t->s.vm.reg, sizeof t->regs);
+  t->last_t = t->wait_t = t->s.m.t;
+  pace_start(&t->pace, t->s.m.t);
+  say(t, "Пуск: the cycle starts");
+}
+
+/* The wait has just ended (a key): the clock goes on from here, so the
+ * time the operator took is not run off at full speed afterwards. */
+static void resumed(struct tui *t)
+{
+  pace_start(&t->pace, t->wait_t);
+  t->held = 0;
+}
+
+static const char *wait_hint(const struct session *s)
+{
+  switch (s->wait) {
+  case W_ANSWER: return "type the number, then ПС (Enter)";
+  case W_PUSK: return "Пуск (F5 or g) continues";
+  case W_PS: return "ПС (Enter), then Пуск";
+  case W_TEACH: return "jog the junior axis, then ПС (Enter)";
+  case W_FEED: return "the feed override is at 0 %: raise it (>)";
+  default: return "";
+  }
+}
+
+/* Run blocks while they are due.  Returns the poll timeout, ms (-1 idle). */
+static int advance(struct tui *t)
+{
+  if (t->run != R_RUN || t->held || t->s.state == SE_WAIT)
+    return -1;
+  struct timespec t0, now;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+  for (unsigned i = 0;; i++) {
+    if (!t->fast && t->cur.valid) {
+      double ahead = pace_ahead(&t->pace, t->cur.t1);
+      if (ahead > 0) {
+        int ms = (int)ceil(ahead * 1000);
+        return ms < 40 ? ms : 40;   /* redraw the motion meanwhile */
+      }
+    }
+    if ((i & 63) == 63) {
+      clock_gettime(CLOCK_MONOTONIC, &now);
+      if ((double)(now.tv_sec - t0.tv_sec) + (double)(now.tv_nsec - t0.tv_nsec) / 1e9 > 0.02)
+        return 0;   /* keep the keys and the screen alive */
+    }
+    char nb[16];
+    enum sess_ev ev = sess_run(&t->s);
+    switch (ev) {
+    case SE_START:
+      if (t->state_path && ((kp_attr(&t->prog, t->s.vm.cur)->m >> 15) & 1)) {
+        char err[512];
+        if (state_save(&t->s, t->state_path, t->hash, err, sizeof err)) {
+          say(t, "cannot save the M15 restart state: %s; the cycle is stopped", err);
+          sess_key_stop(&t->s);
+          t->run = R_DONE;
+          return -1;
+        }
+        if (t->m15_saves++ == 0)   /* once in the log; a loop would fill it */
+          say(t, "%s: M15 restart point saved in %s", bname(sess_block_number(&t->s), nb), t->state_path);
+        else
+          note(t, "%s: M15 restart point saved in %s (%lu)", bname(sess_block_number(&t->s), nb), t->state_path,
+               t->m15_saves);
+      }
+      continue;
+    case SE_WAIT:
+      t->wait_t = t->s.m.t;
+      note(t, "%s waits: %s", bname(sess_block_number(&t->s), nb), wait_hint(&t->s));
+      t->msg_wait = 1;
+      return -1;
+    case SE_END:
+      t->run = R_DONE;
+      say(t, "the program ended (M2): %llu blocks, %.2f s", (unsigned long long)t->s.vm.blocks, t->s.m.t);
+      return -1;
+    case SE_STOPPED:
+      t->run = R_DONE;
+      say(t, "the cycle was stopped");
+      return -1;
+    default:
+      t->run = R_DONE;
+      show_error(t);
+      return -1;
+    }
+  }
+}
+
+/* ---- panel keys ---- */
+
+static void press_pusk(struct tui *t)
+{
+  if (t->run != R_RUN) {
+    start_run(t);
+    return;
+  }
+  if (t->held) {
+    pace_hold(&t->pace, 0);
+    t->held = 0;
+    say(t, "Пуск: the motion goes on");
+    return;
+  }
+  if (t->s.state == SE_WAIT && sess_key_pusk(&t->s) == 0) {
+    resumed(t);
+    return;
+  }
+  if (t->s.state == SE_WAIT)
+    say(t, "Пуск does not fit here: %s", wait_hint(&t->s));
+  else
+    say(t, "the cycle is running");
+}
+
+static void press_stop(struct tui *t)
+{
+  if (t->run != R_RUN) {
+    say(t, "Стоп: no cycle is running");
+    return;
+  }
+  if (!t->held && t->s.state != SE_WAIT) {
+    pace_hold(&t->pace, 1);
+    t->held = 1;
+    say(t, "Стоп: feed hold -- Пуск goes on, Стоп again stops the cycle");
+    return;
+  }
+  sess_key_stop(&t->s);
+  t->held = 0;
+  t->run = R_DONE;
+  say(t, "Стоп: the cycle was stopped");
+}
+
+static void press_ps(struct tui *t)
+{
+  if (t->run != R_RUN || t->s.state != SE_WAIT) {
+    say(t, "ПС: the machine does not wait for it");
+    return;
+  }
+  if (t->s.wait == W_ANSWER) {
+    double v = scr_field_value(&t->s.scr);
+    sess_answer(&t->s, (long long)llround(v));
+    if (t->s.state != SE_WAIT)
+      resumed(t);
+    return;
+  }
+  if (sess_key_ps(&t->s) == 0)
+    return;
+  say(t, "ПС does not fit here: %s", wait_hint(&t->s));
+}
+
+static void press_exit(struct tui *t)
+{
+  if (t->run != R_RUN) {
+    say(t, "Вихід з циклу: no cycle is running");
+    return;
+  }
+  sess_key_exit(&t->s);
+  say(t, "Вихід з циклу: the next PP jump will be taken");
+}
+
+static void press_rus(struct tui *t)
+{
+  t->cyr = !t->cyr;
+  t->idle.cyr = t->cyr;
+  if (t->run != R_IDLE)
+    t->s.scr.cyr = t->cyr;
+}
+
+static void set_override(struct tui *t, int pct)
+{
+  if (pct < 0)
+    pct = 0;
+  if (pct > 150)
+    pct = 150;
+  if (t->run == R_RUN) {
+    int held = t->s.state == SE_WAIT && t->s.wait == W_FEED;
+    if (sess_override(&t->s, pct))
+      return;   /* M25: the screen says so */
+    if (held && t->s.state != SE_WAIT)
+      resumed(t);   /* the move held at 0 % goes */
+  }
+  t->override = pct;
+  say(t, "feed override %d %%", pct);
+}
+
+static void jog(struct tui *t, int axis, int sign)
+{
+  static const char names[] = "XYZA";
+  int64_t d = sign * t->jog_step;
+  if (t->run == R_RUN && t->s.state == SE_WAIT &&
+      (t->s.wait == W_PUSK || t->s.wait == W_PS || t->s.wait == W_TEACH)) {
+    sess_jog(&t->s, axis, d);
+    return;
+  }
+  if (t->run == R_RUN && t->s.state != SE_WAIT) {
+    if (sess_correct(&t->s, axis, d) == 0)
+      say(t, "correction %c %+lld", names[axis], (long long)d);
+    return;
+  }
+  say(t, "jogs move the machine in manual mode (G20), in M19 teach-in, or as corrections (M22) while the cycle runs");
+}
+
+/* ---- the input line ---- */
+
+static void mb_open(struct tui *t, int kind, const char *prompt, const char *init)
+{
+  t->mb.kind = kind;
+  snprintf(t->mb.prompt, sizeof t->mb.prompt, "%s", prompt);
+  t->mb.n = init ? scr_decode(init, t->mb.b, MBMAX) : 0;
+  t->mb.cur = t->mb.n;
+}
+
+/* The input line as UTF-8 (malloc'd). */
+static char *mb_text(const struct tui *t)
+{
+  char *s = malloc((size_t)t->mb.n * 4 + 1), *p = s;
+  if (!s)
+    return NULL;
+  for (int i = 0; i < t->mb.n; i++)
+    p += tui_utf8(t->mb.b[i], p);
+  *p = 0;
+  return s;
+}
+
+static int can_edit(struct tui *t)
+{
+  if (t->run == R_RUN) {
+    say(t, "the cycle is running: stop it (Стоп twice) before changing the program");
+    return 0;
+  }
+  return 1;
+}
+
+static void edited(struct tui *t)
+{
+  t->dirty = 1;
+  t->gen++;
+  if (t->ecur >= t->text.n && t->text.n)
+    t->ecur = t->text.n - 1;
+  check(t, 0);
+}
+
+static int load_file(struct tui *t, const char *path)
+{
+  char err[512];
+  if (tui_text_load(&t->text, path, err, sizeof err)) {
+    say(t, "cannot open %s", err);
+    return -1;
+  }
+  char *p = strdup(path);
+  if (!p) {
+    say(t, "out of memory");
+    return -1;
+  }
+  free(t->path);
+  t->path = p;
+  t->dirty = 0;
+  t->gen++;
+  t->ecur = t->etop = t->ltop = 0;
+  if (t->run != R_RUN)
+    end_run(t);
+  size_t e = check(t, 0);
+  say(t, "%s: %zu lines; %zu error%s", path, t->text.n, e, e == 1 ? "" : "s");
+  return 0;
+}
+
+static void save(struct tui *t, const char *path)
+{
+  char err[512];
+  if (tui_text_save(&t->text, path, err, sizeof err)) {
+    say(t, "not saved: %s (the file on disk is as it was)", err);
+    return;
+  }
+  if (path != t->path) {
+    char *p = strdup(path);
+    if (p) {
+      free(t->path);
+      t->path = p;
+    }
+  }
+  t->dirty = 0;
+  say(t, "saved %s (%zu lines)", path, t->text.n);
+}
+
+static void mb_commit(struct tui *t)
+{
+  int kind = t->mb.kind;
+  char *s = mb_text(t);
+  t->mb.kind = MB_NONE;
+  if (!s) {
+    say(t, "out of memory");
+    return;
+  }
+  switch (kind) {
+  case MB_INSERT: {
+    size_t at = !t->text.n || t->mb.before ? t->ecur : t->ecur + 1;
+    if (tui_text_insert(&t->text, at, s) == 0) {
+      t->ecur = at;
+      edited(t);
+      say(t, "line %zu inserted", at + 1);
+    }
+    break;
+  }
+  case MB_REPLACE:
+    if (tui_text_replace(&t->text, t->ecur, s) == 0) {
+      edited(t);
+      say(t, "line %zu replaced", t->ecur + 1);
+    }
+    break;
+  case MB_OPEN:
+    if (*s)
+      load_file(t, s);
+    break;
+  case MB_SAVEAS:
+    if (*s)
+      save(t, s);
+    break;
+  default:
+    break;
+  }
+  free(s);
+}
+
+static void mb_key(struct tui *t, int fn, wint_t c)
+{
+  if (t->mb.kind == MB_QUIT || t->mb.kind == MB_OPENASK) {
+    int yes = !fn && (c == 'y' || c == 'Y');
+    int kind = t->mb.kind;
+    t->mb.kind = MB_NONE;
+    if (!yes) {
+      say(t, "cancelled");
+      return;
+    }
+    if (kind == MB_QUIT)
+      t->quit = 1;
+    else
+      mb_open(t, MB_OPEN, "open file: ", t->path);
+    return;
+  }
+  if (fn) {
+    switch (c) {
+    case KEY_LEFT: if (t->mb.cur > 0) t->mb.cur--; return;
+    case KEY_RIGHT: if (t->mb.cur < t->mb.n) t->mb.cur++; return;
+    case KEY_HOME: t->mb.cur = 0; return;
+    case KEY_END: t->mb.cur = t->mb.n; return;
+    case KEY_BACKSPACE:
+      c = 127;
+      break;
+    case KEY_DC:
+      if (t->mb.cur < t->mb.n) {
+        memmove(&t->mb.b[t->mb.cur], &t->mb.b[t->mb.cur + 1], sizeof t->mb.b[0] * (size_t)(t->mb.n - t->mb.cur - 1));
+        t->mb.n--;
+      }
+      return;
+    case KEY_ENTER:
+      mb_commit(t);
+      return;
+    case KEY_F(4):
+      press_rus(t);
+      return;
+    default:
+      return;
+    }
+  }
+  if (c == 127 || c == 8) {
+    if (t->mb.cur > 0) {
+      memmove(&t->mb.b[t->mb.cur - 1], &t->mb.b[t->mb.cur], sizeof t->mb.b[0] * (size_t)(t->mb.n - t->mb.cur));
+      t->mb.n--;
+      t->mb.cur--;
+    }
+    return;
+  }
+  if (c == '\r' || c == '\n') {
+    mb_commit(t);
+    return;
+  }
+  if (c == 27 || c == 7) {   /* Esc, Ctrl-G */
+    t->mb.kind = MB_NONE;
+    say(t, "cancelled");
+    return;
+  }
+  if (c == 18) {             /* Ctrl-R: Рус */
+    press_rus(t);
+    return;
+  }
+  if (c == 21) {             /* Ctrl-U: clear */
+    t->mb.n = t->mb.cur = 0;
+    return;
+  }
+  if (c < 0x20 || c == 0x7F || (c >= 0x80 && c < 0xA0))
+    return;
+  if (c >= 0x80 && !t->utf8) {
+    say(t, "this terminal is not UTF-8: type Cyrillic in Рус mode (F4)");
+    return;
+  }
+  uint32_t ch = (uint32_t)c;
+  int enc = t->mb.kind == MB_INSERT || t->mb.kind == MB_REPLACE;
+  if (t->cyr && enc)
+    ch = tui_cyr_key(ch);
+  if (t->mb.n >= MBMAX)
+    return;
+  memmove(&t->mb.b[t->mb.cur + 1], &t->mb.b[t->mb.cur], sizeof t->mb.b[0] * (size_t)(t->mb.n - t->mb.cur));
+  t->mb.b[t->mb.cur++] = ch;
+  t->mb.n++;
+}
+
+/* ---- keys ---- */
+
+static void ask_quit(struct tui *t)
+{
+  if (t->dirty)
+    mb_open(t, MB_QUIT, "the text has unsaved changes: quit anyway? (y/n) ", NULL);
+  else
+    t->quit = 1;
+}
+
+static void ask_open(struct tui *t)
+{
+  if (!can_edit(t))
+    return;
+  if (t->dirty)
+    mb_open(t, MB_OPENASK, "the text has unsaved changes: open another file anyway? (y/n) ", NULL);
+  else
+    mb_open(t, MB_OPEN, "open file: ", t->path);
+}
+
+static void ask_save(struct tui *t, int as)
+{
+  if (as || !t->path)
+    mb_open(t, MB_SAVEAS, "save as: ", t->path);
+  else
+    save(t, t->path);
+}
+
+static void edit_key(struct tui *t, int fn, wint_t c)
+{
+  size_t n = t->text.n;
+  if (fn) {
+    switch (c) {
+    case KEY_UP: if (t->ecur > 0) t->ecur--; return;
+    case KEY_DOWN: if (t->ecur + 1 < n) t->ecur++; return;
+    case KEY_PPAGE: t->ecur = t->ecur > 10 ? t->ecur - 10 : 0; return;
+    case KEY_NPAGE: t->ecur = t->ecur + 10 < n ? t->ecur + 10 : (n ? n - 1 : 0); return;
+    case KEY_HOME: t->ecur = 0; return;
+    case KEY_END: t->ecur = n ? n - 1 : 0; return;
+    case KEY_IC: c = 'i'; break;
+    case KEY_DC: c = 'd'; break;
+    case KEY_ENTER: c = 'e'; break;
+    default: return;
+    }
+  }
+  switch (c) {
+  case 'i':
+  case 'I':
+    if (can_edit(t)) {
+      char p[48];
+      snprintf(p, sizeof p, "insert %s line %zu: ", c == 'I' ? "before" : "after", t->ecur + 1);
+      mb_open(t, MB_INSERT, t->text.n ? p : "new block: ", NULL);
+      t->mb.before = c == 'I';
+    }
+    return;
+  case 'e':
+  case '\r':
+  case '\n':
+    if (!n) {
+      say(t, "the text is empty: i inserts a block");
+      return;
+    }
+    if (can_edit(t)) {
+      char p[40];
+      snprintf(p, sizeof p, "line %zu: ", t->ecur + 1);
+      mb_open(t, MB_REPLACE, p, t->text.line[t->ecur]);
+    }
+    return;
+  case 'd':
+    if (n && can_edit(t) && tui_text_delete(&t->text, t->ecur) == 0) {
+      edited(t);
+      say(t, "line %zu deleted (u brings it back)", t->ecur + 1);
+    }
+    return;
+  case 'u':
+    if (can_edit(t)) {
+      if (tui_text_undo(&t->text)) {
+        say(t, "nothing to undo");
+      } else {
+        edited(t);
+        say(t, "undone");
+      }
+    }
+    return;
+  case 'c': check(t, 1); return;
+  case 'w': ask_save(t, 0); return;
+  case 'W': ask_save(t, 1); return;
+  case 'o': ask_open(t); return;
+  case 'q': ask_quit(t); return;
+  case 'k': if (t->ecur > 0) t->ecur--; return;
+  case 'j': if (t->ecur + 1 < n) t->ecur++; return;
+  default: return;
+  }
+}
+
+static void panel_key(struct tui *t, int fn, wint_t c)
+{
+  int field = t->run == R_RUN && t->s.state == SE_WAIT && t->s.wait == W_ANSWER;
+  struct screen *sc = t->run != R_IDLE ? &t->s.scr : &t->idle;
+  if (fn) {
+    switch (c) {
+    case KEY_BACKSPACE: c = 127; break;
+    case KEY_LEFT: scr_field_move(sc, -1); return;
+    case KEY_RIGHT: scr_field_move(sc, 1); return;
+    case KEY_UP: scr_scroll(sc, -1); return;
+    case KEY_DOWN: scr_scroll(sc, 1); return;
+    case KEY_ENTER: press_ps(t); return;
+    default: return;
+    }
+  }
+  if (c >= '0' && c <= '9') {
+    if (field)
+      scr_field_digit(sc, (int)(c - '0'));
+    else
+      say(t, "digits go into the input field of a G27 dialog");
+    return;
+  }
+  switch (c) {
+  case 127: case 8: scr_field_backspace(sc); return;
+  case '-': scr_field_minus(sc); return;
+  case '\r': case '\n': press_ps(t); return;
+  case 'g': press_pusk(t); return;
+  case 's': press_stop(t); return;
+  case 'e': press_exit(t); return;
+  case 'q': ask_quit(t); return;
+  case 'f':
+    t->fast = !t->fast;
+    if (!t->fast && t->run == R_RUN)
+      pace_start(&t->pace, t->s.m.t);   /* machine speed from here */
+    say(t, t->fast ? "speed: as fast as possible" : "speed: machine speed");
+    return;
+  case 'j':
+    t->jog_step = t->jog_step >= 10000 ? 1 : t->jog_step * 10;
+    say(t, "jog step %lld discretes", (long long)t->jog_step);
+    return;
+  case 'x': jog(t, 0, -1); return;
+  case 'X': jog(t, 0, 1); return;
+  case 'y': jog(t, 1, -1); return;
+  case 'Y': jog(t, 1, 1); return;
+  case 'z': jog(t, 2, -1); return;
+  case 'Z': jog(t, 2, 1); return;
+  case 'a': jog(t, 3, -1); return;
+  case 'A': jog(t, 3, 1); return;
+  case '<': set_override(t, t->override - 10); return;
+  case '>': case '+': case '=': set_override(t, t->override + 10); return;
+  case 'w': ask_save(t, 0); return;
+  case 'o': ask_open(t); return;
+  case 'c': check(t, 1); return;
+  default: return;
+  }
+}
+
+static void key(struct tui *t, int fn, wint_t c)
+{
+  if (t->help) {
+    t->help = 0;
+    return;
+  }
+  if (t->mb.kind) {
+    if (fn && c == KEY_RESIZE)
+      return;
+    mb_key(t, fn, c);
+    return;
+  }
+  if (fn) {
+    switch (c) {
+    case KEY_RESIZE: return;   /* the next draw lays out anew */
+    case KEY_F(1): t->help = 1; return;
+    case KEY_F(2): ask_save(t, 0); return;
+    case KEY_F(3): ask_open(t); return;
+    case KEY_F(4): press_rus(t); return;
+    case KEY_F(5): press_pusk(t); return;
+    case KEY_F(6): press_stop(t); return;
+    case KEY_F(7): press_exit(t); return;
+    case KEY_F(8): check(t, 1); return;
+    case KEY_F(9): panel_key(t, 0, 'f'); return;
+    case KEY_F(10): ask_quit(t); return;
+    case KEY_BTAB: t->focus = !t->focus; return;
+    default: break;
+    }
+  } else {
+    switch (c) {
+    case '\t': t->focus = !t->focus; return;
+    case 18: press_rus(t); return;   /* Ctrl-R */
+    case '?': t->help = 1; return;
+    default: break;
+    }
+  }
+  if (t->focus == F_EDIT)
+    edit_key(t, fn, c);
+  else
+    panel_key(t, fn, c);
+}
+
+/* ---- drawing ---- */
+
+static struct tui *T;   /* the one terminal, for the drawing helpers */
+
+static void cell(int y, int x, uint32_t c, attr_t a)
+{
+  if (c == 0)
+    c = ' ';
+  if (c == '\t')
+    c = ' ';
+  if (T->utf8) {
+    wchar_t w[2] = {(wchar_t)c, 0};
+    if (c < 0x20 || c == 0x7F || (c >= 0x80 && c < 0xA0) || (c >= 0x80 && wcwidth((wchar_t)c) != 1))
+      w[0] = '?';
+    cchar_t cc;
+    setcchar(&cc, w, a, 0, NULL);
+    mvadd_wch(y, x, &cc);
+  } else {
+    mvaddch(y, x, (chtype)(unsigned char)tui_ascii(c) | a);
+  }
+}
+
+/* UTF-8 text at y, x in at most w columns; pad: fill the rest with blanks.
+ * Returns the columns written. */
+static int text(int y, int x, int w, const char *s, attr_t a, int pad)
+{
+  if (w <= 0)
+    return 0;
+  uint32_t *cp = malloc(sizeof *cp * (size_t)w);
+  int n = cp ? scr_decode(s, cp, w) : 0;
+  for (int i = 0; i < n; i++)
+    cell(y, x + i, cp[i], a);
+  if (pad)
+    for (int i = n; i < w; i++)
+      cell(y, x + i, ' ', a);
+  free(cp);
+  return n;
+}
+
+static void textf(int y, int x, int w, attr_t a, const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+static void textf(int y, int x, int w, attr_t a, const char *fmt, ...)
+{
+  char b[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(b, sizeof b, fmt, ap);
+  va_end(ap);
+  text(y, x, w, b, a, 1);
+}
+
+static void frame(int y, int x, int h, int w, const char *title, attr_t a)
+{
+  if (h < 2 || w < 2)
+    return;
+  cell(y, x, 0x250C, a);
+  cell(y, x + w - 1, 0x2510, a);
+  cell(y + h - 1, x, 0x2514, a);
+  cell(y + h - 1, x + w - 1, 0x2518, a);
+  for (int i = 1; i < w - 1; i++) {
+    cell(y, x + i, 0x2500, a);
+    cell(y + h - 1, x + i, 0x2500, a);
+  }
+  for (int i = 1; i < h - 1; i++) {
+    cell(y + i, x, 0x2502, a);
+    cell(y + i, x + w - 1, 0x2502, a);
+  }
+  if (title && w > 6) {
+    char b[256];
+    snprintf(b, sizeof b, " %s ", title);
+    text(y, x + 2, w - 4, b, a | A_BOLD, 0);
+  }
+}
+
+struct layout {
+  int ok;
+  int sy, sx;              /* the framed 2С42 screen */
+  int lx, lw;              /* listing pane (lw 0: none) */
+  int rx, rw;              /* machine pane (rw 0: none) */
+  int py, ph;              /* rows of the side panes */
+  int gy, gh;              /* messages pane below the screen (gh 0: none) */
+};
+
+/* Where everything goes in a w x h terminal: the screen in the middle,
+ * the listing left and the machine right when there is room. */
+static struct layout lay_out(int w, int h)
+{
+  struct layout l;
+  memset(&l, 0, sizeof l);
+  if (w < SCR_W || h < SCR_H + 3)
+    return l;
+  l.ok = 1;
+  l.py = 1;
+  l.ph = h - 3;
+  l.sy = 1;
+  if (w >= SCR_W + 2 * SIDE_MIN) {
+    l.lw = (w - SCR_W) / 2;
+    l.rw = w - SCR_W - l.lw;
+  } else if (w >= SCR_W + SIDE_MIN) {
+    l.lw = w - SCR_W;
+  }
+  l.lx = 0;
+  l.sx = l.lw ? l.lw : (w - SCR_W) / 2;
+  l.rx = l.sx + SCR_W;
+  if (l.ph - SCR_H >= 3) {
+    l.gy = l.sy + SCR_H;
+    l.gh = l.ph - SCR_H;
+  }
+  return l;
+}
+
+static long run_line(const struct tui *t)
+{
+  if (t->run == R_IDLE || t->run_gen != t->gen)
+    return -1;
+  if (t->s.state == SE_ERROR)
+    return t->s.vm.err.block < t->prog.nblocks ? (long)t->prog.blocks[t->s.vm.err.block].line - 1 : -1;
+  if (t->s.state == SE_WAIT || !t->cur.valid)
+    return (long)t->prog.blocks[t->s.vm.cur].line - 1;
+  return (long)t->cur.line - 1;
+}
+
+static void draw_listing(struct tui *t, const struct layout *l)
+{
+  int h = l->ph, w = l->lw;
+  char title[200];
+  const char *name = t->path ? t->path : "(new program)";
+  const char *base = strrchr(name, '/') ? strrchr(name, '/') + 1 : name;
+  snprintf(title, sizeof title, "%s%s%s", t->focus == F_EDIT ? "edit: " : "", base, t->dirty ? " *" : "");
+  frame(l->py, l->lx, h, w, title, t->focus == F_EDIT ? A_BOLD : A_NORMAL);
+  int rows = h - 2, cols = w - 2;
+  if (rows <= 0 || cols <= 4)
+    return;
+  long rl = run_line(t);
+  size_t n = t->text.n;
+  /* what to keep in view: the editor's cursor, or the running block */
+  long want = t->focus == F_EDIT ? (long)t->ecur : rl;
+  size_t top = t->focus == F_EDIT ? t->etop : t->ltop;
+  if (want >= 0) {
+    if ((size_t)want < top)
+      top = (size_t)want > (size_t)rows / 3 ? (size_t)want - (size_t)rows / 3 : 0;
+    else if ((size_t)want >= top + (size_t)rows)
+      top = (size_t)want - (size_t)rows / 3;
+  }
+  if (top > 0 && top + (size_t)rows > n)
+    top = n > (size_t)rows ? n - (size_t)rows : 0;
+  if (t->focus == F_EDIT)
+    t->etop = top;
+  else
+    t->ltop = top;
+  int digits = 2;
+  for (size_t k = n; k >= 100 && digits < 12; k /= 10)
+    digits++;
+  if (!n) {
+    text(l->py + 1, l->lx + 1, cols, t->path ? "(empty)" : "(no program: F3 opens one,", A_DIM, 1);
+    if (!t->path)
+      text(l->py + 2, l->lx + 1, cols, " Tab then i writes one)", A_DIM, 1);
+  }
+  for (int r = 0; r < rows && top + (size_t)r < n; r++) {
+    size_t i = top + (size_t)r;
+    int y = l->py + 1 + r, x = l->lx + 1;
+    int running = (long)i == rl, cursor = t->focus == F_EDIT && i == t->ecur;
+    attr_t a = A_NORMAL;
+    if (running)
+      a = t->colors ? COLOR_PAIR(1) | A_BOLD : A_REVERSE;
+    else if (cursor)
+      a = t->colors ? COLOR_PAIR(2) : A_UNDERLINE | A_BOLD;
+    int mk = i < t->nmark ? t->mark[i] : 0;
+    char num[24], g[48];
+    int nl = snprintf(num, sizeof num, "%zu", i + 1);
+    g[0] = mk == 2 ? '!' : mk == 1 ? '~' : ' ';
+    g[1] = running ? '>' : cursor ? '*' : ' ';
+    int k = 2;
+    for (int pad = digits - nl; pad > 0; pad--)
+      g[k++] = ' ';
+    snprintf(g + k, sizeof g - (size_t)k, "%s ", num);
+    int used = text(y, x, cols, g, a, 0);
+    text(y, x + used, cols - used, t->text.line[i], a, 1);
+  }
+}
+
+static void shown_pos(const struct tui *t, double pos[4], double *tm, double *feed)
+{
+  for (int a = 0; a < 4; a++)
+    pos[a] = 0;
+  *tm = 0;
+  *feed = 0;
+  if (t->run == R_IDLE)
+    return;
+  for (int a = 0; a < 4; a++)
+    pos[a] = (double)t->s.m.pos[a];
+  *tm = t->s.m.t;
+  if (t->fast || !t->cur.valid || t->s.state == SE_WAIT || t->run != R_RUN)
+    return;
+  double now = pace_now(&t->pace);
+  if (now >= t->cur.t1 || t->cur.t1 <= t->cur.t0)
+    return;
+  double f = (now - t->cur.t0) / (t->cur.t1 - t->cur.t0);
+  if (f < 0)
+    f = 0;
+  for (int a = 0; a < 4; a++)
+    pos[a] = (double)t->cur.from[a] + (double)(t->cur.to[a] - t->cur.from[a]) * f;
+  *tm = now > t->cur.t0 ? now : t->cur.t0;
+  *feed = t->cur.feed;
+}
+
+static const char *state_text(const struct tui *t, char *b, size_t n)
+{
+  char nb[16];
+  if (t->run == R_IDLE)
+    return "ready: Пуск starts the cycle";
+  if (t->run == R_DONE) {
+    switch (t->s.state) {
+    case SE_END: return "end (M2)";
+    case SE_STOPPED: return "stopped";
+    default: return "error";
+    }
+  }
+  if (t->held)
+    return "feed hold (Стоп)";
+  if (t->s.state == SE_WAIT) {
+    snprintf(b, n, "%s waits: %s", bname(sess_block_number(&t->s), nb), wait_hint(&t->s));
+    return b;
+  }
+  return "running";
+}
+
+static void draw_machine(struct tui *t, const struct layout *l)
+{
+  int x = l->rx + 1, w = l->rw - 2, y = l->py + 1, end = l->py + l->ph - 1;
+  frame(l->py, l->rx, l->ph, l->rw, "machine", A_NORMAL);
+  if (w <= 4)
+    return;
+  double pos[4], tm, feed;
+  shown_pos(t, pos, &tm, &feed);
+  static const char *const ax[4] = {"X", "Y", "Z", "A"};
+  for (int a = 0; a < 4 && y < end; a++)
+    textf(y++, x, w, A_BOLD, "%s %12.3f %s", ax[a], pos[a] / 1000.0, a == 3 ? "deg" : "mm");
+  const struct machine *m = t->run != R_IDLE ? &t->s.m : NULL;
+  double f = t->run != R_IDLE ? t->s.vm.reg[REG_F] : 0;
+  if (y < end) textf(y++, x, w, A_NORMAL, "F    %8.0f mm/min", f);
+  if (y < end) textf(y++, x, w, A_NORMAL, "feed %10.1f mm/min", feed);
+  if (y < end)
+    textf(y++, x, w, A_NORMAL, "F%%   %8d %%%s", m ? m->override_pct : t->override,
+          m && !m->override_allowed ? " (M25)" : "");
+  if (y < end)
+    textf(y++, x, w, A_NORMAL, "wheel %-4s osc %-3s %s", !m || m->wheel == WHEEL_OFF ? "off" : m->wheel == WHEEL_CW ? "cw" : "ccw",
+          m && t->osc ? "on" : "off", m && m->corr_allowed ? "M22" : "M23");
+  if (y < end) textf(y++, x, w, A_NORMAL, "time %10.2f s %s", tm, t->fast ? "fast" : "x1");
+  if (y < end) textf(y++, x, w, A_NORMAL, "jog step %lld", (long long)t->jog_step);
+  if (y < end) textf(y++, x, w, A_NORMAL, "blocks %llu", t->run != R_IDLE ? (unsigned long long)t->s.vm.blocks : 0ULL);
+  if (y < end) text(y++, x, w, "registers changed last", A_BOLD, 1);
+  for (int k = 0; k < t->nchg && y < end; k++) {
+    char nb[16];
+    textf(y++, x, w, k == 0 ? A_BOLD : A_NORMAL, "R%-3d %14.10g  %s", t->chg[k].reg, t->chg[k].v,
+          bname(t->chg[k].n, nb));
+  }
+  while (y < end)
+    text(y++, x, w, "", A_NORMAL, 1);
+}
+
+static void draw_screen(struct tui *t, const struct layout *l)
+{
+  uint32_t g[SCR_ROWS][SCR_COLS];
+  if (t->run != R_IDLE)
+    sess_screen(&t->s, g);
+  else
+    scr_render(&t->idle, NULL, t->o.en, g);
+  frame(l->sy, l->sx, SCR_H, SCR_W, "2С42-65", A_NORMAL);
+  for (int r = 0; r < SCR_ROWS; r++)
+    for (int c = 0; c < SCR_COLS; c++)
+      cell(l->sy + 1 + r, l->sx + 1 + c, g[r][c], r == 0 || r == SCR_ROWS - 1 ? A_BOLD : A_NORMAL);
+}
+
+static void draw_log(struct tui *t, const struct layout *l)
+{
+  if (!l->gh)
+    return;
+  frame(l->gy, l->sx, l->gh, SCR_W, "messages", A_NORMAL);
+  /* the newest at the bottom, each wrapped over as many rows as it needs */
+  int w = SCR_W - 2, y = l->gy + l->gh - 2;
+  uint32_t cp[LOGW];
+  for (int i = t->nlog - 1; i >= 0 && y > l->gy; i--) {
+    int n = scr_decode(t->log[i], cp, LOGW);
+    int rows = n ? (n + w - 1) / w : 1;
+    for (int r = rows - 1; r >= 0 && y > l->gy; r--, y--)
+      for (int c = 0; c < w && r * w + c < n; c++)
+        cell(y, l->sx + 1 + c, cp[r * w + c], i == t->nlog - 1 ? A_BOLD : A_NORMAL);
+  }
+}
+
+/* one line each, to fit 100 columns; F1 shows every key */
+static const char help_panel[] =
+  "g Пуск s Стоп e Вихід Enter ПС BS ЗБ ^R Рус xyza/XYZA jog <> F% f speed Tab editor F1 keys q quit";
+static const char help_edit[] =
+  "arrows move i insert Enter replace d delete u undo c check w save o open ^R Рус Tab panel F1 keys";
+static const char help_mb[] =
+  "type; F4/^R Рус  Left/Right Home End  BS Del  ^U clear  Enter done  Esc cancel";
+
+static const char *const help_full[] = {
+  "s42 tui: the 2С42-65 panel",
+  "",
+  "0-9, -        the number in a G27 field; - makes it negative",
+  "Backspace     ЗБ: erase a digit",
+  "Left Right    move the cursor in the field",
+  "Up Down       scroll the input buffer (P6)",
+  "Enter         ПС: end the entry, confirm a directive",
+  "F5, g         Пуск: start the cycle, go on after a wait or Стоп",
+  "F6, s         Стоп: feed hold; again (or in a wait) stops the cycle",
+  "F7, e         Вихід з циклу: cycle exit, taken by the next PP",
+  "F4, Ctrl-R    Рус: Cyrillic keyboard mode (table 3.4)",
+  "x y z a       jog X Y Z A minus (G20, M19; a correction under M22)",
+  "X Y Z A       jog plus;  j: jog step 1 10 100 1000 10000",
+  "< >           feed override -10 % / +10 %",
+  "F9, f         machine speed / as fast as possible",
+  "Tab           panel / program editor",
+  "editor        i I insert after/before, Enter e replace, d delete,",
+  "              u undo, c F8 check, w F2 save, W save as, o F3 open",
+  "F10, q        quit",
+  "",
+  "any key closes this",
+};
+
+static void draw_help(struct tui *t)
+{
+  (void)t;
+  int h = (int)(sizeof help_full / sizeof help_full[0]) + 2, w = 72;
+  int H = LINES, W = COLS;
+  if (h > H)
+    h = H;
+  if (w > W)
+    w = W;
+  int y = (H - h) / 2, x = (W - w) / 2;
+  frame(y, x, h, w, "keys", A_BOLD);
+  for (int i = 0; i < h - 2; i++)
+    text(y + 1 + i, x + 1, w - 2, help_full[i], A_NORMAL, 1);
+}
+
+static void draw(struct tui *t)
+{
+  int H = LINES, W = COLS;
+  if (t->msg_wait && !(t->run == R_RUN && t->s.state == SE_WAIT)) {
+    t->msg[0] = 0;   /* the wait is over */
+    t->msg_wait = 0;
+  }
+  erase();
+  curs_set(0);   /* shown again only on the input line */
+  struct layout l = lay_out(W, H);
+  char sb[200];
+  if (!l.ok) {
+    char m[96];
+    snprintf(m, sizeof m, "too small: %dx%d < %dx%d", W, H, SCR_W, SCR_H + 3);
+    text(H / 2, 0, W, m, A_BOLD, 0);
+    if (H > 1)
+      text(H / 2 + 1 < H ? H / 2 + 1 : 0, 0, W, "q quits", A_NORMAL, 0);
+    refresh();
+    return;
+  }
+  /* title */
+  const char *name = t->path ? t->path : "(new program)";
+  textf(0, 0, W, A_REVERSE, " s42 tui  %s%s  |  %s  |  %s%s", name, t->dirty ? " [modified]" : "",
+        state_text(t, sb, sizeof sb), t->fast ? "fast" : "machine speed", t->cyr ? "  |  Рус" : "");
+  if (l.lw)
+    draw_listing(t, &l);
+  if (l.rw)
+    draw_machine(t, &l);
+  draw_screen(t, &l);
+  draw_log(t, &l);
+  /* the message / input line */
+  int my = H - 2;
+  int cy = -1, cx = 0;
+  if (t->mb.kind) {
+    int pl = text(my, 0, W, t->mb.prompt, A_BOLD, 0);
+    int avail = W - pl - 1;
+    if (avail < 1)
+      avail = 1;
+    int first = t->mb.cur > avail ? t->mb.cur - avail : 0;
+    for (int i = 0; pl + i < W; i++) {
+      int k = first + i;
+      cell(my, pl + i, k < t->mb.n ? t->mb.b[k] : ' ', A_NORMAL);
+    }
+    cy = my;
+    cx = pl + t->mb.cur - first < W ? pl + t->mb.cur - first : W - 1;
+  } else {
+    text(my, 0, W, t->msg, A_NORMAL, 1);
+  }
+  text(H - 1, 0, W, t->mb.kind ? help_mb : t->focus == F_EDIT ? help_edit : help_panel, A_REVERSE, 1);
+  if (t->help)
+    draw_help(t);
+  if (cy >= 0 && !t->help) {
+    /* the terminal's cursor where the next character goes */
+    move(cy, cx);
+    curs_set(1);
+  }
+  refresh();
+}
+
+/* ---- the loop ---- */
+
+void tui_press(struct tui *t, enum tui_key k)
+{
+  switch (k) {
+  case TUI_PUSK: press_pusk(t); break;
+  case TUI_STOP: press_stop(t); break;
+  case TUI_PS: press_ps(t); break;
+  case TUI_EXIT: press_exit(t); break;
+  }
+}
+
+int tui_override(struct tui *t, int pct)
+{
+  if (pct < 0 || pct > 150)
+    return -1;
+  if (t->run == R_RUN && !t->s.m.override_allowed)
+    return -1;
+  set_override(t, pct);
+  return 0;
+}
+
+const struct session *tui_session(const struct tui *t)
+{
+  return t->run == R_IDLE ? NULL : &t->s;
+}
+
+static int loop(struct tui *t)
+{
+  struct pollfd pfd[1 + MAXSRC_FD];
+  int first[16], count[16];
+  while (!t->quit && !got_sig) {
+    int timeout = advance(t);
+    for (int i = 0; i < t->nsrc; i++)
+      if (t->src[i].update)
+        t->src[i].update(t->src[i].ctx, t);
+    draw(t);
+    int n = 1;
+    pfd[0].fd = STDIN_FILENO;
+    pfd[0].events = POLLIN;
+    pfd[0].revents = 0;
+    for (int i = 0; i < t->nsrc && i < 16; i++) {
+      first[i] = n;
+      count[i] = t->src[i].fds ? t->src[i].fds(t->src[i].ctx, pfd + n, 1 + MAXSRC_FD - n) : 0;
+      if (count[i] < 0)
+        count[i] = 0;
+      n += count[i];
+    }
+    if (timeout < 0)
+      timeout = 500;
+    int r = poll(pfd, (nfds_t)n, timeout);
+    if (r < 0 && errno != EINTR) {
+      curses_off();
+      fprintf(stderr, "s42 tui: poll: %s\n", strerror(errno));
+      return 4;
+    }
+    if (got_sig)
+      break;
+    if (pfd[0].revents & (POLLHUP | POLLERR | POLLNVAL)) {
+      t->quit = 1;   /* the terminal is gone */
+      break;
+    }
+    wint_t c;
+    int k;
+    while ((k = get_wch(&c)) != ERR && !t->quit) {
+      key(t, k == KEY_CODE_YES, c);
+      advance(t);   /* what is due now (a dialog's next field) is there for the next key */
+    }
+    for (int i = 0; r > 0 && i < t->nsrc && i < 16; i++) {
+      int any = 0;
+      for (int j = 0; j < count[i]; j++)
+        any |= pfd[first[i] + j].revents != 0;
+      if (any && t->src[i].ready)
+        t->src[i].ready(t->src[i].ctx, t, pfd + first[i], count[i]);
+    }
+  }
+  return got_sig ? 128 + got_sig : 0;
+}
+
+int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
+{
+  if (!isatty(STDIN_FILENO) || !isatty(STDOUT_FILENO)) {
+    fprintf(stderr, "s42 tui: stdin and stdout must be a terminal (s42 run is the headless emulator)\n");
+    return 2;
+  }
+  static struct tui tt;   /* large (the log); one terminal per process */
+  struct tui *t = &tt;
+  memset(t, 0, sizeof *t);
+  t->o = *o;
+  t->src = src;
+  t->nsrc = nsrc;
+  t->override = 100;
+  t->jog_step = 1000;
+  t->fast = !o->realtime;
+  t->restart_pending = o->restart;
+  tui_text_init(&t->text);
+  scr_init(&t->idle);
+  t->idle.en = o->en;
+  T = t;
+  /* only LC_CTYPE: numbers keep their '.' */
+  setlocale(LC_CTYPE, "");
+  const char *cs = nl_langinfo(CODESET);
+  t->utf8 = cs && (strcmp(cs, "UTF-8") == 0 || strcmp(cs, "utf8") == 0);
+  if (o->program) {
+    char err[512];
+    if (tui_text_load(&t->text, o->program, err, sizeof err)) {
+      fprintf(stderr, "s42 tui: %s\n", err);
+      tui_text_free(&t->text);
+      return 4;
+    }
+    t->path = strdup(o->program);
+    check(t, 0);
+    say(t, "%s: %zu lines, %zu error%s, %zu warning%s.  Пуск (F5 or g) starts the cycle; F1 shows the keys",
+        o->program, t->text.n, t->nerr, t->nerr == 1 ? "" : "s", t->nwarn, t->nwarn == 1 ? "" : "s");
+  } else {
+    say(t, "no program: F3 (or o) opens one; Tab, then i, writes one.  F1 shows the keys");
+  }
+  if (tcgetattr(STDIN_FILENO, &tty0) == 0)
+    tty_saved = 1;
+  /* ours before newterm, so ncurses leaves SIGINT, SIGTERM and SIGHUP to us */
+  signals_on();
+  SCREEN *scr = newterm(NULL, stdout, stdin);
+  if (!scr) {
+    signals_off();
+    fprintf(stderr, "s42 tui: cannot use the terminal '%s'\n", getenv("TERM") ? getenv("TERM") : "(TERM unset)");
+    tui_text_free(&t->text);
+    free(t->path);
+    free(t->mark);
+    return 4;
+  }
+  curses_on = 1;
+  atexit(curses_off);
+  add_restore("rmkx");
+  add_restore("cnorm");
+  add_restore("sgr0");
+  add_restore("rmcup");
+  cbreak();
+  noecho();
+  nonl();
+  intrflush(stdscr, FALSE);
+  keypad(stdscr, TRUE);
+  nodelay(stdscr, TRUE);
+  set_escdelay(25);
+  if (has_colors() && start_color() == OK) {
+    use_default_colors();
+    init_pair(1, COLOR_BLACK, COLOR_GREEN);
+    init_pair(2, COLOR_BLACK, COLOR_CYAN);
+    t->colors = 1;
+  }
+  int rc = loop(t);
+  curses_off();
+  delscreen(scr);
+  signals_off();
+  if (t->run != R_IDLE || t->have_prog)
+    end_run(t);
+  tui_text_free(&t->text);
+  free(t->path);
+  free(t->mark);
+  T = NULL;
+  return rc;
+}

@@ -1,0 +1,314 @@
+#!/bin/sh
+# End-to-end tests of `s42 tui` in a real terminal: tmux runs it in a
+# detached 100x30 pane on a private socket, send-keys types, capture-pane
+# reads the screen.  Every wait polls the pane until the text appears, with
+# a timeout, so a slow machine only makes the tests slower.  The pane runs
+# the terminal inside a small shell script that records `stty -a` before
+# and after and the exit status, so the restored terminal is checked too.
+#   sh tests/tui/run.sh ./s42
+S42=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+HERE=$(cd "$(dirname "$0")" && pwd)
+ROOT=$(cd "$HERE/../.." && pwd)
+if ! command -v tmux >/dev/null 2>&1; then
+  echo "tui: tmux is not installed: the terminal tests were skipped (sh scripts/deps.sh installs it)"
+  exit 0
+fi
+export LC_ALL=C.UTF-8                      # the tmux client prints the pane as UTF-8
+# (under make asan the panes inherit ASAN_OPTIONS through the tmux server:
+# a leak or an error shows as a wrong exit status below)
+SOCK=s42test-$$
+T="tmux -L $SOCK -f /dev/null"
+WORK=$(mktemp -d)
+cleanup() { $T kill-server 2>/dev/null; rm -rf "$WORK"; }
+trap cleanup EXIT
+trap 'exit 1' INT TERM HUP
+pass=0
+fail=0
+name=""
+
+# The pane's program: the terminal between two `stty -a`, then the status.
+cat > "$WORK/pane.sh" <<'EOF'
+cd "$1" || exit 1
+shift
+trap : INT      # Ctrl-C is for s42 (it restores the tty and exits 130), not for this script
+stty -a > stty.before
+sh -c 'echo $$ > pid; exec "$@"' sh "$@"
+echo "exit=$?" > status
+stty -a > stty.after
+echo S42-TUI-ENDED
+exec sleep 600
+EOF
+
+# start NAME LOCALE ARGS...: a fresh pane running s42 tui ARGS
+start() {
+  name=$1
+  loc=$2
+  shift 2
+  $T kill-session -t s42 2>/dev/null
+  rm -f "$WORK/status" "$WORK/pid" "$WORK/stty.before" "$WORK/stty.after"
+  $T new-session -d -s s42 -x 100 -y 30 -e LC_ALL="$loc" -e TERM=screen sh "$WORK/pane.sh" "$WORK" "$S42" tui "$@"
+}
+pane() { $T capture-pane -p -t s42 2>/dev/null; }
+keys() { $T send-keys -t s42 "$@"; }
+ok() { pass=$((pass + 1)); }
+bad() {
+  echo "FAIL tui $name: $*"
+  fail=$((fail + 1))
+  pane | sed 's/^/    | /'
+}
+# wait_for MODE TEXT [SECONDS]: poll until the pane has (MODE -F or -E) TEXT
+wait_for() {
+  n=0
+  lim=$((${3:-10} * 10))
+  while [ $n -lt $lim ]; do
+    pane | grep -q "$1" -- "$2" && return 0
+    sleep 0.1
+    n=$((n + 1))
+  done
+  return 1
+}
+see() { if wait_for -F "$1" "$2"; then ok; else bad "'$1' did not appear"; fi; }
+see_re() { if wait_for -E "$1" "$2"; then ok; else bad "/$1/ did not appear"; fi; }
+gone() {   # the text leaves the pane
+  n=0
+  while [ $n -lt 50 ]; do
+    pane | grep -qF -- "$1" || { ok; return; }
+    sleep 0.1
+    n=$((n + 1))
+  done
+  bad "'$1' stayed"
+}
+# ended STATUS: the terminal quit with that status and left the tty as it was
+ended() {
+  if wait_for -F S42-TUI-ENDED 10 && [ -f "$WORK/status" ]; then
+    got=$(cat "$WORK/status")
+    if [ "$got" = "exit=$1" ]; then ok; else bad "quit with $got, expected exit=$1"; fi
+    if cmp -s "$WORK/stty.before" "$WORK/stty.after"; then ok; else
+      bad "the terminal settings changed:"
+      diff "$WORK/stty.before" "$WORK/stty.after" | sed 's/^/    /'
+    fi
+  else
+    bad "s42 tui did not quit"
+  fi
+}
+# layout: every framed row is exactly W columns and pure ASCII when asked
+layout() {
+  pane | python3 -c '
+import sys
+w, ascii_only = int(sys.argv[1]), sys.argv[2] == "ascii"
+rows = sys.stdin.read().split("\n")
+bad = []
+for i, r in enumerate(rows[1:-3], 2):
+    if r and len(r) != w:
+        bad.append("row %d is %d columns: %r" % (i, len(r), r))
+    if ascii_only and any(ord(c) > 126 for c in r):
+        bad.append("row %d is not ASCII: %r" % (i, r))
+print("\n".join(bad[:5]))
+sys.exit(1 if bad else 0)' "$1" "$2" > "$WORK/layout.out" 2>&1
+  if [ $? -eq 0 ]; then ok; else bad "layout $1 $2: $(cat "$WORK/layout.out")"; fi
+}
+
+cp "$ROOT/programs/drill_dialog.kp" "$WORK/drill.kp"
+
+# ---- 1. the drill dialog: answers, a refused one, a correction with ЗБ ----
+start dialog C.UTF-8 drill.kp
+see "ready: Пуск starts the cycle"
+see "┌─ 2С42-65 ─"
+layout 100 utf8
+keys g
+see "ДІАМЕТР, МКМ............."
+keys 3 5 0 0 0 Enter
+see "ДІАМЕТР, МКМ.............  35000"
+see "ДОВЖИНА, МКМ"
+keys 9 5 0 0 0 Enter
+see "КУТ ЗАГОСТРЕННЯ, ГРАД...."
+keys 1 4 0 Enter                             # above 130: refused
+see "знач. більше допустимого"
+see_re "^│ >42 №07 G28 /90:130/ R40"         # the waiting block is highlighted
+keys 1 1 9 BSpace                           # ЗБ takes the 9 back
+see "КУТ ЗАГОСТРЕННЯ, ГРАД....11_"
+keys 8 Enter
+see "КУТ ЗАГОСТРЕННЯ, ГРАД....    118"
+keys 3 3 3 5 0 0 Enter
+see "Введення завершено"
+see "          КІНЕЦЬ ВВОДУ"
+see_re "R40 +118  N7"
+see_re "R3 +333500  N9"
+see_re "R0 +35000  N3"
+keys g                                       # Пуск: the cycle, at machine speed
+see "|  running  |" 2
+see_re "wheel cw"
+see_re "│X +-?[0-9]+\.[0-9]{3} mm" 1
+sleep 1
+x1=$(pane | grep -o '│X  *[-0-9.]* mm' | head -1)
+sleep 1
+x2=$(pane | grep -o '│X  *[-0-9.]* mm' | head -1)
+if [ -n "$x1" ] && [ "$x1" != "$x2" ]; then ok; else bad "X does not move at machine speed ('$x1', '$x2')"; fi
+keys s                                       # Стоп: feed hold
+see "feed hold (Стоп)"
+h1=$(pane | grep -o 'time  *[0-9.]* s' | head -1)
+sleep 0.5
+h2=$(pane | grep -o 'time  *[0-9.]* s' | head -1)
+if [ "$h1" = "$h2" ]; then ok; else bad "the clock runs in a feed hold ('$h1', '$h2')"; fi
+keys g
+see "|  running  |"
+keys f                                       # as fast as possible, to the end
+see "end (M2)" 20
+see "КУТ НАХИЛУ КАНАВКИ    18248"
+see_re "│A +1080\.000 deg"
+see_re "│X +-5\.000 mm"
+see "the program ended (M2): 51 blocks"
+keys q
+ended 0
+
+# ---- 2. the editor: Рус, insert, check, delete, replace, undo, save ----
+start editor C.UTF-8 drill.kp
+see "ready: Пуск starts the cycle"
+keys Tab
+see "edit: drill.kp"
+keys Home
+i=0
+while [ $i -lt 35 ]; do keys Down; i=$((i + 1)); done
+see "*36 №01 G33 /СВЕРДЛО/ ^"
+keys i
+see "insert after line 36:"
+keys "G33 /"
+keys C-r                                     # Рус
+see "│АВТОМАТ R"
+see "|  Рус"
+keys "ZATO%KA"                               # table 3.4: З А Т О Ч К А
+keys F4                                      # Рус off
+gone "│АВТОМАТ R"
+keys "/ ^" Enter
+see "*37 G33 /ЗАТОЧКА/ ^"
+see "drill.kp [modified]"
+keys c
+see "check: 0 errors, 0 warnings"
+keys i "G99 ^" Enter c
+see "[E-FUNC]"
+see "!*38 G99 ^"
+see "check: 1 error, 0 warnings"
+keys d c
+see "check: 0 errors, 0 warnings"
+keys Up Enter
+see "line 37: G33 /ЗАТОЧКА/ ^"
+keys C-u "G33 /DRILL/ ^" Enter
+see "*37 G33 /DRILL/ ^"
+keys w
+see "saved drill.kp (62 lines)"
+if sed -n 36,37p "$WORK/drill.kp" | tr '\n' '|' | grep -qF '№01 G33 /СВЕРДЛО/ ^|G33 /DRILL/ ^|'; then ok; else
+  bad "the saved file: $(sed -n 35,38p "$WORK/drill.kp")"
+fi
+if ls "$WORK" | grep -q tmp; then bad "a temporary file was left: $(ls "$WORK")"; else ok; fi
+if "$S42" check "$WORK/drill.kp" 2>/dev/null; then ok; else bad "the saved program does not check"; fi
+keys u
+see "*37 G33 /ЗАТОЧКА/ ^"
+keys q
+see "unsaved changes: quit anyway? (y/n)"
+keys n
+see "cancelled"
+keys q y
+ended 0
+if grep -qF "G33 /DRILL/ ^" "$WORK/drill.kp" && ! grep -qF "ЗАТОЧКА" "$WORK/drill.kp"; then ok; else
+  bad "the file changed without a save"
+fi
+
+# ---- 3. resize: the layout follows the window; Ctrl-C restores the tty ----
+cp "$ROOT/programs/drill_dialog.kp" "$WORK/drill.kp"
+start resize C.UTF-8 drill.kp
+see "┌─ machine ─"
+$T resize-window -t s42 -x 70 -y 24
+gone "┌─ machine ─"
+see "┌─ 2С42-65 ─"
+layout 70 utf8
+$T resize-window -t s42 -x 30 -y 15
+see "too small: 30x15 < 34x21"
+$T resize-window -t s42 -x 120 -y 40
+see "┌─ machine ─"
+layout 120 utf8
+$T resize-window -t s42 -x 100 -y 30
+keys C-c
+ended 130
+
+# ---- 4. a terminal that is not UTF-8: one ASCII character per cell ----
+start ascii C drill.kp
+see "+- 2S42-65 -"
+see "; SVERDLO, DIALOG: zatocuv"
+layout 100 ascii
+keys g 3 5 0 0 0 Enter                       # typed ahead: the dialog is there at once
+see "DIAMETR, MKM.............  35000"
+keys F4
+see "|AVTOMAT R"
+layout 100 ascii
+kill -TERM "$(cat "$WORK/pid")"
+ended 143
+
+# ---- 5. manual mode: G20 with a directive, jogs, ПС, Пуск ----
+printf '№1 G20 M18 /ВІДВЕСТИ X/ ^\n№2 G01 X-2000 F600 ^\n№3 M02 ^\n' > "$WORK/g20.kp"
+start manual C.UTF-8 g20.kp
+keys g
+see "│РУЧНИЙ"
+see "ВІДВЕСТИ X"
+see "N1 waits: ПС (Enter), then Пуск"
+keys X X x j X                               # +1000 +1000 -1000, step 10000, +10000
+see_re "│X +11\.000 mm"
+keys g                                       # Пуск before ПС does not fit
+see "Пуск does not fit here"
+keys Enter g
+see "end (M2)" 10
+see_re "│X +9\.000 mm"
+keys q
+ended 0
+
+# ---- 6. cycle exit in time, the feed override, M15 and --restart ----
+printf '№1 R1+R1+1 ^\n№2 M15 G04 X+2 ^\n№3 PP5 ^\n№4 P1 ^\n№5 M02 ^\n' > "$WORK/loop.kp"
+start loop C.UTF-8 loop.kp
+keys g
+see "M15 restart point saved in loop.kp.state"
+see_re "R1 +[2-9] +N1"                       # going round
+keys "<" "<"
+see "F%         80 %"
+keys e                                       # Вихід з циклу: the next PP5 is taken
+see "end (M2)" 5
+keys q
+ended 0
+start restart C.UTF-8 loop.kp --restart
+keys g
+see "restart: the cycle goes on at th"
+see_re "R1 +[0-9]+ +N1"
+keys F7
+see "end (M2)" 5
+keys q
+ended 0
+printf '\n' >> "$WORK/loop.kp"                # the text changed: no restart
+start refused C.UTF-8 loop.kp --restart
+keys g
+see "помилка в КП №1: повторний пуск"
+see "[E-STATE]"
+keys q
+ended 0
+
+# ---- 7. no program, then open one; a missing file; not a terminal ----
+start empty C.UTF-8
+see "no program: F3 (or o) opens one"
+keys o
+see "open file:"
+keys "drill.kp" Enter
+see "drill.kp: 61 lines; 0 errors"
+see "; СВЕРДЛО, ДІАЛОГ: заточув"
+keys F10
+ended 0
+start missing C.UTF-8 nosuch.kp
+see "S42-TUI-ENDED"
+ended 4
+if pane | grep -qF "nosuch.kp: No such file"; then ok; else bad "no message for a missing file"; fi
+name=cli
+"$S42" tui "$WORK/drill.kp" < /dev/null > "$WORK/out" 2>&1
+st=$?
+if [ $st -eq 2 ] && grep -q "must be a terminal" "$WORK/out"; then ok; else bad "not a terminal: status $st: $(cat "$WORK/out")"; fi
+"$S42" tui "$WORK/drill.kp" --operator x.op > "$WORK/out" 2>&1
+st=$?
+if [ $st -eq 2 ] && grep -q "operator scripts are for s42 run" "$WORK/out"; then ok; else bad "--operator: status $st"; fi
+
+echo "tui: $pass passed, $fail failed"
+[ $fail -eq 0 ]

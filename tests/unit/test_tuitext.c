@@ -1,0 +1,223 @@
+/* What the terminal edits and shows, without curses (src/tuitext.h): the
+ * text's lines and edits, atomic save, the Cyrillic key map of table 3.4,
+ * the ASCII stand-ins; and the machine-speed clock (src/pace.h). */
+#include "suites.h"
+#include "pace.h"
+#include "screen.h"
+#include "tuitext.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static char *joined(const struct tui_text *t)
+{
+  size_t n;
+  char *s = tui_text_join(t, &n);
+  ck_assert_ptr_nonnull(s);
+  ck_assert_uint_eq(strlen(s), n);
+  return s;
+}
+
+static void roundtrip(const char *in)
+{
+  struct tui_text t;
+  char err[128];
+  tui_text_init(&t);
+  ck_assert_int_eq(tui_text_set(&t, in, strlen(in), err, sizeof err), 0);
+  char *out = joined(&t);
+  ck_assert_str_eq(out, in);
+  free(out);
+  tui_text_free(&t);
+}
+
+START_TEST(text_roundtrip)
+{
+  roundtrip("");
+  roundtrip("№1 M02 ^\n");
+  roundtrip("№1 G04 X+2 ^\n№2 M02 ^");          /* no final line end */
+  roundtrip("№1 G04 X+2 ^\r\n№2 M02 ^\r\n");    /* CRLF kept */
+  roundtrip("\n\n;\n");
+}
+END_TEST
+
+START_TEST(text_lines_and_nul)
+{
+  struct tui_text t;
+  char err[128];
+  tui_text_init(&t);
+  ck_assert_int_eq(tui_text_set(&t, "a\nbb\r\nccc", 9, err, sizeof err), 0);
+  ck_assert_uint_eq(t.n, 3);
+  ck_assert_str_eq(t.line[1], "bb\r");    /* a lone \r\n among \n line ends: the \r stays */
+  char *s = joined(&t);
+  ck_assert_str_eq(s, "a\nbb\r\nccc");
+  free(s);
+  ck_assert_int_eq(tui_text_set(&t, "a\0b\n", 4, err, sizeof err), -1);
+  ck_assert_ptr_nonnull(strstr(err, "NUL"));
+  ck_assert_uint_eq(t.n, 3);              /* unchanged */
+  tui_text_free(&t);
+}
+END_TEST
+
+START_TEST(text_edits_and_undo)
+{
+  struct tui_text t;
+  char err[128];
+  tui_text_init(&t);
+  ck_assert_int_eq(tui_text_set(&t, "№1 G33 /А/ ^\n№2 M02 ^\n", strlen("№1 G33 /А/ ^\n№2 M02 ^\n"), err, sizeof err), 0);
+  ck_assert_int_eq(tui_text_insert(&t, 1, "№3 G04 X+1 ^"), 0);
+  char *s = joined(&t);
+  ck_assert_str_eq(s, "№1 G33 /А/ ^\n№3 G04 X+1 ^\n№2 M02 ^\n");
+  free(s);
+  ck_assert_int_eq(tui_text_replace(&t, 0, "№1 G33 /Б/ ^"), 0);
+  ck_assert_str_eq(t.line[0], "№1 G33 /Б/ ^");
+  ck_assert_int_eq(tui_text_undo(&t), 0);
+  ck_assert_str_eq(t.line[0], "№1 G33 /А/ ^");
+  ck_assert_int_eq(tui_text_undo(&t), 0);          /* undo of the undo */
+  ck_assert_str_eq(t.line[0], "№1 G33 /Б/ ^");
+  ck_assert_int_eq(tui_text_delete(&t, 1), 0);
+  ck_assert_uint_eq(t.n, 2);
+  ck_assert_str_eq(t.line[1], "№2 M02 ^");
+  ck_assert_int_eq(tui_text_delete(&t, 2), -1);    /* no such line */
+  ck_assert_int_eq(tui_text_replace(&t, 5, "x"), -1);
+  ck_assert_int_eq(tui_text_insert(&t, 3, "x"), -1);
+  ck_assert_int_eq(tui_text_insert(&t, 2, "№9 M02 ^"), 0);   /* append */
+  ck_assert_str_eq(t.line[2], "№9 M02 ^");
+  tui_text_free(&t);
+  tui_text_init(&t);
+  ck_assert_int_eq(tui_text_undo(&t), -1);
+  ck_assert_int_eq(tui_text_insert(&t, 0, "№1 M02 ^"), 0);   /* into an empty text */
+  s = joined(&t);
+  ck_assert_str_eq(s, "№1 M02 ^\n");
+  free(s);
+  tui_text_free(&t);
+}
+END_TEST
+
+static char *slurp(const char *path)
+{
+  FILE *f = fopen(path, "rb");
+  ck_assert_ptr_nonnull(f);
+  static char b[4096];
+  size_t n = fread(b, 1, sizeof b - 1, f);
+  b[n] = 0;
+  fclose(f);
+  return b;
+}
+
+START_TEST(text_save_atomic)
+{
+  char dir[] = "/tmp/s42-tuitext-XXXXXX";
+  ck_assert_ptr_nonnull(mkdtemp(dir));
+  char path[256], link[256], err[512], bad[256];
+  snprintf(path, sizeof path, "%s/p.kp", dir);
+  snprintf(link, sizeof link, "%s/link.kp", dir);
+  struct tui_text t;
+  tui_text_init(&t);
+  ck_assert_int_eq(tui_text_set(&t, "№1 M02 ^\n", strlen("№1 M02 ^\n"), err, sizeof err), 0);
+  ck_assert_int_eq(tui_text_save(&t, path, err, sizeof err), 0);
+  ck_assert_str_eq(slurp(path), "№1 M02 ^\n");
+  /* the old file's permissions stay */
+  ck_assert_int_eq(chmod(path, 0640), 0);
+  ck_assert_int_eq(tui_text_insert(&t, 0, "№2 G04 X+1 ^"), 0);
+  ck_assert_int_eq(tui_text_save(&t, path, err, sizeof err), 0);
+  struct stat st;
+  ck_assert_int_eq(stat(path, &st), 0);
+  ck_assert_int_eq(st.st_mode & 0777, 0640);
+  ck_assert_str_eq(slurp(path), "№2 G04 X+1 ^\n№1 M02 ^\n");
+  /* through a symbolic link: the program changes, the link stays a link */
+  ck_assert_int_eq(symlink("p.kp", link), 0);
+  ck_assert_int_eq(tui_text_replace(&t, 0, "№3 G04 X+2 ^"), 0);
+  ck_assert_int_eq(tui_text_save(&t, link, err, sizeof err), 0);
+  ck_assert_int_eq(lstat(link, &st), 0);
+  ck_assert(S_ISLNK(st.st_mode));
+  ck_assert_str_eq(slurp(path), "№3 G04 X+2 ^\n№1 M02 ^\n");
+  /* a failure leaves the old file and no temporary behind */
+  snprintf(bad, sizeof bad, "%s/no/such/dir.kp", dir);
+  ck_assert_int_eq(tui_text_save(&t, bad, err, sizeof err), -1);
+  ck_assert_ptr_nonnull(strstr(err, "temporary"));
+  ck_assert_int_eq(tui_text_save(&t, dir, err, sizeof err), -1);   /* a directory */
+  ck_assert_ptr_nonnull(strstr(err, "not a regular file"));
+  ck_assert_int_eq(unlink(link), 0);
+  ck_assert_int_eq(unlink(path), 0);
+  ck_assert_int_eq(rmdir(dir), 0);   /* empty: no temporary file was left */
+  /* loading a missing file says so and keeps the text */
+  ck_assert_int_eq(tui_text_load(&t, path, err, sizeof err), -1);
+  ck_assert_ptr_nonnull(strstr(err, "No such file"));
+  ck_assert_uint_eq(t.n, 2);
+  tui_text_free(&t);
+}
+END_TEST
+
+START_TEST(cyr_table_3_4)
+{
+  /* every row of the seed's table 3.4 */
+  static const char keys[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZ*:+(%)";
+  static const uint32_t want[] = {
+    0x410, 0x411, 0x426, 0x414, 0x415, 0x424, 0x413, 0x425, 0x418, 0x419, 0x41A, 0x41B, 0x41C,
+    0x41D, 0x41E, 0x41F, 0x42F, 0x420, 0x421, 0x422, 0x423, 0x416, 0x412, 0x42C, 0x42B, 0x417,
+    0x42E, 0x428, 0x42D, 0x429, 0x427, 0x42A,
+  };
+  for (size_t i = 0; keys[i]; i++)
+    ck_assert_uint_eq(tui_cyr_key((uint32_t)keys[i]), want[i]);
+  ck_assert_uint_eq(tui_cyr_key('w'), 0x412);   /* capitals only */
+  ck_assert_uint_eq(tui_cyr_key('7'), '7');     /* digits and the rest stay */
+  ck_assert_uint_eq(tui_cyr_key('/'), '/');
+  ck_assert_uint_eq(tui_cyr_key(' '), ' ');
+}
+END_TEST
+
+START_TEST(ascii_stand_ins)
+{
+  uint32_t cp[32];
+  int n = scr_decode("ЗАТОЧКА Ї №1 ─│┌ 中", cp, 32);
+  char out[33];
+  for (int i = 0; i < n; i++)
+    out[i] = tui_ascii(cp[i]);
+  out[n] = 0;
+  ck_assert_str_eq(out, "ZATOCKA I N1 -|+ ?");
+  ck_assert_int_eq(tui_ascii(0x1F), '?');
+  ck_assert_int_eq(tui_ascii('~'), '~');
+  char u[4];
+  ck_assert_int_eq(tui_utf8(0x416, u), 2);
+  ck_assert_int_eq(memcmp(u, "Ж", 2), 0);
+  ck_assert_int_eq(tui_utf8(0x2116, u), 3);
+  ck_assert_int_eq(memcmp(u, "№", 3), 0);
+}
+END_TEST
+
+START_TEST(pace_clock)
+{
+  struct pace p;
+  pace_start(&p, 10.0);
+  double a = pace_now(&p);
+  ck_assert(a >= 10.0 && a < 10.5);
+  ck_assert(pace_ahead(&p, 20.0) > 9.0);
+  ck_assert(pace_ahead(&p, 5.0) < 0);
+  pace_hold(&p, 1);
+  double h = pace_now(&p);
+  usleep(20000);
+  ck_near(pace_now(&p), h, 1e-12);     /* held: the clock stands */
+  pace_hold(&p, 0);
+  double r = pace_now(&p);
+  ck_assert(r >= h && r < h + 0.01);   /* and goes on from there */
+  pace_sleep_until(&p, r + 0.02);
+  ck_assert(pace_now(&p) >= r + 0.02);
+}
+END_TEST
+
+Suite *suite_tuitext(void)
+{
+  Suite *s = suite_create("tuitext");
+  TCase *c = tcase_create("tuitext");
+  tcase_add_test(c, text_roundtrip);
+  tcase_add_test(c, text_lines_and_nul);
+  tcase_add_test(c, text_edits_and_undo);
+  tcase_add_test(c, text_save_atomic);
+  tcase_add_test(c, cyr_table_3_4);
+  tcase_add_test(c, ascii_stand_ins);
+  tcase_add_test(c, pace_clock);
+  suite_add_tcase(s, c);
+  return s;
+}
