@@ -1,5 +1,6 @@
 /* The M15 restart state file (src/state.h). */
 #include "state.h"
+#include "atomic.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
@@ -56,22 +57,6 @@ uint64_t state_hash(const void *data, size_t n)
   return h;
 }
 
-static int write_all(int fd, const void *buf, size_t n)
-{
-  const char *p = buf;
-  while (n) {
-    ssize_t w = write(fd, p, n);
-    if (w < 0) {
-      if (errno == EINTR)
-        continue;
-      return -1;
-    }
-    p += w;
-    n -= (size_t)w;
-  }
-  return 0;
-}
-
 int state_save(const struct session *s, const char *path, uint64_t prog_hash, char *err, size_t n)
 {
   struct payload *pl = calloc(1, sizeof *pl);
@@ -124,42 +109,8 @@ int state_save(const struct session *s, const char *path, uint64_t prog_hash, ch
   h.size = (uint32_t)sizeof *pl;
   h.sum = state_hash(pl, sizeof *pl);
 
-  size_t plen = strlen(path);
-  char *tmp = malloc(plen + 32);
-  char *dir = strdup(path);
-  if (!tmp || !dir) {
-    free(tmp);
-    free(dir);
-    free(pl);
-    snprintf(err, n, "out of memory");
-    return -1;
-  }
-  snprintf(tmp, plen + 32, "%s.tmp.%ld", path, (long)getpid());
-  int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  int rc = -1;
-  if (fd < 0) {
-    snprintf(err, n, "%s: %s", tmp, strerror(errno));
-  } else if (write_all(fd, &h, sizeof h) || write_all(fd, pl, sizeof *pl) || fsync(fd)) {
-    snprintf(err, n, "%s: %s", tmp, strerror(errno));
-    close(fd);
-    unlink(tmp);
-  } else if (close(fd)) {
-    snprintf(err, n, "%s: %s", tmp, strerror(errno));
-    unlink(tmp);
-  } else if (rename(tmp, path)) {
-    snprintf(err, n, "%s: %s", path, strerror(errno));
-    unlink(tmp);
-  } else {
-    /* the rename itself must reach the disk */
-    int dfd = open(dirname(dir), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dfd >= 0) {
-      fsync(dfd);
-      close(dfd);
-    }
-    rc = 0;
-  }
-  free(tmp);
-  free(dir);
+  struct iovec v[2] = {{&h, sizeof h}, {pl, sizeof *pl}};
+  int rc = atomic_write(path, path, 0644, v, 2, err, n);
   free(pl);
   return rc;
 }

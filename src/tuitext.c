@@ -1,6 +1,7 @@
 /* The terminal's program text, keyboard map and ASCII fallback
  * (src/tuitext.h).  No curses here: the unit tests drive it directly. */
 #include "tuitext.h"
+#include "atomic.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
@@ -220,21 +221,6 @@ int tui_text_undo(struct tui_text *t)
   return 0;
 }
 
-static int write_all(int fd, const char *p, size_t n)
-{
-  while (n) {
-    ssize_t w = write(fd, p, n);
-    if (w < 0) {
-      if (errno == EINTR)
-        continue;
-      return -1;
-    }
-    p += w;
-    n -= (size_t)w;
-  }
-  return 0;
-}
-
 int tui_text_save(const struct tui_text *t, const char *path, char *err, size_t errn)
 {
   /* a symbolic link keeps pointing at the program: write its target */
@@ -255,41 +241,13 @@ int tui_text_save(const struct tui_text *t, const char *path, char *err, size_t 
   }
   size_t n;
   char *buf = tui_text_join(t, &n);
-  size_t tl = strlen(target) + 16;
-  char *tmp = malloc(tl), *dir = strdup(target);
-  if (!buf || !tmp || !dir) {
-    free(buf);
-    free(tmp);
-    free(dir);
+  if (!buf) {
     snprintf(err, errn, "out of memory");
     return -1;
   }
-  snprintf(tmp, tl, "%s.tmpXXXXXX", target);
-  int fd = mkstemp(tmp), rc = -1;
-  if (fd < 0) {
-    snprintf(err, errn, "%s: cannot create a temporary file beside it: %s", path, strerror(errno));
-  } else if (fchmod(fd, mode) || write_all(fd, buf, n) || fsync(fd)) {
-    snprintf(err, errn, "%s: %s", tmp, strerror(errno));
-    close(fd);
-    unlink(tmp);
-  } else if (close(fd)) {
-    snprintf(err, errn, "%s: %s", tmp, strerror(errno));
-    unlink(tmp);
-  } else if (rename(tmp, target)) {
-    snprintf(err, errn, "%s: %s", path, strerror(errno));
-    unlink(tmp);
-  } else {
-    /* the rename itself must reach the disk */
-    int dfd = open(dirname(dir), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dfd >= 0) {
-      fsync(dfd);
-      close(dfd);
-    }
-    rc = 0;
-  }
+  struct iovec v = {buf, n};
+  int rc = atomic_write(target, path, mode, &v, 1, err, errn);
   free(buf);
-  free(tmp);
-  free(dir);
   return rc;
 }
 

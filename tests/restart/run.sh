@@ -35,7 +35,7 @@ for delay in 0 0.01 0.03 0.05 0.08 0.1 0.15 0.2 0.3 0.4 0.5 0.6 0.8 1.0; do
   else
     ok
   fi
-  ls "$tmp"/*.tmp.* >/dev/null 2>&1 && rm -f "$tmp"/*.tmp.*   # a killed write leaves only its temporary file
+  ls "$tmp"/*.tmp* >/dev/null 2>&1 && rm -f "$tmp"/*.tmp*   # a killed write leaves only its temporary file
 done
 
 # a good state, then damaged copies
