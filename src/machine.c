@@ -127,7 +127,7 @@ static int contour(const struct mach_block *b)
 
 int mach_held(const struct machine *m, const struct mach_block *b)
 {
-  if (!contour(b) || !m->override_allowed || m->override_pct > 0)
+  if (!m->override_allowed || m->override_pct > 0)
     return 0;
   for (int a = 0; a < 4; a++)
     if (BIT(b->given, a) && b->w[a] != 0)

@@ -59,7 +59,8 @@ void mach_motion(struct machine *m, const struct mach_block *b, struct mach_out 
 /* A contour move a plugin computed: increments d (discretes), its length
  * (mm) and speed limit (mm/min); F and the override apply as for G01. */
 void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o);
-/* Is the block's contour move held by a feed override of 0 %? */
+/* Would a feed override of 0 % hold this block's contour move (the caller
+ * knows whether the block is one: the core's G01-G03 or a plugin's)? */
 int mach_held(const struct machine *m, const struct mach_block *b);
 /* Effective speed of a linear move (increments in discretes) at speed f. */
 double mach_linear_limit(const double d[4]);

@@ -735,15 +735,10 @@ static int after_motion(struct session *s)
   return -1;
 }
 
-/* A plugin's contour move waits at a feed override of 0 % as G01 does. */
-static int held_plugin_move(const struct session *s)
+/* A contour move, the core's or a plugin's, waits at a feed override of 0 %. */
+static int held(const struct session *s)
 {
-  if (!s->m.override_allowed || s->m.override_pct > 0)
-    return 0;
-  for (int a = 0; a < 4; a++)
-    if (BIT(s->mb.given, a) && s->mb.w[a] != 0)
-      return 1;
-  return 0;
+  return contour_block(s) && mach_held(&s->m, &s->mb);
 }
 
 /* A VM_EV_BLOCK: do the block's machine work.  Returns the session event
@@ -784,7 +779,7 @@ static int do_block(struct session *s)
   memset(s->jogs, 0, sizeof s->jogs);
   s->has_jogs = 0;
   memcpy(s->start, s->m.pos, sizeof s->start);
-  if (mach_held(&s->m, b) || (contour_block(s) && at->motion >= MO_G12 && held_plugin_move(s))) {           /* feed override at 0 %: the move waits */
+  if (held(s)) {           /* feed override at 0 %: the move waits */
     s->wait = W_FEED;
     return SE_WAIT;
   }
@@ -923,7 +918,7 @@ int sess_override(struct session *s, int pct)
     return -1;
   }
   s->m.override_pct = pct;
-  if (s->state == SE_WAIT && s->wait == W_FEED && !mach_held(&s->m, &s->mb)) {
+  if (s->state == SE_WAIT && s->wait == W_FEED && !held(s)) {
     int r = exec_block(s);
     s->state = r >= 0 ? r : SE_START;
   }
