@@ -8,3 +8,7 @@ CAIRO_CFLAGS := $(shell pkg-config --cflags cairo 2>/dev/null)
 CAIRO_LIBS   := $(shell pkg-config --libs cairo 2>/dev/null || echo -lcairo)
 $(BUILD)/src/plot.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay $(CAIRO_CFLAGS)
 LDLIBS += $(CAIRO_LIBS)
+# modbus.c serves the machine over Modbus TCP with libmodbus
+MODBUS_CFLAGS := $(shell pkg-config --cflags libmodbus 2>/dev/null)
+MODBUS_LIBS   := $(shell pkg-config --libs libmodbus 2>/dev/null || echo -lmodbus)
+LDLIBS += $(MODBUS_LIBS)

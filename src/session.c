@@ -391,6 +391,14 @@ void sess_key_stop(struct session *s)
   s->state = SE_STOPPED;
 }
 
+int sess_resume(struct session *s)
+{
+  if (s->state != SE_STOPPED)
+    return -1;
+  s->state = s->wait != W_NONE ? SE_WAIT : SE_START;
+  return 0;
+}
+
 int sess_jog(struct session *s, int axis, int64_t d)
 {
   if (s->state != SE_WAIT || axis < 0 || axis > 3)

@@ -84,6 +84,9 @@ int sess_key_pusk(struct session *s);
 int sess_key_ps(struct session *s);
 void sess_key_exit(struct session *s);
 void sess_key_stop(struct session *s);
+/* Пуск after a stop (a client's feed hold): back to the block boundary or
+ * the wait it interrupted.  0, or -1 when the cycle was not stopped. */
+int sess_resume(struct session *s);
 int sess_jog(struct session *s, int axis, int64_t d);
 /* Type a number into the G27 field and press ПС (the script's `answer`). */
 int sess_answer(struct session *s, long long v);
