@@ -32,7 +32,7 @@ include tests/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: all check test unit conformance programs regress restart realtime plot shared asan run clean install deps docs
+.PHONY: all check test unit conformance programs regress restart realtime plot shared modbus asan run clean install deps docs
 
 all: $(S42)
 
@@ -54,7 +54,7 @@ check: deps
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot shared
+test: unit conformance programs regress restart realtime plot shared modbus
 
 asan:
 	@sh scripts/deps.sh

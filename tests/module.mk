@@ -42,6 +42,14 @@ realtime: $(S42)
 plot: $(S42)
 	sh tests/plot/run.sh $(S42)
 
+# The Modbus server: a libmodbus client, malformed frames, mbpoll.
+MB_CLIENT := $(BUILD)/tests/modbus/client
+$(MB_CLIENT): tests/modbus/client.c vm/errors.h
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) -Ivm $(MODBUS_CFLAGS) $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $< $(MODBUS_LIBS) -lm
+modbus: $(S42) $(MB_CLIENT)
+	sh tests/modbus/run.sh $(S42) $(MB_CLIENT)
+
 shared: $(S42)
 	@if [ -d $(SHARED)/conformance/cases ]; then \
 	  sh tests/shared.sh $(S42) $(SHARED); \
