@@ -13,6 +13,7 @@ int main(void)
   srunner_add_suite(sr, suite_operator());
   srunner_add_suite(sr, suite_session());
   srunner_add_suite(sr, suite_screen());
+  srunner_add_suite(sr, suite_modbus());
   srunner_run_all(sr, CK_NORMAL);
   int failed = srunner_ntests_failed(sr);
   srunner_free(sr);

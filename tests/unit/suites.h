@@ -20,6 +20,7 @@ Suite *suite_machine(void);
 Suite *suite_operator(void);
 Suite *suite_session(void);
 Suite *suite_screen(void);
+Suite *suite_modbus(void);
 
 /* A program compiled from a C string, with its diagnostics. */
 struct tprog {
