@@ -29,6 +29,15 @@ regress: $(S42)
 	  $(S42) run "$$f" --max-blocks 100000 --dump >/dev/null 2>&1; st=$$?; \
 	  if [ $$st -gt 3 ]; then echo "FAIL regress $$f: status $$st"; exit 1; fi; n=$$((n+1)); \
 	done; echo "regress: $$n passed, 0 failed"
+	@$(MB_REPLAY) tests/fuzz/modbus/*
+
+# The Modbus request handler's fuzz harness, replayed without libFuzzer on
+# its seeds and on inputs that once crashed it (tests/fuzz/modbus/).
+MB_REPLAY := $(BUILD)/tests/fuzz/replay-modbus
+$(MB_REPLAY): tests/fuzz/fuzz_modbus.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
+regress: $(MB_REPLAY)
 
 # SIGKILL at many points of a cycle with M15, then restart; damaged states.
 restart: $(S42)
@@ -57,18 +66,20 @@ shared: $(S42)
 
 # Fuzzing with libFuzzer (clang): make fuzz FUZZ_SECONDS=60
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := fuzz_program fuzz_operator
+FUZZ_TARGETS := fuzz_program fuzz_operator fuzz_modbus
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -Isrc -Ivm -Idisplay -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/%)
 FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c,$(SRC_SRCS))
 $(BUILD)/fuzz/%: tests/fuzz/%.c $(FUZZ_SRCS)
 	@mkdir -p $(@D)
-	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) -lm
+	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) $(MODBUS_LIBS) -lm
 fuzz: fuzz-bin
-	@mkdir -p $(BUILD)/fuzz/corpus-program $(BUILD)/fuzz/corpus-operator
+	@mkdir -p $(BUILD)/fuzz/corpus-program $(BUILD)/fuzz/corpus-operator $(BUILD)/fuzz/corpus-modbus
+	@cp tests/fuzz/modbus/* $(BUILD)/fuzz/corpus-modbus/
 	@cp programs/*.kp tests/conformance/cases/*/program.kp $(BUILD)/fuzz/corpus-program/ 2>/dev/null || true
 	@for f in tests/conformance/cases/*/program.kp; do cp $$f $(BUILD)/fuzz/corpus-program/$$(basename $$(dirname $$f)).kp; done
 	@for f in programs/*.operator tests/conformance/cases/*/operator.txt; do [ -f $$f ] && cp $$f $(BUILD)/fuzz/corpus-operator/$$(echo $$f | tr / _); done; true
 	$(BUILD)/fuzz/fuzz_program -max_total_time=$(FUZZ_SECONDS) -max_len=4096 -timeout=10 $(BUILD)/fuzz/corpus-program
 	$(BUILD)/fuzz/fuzz_operator -max_total_time=$(FUZZ_SECONDS) -max_len=2048 -timeout=10 $(BUILD)/fuzz/corpus-operator
+	$(BUILD)/fuzz/fuzz_modbus -max_total_time=$(FUZZ_SECONDS) -max_len=2048 -timeout=10 $(BUILD)/fuzz/corpus-modbus
