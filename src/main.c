@@ -643,6 +643,8 @@ static int headless(const struct opts *opt, struct plot *plot)
   bs.r = &r;
   bs.plot = plot;
   bs.realtime = o.realtime;
+  bs.mm = NULL;
+  bs.last_t = 0;
   clock_gettime(CLOCK_MONOTONIC, &bs.t0);
   r.s.sink.ctx = &bs;
   r.s.sink.row = row_sink;
@@ -699,7 +701,6 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
   bs.sim0 = r.s.m.t;     /* a restart goes on from the saved time */
   clock_gettime(CLOCK_MONOTONIC, &bs.t0);
-  bs.mm = NULL;
   if (o.modbus && status == EXIT_END) {
     char err[300];
     int bad;

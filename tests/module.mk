@@ -38,6 +38,8 @@ $(MB_REPLAY): tests/fuzz/fuzz_modbus.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJ
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
 regress: $(MB_REPLAY)
+# built with the objects' flags (make asan builds, then tests with plain CFLAGS)
+unit-bin: $(MB_REPLAY)
 
 # SIGKILL at many points of a cycle with M15, then restart; damaged states.
 restart: $(S42)
@@ -56,6 +58,7 @@ MB_CLIENT := $(BUILD)/tests/modbus/client
 $(MB_CLIENT): tests/modbus/client.c vm/errors.h
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) -Ivm $(MODBUS_CFLAGS) $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $< $(MODBUS_LIBS) -lm
+unit-bin: $(MB_CLIENT)
 modbus: $(S42) $(MB_CLIENT)
 	sh tests/modbus/run.sh $(S42) $(MB_CLIENT)
 
