@@ -2,6 +2,7 @@
 #include "compile.h"
 #include "disasm.h"
 #include "errors.h"
+#include "modbus.h"
 #include "operator.h"
 #include "pace.h"
 #include "plot.h"
@@ -10,7 +11,9 @@
 #include "session.h"
 #include "state.h"
 #include "tui.h"
+#include "tui_modbus.h"
 #include <errno.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,7 +45,7 @@ static const char usage[] =
   "  --restart          start from the saved M15 restart point\n"
   "  --max-blocks N     stop with E-LIMIT after N executed blocks (default 100000000)\n"
   "  --plugins DIR      where plugins are looked for (also S42_PLUGIN_PATH)\n"
-  "  --modbus HOST:PORT serve the machine over Modbus TCP\n"
+  "  --modbus[=HOST:PORT] serve the machine over Modbus TCP (default 127.0.0.1:1502)\n"
   "  --realtime         pace the simulation at machine speed\n"
   "  --lang uk|en       language of machine messages (default uk)\n"
   "\n"
@@ -128,11 +131,21 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     if (strcmp(a, "--screen") == 0) { o->screen = 1; continue; }
     if (strcmp(a, "--restart") == 0) { o->restart = 1; continue; }
     if (strcmp(a, "--realtime") == 0) { o->realtime = 1; continue; }
+    if (strncmp(a, "--modbus", 8) == 0 && (a[8] == 0 || a[8] == '=')) {
+      /* --modbus=ADDR, --modbus ADDR (a word with ':' or a bare port), or alone */
+      const char *v = i + 1 < argc ? argv[i + 1] : "";
+      if (a[8] == '=')
+        o->modbus = a + 9;
+      else if (v[0] && v[0] != '-' && (strchr(v, ':') || strspn(v, "0123456789") == strlen(v)))
+        o->modbus = argv[++i];
+      else
+        o->modbus = MB_DEFAULT_ADDR;
+      continue;
+    }
     if (strcmp(a, "--operator") == 0) val = &o->operator_file;
     else if (strcmp(a, "--tool") == 0) val = &o->tool;
     else if (strcmp(a, "--state") == 0) val = &o->state;
     else if (strcmp(a, "--plugins") == 0) val = &o->plugins;
-    else if (strcmp(a, "--modbus") == 0) val = &o->modbus;
     else if (strcmp(a, "-o") == 0) val = &o->out;
     else if (strcmp(a, "--lang") == 0 || strcmp(a, "--max-blocks") == 0) {
       if (i + 1 >= argc) {
@@ -318,6 +331,7 @@ struct runner {
   const char *file;
   unsigned *runs;            /* runs per block number, for `at` */
   uint8_t *watch;
+  int lenient;               /* --modbus: a wait the script cannot serve waits for a client */
 };
 
 static void warn_sink(void *ctx, const struct session *s, const char *msg)
@@ -338,16 +352,41 @@ struct both_sink {
   struct plot *plot;       /* s42 plot: the path is collected here */
   int realtime;            /* --realtime: wait until the wall clock reaches the simulated time */
   struct pace pace;
+  struct mb_machine *mm;   /* --modbus: blocks are paced by the server loop, not slept */
+  double last_t;           /* simulated time at the end of the previous block */
 };
+
+/* --modbus: the block's motion goes on the wall clock (with --realtime)
+ * while the loop keeps serving; back to back when blocks follow each other,
+ * from now after a wait. */
+static void modbus_row(struct both_sink *b, const struct sess_row *row)
+{
+  struct mb_machine *mm = b->mm;
+  double dur = row->t - b->last_t, now = mb_now();
+  b->last_t = row->t;
+  mm->feed = row->feed;
+  if (!b->realtime || dur <= 0)
+    return;
+  double start = mm->motion.end > 0 && now - mm->motion.end < 0.05 ? mm->motion.end : now;
+  mm->motion.active = 1;
+  mm->motion.held = 0;
+  mm->motion.start = start;
+  mm->motion.end = start + dur;
+  memcpy(mm->motion.d, row->d, sizeof mm->motion.d);
+  mm->motion.feed = row->feed;
+  mm->motion.block = row->n;
+}
 
 static void row_sink(void *ctx, const struct session *s, const struct sess_row *row)
 {
   struct both_sink *b = ctx;
-  if (b->realtime)
+  if (b->mm)
+    modbus_row(b, row);
+  else if (b->realtime)
     pace_sleep_until(&b->pace, row->t);
   if (b->tr.out) {
     report_row(&b->tr, s, row);
-    if (b->realtime)
+    if (b->realtime || b->mm)
       fflush(b->tr.out);
   }
   if (b->plot)
@@ -420,6 +459,8 @@ static int serve_wait(struct runner *r)
   char what[96], nb[16];
   while (r->s.state == SE_WAIT) {
     if (r->next >= r->ops.n) {
+      if (r->lenient)
+        return -1;
       const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s and the operator script has no more actions\n",
               r->file, b->line, b->col, bname(sess_block_number(&r->s), nb), sess_wait_text(&r->s));
@@ -440,6 +481,8 @@ static int serve_wait(struct runner *r)
       ok = sess_answer(&r->s, a->n);
     }
     if (ok) {
+      if (r->lenient)
+        return -1;
       const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s; the operator script's next action "
               "(line %u: %s) does not fit\n", r->file, b->line, b->col, bname(sess_block_number(&r->s), nb),
@@ -451,13 +494,187 @@ static int serve_wait(struct runner *r)
   return 0;
 }
 
+/* ---- the headless run served over Modbus TCP (--modbus) ---- */
+
+static volatile sig_atomic_t quit_signal;
+
+static void on_quit(int sig)
+{
+  quit_signal = sig;
+}
+
+/* Reset, and Пуск after M2: the program from block 1 on a fresh machine,
+ * with R0-R113 as they were (the 2С42 keeps its parameters). */
+static void new_cycle(struct runner *r, struct both_sink *bs)
+{
+  struct session *s = &r->s;
+  double reg[114];
+  memcpy(reg, s->vm.reg, sizeof reg);
+  struct sess_sink sink = s->sink;
+  int en = s->en, yield_all = s->vm.yield_all;
+  uint64_t max_blocks = s->vm.max_blocks;
+  const uint8_t *watch = s->vm.watch;
+  sess_init(s, s->p);
+  s->sink = sink;
+  s->en = en;
+  s->scr.en = en;
+  s->vm.max_blocks = max_blocks;
+  s->vm.watch = watch;
+  s->vm.yield_all = yield_all;
+  s->vm.start_all = 1;
+  memcpy(s->vm.reg, reg, sizeof reg);
+  memset(&bs->mm->motion, 0, sizeof bs->mm->motion);
+  bs->mm->feed = 0;
+  bs->last_t = 0;
+  memset(r->runs, 0, 1000 * sizeof *r->runs);
+}
+
+/* A block's motion is under way on the wall clock (not held). */
+static int in_motion(const struct mb_machine *mm, double now)
+{
+  return mm->motion.active && !mm->motion.held && now < mm->motion.end;
+}
+
+/* A panel key from a client (contracts.md sec. 6, README "Modbus"). */
+static void modbus_key(struct runner *r, struct both_sink *bs, int k)
+{
+  struct session *s = &r->s;
+  struct mb_machine *mm = bs->mm;
+  double now = mb_now();
+  int moving = in_motion(mm, now);
+  switch (k) {
+  case MB_KEY_PUSK:
+    if (mm->idle) {
+      mm->idle = 0;
+    } else if (s->state == SE_STOPPED || mm->motion.held) {
+      if (mm->motion.held) {
+        double len = mm->motion.end - mm->motion.start;
+        mm->motion.start = now - mm->motion.held_frac * len;
+        mm->motion.end = mm->motion.start + len;
+        mm->motion.held = 0;
+      }
+      sess_resume(s);
+    } else if (s->state == SE_END) {
+      new_cycle(r, bs);
+    } else if (!moving) {
+      sess_key_pusk(s);          /* a Пуск that fits no wait does nothing */
+    }
+    break;
+  case MB_KEY_STOP:
+    if (mm->idle || s->state == SE_END || s->state == SE_ERROR)
+      break;
+    if (moving) {
+      mm->motion.held_frac = (now - mm->motion.start) / (mm->motion.end - mm->motion.start);
+      mm->motion.held = 1;
+    }
+    sess_key_stop(s);
+    break;
+  case MB_KEY_PS:
+    if (!mm->idle && !moving)
+      sess_key_ps(s);
+    break;
+  case MB_KEY_EXIT:
+    if (!mm->idle)
+      sess_key_exit(s);          /* taken by the next PP block */
+    break;
+  case MB_KEY_RESET:
+    new_cycle(r, bs);
+    mm->idle = 1;
+    break;
+  default:
+    break;
+  }
+}
+
+/* Serve the machine until SIGINT or SIGTERM.  Without an operator script
+ * the cycle waits for a client's Пуск; with one, a wait the script cannot
+ * serve waits for a client.  Returns the exit status and sets *st. */
+static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server *mb, const char *state_path,
+                       uint64_t prog_hash, const char **st)
+{
+  struct mb_machine *mm = bs->mm;
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_quit;      /* no SA_RESTART: poll() returns at once */
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+  r->lenient = 1;
+  r->s.vm.start_all = 1;        /* back to the loop at every block */
+  fprintf(stderr, "s42: Modbus TCP on %s%s\n", mb_address(mb),
+          mm->idle ? "; the cycle starts with Пуск (coil 0)" : "");
+  int told = -1;                /* the session state last reported on stderr */
+  char nb[16];
+  while (!quit_signal) {
+    double now = mb_now();
+    if (mm->motion.active && !mm->motion.held && now >= mm->motion.end)
+      mm->motion.active = 0;
+    int free_run = !mm->idle && !mm->motion.active && r->s.state == SE_START;
+    int timeout = 100;
+    if (free_run)
+      timeout = 0;
+    else if (in_motion(mm, now) && (mm->motion.end - now) * 1000 < timeout)
+      timeout = (int)((mm->motion.end - now) * 1000) + 1;
+    if (mb_poll(mb, mm, timeout)) {
+      fprintf(stderr, "s42: Modbus: poll: %s\n", strerror(errno));
+      *st = "stopped";
+      return EXIT_IO;
+    }
+    for (int k; (k = mb_key(mb)) != MB_KEY_NONE;)
+      modbus_key(r, bs, k);
+    /* run the machine for a couple of milliseconds, or up to a paced motion */
+    double until = mb_now() + 0.002;
+    while (!mm->idle && !mm->motion.active && !quit_signal) {
+      if (r->s.state == SE_WAIT) {
+        if (r->next >= r->ops.n || serve_wait(r))
+          break;                 /* a client serves this wait */
+        continue;
+      }
+      if (r->s.state != SE_START)
+        break;
+      enum sess_ev ev = sess_run(&r->s);
+      if (ev == SE_START) {
+        if (state_path && ((kp_attr(r->s.p, r->s.vm.cur)->m >> 15) & 1)) {
+          char serr[512];
+          if (state_save(&r->s, state_path, prog_hash, serr, sizeof serr)) {
+            fprintf(stderr, "s42: cannot save the M15 restart state: %s\n", serr);
+            *st = "error";
+            return EXIT_IO;
+          }
+        }
+        at_boundary(r);
+      }
+      if (mb_now() >= until)
+        break;
+    }
+    if (r->s.state != told && (r->s.state == SE_END || r->s.state == SE_ERROR)) {
+      const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
+      if (r->s.state == SE_END)
+        fprintf(stderr, "%s:%u:%u: note: %s: the program reached M2; Пуск runs it again\n", r->file, b->line,
+                b->col, bname(sess_block_number(&r->s), nb));
+      else {
+        const struct vm_error *e = &r->s.vm.err;
+        b = &r->s.p->blocks[e->block];
+        fprintf(stderr, "%s:%u:%u: note: %s: the cycle stopped with %s (%s); reset (coil 4) to start again\n",
+                r->file, b->line, e->col ? e->col : b->col, bname(b->number ? b->number : -1, nb),
+                err_code(e->code), e->msg);
+      }
+    }
+    told = r->s.state;
+  }
+  *st = r->s.state == SE_END ? "end" : r->s.state == SE_ERROR ? "error" : "stopped";
+  return r->s.state == SE_END ? EXIT_END : r->s.state == SE_ERROR ? EXIT_PROGRAM : EXIT_STOPPED;
+}
+
 /* The headless run of `s42 run` and `s42 plot` (plot != NULL). */
 static int headless(const struct opts *opt, struct plot *plot)
 {
   struct opts o = *opt;
-  const char *unsupported = o.modbus ? "--modbus (the Modbus server)" : NULL;
-  if (unsupported) {
-    fprintf(stderr, "s42: %s is not implemented in this build\n", unsupported);
+  struct mb_server *mb = NULL;
+  struct mb_machine mm;
+  memset(&mm, 0, sizeof mm);
+  if (o.modbus && plot) {
+    fprintf(stderr, "s42: plot does not serve Modbus (--modbus is for run and tui)\n");
     return EXIT_USAGE;
   }
   struct runner r;
@@ -512,6 +729,8 @@ static int headless(const struct opts *opt, struct plot *plot)
   bs.r = &r;
   bs.plot = plot;
   bs.realtime = o.realtime;
+  bs.mm = NULL;
+  bs.last_t = 0;
   r.s.sink.ctx = &bs;
   r.s.sink.row = row_sink;
   r.s.sink.warn = sink_warn;
@@ -568,6 +787,22 @@ static int headless(const struct opts *opt, struct plot *plot)
     r.s.state = SE_ERROR;
   }
   pace_start(&bs.pace, r.s.m.t);     /* a restart goes on from the saved time */
+  if (o.modbus && status == EXIT_END) {
+    char err[300];
+    int bad;
+    if (!(mb = mb_open(o.modbus, err, sizeof err, &bad))) {
+      fprintf(stderr, "s42: %s\n", err);
+      status = bad ? EXIT_USAGE : EXIT_IO;
+      st = "error";
+    } else {
+      mm.s = &r.s;
+      mm.idle = !o.operator_file;
+      bs.mm = &mm;
+      bs.last_t = r.s.m.t;
+      status = modbus_loop(&r, &bs, mb, state_path, prog_hash, &st);
+      mb_close(mb);
+    }
+  }
 
   while (status == EXIT_END) {
     r.s.vm.start_all = r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]);
@@ -720,10 +955,6 @@ static int cmd_tui(int argc, char **argv)
     fprintf(stderr, "s42: tui does not take %s\n", bad);
     return EXIT_USAGE;
   }
-  if (o.modbus) {
-    fprintf(stderr, "s42: --modbus (the Modbus server) is not implemented in this build\n");
-    return EXIT_USAGE;
-  }
   if (o.restart && !o.program) {
     fprintf(stderr, "s42: --restart needs the program file\n");
     return EXIT_USAGE;
@@ -739,7 +970,19 @@ static int cmd_tui(int argc, char **argv)
   t.realtime = 1;          /* the operator watches: machine speed (F9 / f toggles) */
   t.en = o.en;
   t.max_blocks = o.max_blocks;
-  return tui_main(&t, NULL, 0);
+  struct tui_source mb;
+  if (o.modbus) {
+    char err[300];
+    int addr_bad;
+    if (tui_modbus_open(o.modbus, &mb, err, sizeof err, &addr_bad)) {
+      fprintf(stderr, "s42: %s\n", err);
+      return addr_bad ? EXIT_USAGE : EXIT_IO;
+    }
+  }
+  int rc = tui_main(&t, o.modbus ? &mb : NULL, o.modbus ? 1 : 0);
+  if (o.modbus)
+    tui_modbus_close(&mb);
+  return rc;
 }
 
 int main(int argc, char **argv)

@@ -1,8 +1,8 @@
 # src/: the 2С42 front end, the machine, the session, reports and the CLI.
-SRC_SRCS     := $(filter-out src/main.c src/tui.c,$(wildcard src/*.c))
+SRC_SRCS     := $(filter-out src/main.c src/tui.c src/tui_modbus.c,$(wildcard src/*.c))
 SRC_OBJS     := $(SRC_SRCS:%.c=$(BUILD)/%.o)
 # the curses front end links into s42 only (not the unit tests or fuzzers)
-SRC_MAIN_OBJ := $(BUILD)/src/main.o $(BUILD)/src/tui.o
+SRC_MAIN_OBJ := $(BUILD)/src/main.o $(BUILD)/src/tui.o $(BUILD)/src/tui_modbus.o
 $(SRC_OBJS) $(SRC_MAIN_OBJ): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude
 # plot.c draws with cairo (the only part of src/ that needs it)
 CAIRO_CFLAGS := $(shell pkg-config --cflags cairo 2>/dev/null)
@@ -17,3 +17,8 @@ CURSES_CFLAGS := $(shell pkg-config --cflags ncursesw 2>/dev/null)
 CURSES_LIBS   := $(shell pkg-config --libs ncursesw 2>/dev/null || echo -lncursesw)
 $(BUILD)/src/tui.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(CURSES_CFLAGS)
 LDLIBS += $(CURSES_LIBS)
+# modbus.c serves the machine over Modbus TCP with libmodbus
+MODBUS_CFLAGS := $(shell pkg-config --cflags libmodbus 2>/dev/null)
+MODBUS_LIBS   := $(shell pkg-config --libs libmodbus 2>/dev/null || echo -lmodbus)
+$(BUILD)/src/modbus.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(MODBUS_CFLAGS)
+LDLIBS += $(MODBUS_LIBS)

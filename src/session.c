@@ -432,6 +432,11 @@ static void tick(void *ctx, double dt)
   }
 }
 
+int sess_oscillating(const struct session *s)
+{
+  return strstr(s->extra, "\"osc\":\"on\"") != NULL;
+}
+
 void sess_plugin_json(const struct session *s, int what, char *buf, size_t n)
 {
   size_t k = 0;
@@ -881,6 +886,14 @@ void sess_key_stop(struct session *s)
   if (s->state == SE_END || s->state == SE_ERROR)
     return;
   s->state = SE_STOPPED;
+}
+
+int sess_resume(struct session *s)
+{
+  if (s->state != SE_STOPPED)
+    return -1;
+  s->state = s->wait != W_NONE ? SE_WAIT : SE_START;
+  return 0;
 }
 
 int sess_jog(struct session *s, int axis, int64_t d)

@@ -111,6 +111,9 @@ int sess_key_pusk(struct session *s);
 int sess_key_ps(struct session *s);
 void sess_key_exit(struct session *s);
 void sess_key_stop(struct session *s);
+/* Пуск after a stop (a client's feed hold): back to the block boundary or
+ * the wait it interrupted.  0, or -1 when the cycle was not stopped. */
+int sess_resume(struct session *s);
 int sess_jog(struct session *s, int axis, int64_t d);
 /* Type a number into the G27 field and press ПС (the script's `answer`). */
 int sess_answer(struct session *s, long long v);
@@ -131,6 +134,8 @@ int sess_plugin_state(const struct session *s, int k, char *name, size_t nname, 
 int sess_plugin_restore(struct session *s, const char *name, const void *buf, size_t len, char *err, size_t n);
 /* What the machine waits for, in words, for messages. */
 const char *sess_wait_text(const struct session *s);
+/* The oscillation plugin said "on" in the last block's trace members. */
+int sess_oscillating(const struct session *s);
 /* The current block's number (-1 none) and line. */
 int sess_block_number(const struct session *s);
 

@@ -1419,7 +1419,47 @@ void tui_press(struct tui *t, enum tui_key k)
   case TUI_STOP: press_stop(t); break;
   case TUI_PS: press_ps(t); break;
   case TUI_EXIT: press_exit(t); break;
+  case TUI_RESET:
+    if (t->run == R_RUN)
+      sess_key_stop(&t->s);
+    t->held = 0;
+    if (t->run != R_IDLE)
+      end_run(t);
+    say(t, "reset: the machine is idle; Пуск starts the cycle");
+    break;
   }
+}
+
+void tui_motion(const struct tui *t, struct tui_motion *m)
+{
+  memset(m, 0, sizeof *m);
+  m->block = -1;
+  if (t->run == R_IDLE || !t->cur.valid)
+    return;
+  m->feed = t->cur.feed;
+  m->held = t->run == R_RUN && t->held;
+  double now = pace_now(&t->pace), len = t->cur.t1 - t->cur.t0;
+  if (t->run == R_RUN && !t->fast && len > 0 && now < t->cur.t1) {
+    m->active = 1;
+    m->dur = len;
+    m->frac = now <= t->cur.t0 ? 0 : (now - t->cur.t0) / len;
+    for (int a = 0; a < 4; a++)
+      m->d[a] = t->cur.to[a] - t->cur.from[a];
+    m->block = t->cur.n;
+  } else if (m->held) {
+    m->active = 1;   /* held between blocks: nothing moves */
+    m->frac = 1;
+  }
+}
+
+int tui_override_pct(const struct tui *t)
+{
+  return t->override;
+}
+
+void tui_say(struct tui *t, const char *msg)
+{
+  say(t, "%s", msg);
 }
 
 int tui_override(struct tui *t, int pct)
@@ -1460,6 +1500,9 @@ static int loop(struct tui *t)
     }
     if (timeout < 0)
       timeout = 500;
+    for (int i = 0; i < t->nsrc; i++)
+      if (t->src[i].poll_timeout)
+        timeout = t->src[i].poll_timeout(t->src[i].ctx, timeout);
     int r = poll(pfd, (nfds_t)n, timeout);
     if (r < 0 && errno != EINTR) {
       curses_off();

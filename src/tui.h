@@ -31,9 +31,22 @@ struct tui_source {
   int (*fds)(void *ctx, struct pollfd *pfd, int max);          /* how many filled */
   void (*ready)(void *ctx, struct tui *t, const struct pollfd *pfd, int n);
   void (*update)(void *ctx, struct tui *t);                    /* may be NULL */
+  int (*poll_timeout)(void *ctx, int want_ms);   /* may be NULL: a shorter poll timeout it needs */
 };
 
-enum tui_key { TUI_PUSK, TUI_STOP, TUI_PS, TUI_EXIT };
+/* TUI_RESET: abandon the cycle, back to idle (a Modbus client's reset) */
+enum tui_key { TUI_PUSK, TUI_STOP, TUI_PS, TUI_EXIT, TUI_RESET };
+
+/* The block whose motion the terminal is playing out at machine speed. */
+struct tui_motion {
+  int active;                 /* a motion is under way (or held mid-way) */
+  int held;                   /* feed hold (Стоп) */
+  double frac;                /* part done, 0..1 */
+  double dur;                 /* its simulated (= wall, at machine speed) seconds */
+  double feed;                /* its contour speed, mm/min; of the last block when none */
+  int64_t d[4];               /* its increments, discretes */
+  int block;                  /* its number, -1 none */
+};
 
 /* Run the terminal until the operator quits.  Returns the exit status: 0,
  * 2 when stdin/stdout are not a terminal, 4 when the terminal or the
@@ -46,5 +59,10 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc);
 void tui_press(struct tui *t, enum tui_key k);
 int tui_override(struct tui *t, int pct);
 const struct session *tui_session(const struct tui *t);
+void tui_motion(const struct tui *t, struct tui_motion *m);
+/* The feed override switch, %. */
+int tui_override_pct(const struct tui *t);
+/* A line in the messages pane, as a source reports. */
+void tui_say(struct tui *t, const char *msg);
 
 #endif

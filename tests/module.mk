@@ -30,6 +30,17 @@ regress: $(S42)
 	  $(S42) run "$$f" --max-blocks 100000 --dump >/dev/null 2>&1; st=$$?; \
 	  if [ $$st -gt 3 ]; then echo "FAIL regress $$f: status $$st"; exit 1; fi; n=$$((n+1)); \
 	done; echo "regress: $$n passed, 0 failed"
+	@$(MB_REPLAY) tests/fuzz/corpus/modbus/*
+
+# The Modbus request handler's fuzz harness, replayed without libFuzzer on
+# its seeds and on inputs that once crashed it (tests/fuzz/corpus/modbus/).
+MB_REPLAY := $(BUILD)/tests/fuzz/replay-modbus
+$(MB_REPLAY): tests/fuzz/fuzz_modbus.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay -Iinclude $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
+regress: $(MB_REPLAY)
+# built with the objects' flags (make asan builds, then tests with plain CFLAGS)
+unit-bin: $(MB_REPLAY)
 
 # SIGKILL at many points of a cycle with M15, then restart; damaged states.
 restart: $(S42)
@@ -67,6 +78,15 @@ valgrind: $(S42)
 tui: $(S42)
 	sh tests/tui/run.sh $(S42)
 
+# The Modbus server: a libmodbus client, malformed frames, mbpoll.
+MB_CLIENT := $(BUILD)/tests/modbus/client
+$(MB_CLIENT): tests/modbus/client.c vm/errors.h
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) -Ivm $(MODBUS_CFLAGS) $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $< $(MODBUS_LIBS) -lm
+unit-bin: $(MB_CLIENT)
+modbus: $(S42) $(MB_CLIENT)
+	sh tests/modbus/run.sh $(S42) $(MB_CLIENT)
+
 shared: $(S42)
 	@if [ -d $(SHARED)/conformance/cases ]; then \
 	  sh tests/shared.sh $(S42) $(SHARED); \
@@ -76,14 +96,14 @@ shared: $(S42)
 # that long, from the committed seeds in tests/fuzz/corpus/<harness>/ (new
 # inputs go to $(BUILD)/fuzz/corpus-<harness>/); crashes land in $(BUILD)/fuzz/.
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := compile vm operator toolmodel
+FUZZ_TARGETS := compile vm operator toolmodel modbus
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc -Ivm -Idisplay -Iinclude -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
 FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c src/cairo_dl.c,$(SRC_SRCS))
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRCS) $(wildcard src/*.h vm/*.h display/*.h)
 	@mkdir -p $(@D)
-	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) -lm -ldl
+	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) $(MODBUS_LIBS) -lm -ldl
 # the tool-model parser alone (plugins/toothsearch/toolmodel.c)
 $(BUILD)/fuzz/fuzz_toolmodel: tests/fuzz/fuzz_toolmodel.c $(TS_DIR)/toolmodel.c $(TS_DIR)/toolmodel.h
 	@mkdir -p $(@D)

@@ -23,6 +23,7 @@ Suite *suite_screen(void);
 Suite *suite_plugin(void);
 Suite *suite_toolmodel(void);
 Suite *suite_tuitext(void);
+Suite *suite_modbus(void);
 
 /* A program compiled from a C string, with its diagnostics. */
 struct tprog {

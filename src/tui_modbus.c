@@ -1,0 +1,116 @@
+/* s42 tui --modbus: the Modbus TCP server (src/modbus.c) as one more
+ * source of the terminal's poll() loop.  A client's keys are the panel's
+ * keys (tui_press), its feed override the panel's switch (tui_override), and
+ * the map shows what the terminal shows, positions mid-block included. */
+#include "tui_modbus.h"
+#include "modbus.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct tui_mb {
+  struct mb_server *mb;
+  struct mb_machine mm;
+  struct tui *t;
+  int told;                        /* the address is in the messages */
+};
+
+static int set_override(void *host, int pct)
+{
+  struct tui_mb *x = host;
+  return x->t ? tui_override(x->t, pct) : -1;
+}
+
+/* Mirror the terminal's machine into what the server reads. */
+static void update(void *ctx, struct tui *t)
+{
+  struct tui_mb *x = ctx;
+  x->t = t;
+  if (!x->told) {
+    char m[160];
+    snprintf(m, sizeof m, "Modbus TCP on %s: a client's Пуск, Стоп, ПС, cycle exit and reset are the panel's",
+             mb_address(x->mb));
+    tui_say(t, m);
+    x->told = 1;
+  }
+  const struct session *s = tui_session(t);
+  x->mm.s = (struct session *)s;   /* the server writes R0-R113 only while the cycle does not run */
+  x->mm.idle = s == NULL;
+  x->mm.override_pct = tui_override_pct(t);
+  struct tui_motion m;
+  tui_motion(t, &m);
+  x->mm.feed = m.feed;
+  memset(&x->mm.motion, 0, sizeof x->mm.motion);
+  if (!m.active)
+    return;
+  double now = mb_now();
+  x->mm.motion.active = 1;
+  x->mm.motion.held = m.held;
+  x->mm.motion.held_frac = m.frac;
+  x->mm.motion.start = now - m.frac * m.dur;
+  x->mm.motion.end = x->mm.motion.start + m.dur;
+  memcpy(x->mm.motion.d, m.d, sizeof m.d);
+  x->mm.motion.feed = m.feed;
+  x->mm.motion.block = m.block;
+}
+
+static int poll_timeout(void *ctx, int want_ms)
+{
+  struct tui_mb *x = ctx;
+  return mb_timeout(x->mb, want_ms);
+}
+
+static int fds(void *ctx, struct pollfd *pfd, int max)
+{
+  struct tui_mb *x = ctx;
+  return mb_fds(x->mb, pfd, max);
+}
+
+static void ready(void *ctx, struct tui *t, const struct pollfd *pfd, int n)
+{
+  struct tui_mb *x = ctx;
+  update(ctx, t);
+  mb_serve(x->mb, &x->mm, pfd, n);
+  static const enum tui_key keys[] = {
+    [MB_KEY_PUSK] = TUI_PUSK, [MB_KEY_STOP] = TUI_STOP, [MB_KEY_PS] = TUI_PS,
+    [MB_KEY_EXIT] = TUI_EXIT, [MB_KEY_RESET] = TUI_RESET,
+  };
+  for (int k; (k = mb_key(x->mb)) != MB_KEY_NONE;) {
+    tui_press(t, keys[k]);
+    update(ctx, t);
+  }
+}
+
+int tui_modbus_open(const char *addr, struct tui_source *src, char *err, size_t n, int *usage)
+{
+  struct tui_mb *x = calloc(1, sizeof *x);
+  if (!x) {
+    snprintf(err, n, "out of memory");
+    *usage = 0;
+    return -1;
+  }
+  if (!(x->mb = mb_open(addr, err, n, usage))) {
+    free(x);
+    return -1;
+  }
+  x->mm.set_override = set_override;
+  x->mm.host = x;
+  x->mm.idle = 1;
+  memset(src, 0, sizeof *src);
+  src->ctx = x;
+  src->fds = fds;
+  src->ready = ready;
+  src->update = update;
+  src->poll_timeout = poll_timeout;
+  return 0;
+}
+
+void tui_modbus_close(struct tui_source *src)
+{
+  struct tui_mb *x = src->ctx;
+  if (!x)
+    return;
+  mb_close(x->mb);
+  free(x);
+  src->ctx = NULL;
+}

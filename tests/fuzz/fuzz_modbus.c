@@ -1,0 +1,101 @@
+/* libFuzzer harness for the Modbus request handler (src/modbus.h) without
+ * sockets: the input is a byte stream as a client would send it, cut into
+ * frames by mb_frame and answered by mb_dev_request against a live session;
+ * the keys pressed are taken and the machine steps between frames. */
+#include "compile.h"
+#include "modbus.h"
+#include "session.h"
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+static const char prog_src[] =
+  "№1 G01 X+1000 F600 ^\n№2 G20 ^\n№3 PP5 ^\n№4 P1 ^\n№5 R5+100/R1 ^\n№6 G04 X+1 M02 ^\n";
+
+static void press(struct session *s, struct mb_machine *m, int k, const struct program *p)
+{
+  switch (k) {
+  case MB_KEY_PUSK:
+    if (m->idle)
+      m->idle = 0;
+    else if (sess_resume(s) && sess_key_pusk(s) && s->state == SE_END)
+      sess_init(s, p);
+    break;
+  case MB_KEY_STOP: sess_key_stop(s); break;
+  case MB_KEY_PS: sess_key_ps(s); break;
+  case MB_KEY_EXIT: sess_key_exit(s); break;
+  case MB_KEY_RESET:
+    sess_init(s, p);
+    s->vm.start_all = 1;
+    s->vm.max_blocks = 2000;
+    m->idle = 1;
+    break;
+  default: break;
+  }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+  static struct program p;
+  static int compiled;
+  if (!compiled) {
+    struct diag_list d;
+    prog_init(&p);
+    diag_init(&d, "fuzz.kp");
+    if (comp_program(prog_src, sizeof prog_src - 1, &d, &p))
+      abort();
+    diag_free(&d);
+    compiled = 1;
+  }
+  if (size < 1)
+    return 0;
+  struct session *s = malloc(sizeof *s);
+  struct mb_dev *dev = malloc(sizeof *dev);
+  if (!s || !dev) {
+    free(s);
+    free(dev);
+    return 0;
+  }
+  sess_init(s, &p);
+  s->vm.start_all = 1;
+  s->vm.max_blocks = 2000;
+  struct mb_machine m;
+  memset(&m, 0, sizeof m);
+  m.s = s;
+  m.idle = data[0] & 1;
+  if (data[0] & 2) {           /* a paced block under way */
+    m.motion.active = 1;
+    m.motion.held = (data[0] >> 2) & 1;
+    m.motion.held_frac = 0.5;
+    m.motion.start = 0;
+    m.motion.end = 2;
+    m.motion.d[0] = 1000;
+    m.motion.feed = 600;
+    m.motion.block = 1;
+  }
+  mb_dev_init(dev, &m);
+  data++;
+  size--;
+  uint8_t rsp[MB_FRAME_MAX];
+  double now = 0.5;
+  while (size) {
+    long n = mb_frame(data, size);
+    if (n <= 0)
+      break;                   /* malformed (closed) or truncated (times out) */
+    int r = mb_dev_request(dev, data, (size_t)n, rsp, now);
+    if (r < 9 || r > MB_FRAME_MAX || memcmp(rsp, data, 4) != 0 || (rsp[4] << 8 | rsp[5]) + 6 != r)
+      abort();                 /* a reply must be a well-formed frame */
+    data += n;
+    size -= (size_t)n;
+    now += 0.1;
+    for (int k; (k = mb_dev_key(dev)) != MB_KEY_NONE;)
+      press(s, &m, k, &p);
+    if (!m.idle && s->state == SE_START)
+      sess_run(s);
+  }
+  free(dev);
+  free(s);
+  return 0;
+}

@@ -1,0 +1,189 @@
+#!/bin/sh
+# The Modbus server (contracts.md sec. 6): a libmodbus client runs a program
+# through Modbus alone, malformed frames while another client measures its
+# round trips (raw.py), and mbpoll, a client no one here wrote, drives
+# bundled programs from Пуск to M2.  Every wait has a time limit.
+#   run.sh S42 CLIENT
+s42=$1
+client=$2
+py=${PYTHON:-python3}
+dir=$(dirname "$0")
+tmp=$(mktemp -d)
+SPID=
+passes=0
+fails=0
+cleanup() { [ -n "$SPID" ] && kill -KILL "$SPID" 2>/dev/null; rm -rf "$tmp"; }
+trap cleanup EXIT
+trap 'exit 1' INT TERM
+ok() { passes=$((passes + 1)); }
+fail() { echo "FAIL modbus: $*"; fails=$((fails + 1)); }
+
+# start ARGS...: s42 run ARGS --modbus on a free port; sets PORT and SPID.
+start() {
+  tries=0
+  while [ $tries -lt 20 ]; do
+    PORT=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
+    rm -f "$tmp/err"
+    "$s42" run "$@" --modbus "127.0.0.1:$PORT" >"$tmp/out" 2>"$tmp/err" &
+    SPID=$!
+    i=0
+    while [ $i -lt 100 ]; do
+      grep -q "Modbus TCP on 127.0.0.1:$PORT" "$tmp/err" 2>/dev/null && return 0
+      kill -0 "$SPID" 2>/dev/null || break
+      sleep 0.05
+      i=$((i + 1))
+    done
+    kill -KILL "$SPID" 2>/dev/null
+    wait "$SPID"
+    st=$?
+    SPID=
+    if [ $st -eq 4 ] && grep -q "in use" "$tmp/err"; then tries=$((tries + 1)); continue; fi
+    fail "the server did not start (status $st): $(cat "$tmp/err")"
+    return 1
+  done
+  fail "no free port in 20 tries"
+  return 1
+}
+
+# stop: SIGTERM, then the exit status in STATUS (SIGKILL after 5 s).
+stop() {
+  kill -TERM "$SPID" 2>/dev/null
+  ( sleep 5; kill -KILL "$SPID" ) >/dev/null 2>&1 &
+  wd=$!
+  wait "$SPID"
+  STATUS=$?
+  kill "$wd" 2>/dev/null
+  wait "$wd" 2>/dev/null
+  SPID=
+}
+
+# mbp ARGS...: mbpoll once against the server, 0-based addresses.
+mbp() { timeout 10 mbpoll -m tcp -p "$PORT" -0 -1 -o 2 "$@" 2>&1; }
+# value REF ARGS...: the value mbpoll reads at REF
+value() { ref=$1; shift; mbp -r "$ref" "$@" 127.0.0.1 | sed -n "s/^\[$ref\]:[[:space:]]*//p"; }
+# wait_state N: poll input register 2 with mbpoll until it is N (10 s)
+wait_state() {
+  i=0
+  while [ $i -lt 100 ]; do
+    [ "$(value 2 -t 3)" = "$1" ] && return 0
+    sleep 0.1
+    i=$((i + 1))
+  done
+  return 1
+}
+
+# 1. the libmodbus client: loop.kp through Modbus alone (paced, to see it run)
+if start "$dir/loop.kp" --realtime; then
+  if timeout 60 "$client" "$PORT" >"$tmp/client"; then ok; else fail "the libmodbus client test"; fi
+  cat "$tmp/client"
+  stop
+  [ "$STATUS" = 0 ] && ok || fail "SIGTERM after M2: status $STATUS, expected 0"
+fi
+
+# 2. malformed frames while another client measures its round trips
+if start "$dir/loop.kp" --realtime; then
+  if timeout 90 "$py" "$dir/raw.py" "$PORT"; then ok; else fail "the malformed-frame test"; fi
+  kill -0 "$SPID" 2>/dev/null && ok || fail "the server died under malformed frames"
+  stop
+  [ "$STATUS" = 3 ] && ok || fail "SIGTERM before Пуск: status $STATUS, expected 3"
+fi
+
+# 3. bad addresses and a port in use
+"$s42" run "$dir/loop.kp" --modbus 127.0.0.1:99999 2>"$tmp/e"; st=$?
+[ $st = 2 ] && ok || fail "--modbus 127.0.0.1:99999: status $st, expected 2"
+"$s42" run "$dir/loop.kp" --modbus=no.such.host.invalid:1502 2>"$tmp/e"; st=$?
+[ $st = 2 ] && ok || fail "--modbus=no.such.host.invalid:1502: status $st, expected 2"
+if start "$dir/loop.kp"; then
+  timeout 10 "$s42" run "$dir/loop.kp" --modbus "127.0.0.1:$PORT" 2>"$tmp/e"; st=$?
+  [ $st = 4 ] && grep -q "in use" "$tmp/e" && ok || fail "a port in use: status $st, expected 4: $(cat "$tmp/e")"
+  stop
+fi
+
+# 4. mbpoll
+if ! command -v mbpoll >/dev/null 2>&1; then
+  echo "modbus: mbpoll is not installed (Debian package mbpoll): its tests were skipped"
+else
+  # parameters and a torn write
+  if start "$dir/loop.kp"; then
+    [ "$(value 0 -t 3:hex)" = 0x0100 ] && ok || fail "mbpoll: map version"
+    mbp -B -t 4:float -r 602 127.0.0.1 4.5 >/dev/null && ok || fail "mbpoll: write R1 as float32"
+    [ "$(value 602 -B -t 3:float)" = 4.5 ] && ok || fail "mbpoll: R1 reads $(value 602 -B -t 3:float)"
+    [ "$(value 104 -t 3:hex)" = 0x4012 ] && ok || fail "mbpoll: R1 as float64 does not begin 0x4012"
+    out=$(mbp -B -t 4:float -r 101 127.0.0.1 1.0) && fail "mbpoll: a torn write (float32 into a float64) was taken"
+    echo "$out" | grep -q "Illegal data address" && ok || fail "mbpoll: torn write: $out"
+    out=$(mbp -B -t 4:int -r 100 127.0.0.1 7) && fail "mbpoll: half a float64 was taken"
+    echo "$out" | grep -q "Illegal data address" && ok || fail "mbpoll: half a float64: $out"
+    stop
+  fi
+  # programs from programs/ from start to M2, driven only by mbpoll commands
+  for prog in drill_point tap_chamfer; do
+    start "programs/$prog.kp" --dump || continue
+    [ "$(value 2 -t 3)" = 0 ] && ok || fail "mbpoll $prog: not idle before Пуск"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null || fail "mbpoll $prog: Пуск"
+    if [ $prog = tap_chamfer ]; then   # a G20 stop: Пуск again
+      wait_state 3 && ok || fail "mbpoll $prog: no G20 wait"
+      [ "$(value 3 -t 3)" = 3 ] && ok || fail "mbpoll $prog: the wait is not at N3"
+      mbp -t 0 -r 0 127.0.0.1 1 >/dev/null || fail "mbpoll $prog: second Пуск"
+    fi
+    wait_state 5 && ok || fail "mbpoll $prog: never reached M2 (state $(value 2 -t 3))"
+    pos=$(mbp -B -t 3:int -r 10 -c 4 127.0.0.1 | sed -n 's/^\[1[0-6]\]:[[:space:]]*//p' | tr '\n' ' ')
+    stop
+    [ "$STATUS" = 0 ] && ok || fail "mbpoll $prog: status $STATUS after M2, expected 0"
+    want=$("$py" -c "import json,sys; p=json.load(open(sys.argv[1]))['pos']; print(p['x'],p['y'],p['z'],p['a'],'')" "$tmp/out" 2>/dev/null)
+    [ -n "$want" ] && [ "$pos" = "$want" ] && ok || fail "mbpoll $prog: positions '$pos', the dump says '$want'"
+  done
+fi
+
+# 5. s42 tui --modbus in tmux: a client's keys are the panel's keys, the map
+# shows what the terminal shows
+if ! command -v mbpoll >/dev/null 2>&1 || ! command -v tmux >/dev/null 2>&1; then
+  echo "modbus: mbpoll or tmux is not installed: the terminal's Modbus tests were skipped"
+else
+  sock="$tmp/tmux"
+  tm() { tmux -S "$sock" "$@"; }
+  screen_has() {   # screen_has TEXT: within 5 s
+    i=0
+    while [ $i -lt 50 ]; do
+      tm capture-pane -p -t mb 2>/dev/null | tr -d '\n' | grep -q "$1" && return 0
+      sleep 0.1
+      i=$((i + 1))
+    done
+    return 1
+  }
+  PORT=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
+  tm new -d -s mb -x 120 -y 40 "LANG=C.UTF-8 '$s42' tui programs/drill_point.kp --modbus 127.0.0.1:$PORT; echo \$? >'$tmp/tui-st'; sleep 30"
+  if screen_has "Modbus TCP on 127.0.0.1:$PORT"; then
+    ok
+    [ "$(value 2 -t 3)" = 0 ] && ok || fail "tui: not idle before Пуск"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    screen_has "Пуск: the cycle starts" && ok || fail "tui: a client's Пуск did not start the cycle"
+    wait_state 1 && ok || fail "tui: run state not 1 after Пуск"
+    [ "$(value 3 -t 3)" -ge 40 ] 2>/dev/null && ok || fail "tui: block number $(value 3 -t 3) while in sub 40"
+    mbp -t 0 -r 1 127.0.0.1 1 >/dev/null
+    screen_has "feed hold" && ok || fail "tui: a client's Стоп was not a feed hold"
+    wait_state 2 && ok || fail "tui: run state not 2 (stopped) after Стоп"
+    mbp -t 4 -r 0 127.0.0.1 50 >/dev/null
+    screen_has "feed override 50 %" && ok || fail "tui: the override write did not reach the panel"
+    [ "$(value 0 -t 4)" = 50 ] && ok || fail "tui: holding register 0 reads $(value 0 -t 4), expected 50"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    screen_has "the motion goes on" && ok || fail "tui: Пуск after Стоп did not resume"
+    mbp -t 0 -r 4 127.0.0.1 1 >/dev/null
+    screen_has "reset: the machine is idle" && ok || fail "tui: reset"
+    wait_state 0 && ok || fail "tui: run state not 0 after reset"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    wait_state 1 && ok || fail "tui: Пуск after reset"
+    tm send-keys -t mb f            # as fast as possible: to M2
+    wait_state 5 && ok || fail "tui: never reached M2 (state $(value 2 -t 3))"
+    tm send-keys -t mb q
+    i=0; while [ ! -s "$tmp/tui-st" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+    [ "$(cat "$tmp/tui-st" 2>/dev/null)" = 0 ] && ok || fail "tui: status $(cat "$tmp/tui-st" 2>/dev/null) after q"
+  else
+    fail "tui --modbus did not start: $(tm capture-pane -p -t mb 2>&1 | head -5)"
+  fi
+  tm kill-server 2>/dev/null
+  "$s42" tui programs/drill_point.kp --modbus 127.0.0.1:99999 </dev/null >/dev/null 2>"$tmp/e"; st=$?
+  [ $st = 2 ] && grep -q 99999 "$tmp/e" && ok || fail "tui --modbus 127.0.0.1:99999: status $st, expected 2"
+fi
+
+echo "modbus: $passes passed, $fails failed"
+[ $fails = 0 ]

@@ -1,0 +1,296 @@
+/* The Modbus device without sockets (src/modbus.h): golden words of our
+ * big-endian encoders, MBAP framing, and requests against a session --
+ * reads, key presses, parameter writes, the exceptions, the counter. */
+#include "suites.h"
+#include "errors.h"
+#include "modbus.h"
+#include "session.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static struct tprog t;
+static struct session *s;
+static struct mb_machine mm;
+static struct mb_dev dev;
+static uint8_t rsp[MB_FRAME_MAX];
+
+static void setup(void)
+{
+  memset(&t, 0, sizeof t);
+  prog_init(&t.p);
+  diag_init(&t.d, "t.kp");
+  s = calloc(1, sizeof *s);
+  tp_compile(&t, "№1 G01 X+1000 F600 ^\n№2 R5+100/R1 ^\n№3 M02 ^\n");
+  ck_assert_msg(t.rc == 0, "%s", tp_diags(&t.d));
+  sess_init(s, &t.p);
+  memset(&mm, 0, sizeof mm);
+  mm.s = s;
+  mb_dev_init(&dev, &mm);
+}
+
+static void teardown(void)
+{
+  tp_free(&t);
+  free(s);
+}
+
+/* Send a PDU (unit 1); returns the reply's PDU length, the PDU at rsp+7. */
+static int req(const uint8_t *pdu, size_t n, double now)
+{
+  uint8_t f[MB_FRAME_MAX];
+  f[0] = 0x12;
+  f[1] = 0x34;
+  f[2] = f[3] = 0;
+  f[4] = (uint8_t)((n + 1) >> 8);
+  f[5] = (uint8_t)(n + 1);
+  f[6] = 1;
+  memcpy(f + 7, pdu, n);
+  ck_assert_int_eq(mb_frame(f, 7 + n), (long)(7 + n));
+  int r = mb_dev_request(&dev, f, 7 + n, rsp, now);
+  ck_assert_int_ge(r, 9);
+  ck_assert_int_eq(rsp[0], 0x12);   /* the transaction id comes back */
+  ck_assert_int_eq(rsp[1], 0x34);
+  ck_assert_int_eq((rsp[4] << 8 | rsp[5]) + 6, r);
+  return r - 7;
+}
+
+static int exception(const uint8_t *pdu, size_t n)
+{
+  int l = req(pdu, n, 1.0);
+  if (l != 2 || !(rsp[7] & 0x80))
+    return 0;
+  ck_assert_int_eq(rsp[7], pdu[0] | 0x80);
+  return rsp[8];
+}
+
+static uint16_t reg(int i)
+{
+  return (uint16_t)(rsp[9 + 2 * i] << 8 | rsp[10 + 2 * i]);
+}
+
+START_TEST(golden_words)
+{
+  uint16_t w[4];
+  mb_put_f32(w, 1234.567f);
+  ck_assert_uint_eq(w[0], 0x449A);
+  ck_assert_uint_eq(w[1], 0x5225);
+  ck_assert(mb_get_f32(w) == 1234.567f);
+  mb_put_i32(w, 123456);
+  ck_assert_uint_eq(w[0], 0x0001);
+  ck_assert_uint_eq(w[1], 0xE240);
+  mb_put_u32(w, 123456);
+  ck_assert_uint_eq(w[0], 0x0001);
+  ck_assert_uint_eq(w[1], 0xE240);
+  mb_put_i32(w, -2);
+  ck_assert_uint_eq(w[0], 0xFFFF);
+  ck_assert_uint_eq(w[1], 0xFFFE);
+  ck_assert_int_eq(mb_get_i32(w), -2);
+  mb_put_i32(w, INT32_MIN);
+  ck_assert_int_eq(mb_get_i32(w), INT32_MIN);
+  mb_put_f64(w, 1234.567);
+  ck_assert_uint_eq(w[0], 0x4093);
+  ck_assert_uint_eq(w[1], 0x4A44);
+  ck_assert_uint_eq(w[2], 0x9BA5);
+  ck_assert_uint_eq(w[3], 0xE354);
+  ck_assert(mb_get_f64(w) == 1234.567);
+  mb_put_f64(w, -0.5);
+  ck_assert_uint_eq(w[0], 0xBFE0);
+  ck_assert_uint_eq(w[1] | w[2] | w[3], 0);
+}
+END_TEST
+
+START_TEST(framing)
+{
+  uint8_t f[12] = {0, 1, 0, 0, 0, 6, 1, 4, 0, 0, 0, 1};
+  ck_assert_int_eq(mb_frame(f, 0), 0);
+  ck_assert_int_eq(mb_frame(f, 5), 0);
+  ck_assert_int_eq(mb_frame(f, 11), 0);
+  ck_assert_int_eq(mb_frame(f, 12), 12);
+  f[3] = 1;                               /* protocol id */
+  ck_assert_int_eq(mb_frame(f, 4), -1);
+  f[3] = 0;
+  f[5] = 1;                               /* length below unit id + function */
+  ck_assert_int_eq(mb_frame(f, 6), -1);
+  f[4] = 1;
+  f[5] = 0;                               /* 256: above the largest PDU */
+  ck_assert_int_eq(mb_frame(f, 6), -1);
+  f[4] = 0;
+  f[5] = 254;
+  ck_assert_int_eq(mb_frame(f, 12), 0);   /* the largest: wait for it */
+}
+END_TEST
+
+START_TEST(idle_image)
+{
+  static const uint8_t rd[] = {4, 0, 0, 0, 22};
+  ck_assert_int_eq(req(rd, sizeof rd, 1.0), 2 + 44);
+  ck_assert_uint_eq(reg(0), MB_MAP_VERSION);
+  ck_assert_uint_eq(reg(2), MB_RUN);      /* a session not marked idle runs */
+  mm.idle = 1;
+  req(rd, sizeof rd, 1.0);
+  ck_assert_uint_eq(reg(2), MB_IDLE);
+  ck_assert_uint_eq(reg(5), 100);
+}
+END_TEST
+
+START_TEST(counter_and_alive)
+{
+  static const uint8_t rd[] = {4, 0, 1, 0, 1};
+  static const uint8_t di[] = {2, 0, 15, 0, 1};
+  mm.idle = 1;
+  req(rd, sizeof rd, 1.0);
+  uint16_t c = reg(0);
+  req(rd, sizeof rd, 1.1);                /* nothing changed, no heartbeat yet */
+  ck_assert_uint_eq(reg(0), c);
+  req(di, sizeof di, 1.1);
+  int alive = rsp[9] & 1;
+  req(rd, sizeof rd, 1.4);                /* the heartbeat */
+  ck_assert_uint_eq(reg(0), (uint16_t)(c + 1));
+  req(di, sizeof di, 1.4);
+  ck_assert_int_eq(rsp[9] & 1, !alive);
+  s->vm.reg[3] = 7;                       /* a change: an update at once */
+  req(rd, sizeof rd, 1.45);
+  ck_assert_uint_eq(reg(0), (uint16_t)(c + 2));
+}
+END_TEST
+
+START_TEST(parameters)
+{
+  mm.idle = 1;
+  uint8_t wr[6 + 8] = {16, 0, 104, 0, 4, 8};
+  uint16_t w[4];
+  mb_put_f64(w, 4.25);
+  for (int i = 0; i < 4; i++) {
+    wr[6 + 2 * i] = (uint8_t)(w[i] >> 8);
+    wr[7 + 2 * i] = (uint8_t)w[i];
+  }
+  ck_assert_int_eq(req(wr, sizeof wr, 1.0), 5);
+  ck_assert(s->vm.reg[1] == 4.25);
+  static const uint8_t rd64[] = {4, 0, 104, 0, 4}, rd32[] = {3, 2, 0x5A, 0, 2};   /* IR 104, HR 602 */
+  req(rd64, sizeof rd64, 1.0);
+  uint16_t g[4] = {reg(0), reg(1), reg(2), reg(3)};
+  ck_assert(mb_get_f64(g) == 4.25);
+  req(rd32, sizeof rd32, 1.0);
+  uint16_t h[2] = {reg(0), reg(1)};
+  ck_assert(mb_get_f32(h) == 4.25f);
+  /* a float32 write keeps the decimal the client meant */
+  uint8_t wr32[6 + 4] = {16, 2, 0x5A, 0, 2, 4};
+  mb_put_f32(w, 1234.567f);
+  wr32[6] = (uint8_t)(w[0] >> 8);
+  wr32[7] = (uint8_t)w[0];
+  wr32[8] = (uint8_t)(w[1] >> 8);
+  wr32[9] = (uint8_t)w[1];
+  ck_assert_int_eq(req(wr32, sizeof wr32, 1.0), 5);
+  ck_assert(s->vm.reg[1] == 1234.567);
+  /* refused while the cycle runs */
+  mm.idle = 0;
+  ck_assert_int_eq(exception(wr, sizeof wr), 6);
+  ck_assert(s->vm.reg[1] == 1234.567);
+}
+END_TEST
+
+START_TEST(exceptions)
+{
+  mm.idle = 1;
+  static const uint8_t unknown[] = {0x2B, 0x0E, 1, 0}, qty0[] = {4, 0, 0, 0, 0}, qty126[] = {3, 0, 0, 0, 126},
+                       gap[] = {4, 0, 22, 0, 1}, across[] = {4, 0, 20, 0, 90}, coil5[] = {5, 0, 5, 0xFF, 0},
+                       coilval[] = {5, 0, 0, 0x12, 0x34}, single_r[] = {6, 0, 100, 0, 1},
+                       ovr[] = {6, 0, 0, 0, 151}, cmd[] = {6, 0, 1, 0, 6}, shortpdu[] = {4, 0},
+                       half[] = {16, 0, 100, 0, 2, 4, 0, 0, 0, 0}, odd32[] = {16, 2, 0x59, 0, 2, 4, 0, 0, 0, 0},
+                       bc[] = {16, 0, 0, 0, 1, 4, 0, 5}, nan64[] = {16, 0, 100, 0, 4, 8, 0x7F, 0xF8, 0, 0, 0, 0, 0, 0},
+                       big64[] = {16, 0, 100, 0, 4, 8, 0x41, 0xA0, 0, 0, 0, 0, 0, 0};   /* 1.34e8 */
+  ck_assert_int_eq(exception(unknown, sizeof unknown), 1);
+  ck_assert_int_eq(exception(qty0, sizeof qty0), 3);
+  ck_assert_int_eq(exception(qty126, sizeof qty126), 3);
+  ck_assert_int_eq(exception(gap, sizeof gap), 2);
+  ck_assert_int_eq(exception(across, sizeof across), 2);
+  ck_assert_int_eq(exception(coil5, sizeof coil5), 2);
+  ck_assert_int_eq(exception(coilval, sizeof coilval), 3);
+  ck_assert_int_eq(exception(single_r, sizeof single_r), 2);
+  ck_assert_int_eq(exception(ovr, sizeof ovr), 3);
+  ck_assert_int_eq(exception(cmd, sizeof cmd), 3);
+  ck_assert_int_eq(exception(shortpdu, sizeof shortpdu), 3);
+  ck_assert_int_eq(exception(half, sizeof half), 2);
+  ck_assert_int_eq(exception(odd32, sizeof odd32), 2);
+  ck_assert_int_eq(exception(bc, sizeof bc), 3);
+  ck_assert_int_eq(exception(nan64, sizeof nan64), 3);
+  ck_assert_int_eq(exception(big64, sizeof big64), 3);
+  s->m.override_allowed = 0;              /* M25 */
+  static const uint8_t ovr50[] = {6, 0, 0, 0, 50};
+  ck_assert_int_eq(exception(ovr50, sizeof ovr50), 6);
+  /* another unit id: gateway target failed */
+  uint8_t f[12] = {0, 1, 0, 0, 0, 6, 7, 4, 0, 0, 0, 1};
+  ck_assert_int_eq(mb_dev_request(&dev, f, sizeof f, rsp, 1.0), 9);
+  ck_assert_int_eq(rsp[8], 0x0B);
+}
+END_TEST
+
+START_TEST(keys_in_order)
+{
+  static const uint8_t pusk[] = {5, 0, 0, 0xFF, 0}, rdc[] = {1, 0, 0, 0, 5}, multi[] = {15, 0, 1, 0, 4, 1, 0x0A},
+                       cmd5[] = {6, 0, 1, 0, 5}, rdcmd[] = {3, 0, 1, 0, 1};
+  ck_assert_int_eq(req(pusk, sizeof pusk, 1.0), 5);
+  req(rdc, sizeof rdc, 1.0);
+  ck_assert_int_eq(rsp[9], 0x01);         /* Пуск shows until taken */
+  req(multi, sizeof multi, 1.0);          /* coils 1..4 = 0,1,0,1: ПС and reset */
+  req(cmd5, sizeof cmd5, 1.0);
+  req(rdcmd, sizeof rdcmd, 1.0);
+  ck_assert_uint_eq(reg(0), MB_KEY_PUSK); /* the oldest key not taken */
+  ck_assert_int_eq(mb_dev_key(&dev), MB_KEY_PUSK);
+  ck_assert_int_eq(mb_dev_key(&dev), MB_KEY_PS);
+  ck_assert_int_eq(mb_dev_key(&dev), MB_KEY_RESET);
+  ck_assert_int_eq(mb_dev_key(&dev), MB_KEY_RESET);
+  ck_assert_int_eq(mb_dev_key(&dev), MB_KEY_NONE);
+  req(rdc, sizeof rdc, 1.0);
+  ck_assert_int_eq(rsp[9], 0);
+  for (int i = 0; i < MB_KEYQ; i++)
+    ck_assert_int_eq(req(pusk, sizeof pusk, 1.0), 5);
+  ck_assert_int_eq(exception(pusk, sizeof pusk), 6);   /* full: busy */
+}
+END_TEST
+
+START_TEST(positions_between_blocks)
+{
+  mm.idle = 0;
+  s->m.pos[0] = 1000;                     /* the block has ended in the model */
+  mm.motion.active = 1;
+  mm.motion.start = 10;
+  mm.motion.end = 11;
+  mm.motion.d[0] = 1000;
+  mm.motion.feed = 600;
+  mm.motion.block = 1;
+  static const uint8_t rd[] = {4, 0, 0, 0, 22}, di[] = {2, 0, 0, 0, 11};
+  req(rd, sizeof rd, 10.25);
+  uint16_t x[2] = {reg(10), reg(11)}, v[2] = {reg(18), reg(19)};
+  ck_assert_int_eq(mb_get_i32(x), 250);
+  ck_assert_int_eq(mb_get_i32(v), 600000);
+  ck_assert_uint_eq(reg(2), MB_RUN);
+  ck_assert_uint_eq(reg(3), 1);
+  req(di, sizeof di, 10.5);
+  ck_assert_int_eq(rsp[9] & 0x81, 0x81);  /* running, X moving */
+  mm.motion.held = 1;                     /* feed hold */
+  mm.motion.held_frac = 0.5;
+  req(rd, sizeof rd, 10.9);
+  uint16_t y[2] = {reg(10), reg(11)};
+  ck_assert_int_eq(mb_get_i32(y), 500);
+  ck_assert_uint_eq(reg(2), MB_STOPPED);
+}
+END_TEST
+
+Suite *suite_modbus(void)
+{
+  Suite *su = suite_create("modbus");
+  TCase *tc = tcase_create("device");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, golden_words);
+  tcase_add_test(tc, framing);
+  tcase_add_test(tc, idle_image);
+  tcase_add_test(tc, counter_and_alive);
+  tcase_add_test(tc, parameters);
+  tcase_add_test(tc, exceptions);
+  tcase_add_test(tc, keys_in_order);
+  tcase_add_test(tc, positions_between_blocks);
+  suite_add_tcase(su, tc);
+  return su;
+}
