@@ -218,6 +218,29 @@ static int fuse_operand(int op, int push)
   return row < 0 || col < 0 ? -1 : tab[row][col];
 }
 
+/* CMPC whose right operand is one push of a constant, an integer or a
+ * register: one instruction (the loop test of nearly every cycle). */
+static void fuse_compare(struct comp *c)
+{
+  size_t n = c->p->ncode;
+  if (n < 2)
+    return;
+  uint32_t rel = INS_A(c->p->code[n - 1]) & 7, push = c->p->code[n - 2];
+  long idx = -1;
+  int op = OP_CMPCK;
+  switch (INS_OP(push)) {
+  case OP_CONST: idx = (long)INS_A(push); break;
+  case OP_INT: idx = prog_const(c->p, (double)INS_A(push)); break;
+  case OP_REG: idx = (long)INS_A(push); op = OP_CMPCR; break;
+  default: return;
+  }
+  if (idx < 0 || (uint32_t)idx > INS_AMAX >> 3)
+    return;
+  c->p->code[n - 2] = INS(op, rel | (uint32_t)idx << 3);
+  c->p->cols[n - 2] = c->p->cols[n - 1];
+  c->p->ncode = n - 1;
+}
+
 static void gen(struct comp *c, const struct expr *e)
 {
   double v;
@@ -884,9 +907,10 @@ static void compile_block(struct comp *c)
     gen(c, b->cond);
     push(c, -1);
     size_t last = c->p->ncode - 1;
-    if (b->cond->kind == EX_CMP && c->p->ncode > 0 && INS_OP(c->p->code[last]) == OP_CMP)
+    if (b->cond->kind == EX_CMP && c->p->ncode > 0 && INS_OP(c->p->code[last]) == OP_CMP) {
       c->p->code[last] = INS(OP_CMPC, INS_A(c->p->code[last]));   /* CMP; COND */
-    else
+      fuse_compare(c);
+    } else
       emit(c, OP_COND, 0, PC->col);
   }
   /* Blocks with anything for the machine or the display always yield;

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #define MAGIC "S42STATE"
-#define VERSION 2u   /* 2: code addresses of the superinstructions; plugin states */
+#define VERSION 3u   /* 2: code addresses of the superinstructions; plugin states; 3: CMPCK/CMPCR */
 #define PLUG_STATES 8
 #define PLUG_STATE_MAX 512
 

@@ -3,7 +3,7 @@
 #include "opcodes.h"
 #include <string.h>
 
-static const char *const opd_names[] = {"", "K", "I", "REG", "SLOT", "SET", "ARR", "MASK", "REL", "PC", "BLK"};
+static const char *const opd_names[] = {"", "K", "I", "REG", "SLOT", "SET", "ARR", "MASK", "REL", "RELK", "RELR", "PC", "BLK"};
 
 static void operand(FILE *f, const struct program *p, uint32_t ins)
 {
@@ -30,9 +30,13 @@ static void operand(FILE *f, const struct program *p, uint32_t ins)
   }
   case OPD_ARR: fprintf(f, "%u.%u", (a & 3) + 1, a >> 2); break;
   case OPD_MASK: fprintf(f, "%u", a); break;
-  case OPD_REL: {
+  case OPD_REL: case OPD_RELK: case OPD_RELR: {
     static const char *const rel[8] = {"never", "<", "=", "<=", ">", "!=", ">=", "always"};
     fprintf(f, "%s", rel[a & 7]);
+    if (vm_ops[op].opd == OPD_RELR)
+      fprintf(f, " r%u", a >> 3);
+    else if (vm_ops[op].opd == OPD_RELK)
+      fprintf(f, " %u\t; %.17g", a >> 3, (a >> 3) < p->nk ? p->k[a >> 3] : 0.0);
     break;
   }
   case OPD_PC: {

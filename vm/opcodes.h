@@ -65,11 +65,13 @@
   OP(DIVR,   REG,  1, 1, "divide by register A (REG A; DIV)") \
   OP(SETP,   REG,  1, 0, "pop into parameter register A, E-RANGE outside -9999999..9999999 (SET with a parameter's rule)") \
   OP(CMPC,   REL,  2, 0, "the block's jump condition is the relation A between two values (CMP A; COND)") \
+  OP(CMPCK,  RELK, 1, 0, "the block's jump condition is the relation A&7 between a value and constant K[A>>3] (CONST; CMPC)") \
+  OP(CMPCR,  RELR, 1, 0, "the block's jump condition is the relation A&7 between a value and register A>>3 (REG; CMPC)") \
   OP(CJMP,   PC,   0, 0, "close the block's transaction, then jump to A (COMMIT; JMP)") \
   OP(CJCOND, PC,   0, 0, "close the block's transaction, then jump to A if the block's condition held (COMMIT; JCOND)")
 
 enum vm_opd { OPD_NONE, OPD_K, OPD_I, OPD_REG, OPD_SLOT, OPD_SET, OPD_ARR,
-              OPD_MASK, OPD_REL, OPD_PC, OPD_BLK };
+              OPD_MASK, OPD_REL, OPD_RELK, OPD_RELR, OPD_PC, OPD_BLK };
 
 enum vm_op {
 #define OP_ENUM(name, opd, pop, push, doc) OP_##name,

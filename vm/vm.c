@@ -426,6 +426,16 @@ enum vm_event vm_run(struct vm *vm)
         vm->jflag = (uint8_t)vm_rel(a, b, INS_A(ins));
         vmbreak;
       }
+      vmcase(CMPCK) {
+        a = POP();
+        vm->jflag = (uint8_t)vm_rel(a, k[INS_A(ins) >> 3], INS_A(ins) & 7);
+        vmbreak;
+      }
+      vmcase(CMPCR) {
+        a = POP();
+        vm->jflag = (uint8_t)vm_rel(a, vm->reg[INS_A(ins) >> 3], INS_A(ins) & 7);
+        vmbreak;
+      }
       vmcase(CJMP) {
         vm->nundo = 0;
         vm->arr_saved = 0;

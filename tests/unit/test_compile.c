@@ -259,6 +259,41 @@ START_TEST(disasm_arrays_pp_m20)
 }
 END_TEST
 
+START_TEST(disasm_compare_fused)
+{
+  /* a loop test against a constant and against a register: one instruction */
+  expect_disasm(
+    "N1 R1+R1+1 P(R1:M:1000000)1\n"
+    "N2 P(R1:BR:R2)1\n"
+    "N3 M2\n",
+    "; 3 blocks, 18 instructions, 1 constants, entry 0000\n"
+    "\n"
+    "; N1 line 1: N1 R1+R1+1 P(R1:M:1000000)1\n"
+    "0000  BLOCK   0\n"
+    "0001  REG     r1\n"
+    "0002  ADDI    1\n"
+    "0003  SETP    r1\n"
+    "0004  REG     r1\n"
+    "0005  CMPCK   < 0\t; 1000000\n"
+    "0006  SYNC\n"
+    "0007  CJCOND  0000\t; N1\n"
+    "\n"
+    "; N2 line 2: N2 P(R1:BR:R2)1\n"
+    "0008  BLOCK   1\n"
+    "0009  REG     r1\n"
+    "0010  CMPCR   >= r2\n"
+    "0011  SYNC\n"
+    "0012  CJCOND  0000\t; N1\n"
+    "\n"
+    "; N3 line 3: N3 M2\n"
+    "0013  BLOCK   2\n"
+    "0014  MACH\n"
+    "0015  COMMIT\n"
+    "0016  END\n"
+    "0017  END\n");
+}
+END_TEST
+
 START_TEST(disasm_registers_and_late_condition)
 {
   expect_disasm(
@@ -736,6 +771,7 @@ Suite *suite_compile(void)
   tcase_add_test(tc, disasm_sub_call);
   tcase_add_test(tc, disasm_expr_and_condition);
   tcase_add_test(tc, disasm_folding);
+  tcase_add_test(tc, disasm_compare_fused);
   tcase_add_test(tc, disasm_arrays_pp_m20);
   tcase_add_test(tc, disasm_registers_and_late_condition);
   tcase_add_test(tc, fold_arithmetic);

@@ -292,6 +292,12 @@ START_TEST(superinstructions_same_errors)
   ck_assert_double_eq(R(1), 10);
   ck_assert_double_eq(R(2), -0.5);
   ck_assert_uint_eq(vm->blocks, 13);
+  /* the same against a register (CMPCR) and a fractional constant (CMPCK),
+   * with the tolerance of equality kept */
+  ck_assert_int_eq(run("N1 R3+7 R1+0\nN2 R1+R1+1 P(R1:M:R3)2\nN3 R4+1/10+2/10 P(R4:R:3/10)5\nN4 R5+1\nN5 M2\n"),
+                   VM_EV_END);
+  ck_assert_double_eq(R(1), 7);
+  ck_assert_double_eq(R(5), 0);
 }
 END_TEST
 
