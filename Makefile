@@ -38,7 +38,7 @@ include bench/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: all check test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs
+.PHONY: all check test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -62,7 +62,20 @@ check: deps
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus
+test: unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus errors guide tutorial
+
+# programs/errors/: one program per error class, its diagnostics exactly
+errors: $(S42)
+	sh programs/errors/run.sh $(S42)
+
+# docs/guide.md: its examples are docs/guide/*, they run, its transcripts hold
+guide: $(S42)
+	sh tests/guide/run.sh $(S42)
+
+# README.md's five-minute tutorial, done as written on a copy of the
+# repository (its own make, tmux for s42 tui); the man page renders
+tutorial:
+	sh tests/tutorial/run.sh
 
 ASAN_MAKE = $(MAKE) BUILD=build-asan S42=build-asan/s42 \
 	  CFLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all" \
