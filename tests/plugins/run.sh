@@ -34,7 +34,7 @@ case $out in *'"r":[7,'*) ok ;; *) bad "S42_PLUGIN_PATH not searched" ;; esac
 "$S42" plugins --plugins "$tmp/p" | grep -q "^hello 1.0" && ok || bad "s42 plugins does not list hello"
 
 # refused fixtures are listed with the reason
-"$S42" plugins --plugins "$BUILD/test-plugins/wrongabi" | grep -q "built for plugin ABI 2.0; this s42 has ABI 1.0" &&
+"$S42" plugins --plugins "$BUILD/test-plugins/wrongabi" | grep -q "built for plugin ABI 2.0; this s42 has ABI 1.1" &&
   ok || bad "wrong ABI not reported"
 "$S42" plugins --plugins "$BUILD/test-plugins/noentry" | grep -q "has no entry symbol" && ok || bad "no entry not reported"
 
