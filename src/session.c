@@ -1012,6 +1012,6 @@ const char *sess_wait_text(const struct session *s)
     return w;
   /* a plugin's wait: its directive says what it is */
   static _Thread_local char buf[sizeof s->scr.dirtext + 160];
-  snprintf(buf, sizeof buf, "%s, the directive \"%s\"", w, s->scr.dirtext);
+  snprintf(buf, sizeof buf, "%s with the directive \"%s\"", w, s->scr.dirtext);
   return buf;
 }
