@@ -61,11 +61,13 @@ $(TS_BENCH): $(BUILD)/$(TS_DIR)/bench.o $(TS_LIB)
 
 .PHONY: toothsearch toothsearch-bin toothsearch-bench
 toothsearch-bin: $(TS_TEST) $(TS_BENCH)
-# every model in tests/toothsearch measured against its truth; under ASan
-# OpenCV's process-long allocations are not ours (lsan.supp)
-toothsearch: $(TS_TEST)
-	LSAN_OPTIONS="suppressions=$(CURDIR)/tests/toothsearch/lsan.supp$${LSAN_OPTIONS:+:$$LSAN_OPTIONS}" \
-	  $(TS_TEST) tests/toothsearch/*.tool
+# every model in tests/toothsearch measured against its truth, then the
+# plugin through s42 run against the truth of eight of them (plugin.sh);
+# under ASan OpenCV's process-long allocations are not ours (lsan.supp)
+TS_LSAN = LSAN_OPTIONS="suppressions=$(CURDIR)/tests/toothsearch/lsan.supp$${LSAN_OPTIONS:+:$$LSAN_OPTIONS}"
+toothsearch: $(TS_TEST) $(S42) $(PLUGIN_SOS)
+	$(TS_LSAN) $(TS_TEST) tests/toothsearch/*.tool
+	$(TS_LSAN) sh tests/toothsearch/plugin.sh $(S42)
 toothsearch-bench: $(TS_BENCH)
 	$(TS_BENCH) tests/toothsearch/t004_reamer_seed.tool tests/toothsearch/t150_saw_fine.tool
 
