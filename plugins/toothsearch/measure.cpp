@@ -631,6 +631,8 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
   }
 
   if (dump) {
+    // the annotated copy is colour: zlib's best halves it
+    const std::vector<int> png9 = {cv::IMWRITE_PNG_COMPRESSION, 9};
     for (int i = 0; i < K; i++) {
       std::string base = std::string(dump) + "/" + tag + "_shot" + std::to_string(i + 1);
       if (!cv::imwrite(base + ".png", shots[i].img8))
@@ -647,9 +649,19 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
         cv::circle(col, P(c), (int)std::lround(r * one), cv::Scalar(255, 160, 0), 1, cv::LINE_AA, sh);
       cv::drawMarker(col, cv::Point((int)std::lround(c.x), (int)std::lround(c.y)), cv::Scalar(0, 0, 255),
                      cv::MARKER_CROSS, 15, 1);
-      cv::line(col, P(at(b.tip + 6, 0)), P(at(b.tip + 40, 0)), cv::Scalar(0, 220, 255), 3, cv::LINE_AA, sh);
-      cv::putText(col, "probe", cv::Point((int)(c.x + b.tip + 8), (int)c.y - 8), cv::FONT_HERSHEY_SIMPLEX,
-                  0.4, cv::Scalar(0, 220, 255), 1, cv::LINE_AA);
+      // text kept inside the picture, centred on q, whatever the image size
+      const double fs = std::clamp(N / 1600.0, 0.3, 0.6);
+      auto label = [&](const std::string &text, cv::Point2d q, double scale, cv::Scalar colour) {
+        int base_line = 0;
+        cv::Size ts = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &base_line);
+        int lx = std::clamp((int)std::lround(q.x - ts.width / 2.0), 2, std::max(2, N - ts.width - 2));
+        int ly = std::clamp((int)std::lround(q.y + ts.height / 2.0), ts.height + 2, N - base_line - 2);
+        cv::putText(col, text, cv::Point(lx, ly), cv::FONT_HERSHEY_SIMPLEX, scale, colour, 1, cv::LINE_AA);
+      };
+      const double probe_out = std::min(b.tip + 34, 0.5 * N - 2);
+      cv::line(col, P(at(b.tip + 4, 0)), P(at(probe_out, 0)), cv::Scalar(0, 220, 255), 3, cv::LINE_AA, sh);
+      label("probe", at(0.5 * (b.tip + probe_out), 0) + cv::Point2d(0, -12 * fs / 0.4), fs,
+            cv::Scalar(0, 220, 255));
       if (!out.shot_faces[i].empty()) {
         for (int k = 0; k < cnt; k++) {
           double ang = out.shot_faces[i][k];
@@ -658,18 +670,18 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
           if (cnt <= 40) {
             char lab[32];
             std::snprintf(lab, sizeof lab, "%.3f", wrap360(ang - shots[i].a));
-            cv::Point2d q = at(b.tip + 22, ang);
-            cv::putText(col, lab, cv::Point((int)q.x - 18, (int)q.y + 4), cv::FONT_HERSHEY_SIMPLEX, 0.35,
-                        cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
+            label(lab, at(b.tip + 26 * fs / 0.4, ang), 0.9 * fs, cv::Scalar(0, 0, 255));
           }
         }
       }
       char head[160];
-      std::snprintf(head, sizeof head, "%s  A=%.3f  teeth %d  axis (%.2f, %.2f)", tag.c_str(), shots[i].a,
-                    cnt, c.x, c.y);
-      cv::putText(col, head, cv::Point(8, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 255, 0), 1,
-                  cv::LINE_AA);
-      if (!cv::imwrite(base + "_annotated.png", col))
+      std::snprintf(head, sizeof head, "%s  A=%.3f  teeth %d", tag.c_str(), shots[i].a, cnt);
+      cv::putText(col, head, cv::Point(6, (int)std::lround(30 * fs)), cv::FONT_HERSHEY_SIMPLEX, fs,
+                  cv::Scalar(0, 255, 0), 1, cv::LINE_AA);
+      std::snprintf(head, sizeof head, "axis (%.2f, %.2f) px", c.x, c.y);
+      cv::putText(col, head, cv::Point(6, (int)std::lround(60 * fs)), cv::FONT_HERSHEY_SIMPLEX, fs,
+                  cv::Scalar(0, 255, 0), 1, cv::LINE_AA);
+      if (!cv::imwrite(base + "_annotated.png", col, png9))
         io_fail = true;
     }
   }
