@@ -73,7 +73,7 @@ void scr_center(struct screen *s, const char *text)
 {
   uint32_t t[SCR_COLS];
   int n = scr_decode(text, t, SCR_COLS), idx;
-  s->p3 = 0;
+  s->p3 = s->p5 = 0;
   struct scr_line *l = next_line(s, &idx);
   put(l->ch, (SCR_COLS - n) / 2, t, n);
   s->last = idx;
@@ -83,7 +83,7 @@ void scr_prompt(struct screen *s, const char *text, int wrapped)
 {
   uint32_t t[64];
   int n = scr_decode(text, t, 64), idx;
-  s->p3 = 0;
+  s->p3 = s->p5 = 0;
   struct scr_line *l = next_line(s, &idx);
   if (wrapped && n > 24) {
     /* the text wraps at a space onto the next line, which gets the field */
@@ -231,6 +231,39 @@ void scr_p3_add(struct screen *s, const char *text)
     l->reg = atoi(q);
   }
   s->p3 = 1;
+  s->p5 = 0;
+}
+
+int scr_p5_set(struct screen *s, int teeth, const double *steps, int lead, double tk, double ug, int hand)
+{
+  if (teeth < 1 || teeth > SCR_P5_MAX || !steps || !isfinite(tk) || !isfinite(ug))
+    return -1;
+  for (int i = 0; i < teeth; i++)
+    if (!isfinite(steps[i]))
+      return -1;
+  struct scr_p5 *r = &s->res;
+  memset(r, 0, sizeof *r);
+  r->teeth = teeth;
+  memcpy(r->steps, steps, (size_t)teeth * sizeof *steps);
+  r->lead = lead != 0;
+  r->tk = tk;
+  r->ug = ug;
+  r->hand = hand > 0 ? 1 : hand < 0 ? -1 : 0;
+  s->p5 = 1;
+  s->mode = SCR_RESULTS;
+  return 0;
+}
+
+int scr_p5_page(struct screen *s, int delta)
+{
+  if (!s->p5)
+    return -1;
+  int pages = (s->res.teeth + SCR_P5_PAGE - 1) / SCR_P5_PAGE;
+  int p = s->res.page + (delta > 0 ? 1 : -1);
+  if (delta == 0 || p < 0 || p >= pages)
+    return -1;
+  s->res.page = p;
+  return 0;
 }
 
 void scr_set_directive(struct screen *s, const char *text)
@@ -275,6 +308,58 @@ static void put_ascii(uint32_t *line, int col, const char *t)
     line[col + i] = (unsigned char)t[i];
 }
 
+/* A P5 line: a label from column 1, an 8-character value at 25..32. */
+static void p5_line(uint32_t *line, const char *label, const char *value8)
+{
+  uint32_t t[SCR_COLS];
+  int n = scr_decode(label, t, SCR_COLS - 8);
+  put(line, 0, t, n);
+  if (value8) {
+    n = scr_decode(value8, t, 8);
+    put(line, SCR_COLS - n, t, n);
+  }
+}
+
+void scr_p5_render(const struct scr_p5 *r, int en, uint32_t g[SCR_ROWS][SCR_COLS])
+{
+  static const char *const lab[2][9] = {
+    {"ЗУБІВ", "КРОК ГВИНТА TK, мкм", "КУТ ГВИНТА UG, 0.001°", "ГВИНТ", "ПРАВИЙ", "ЛІВИЙ", "ПРЯМИЙ",
+     "КРОКИ, 0.001°", "не вим."},
+    {"TEETH", "LEAD TK, µm", "HELIX ANGLE UG, 0.001°", "HAND", "RIGHT", "LEFT", "STRAIGHT", "STEPS, 0.001°",
+     "not meas"},
+  };
+  const char *const *L = lab[en ? 1 : 0];
+  char v[9], w[40];
+  for (int row = 1; row <= SCR_WORK; row++)
+    memset(g[row], 0, sizeof g[row]);
+  scr_value8(r->teeth, v);
+  p5_line(g[1], L[0], v);
+  if (r->lead) {
+    scr_value8(r->tk, v);
+    p5_line(g[2], L[1], v);
+    scr_value8(r->ug, v);
+    p5_line(g[3], L[2], v);
+    p5_line(g[4], L[3], r->hand > 0 ? L[4] : r->hand < 0 ? L[5] : L[6]);
+  } else {
+    /* without M10 only the steps are measured: TK and UG keep their values */
+    snprintf(w, sizeof w, "%8s", L[8]);
+    p5_line(g[2], L[1], w);
+    p5_line(g[3], L[2], w);
+  }
+  int first = r->page * SCR_P5_PAGE, last = first + SCR_P5_PAGE;
+  if (last > r->teeth)
+    last = r->teeth;
+  /* the header: which steps are shown, of how many */
+  snprintf(w, sizeof w, "%d-%d/%d", first + 1, last, r->teeth);
+  p5_line(g[6], L[7], w);
+  for (int i = first; i < last; i++) {
+    char num[16];
+    snprintf(num, sizeof num, "%3d", i + 1);
+    scr_value8(r->steps[i], v);
+    p5_line(g[7 + i - first], num, v);
+  }
+}
+
 void scr_render(const struct screen *s, const double *regs, int en, uint32_t g[SCR_ROWS][SCR_COLS])
 {
   memset(g, 0, sizeof(uint32_t) * SCR_ROWS * SCR_COLS);
@@ -289,7 +374,9 @@ void scr_render(const struct screen *s, const double *regs, int en, uint32_t g[S
     snprintf(b, sizeof b, "N%d", s->block);
     put_ascii(g[0], SCR_COLS - (int)strlen(b), b);
   }
-  if (s->p3) {
+  if (s->p5) {
+    scr_p5_render(&s->res, en, g);
+  } else if (s->p3) {
     for (int i = 0; i < s->np3 && i < SCR_WORK; i++) {
       memcpy(g[1 + i], s->p3l[i].ch, sizeof g[1 + i]);
       if (s->p3l[i].reg >= 0 && s->p3l[i].reg <= 113) {

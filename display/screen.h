@@ -29,6 +29,20 @@ struct scr_p3 {                     /* one G29 line */
   int reg;                          /* parameter shown at the end, -1 none */
 };
 
+/* Display format P5: the results of a tooth-step search (language.md
+ * section 15): tooth count, lead TK, helix angle UG and hand (when M10
+ * measured them), then the circular steps eight to a page. */
+#define SCR_P5_MAX 150
+#define SCR_P5_PAGE 8
+struct scr_p5 {
+  int teeth;                        /* 1..SCR_P5_MAX */
+  int lead;                         /* tk, ug, hand were measured */
+  double tk, ug;                    /* µm, 0.001° */
+  int hand;                         /* 1 right, -1 left, 0 straight */
+  double steps[SCR_P5_MAX];         /* 0.001° */
+  int page;                         /* first step shown: page * SCR_P5_PAGE */
+};
+
 struct screen {
   int mode;
   int cyr;                          /* Cyrillic keyboard mode: the letter R */
@@ -40,6 +54,8 @@ struct screen {
   int en;                           /* English messages */
   int at_fixed;                     /* M28: the next dialog line goes to the fixed one */
   int p3;                           /* the work area shows the P3 display */
+  int p5;                           /* the work area shows the P5 results */
+  struct scr_p5 res;
   struct scr_p3 p3l[SCR_WORK];
   int np3;
   char dirtext[SCR_COLS * 4 + 1];   /* the directive as written, ((Rn drawn live */
@@ -73,6 +89,15 @@ void scr_field_type(struct screen *s, long long v);
 /* G29: start (or, after M15, extend) the P3 layout. */
 void scr_p3_clear(struct screen *s);
 void scr_p3_add(struct screen *s, const char *text);
+/* P5: show search results (the work area and the service line
+ * РЕЗУЛЬТАТИ); steps in 0.001°, n of them.  -1 when they cannot be shown
+ * (no teeth, too many, a value that is not a number). */
+int scr_p5_set(struct screen *s, int teeth, const double *steps, int lead, double tk, double ug, int hand);
+/* + and - on the P5 display: the next or previous eight steps.  Returns 0
+ * when the page changed, -1 when there is none that way (or no P5). */
+int scr_p5_page(struct screen *s, int delta);
+/* P5 into work lines 2..15 of a grid (a pure function of the results). */
+void scr_p5_render(const struct scr_p5 *r, int en, uint32_t g[SCR_ROWS][SCR_COLS]);
 /* M18: the directive as written; its ((Rn are drawn live by scr_render. */
 void scr_set_directive(struct screen *s, const char *text);
 void scr_clear_directive(struct screen *s);

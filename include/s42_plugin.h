@@ -1,4 +1,4 @@
-/* s42_plugin.h -- the s42 plugin ABI, version 1.0.  This header is the whole
+/* s42_plugin.h -- the s42 plugin ABI, version 1.1.  This header is the whole
  * of what a plugin author needs: a plugin includes nothing else of s42.
  *
  * A plugin is a shared object that exports one function,
@@ -20,7 +20,15 @@
  * its own size as its first member and grows only by appending members, so
  * a plugin built against an older 1.x header keeps working: the host reads
  * only the members the plugin's `size` covers, and a plugin must check
- * host->size before it calls a host service added after 1.0.
+ * host->size before it calls a host service added after 1.0.  The loader
+ * refuses a plugin built for a newer minor version than the host's, so a
+ * 1.1 plugin always meets a 1.1 host or a newer one.
+ *
+ * What 1.1 added (each marked "1.1" below): the run() status
+ * S42_WAIT_SECTION, the init() status S42_FAIL_USAGE and error(NULL, ...)
+ * as init()'s reason, the machine's own texts (S42_MSG_*), and the host
+ * services option(), text(), message() and results() (struct s42_results,
+ * display format P5).  A 1.0 plugin never sees any of it.
  *
  * Units are those of the 2С42: lengths in discretes (1 µm; A in 0.001°),
  * speeds in mm/min (deg/min for A), time in seconds.
@@ -52,7 +60,7 @@ extern "C" {
 #endif
 
 #define S42_ABI_MAJOR 1
-#define S42_ABI_MINOR 0
+#define S42_ABI_MINOR 1
 /* "s42-abi\1": guards against a stray symbol of the same name */
 #define S42_ABI_FINGERPRINT 0x7334322d61626901ull
 #define S42_PLUGIN_ENTRY_NAME "s42_plugin_entry"
@@ -68,7 +76,47 @@ enum s42_status {
   S42_OK = 0,
   S42_FAIL = -1,       /* after host->error(); the block has not run */
   S42_WAIT_PUSK = 1,   /* run(): wait for Пуск, then run() is called again */
-  S42_WAIT_PS = 2      /* run(): wait for ПС, then run() is called again */
+  S42_WAIT_PS = 2,     /* run(): wait for ПС, then run() is called again */
+  /* 1.1: run(): wait for Пуск while the operator brings the tool to the
+   * next section of a tooth-step search -- table (X) and spindle (A)
+   * moves that count in the position (the operator script's `section`;
+   * jogs in the terminal); then run() is called again.  A plain
+   * S42_WAIT_PUSK accepts jogs but not section moves. */
+  S42_WAIT_SECTION = 3,
+  /* 1.1: init(): the plugin cannot start because of what the user gave it
+   * on the command line (a missing --tool, a malformed file): s42 reports
+   * the reason (error(NULL, ...)) and stops before the run with exit
+   * status 2, bad usage.  Any other failure of init() is S42_FAIL. */
+  S42_FAIL_USAGE = -2
+};
+
+/* 1.1: the machine's own texts, for text(): the directives and messages of
+ * a tooth-step search (language.md section 15), in the language the
+ * operator chose (--lang).  Numbers are never reused. */
+enum s42_msg {
+  S42_MSG_PROBE_SECTION1 = 1,   /* "упор в перетин 1": probe into section 1, Пуск */
+  S42_MSG_SEARCH_SECTION1 = 2,  /* "пошук в перетині 1": the search runs there */
+  S42_MSG_PROBE_SECTION2 = 3,   /* "упорку в переріз 2": move to section 2, Пуск */
+  S42_MSG_SEARCH_SECTION2 = 4,  /* "пошук в перетині 2" */
+  S42_MSG_RETRACT_PROBE = 5,    /* "відвести упорку": retract, ПС, then Пуск */
+  S42_MSG_HAND_LEFT = 6,        /* measured a left-hand helix, G10 said right */
+  S42_MSG_HAND_RIGHT = 7        /* measured a right-hand helix, G11 said left */
+};
+
+/* 1.1: results of a tooth-step search for results(): the host shows them
+ * in display format P5 (service line РЕЗУЛЬТАТИ, tooth count, lead, angle,
+ * the circular steps eight at a time, + and - page through them).  It
+ * copies what it needs; the plugin's memory is not kept.  Setting TK, UG,
+ * the arrays and R99 is the plugin's business (set_param, load_array). */
+struct s42_results {
+  uint32_t size;          /* sizeof(struct s42_results) */
+  int teeth;              /* 1..150 */
+  const double *steps;    /* teeth circular steps, 0.001 degree, in the order
+                             the probe met the teeth */
+  int lead;               /* 1: tk, ug and hand were measured (M10) */
+  double tk;              /* lead, µm (0: straight flutes) */
+  double ug;              /* helix angle, 0.001 degree */
+  int hand;               /* the measured hand: 1 right, -1 left, 0 straight */
 };
 
 enum s42_axis { S42_X, S42_Y, S42_Z, S42_A };
@@ -152,7 +200,8 @@ struct s42_host {
   /* Let simulated time pass (a search's revolution, a return stroke). */
   void (*dwell)(struct s42_block *b, double seconds);
 
-  /* reports: error() before returning S42_FAIL; code is "E-OSC" etc. */
+  /* reports: error() before returning S42_FAIL; code is "E-OSC" etc.
+   * (1.1: in init(), with b NULL, error() gives the reason init fails) */
   void (*error)(struct s42_block *b, const char *code, const char *fmt, ...)
 #if defined(__GNUC__)
       __attribute__((format(printf, 3, 4)))
@@ -174,6 +223,26 @@ struct s42_host {
   /* the operator's display */
   void (*directive)(struct s42_block *b, const char *text);  /* NULL erases */
   void (*mode)(struct s42_block *b, int mode);               /* S42_MODE_* */
+
+  /* ---- 1.1 (check host->size before use; see the top of this file) ---- */
+
+  /* The value of a command-line option meant for plugins, or NULL when it
+   * was not given; valid for the whole run, callable from init() on.
+   * Names: "tool" (--tool FILE, the tool model of a tooth-step search),
+   * "dump-images" (--dump-images DIR: write the images a search took
+   * there), "lang" ("uk" or "en", never NULL). */
+  const char *(*option)(const char *name);
+  /* The machine's own text S42_MSG_* in the operator's language (UTF-8,
+   * at most 32 characters), or NULL for an unknown number.  Show it with
+   * directive() or message(). */
+  const char *(*text)(struct s42_block *b, int msg);
+  /* A message on the directive line (line 16) that hides the directive
+   * until the operator's next key, as the machine's own messages do. */
+  void (*message)(struct s42_block *b, const char *text);
+  /* Show search results in display format P5 and the service line
+   * РЕЗУЛЬТАТИ; the work area keeps them until a dialog (G27, G33) or a
+   * G29 display takes it.  Returns 0, or -1 for results it cannot show. */
+  int (*results)(struct s42_block *b, const struct s42_results *r);
 };
 
 /* The descriptor.  Callbacks other than init may be NULL. */
@@ -186,9 +255,13 @@ struct s42_plugin {
   uint32_t nfunctions;
   uint32_t flags;             /* S42_PL_* */
 
-  /* Called once, when a program first needs the plugin; dir is the
-   * directory the plugin was loaded from.  Returns S42_OK or S42_FAIL (then
-   * nothing else is called but fini is not either). */
+  /* Called once, when a program first needs the plugin (s42 run starts the
+   * plugins a program uses before its first block); dir is the directory
+   * the plugin was loaded from.  Returns S42_OK, or S42_FAIL (then nothing
+   * else is called, fini neither) -- 1.1: or S42_FAIL_USAGE.  1.1: before
+   * failing, host->error(NULL, code, fmt, ...) says why (code may be NULL);
+   * the reason reaches the user in the E-PLUGIN message or, for
+   * S42_FAIL_USAGE, on its own before the run. */
   int (*init)(const struct s42_host *host, const char *dir, void **self);
   void (*fini)(void *self);
 

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Run every programs/NAME.kp against NAME.expect.json with the conformance
 # runner: each program becomes a temporary case folder (program.kp,
-# operator.txt, expect.json), then shared/conformance/run.py compares.
+# operator.txt, tool.txt, expect.json), then shared/conformance/run.py compares.
 # Usage: programs/run_expect.sh [S42] [RUN_PY]   (from the repository root)
 set -e
 here=$(cd "$(dirname "$0")" && pwd)
@@ -16,5 +16,6 @@ for kp in "$here"/*.kp; do
   cp "$kp" "$tmp/$name/program.kp"
   cp "$here/$name.expect.json" "$tmp/$name/expect.json"
   [ -f "$here/$name.operator" ] && cp "$here/$name.operator" "$tmp/$name/operator.txt"
+  [ -f "$here/$name.tool" ] && cp "$here/$name.tool" "$tmp/$name/tool.txt"
 done
 python3 "$runpy" --s42 "$s42" "$tmp"

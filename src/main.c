@@ -36,7 +36,8 @@ static const char usage[] =
   "\n"
   "options of run, tui and plot:\n"
   "  --operator FILE    operator actions for a headless run\n"
-  "  --tool FILE        tool model for tooth-step search\n"
+  "  --tool FILE        tool model for tooth-step search (G10/G11)\n"
+  "  --dump-images DIR  write the probe images of each search there, plain and annotated\n"
   "  --trace            one line per executed block on stdout\n"
   "  --trace=json       the same as JSON Lines\n"
   "  --dump             the final machine state as one JSON object on stdout\n"
@@ -53,7 +54,7 @@ static const char usage[] =
   "3 the operator script had no fitting action, or the cycle was stopped; 4 I/O error\n";
 
 struct opts {
-  const char *program, *operator_file, *tool, *state, *plugins, *modbus, *out;
+  const char *program, *operator_file, *tool, *dump_images, *state, *plugins, *modbus, *out;
   int trace, json, dump, screen, restart, realtime, en;
   unsigned long long max_blocks;
 };
@@ -144,6 +145,7 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     }
     if (strcmp(a, "--operator") == 0) val = &o->operator_file;
     else if (strcmp(a, "--tool") == 0) val = &o->tool;
+    else if (strcmp(a, "--dump-images") == 0) val = &o->dump_images;
     else if (strcmp(a, "--state") == 0) val = &o->state;
     else if (strcmp(a, "--plugins") == 0) val = &o->plugins;
     else if (strcmp(a, "-o") == 0) val = &o->out;
@@ -189,6 +191,10 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     }
     *val = argv[++i];
   }
+  /* what plugins may ask for (host->option) */
+  plug_set_option("tool", o->tool);
+  plug_set_option("dump-images", o->dump_images);
+  plug_set_option("lang", o->en ? "en" : "uk");
   return 0;
 }
 
@@ -479,6 +485,10 @@ static int serve_wait(struct runner *r)
       ok = sess_jog(&r->s, a->axis, a->n);
     } else if (a->kind == OA_ANSWER) {
       ok = sess_answer(&r->s, a->n);
+    } else if (a->kind == OA_SECTION) {
+      ok = sess_section(&r->s, a->axis, a->n);
+      if (!ok && a->axis2 >= 0)
+        ok = sess_section(&r->s, a->axis2, a->n2);
     }
     if (ok) {
       if (r->lenient)
@@ -690,9 +700,6 @@ static int headless(const struct opts *opt, struct plot *plot)
     if (bad)
       return EXIT_USAGE;
   }
-  if (o.tool)
-    fprintf(stderr, "s42: warning: --tool %s is not used: tooth-step search is not in this build\n", o.tool);
-
   struct program p;
   struct diag_list d;
   char *src = NULL;
@@ -768,6 +775,26 @@ static int headless(const struct opts *opt, struct plot *plot)
     }
   }
   r.s.vm.watch = r.watch;
+  /* the plugins the program uses start now: one that cannot because of
+   * the command line (no --tool for G10) stops the run before it begins */
+  {
+    char why[300], nbuf[16];
+    size_t fb = 0;
+    if (sess_start_plugins(&r.s, why, sizeof why, &fb)) {
+      const struct prog_block *b = &p.blocks[fb];
+      fprintf(stderr, "s42: %s\n", why);
+      fprintf(stderr, "%s:%u:%u: note: %s: the first block that needs it\n", o.program, b->line, b->col,
+              bname(b->number ? b->number : -1, nbuf));
+      free(state_path);
+      free(r.watch);
+      free(r.runs);
+      ops_free(&r.ops);
+      prog_free(&p);
+      diag_free(&d);
+      free(src);
+      return EXIT_USAGE;
+    }
+  }
   int status = EXIT_END;
   const char *st = "end";
   struct dump_error de, *dep = NULL;
@@ -959,8 +986,6 @@ static int cmd_tui(int argc, char **argv)
     fprintf(stderr, "s42: --restart needs the program file\n");
     return EXIT_USAGE;
   }
-  if (o.tool)
-    fprintf(stderr, "s42: warning: --tool %s is not used: tooth-step search is not in this build\n", o.tool);
   struct tui_opts t;
   memset(&t, 0, sizeof t);
   t.plugins = plugins_init(o.plugins);

@@ -340,6 +340,36 @@ void plug_why_missing(const struct plug_set *ps, char kind, int number, char *ms
     snprintf(msg + k, n - k, " (give --plugins DIR or S42_PLUGIN_PATH)");
 }
 
+/* The options plugins may ask for, by name. */
+static struct {
+  const char *name, *value;
+} options[] = {{"tool", NULL}, {"dump-images", NULL}, {"lang", NULL}};
+
+void plug_set_option(const char *name, const char *value)
+{
+  for (size_t i = 0; i < sizeof options / sizeof options[0]; i++)
+    if (strcmp(options[i].name, name) == 0)
+      options[i].value = value;
+}
+
+const char *plug_option(const char *name)
+{
+  if (!name)
+    return NULL;
+  for (size_t i = 0; i < sizeof options / sizeof options[0]; i++)
+    if (strcmp(options[i].name, name) == 0)
+      return options[i].value ? options[i].value : strcmp(name, "lang") == 0 ? "uk" : NULL;
+  return NULL;
+}
+
+/* What the plugin being started said about its failure. */
+static char init_reason[240];
+
+void plug_init_reason(const char *msg)
+{
+  snprintf(init_reason, sizeof init_reason, "%s", msg ? msg : "");
+}
+
 int plug_use(struct plug_set *ps, int i, const struct s42_host *host)
 {
   struct plug *p = &ps->v[i];
@@ -348,9 +378,15 @@ int plug_use(struct plug_set *ps, int i, const struct s42_host *host)
   if (p->state == PLUG_FAILED)
     return -1;
   void *self = NULL;
+  init_reason[0] = 0;
   int r = p->d->init(host, p->dir, &self);
   if (r != S42_OK) {
-    snprintf(p->err, sizeof p->err, "the %s plugin (%s) failed to start", p->d->name, p->path);
+    snprintf(p->reason, sizeof p->reason, "%s", init_reason);
+    p->usage = r == S42_FAIL_USAGE;
+    if (init_reason[0])
+      snprintf(p->err, sizeof p->err, "the %s plugin (%s) failed to start: %s", p->d->name, p->path, init_reason);
+    else
+      snprintf(p->err, sizeof p->err, "the %s plugin (%s) failed to start", p->d->name, p->path);
     p->state = PLUG_FAILED;
     return -1;
   }

@@ -20,6 +20,8 @@ struct plug {
   int state;                 /* enum plug_state */
   void *self;
   char err[300];             /* why init failed */
+  char reason[240];          /* the plugin's own words for it (1.1), or "" */
+  int usage;                 /* init said S42_FAIL_USAGE: the command line's fault */
 };
 
 /* A plugin file that was refused, with the reason (for `s42 plugins` and
@@ -58,6 +60,13 @@ void plug_why_missing(const struct plug_set *ps, char kind, int number, char *ms
 
 /* Start plugin i (init) if it is not yet; 0, or -1 with ps->v[i].err. */
 int plug_use(struct plug_set *ps, int i, const struct s42_host *host);
+
+/* Options given to plugins (host->option, ABI 1.1): "tool", "dump-images",
+ * "lang".  The value is kept by reference (argv); NULL unsets. */
+void plug_set_option(const char *name, const char *value);
+const char *plug_option(const char *name);
+/* The reason init() gives with host->error(NULL, ...), for plug_use. */
+void plug_init_reason(const char *msg);
 
 /* `s42 plugins`: what was found, refused and where it looked. */
 void plug_list(const struct plug_set *ps, FILE *f);

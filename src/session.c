@@ -213,6 +213,15 @@ static void h_dwell(struct s42_block *b, double sec)
 
 static void h_error(struct s42_block *b, const char *code, const char *fmt, ...)
 {
+  if (!b) {   /* init(): why it fails (ABI 1.1) */
+    char msg[240];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt ? fmt : "", ap);
+    va_end(ap);
+    plug_init_reason(msg);
+    return;
+  }
   struct session *s = b->s;
   int e = code ? err_from_code(code) : -1;
   s->perr = e > 0 ? e : S42_E_PLUGIN;
@@ -262,6 +271,32 @@ static void h_mode(struct s42_block *b, int mode)
   b->s->scr.mode = mode == S42_MODE_MANUAL ? SCR_MANUAL : mode == S42_MODE_RESULTS ? SCR_RESULTS : SCR_AUTO;
 }
 
+/* ABI 1.1: the machine's own texts, options, messages and results */
+static const char *h_text(struct s42_block *b, int msg)
+{
+  static const int ids[] = {
+    [S42_MSG_PROBE_SECTION1] = MSG_PROBE1, [S42_MSG_SEARCH_SECTION1] = MSG_SEARCH1,
+    [S42_MSG_PROBE_SECTION2] = MSG_PROBE2, [S42_MSG_SEARCH_SECTION2] = MSG_SEARCH2,
+    [S42_MSG_RETRACT_PROBE] = MSG_RETRACT, [S42_MSG_HAND_LEFT] = MSG_HANDL, [S42_MSG_HAND_RIGHT] = MSG_HANDR,
+  };
+  if (msg < 1 || msg >= (int)(sizeof ids / sizeof ids[0]))
+    return NULL;
+  return scr_msg_text(ids[msg], b ? b->s->en : 0);
+}
+
+static void h_message(struct s42_block *b, const char *text)
+{
+  if (text)
+    scr_message(&b->s->scr, text);
+}
+
+static int h_results(struct s42_block *b, const struct s42_results *r)
+{
+  if (!r || r->size < sizeof *r)
+    return -1;
+  return scr_p5_set(&b->s->scr, r->teeth, r->steps, r->lead, r->tk, r->ug, r->hand);
+}
+
 static const struct s42_host host = {
   .size = sizeof(struct s42_host),
   .abi_major = S42_ABI_MAJOR,
@@ -290,6 +325,10 @@ static const struct s42_host host = {
   .free = h_free,
   .directive = h_directive,
   .mode = h_mode,
+  .option = plug_option,
+  .text = h_text,
+  .message = h_message,
+  .results = h_results,
 };
 
 /* The plugin that owns the block's group-1 G (G12, a plugin's own G), -1. */
@@ -673,10 +712,10 @@ static int run_plugins(struct session *s)
     s->blk.plug = i;
     s->perr = 0;
     int r = pl->d->run(pl->self, &s->blk);
-    if (r == S42_WAIT_PUSK || r == S42_WAIT_PS) {
+    if (r == S42_WAIT_PUSK || r == S42_WAIT_PS || r == S42_WAIT_SECTION) {
       s->run_next = i;
       s->plug_wait = 1;
-      s->wait = r == S42_WAIT_PUSK ? W_PUSK : W_PS;
+      s->wait = r == S42_WAIT_PUSK ? W_PUSK : r == S42_WAIT_PS ? W_PS : W_SECTION;
       return SE_WAIT;
     }
     if (plug_status(s, i, r, "run"))
@@ -826,7 +865,7 @@ static void resume_plugin(struct session *s)
 
 int sess_key_pusk(struct session *s)
 {
-  if (s->state != SE_WAIT || s->wait != W_PUSK)
+  if (s->state != SE_WAIT || (s->wait != W_PUSK && s->wait != W_SECTION))
     return -1;
   s->scr.has_message = 0;
   if (s->plug_wait) {
@@ -904,11 +943,42 @@ int sess_jog(struct session *s, int axis, int64_t d)
     teach_jog(s, axis, d);
     return 0;
   }
-  if (s->wait != W_PUSK && s->wait != W_PS)
+  if (s->wait != W_PUSK && s->wait != W_PS && s->wait != W_SECTION)
     return -1;   /* jogs belong to manual mode */
   mach_jog(&s->m, axis, d, s->m.corr_allowed);
   s->jogs[axis] += d;
   s->has_jogs = 1;
+  return 0;
+}
+
+int sess_section(struct session *s, int axis, int64_t d)
+{
+  if (s->state != SE_WAIT || s->wait != W_SECTION || axis < 0 || axis > 3)
+    return -1;
+  /* the probe's placement, not a correction of the work: M16 does not see it */
+  mach_jog(&s->m, axis, d, 0);
+  s->jogs[axis] += d;
+  s->has_jogs = 1;
+  return 0;
+}
+
+int sess_start_plugins(struct session *s, char *msg, size_t n, size_t *block)
+{
+  if (!s->plugins)
+    return 0;
+  uint32_t done = 0;
+  for (size_t b = 0; b < s->p->nblocks; b++) {
+    uint32_t mask = kp_attr(s->p, b)->plugins & ~done;
+    done |= mask;
+    EACH_PLUGIN(mask, i) {
+      struct plug *pl = &s->plugins->v[i];
+      if (plug_use(s->plugins, i, &host) == 0 || !pl->usage)
+        continue;
+      snprintf(msg, n, "%s", pl->reason[0] ? pl->reason : pl->err);
+      *block = b;
+      return -1;
+    }
+  }
   return 0;
 }
 
@@ -941,12 +1011,20 @@ int sess_override(struct session *s, int pct)
 const char *sess_wait_text(const struct session *s)
 {
   /* for stderr, which speaks English like the rest of the diagnostics */
+  const char *w;
   switch (s->wait) {
-  case W_PUSK: return "Пуск (key PUSK)";
-  case W_PS: return "ПС, then Пуск (key PS, key PUSK)";
+  case W_PUSK: w = "Пуск (key PUSK)"; break;
+  case W_PS: w = "ПС, then Пуск (key PS, key PUSK)"; break;
   case W_TEACH: return "teach-in jogs ended by ПС (jog, key PS)";
   case W_ANSWER: return "a number in the input field (answer N)";
   case W_FEED: return "a feed override above 0 % (override N)";
+  case W_SECTION: w = "Пуск in the next section of the tooth search (section X|A moves, then key PUSK)"; break;
   default: return "nothing";
   }
+  if (!s->plug_wait || !s->scr.dirtext[0])
+    return w;
+  /* a plugin's wait: its directive says what it is */
+  static _Thread_local char buf[sizeof s->scr.dirtext + 160];
+  snprintf(buf, sizeof buf, "%s with the directive \"%s\"", w, s->scr.dirtext);
+  return buf;
 }

@@ -22,7 +22,9 @@ enum sess_ev { SE_START, SE_WAIT, SE_END, SE_ERROR, SE_STOPPED };
 /* W_PS: ПС first, then Пуск; W_FEED: the feed override is at 0 %, the move waits */
 /* W_ANSWER: a number in the G27 field (G28 asks again after a refusal) */
 /* W_TEACH: M19, jogs follow the programmed path until ПС, then Пуск */
-enum sess_wait { W_NONE, W_PUSK, W_PS, W_FEED, W_ANSWER, W_TEACH };
+/* W_SECTION: a tooth-step search waits for Пуск while the operator moves
+ * the table and A to the next section (a plugin's S42_WAIT_SECTION) */
+enum sess_wait { W_NONE, W_PUSK, W_PS, W_FEED, W_ANSWER, W_TEACH, W_SECTION };
 
 struct sess_row {
   uint64_t seq;
@@ -115,6 +117,14 @@ void sess_key_stop(struct session *s);
  * the wait it interrupted.  0, or -1 when the cycle was not stopped. */
 int sess_resume(struct session *s);
 int sess_jog(struct session *s, int axis, int64_t d);
+/* The operator script's `section`: move the table or A to the next section
+ * of a tooth-step search; only while it waits for that (W_SECTION). */
+int sess_section(struct session *s, int axis, int64_t d);
+/* Start (init) every plugin the program uses, before its first block.
+ * Returns 0; or -1 when one refuses because of the command line
+ * (S42_FAIL_USAGE): msg holds its reason and *block the first block that
+ * needs it.  Other failures wait for that block (E-PLUGIN there). */
+int sess_start_plugins(struct session *s, char *msg, size_t n, size_t *block);
 /* Type a number into the G27 field and press ПС (the script's `answer`). */
 int sess_answer(struct session *s, long long v);
 /* Render the screen into a grid of cells. */

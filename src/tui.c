@@ -439,6 +439,7 @@ static const char *wait_hint(const struct session *s)
   case W_PUSK: return "Пуск (F5 or g) continues";
   case W_PS: return "ПС (Enter), then Пуск";
   case W_TEACH: return "jog the junior axis, then ПС (Enter)";
+  case W_SECTION: return "jog the table (x X) and A (a A) to section 2, then Пуск (F5 or g)";
   case W_FEED: return "the feed override is at 0 %: raise it (>)";
   default: return "";
   }
@@ -603,6 +604,10 @@ static void jog(struct tui *t, int axis, int sign)
 {
   static const char names[] = "XYZA";
   int64_t d = sign * t->jog_step;
+  if (t->run == R_RUN && t->s.state == SE_WAIT && t->s.wait == W_SECTION) {
+    sess_section(&t->s, axis, d);   /* the tooth search's move to section 2 */
+    return;
+  }
   if (t->run == R_RUN && t->s.state == SE_WAIT &&
       (t->s.wait == W_PUSK || t->s.wait == W_PS || t->s.wait == W_TEACH)) {
     sess_jog(&t->s, axis, d);
@@ -935,6 +940,12 @@ static void panel_key(struct tui *t, int fn, wint_t c)
       scr_field_digit(sc, (int)(c - '0'));
     else
       say(t, "digits go into the input field of a G27 dialog");
+    return;
+  }
+  /* the P5 results of a tooth search: + and - page through the steps */
+  if (sc->p5 && !field && (c == '+' || c == '-')) {
+    if (scr_p5_page(sc, c == '+' ? 1 : -1))
+      say(t, c == '+' ? "the last steps are shown" : "the first steps are shown");
     return;
   }
   switch (c) {
@@ -1326,7 +1337,8 @@ static const char *const help_full[] = {
   "F4, Ctrl-R    Рус: Cyrillic keyboard mode (table 3.4)",
   "x y z a       jog X Y Z A minus (G20, M19; a correction under M22)",
   "X Y Z A       jog plus;  j: jog step 1 10 100 1000 10000",
-  "< >           feed override -10 % / +10 %",
+  "< >           feed override -10 % / +10 % (+ too, but on P5:)",
+  "+ -           P5 search results: the next / previous 8 steps",
   "F9, f         machine speed / as fast as possible",
   "Tab           panel / program editor",
   "editor        i I insert after/before, Enter e replace, d delete,",

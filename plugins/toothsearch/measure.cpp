@@ -631,6 +631,8 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
   }
 
   if (dump) {
+    // the annotated copy is colour: zlib's best halves it
+    const std::vector<int> png9 = {cv::IMWRITE_PNG_COMPRESSION, 9};
     for (int i = 0; i < K; i++) {
       std::string base = std::string(dump) + "/" + tag + "_shot" + std::to_string(i + 1);
       if (!cv::imwrite(base + ".png", shots[i].img8))
@@ -647,9 +649,19 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
         cv::circle(col, P(c), (int)std::lround(r * one), cv::Scalar(255, 160, 0), 1, cv::LINE_AA, sh);
       cv::drawMarker(col, cv::Point((int)std::lround(c.x), (int)std::lround(c.y)), cv::Scalar(0, 0, 255),
                      cv::MARKER_CROSS, 15, 1);
-      cv::line(col, P(at(b.tip + 6, 0)), P(at(b.tip + 40, 0)), cv::Scalar(0, 220, 255), 3, cv::LINE_AA, sh);
-      cv::putText(col, "probe", cv::Point((int)(c.x + b.tip + 8), (int)c.y - 8), cv::FONT_HERSHEY_SIMPLEX,
-                  0.4, cv::Scalar(0, 220, 255), 1, cv::LINE_AA);
+      // text kept inside the picture, centred on q, whatever the image size
+      const double fs = std::clamp(N / 1600.0, 0.3, 0.6);
+      auto label = [&](const std::string &text, cv::Point2d q, double scale, cv::Scalar colour) {
+        int base_line = 0;
+        cv::Size ts = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &base_line);
+        int lx = std::clamp((int)std::lround(q.x - ts.width / 2.0), 2, std::max(2, N - ts.width - 2));
+        int ly = std::clamp((int)std::lround(q.y + ts.height / 2.0), ts.height + 2, N - base_line - 2);
+        cv::putText(col, text, cv::Point(lx, ly), cv::FONT_HERSHEY_SIMPLEX, scale, colour, 1, cv::LINE_AA);
+      };
+      const double probe_out = std::min(b.tip + 34, 0.5 * N - 2);
+      cv::line(col, P(at(b.tip + 4, 0)), P(at(probe_out, 0)), cv::Scalar(0, 220, 255), 3, cv::LINE_AA, sh);
+      label("probe", at(0.5 * (b.tip + probe_out), 0) + cv::Point2d(0, -12 * fs / 0.4), fs,
+            cv::Scalar(0, 220, 255));
       if (!out.shot_faces[i].empty()) {
         for (int k = 0; k < cnt; k++) {
           double ang = out.shot_faces[i][k];
@@ -658,18 +670,18 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
           if (cnt <= 40) {
             char lab[32];
             std::snprintf(lab, sizeof lab, "%.3f", wrap360(ang - shots[i].a));
-            cv::Point2d q = at(b.tip + 22, ang);
-            cv::putText(col, lab, cv::Point((int)q.x - 18, (int)q.y + 4), cv::FONT_HERSHEY_SIMPLEX, 0.35,
-                        cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
+            label(lab, at(b.tip + 26 * fs / 0.4, ang), 0.9 * fs, cv::Scalar(0, 0, 255));
           }
         }
       }
       char head[160];
-      std::snprintf(head, sizeof head, "%s  A=%.3f  teeth %d  axis (%.2f, %.2f)", tag.c_str(), shots[i].a,
-                    cnt, c.x, c.y);
-      cv::putText(col, head, cv::Point(8, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 255, 0), 1,
-                  cv::LINE_AA);
-      if (!cv::imwrite(base + "_annotated.png", col))
+      std::snprintf(head, sizeof head, "%s  A=%.3f  teeth %d", tag.c_str(), shots[i].a, cnt);
+      cv::putText(col, head, cv::Point(6, (int)std::lround(30 * fs)), cv::FONT_HERSHEY_SIMPLEX, fs,
+                  cv::Scalar(0, 255, 0), 1, cv::LINE_AA);
+      std::snprintf(head, sizeof head, "axis (%.2f, %.2f) px", c.x, c.y);
+      cv::putText(col, head, cv::Point(6, (int)std::lround(60 * fs)), cv::FONT_HERSHEY_SIMPLEX, fs,
+                  cv::Scalar(0, 255, 0), 1, cv::LINE_AA);
+      if (!cv::imwrite(base + "_annotated.png", col, png9))
         io_fail = true;
     }
   }
@@ -717,51 +729,104 @@ extern "C" double ts_follow_flute(const struct tm_model *m, double x1, double a1
   return a1 + e1[0] - e2[0];
 }
 
-extern "C" int ts_search(const struct tm_model *m, const struct ts_request *rq, struct ts_result *out,
-                         char *err, size_t errlen)
+namespace {
+
+// The request's values for the searches asked for; throws ts_error.
+void check_request(const tm_model *m, const ts_request *rq, bool section2)
+{
+  char merr[256];
+  if (tm_check(m, merr, sizeof merr) != 0)
+    throw ts_error{TS_E_ARG, merr};
+  if (rq->hand != TM_RIGHT && rq->hand != TM_LEFT)
+    throw ts_error{TS_E_ARG, "the hand is neither right (G10) nor left (G11)"};
+  if (!std::isfinite(rq->x1_um) || !std::isfinite(rq->a1_deg) || std::fabs(rq->a1_deg) > 1e7 ||
+      std::fabs(rq->x1_um) > 1e9)
+    throw ts_error{TS_E_ARG, "section 1: X or A is not a usable number"};
+  if (section2) {
+    if (!std::isfinite(rq->x2_um) || !std::isfinite(rq->a2_deg) || std::fabs(rq->a2_deg) > 1e7 ||
+        std::fabs(rq->x2_um) > 1e9)
+      throw ts_error{TS_E_ARG, "section 2: X or A is not a usable number"};
+    if (std::fabs(rq->x2_um - rq->x1_um) < 1.0)
+      throw ts_error{TS_E_ARG, "section 2 is at the X of section 1: the lead cannot be measured"};
+  }
+  if (rq->speed_deg_min > TS_MAX_SPEED || std::isnan(rq->speed_deg_min))
+    throw ts_error{TS_E_ARG, "search speed above " + std::to_string((int)TS_MAX_SPEED) + " deg/min"};
+  if (rq->dump_dir && mkdir(rq->dump_dir, 0777) != 0 && errno != EEXIST)
+    throw ts_error{TS_E_IO, std::string(rq->dump_dir) + ": " + std::strerror(errno)};
+}
+
+int caught(char *err, size_t errlen)
 {
   try {
-    if (!m || !rq || !out)
-      throw ts_error{TS_E_ARG, "ts_search: a null argument"};
-    std::memset(out, 0, sizeof *out);
-    char merr[256];
-    if (tm_check(m, merr, sizeof merr) != 0)
-      throw ts_error{TS_E_ARG, merr};
-    if (rq->hand != TM_RIGHT && rq->hand != TM_LEFT)
-      throw ts_error{TS_E_ARG, "the hand is neither right (G10) nor left (G11)"};
-    if (!std::isfinite(rq->x1_um) || !std::isfinite(rq->a1_deg) || std::fabs(rq->a1_deg) > 1e7 ||
-        std::fabs(rq->x1_um) > 1e9)
-      throw ts_error{TS_E_ARG, "section 1: X or A is not a usable number"};
-    const bool m10 = !std::isnan(rq->x2_um);
-    if (m10) {
-      if (!std::isfinite(rq->x2_um) || !std::isfinite(rq->a2_deg) || std::fabs(rq->a2_deg) > 1e7 ||
-          std::fabs(rq->x2_um) > 1e9)
-        throw ts_error{TS_E_ARG, "section 2: X or A is not a usable number"};
-      if (std::fabs(rq->x2_um - rq->x1_um) < 1.0)
-        throw ts_error{TS_E_ARG, "section 2 is at the X of section 1: the lead cannot be measured"};
-    }
-    if (rq->speed_deg_min > TS_MAX_SPEED || std::isnan(rq->speed_deg_min))
-      throw ts_error{TS_E_ARG, "search speed above " + std::to_string((int)TS_MAX_SPEED) + " deg/min"};
-    if (rq->dump_dir && mkdir(rq->dump_dir, 0777) != 0 && errno != EEXIST)
-      throw ts_error{TS_E_IO, std::string(rq->dump_dir) + ": " + std::strerror(errno)};
+    throw;
+  } catch (const ts_error &e) {
+    set_err(err, errlen, e.msg);
+    return e.status;
+  } catch (const std::bad_alloc &) {
+    set_err(err, errlen, "tooth search: out of memory");
+  } catch (const std::exception &e) {
+    set_err(err, errlen, std::string("tooth search: ") + e.what());
+  } catch (...) {
+    set_err(err, errlen, "tooth search: unknown exception");
+  }
+  return TS_E_INTERNAL;
+}
 
+}  // namespace
+
+extern "C" int ts_search_pass(const struct tm_model *m, const struct ts_request *rq, int which,
+                              struct ts_pass *out, char *err, size_t errlen)
+{
+  try {
+    if (!m || !rq || !out || (which != 0 && which != 1))
+      throw ts_error{TS_E_ARG, "ts_search_pass: a null argument or a pass other than 0 and 1"};
+    std::memset(out, 0, sizeof *out);
+    const bool m10 = !std::isnan(rq->x2_um);
+    check_request(m, rq, which == 1 && m10);
     const double mount = ts_mount(m, rq->x1_um, rq->a1_deg);
+    const std::string pre = rq->dump_prefix ? rq->dump_prefix : "";
     bool io_fail = false;
-    search_out s1 = run_search(m, rq->x1_um, rq->a1_deg, mount, 0, 0, rq->dump_dir, "section1", io_fail);
-    search_out s2;
-    double a2;
-    if (m10) {
-      a2 = rq->a2_deg;
-      s2 = run_search(m, rq->x2_um, a2, mount, 1, 0, rq->dump_dir, "section2", io_fail);
+    search_out s;
+    double a0;
+    if (which == 0) {
+      a0 = rq->a1_deg;
+      s = run_search(m, rq->x1_um, a0, mount, 0, 0, rq->dump_dir, pre + "section1", io_fail);
+    } else if (m10) {
+      a0 = rq->a2_deg;
+      s = run_search(m, rq->x2_um, a0, mount, 1, 0, rq->dump_dir, pre + "section2", io_fail);
     } else {
-      a2 = rq->a1_deg + 360.0;      // the second revolution follows the first
-      s2 = run_search(m, rq->x1_um, a2, mount, 0, TS_SHOTS, rq->dump_dir, "section1_search2", io_fail);
+      a0 = rq->a1_deg + 360.0;      // the second revolution follows the first
+      s = run_search(m, rq->x1_um, a0, mount, 0, TS_SHOTS, rq->dump_dir, pre + "section1_search2", io_fail);
     }
-    if (s1.teeth != s2.teeth)
-      throw ts_error{TS_E_TEETH, "the tooth count differs between the searches (" + std::to_string(s1.teeth) +
-                                     ", " + std::to_string(s2.teeth) + ")"};
-    const int n = s1.teeth;
-    std::vector<double> p1 = positions(s1.psi, rq->a1_deg), p2 = positions(s2.psi, a2);
+    out->teeth = s.teeth;
+    out->a0_deg = a0;
+    for (int k = 0; k < s.teeth && k < TM_MAX_TEETH; k++)
+      out->psi_deg[k] = s.psi[k];
+    out->centre_px[0] = s.centre.x;
+    out->centre_px[1] = s.centre.y;
+    out->images_failed = io_fail;
+    return TS_OK;
+  } catch (...) {
+    return caught(err, errlen);
+  }
+}
+
+extern "C" int ts_search_combine(const struct tm_model *m, const struct ts_request *rq, const struct ts_pass *s1,
+                                 const struct ts_pass *s2, struct ts_result *out, char *err, size_t errlen)
+{
+  try {
+    if (!m || !rq || !s1 || !s2 || !out)
+      throw ts_error{TS_E_ARG, "ts_search_combine: a null argument"};
+    std::memset(out, 0, sizeof *out);
+    const bool m10 = !std::isnan(rq->x2_um);
+    if (s1->teeth < 1 || s1->teeth > TM_MAX_TEETH || s2->teeth < 1 || s2->teeth > TM_MAX_TEETH)
+      throw ts_error{TS_E_ARG, "ts_search_combine: a pass without a valid tooth count"};
+    if (s1->teeth != s2->teeth)
+      throw ts_error{TS_E_TEETH, "the tooth count differs between the searches (" + std::to_string(s1->teeth) +
+                                     ", " + std::to_string(s2->teeth) + ")"};
+    const int n = s1->teeth;
+    std::vector<double> psi1(s1->psi_deg, s1->psi_deg + n), psi2(s2->psi_deg, s2->psi_deg + n);
+    std::vector<double> p1 = positions(psi1, s1->a0_deg), p2 = positions(psi2, s2->a0_deg);
     out->teeth = n;
     double shift = 0;
     for (int k = 0; k < n; k++) {
@@ -772,10 +837,10 @@ extern "C" int ts_search(const struct tm_model *m, const struct ts_request *rq, 
       out->positions[1][k] = p2[k];
       shift += (p2[k] - p1[k]) / n;
     }
-    out->centre_px[0][0] = s1.centre.x;
-    out->centre_px[0][1] = s1.centre.y;
-    out->centre_px[1][0] = s2.centre.x;
-    out->centre_px[1][1] = s2.centre.y;
+    for (int i = 0; i < 2; i++) {
+      out->centre_px[0][i] = s1->centre_px[i];
+      out->centre_px[1][i] = s2->centre_px[i];
+    }
     if (m10) {
       double L = rq->x2_um - rq->x1_um;
       out->shift_deg = shift;
@@ -792,20 +857,51 @@ extern "C" int ts_search(const struct tm_model *m, const struct ts_request *rq, 
     }
     out->images = 2 * TS_SHOTS;
     out->time_s = 2 * ts_revolution_time(rq->speed_deg_min);
-    if (io_fail) {
-      set_err(err, errlen, std::string(rq->dump_dir) + ": the images could not all be written");
-      return TS_E_IO;
-    }
     return TS_OK;
-  } catch (const ts_error &e) {
-    set_err(err, errlen, e.msg);
-    return e.status;
-  } catch (const std::bad_alloc &) {
-    set_err(err, errlen, "tooth search: out of memory");
-  } catch (const std::exception &e) {
-    set_err(err, errlen, std::string("tooth search: ") + e.what());
   } catch (...) {
-    set_err(err, errlen, "tooth search: unknown exception");
+    return caught(err, errlen);
   }
-  return TS_E_INTERNAL;
+}
+
+extern "C" int ts_first_tooth(const struct tm_model *m, double x1_um, double a1_deg, double x_um, double a_deg)
+{
+  if (!m || m->teeth < 1 || m->teeth > TM_MAX_TEETH)
+    return -1;
+  double edge[TM_MAX_TEETH], width[TM_MAX_TEETH];
+  const double mount = ts_mount(m, x1_um, a1_deg);
+  ts_geometry(m, x_um, edge, width);
+  int best = -1;
+  double bestd = 1e30;
+  for (int k = 0; k < m->teeth; k++) {
+    double d = wrap360(-(edge[k] + mount) - a_deg);
+    if (d < bestd) {
+      bestd = d;
+      best = k;
+    }
+  }
+  return best;
+}
+
+extern "C" int ts_search(const struct tm_model *m, const struct ts_request *rq, struct ts_result *out,
+                         char *err, size_t errlen)
+{
+  try {
+    if (!m || !rq || !out)
+      throw ts_error{TS_E_ARG, "ts_search: a null argument"};
+    std::memset(out, 0, sizeof *out);
+    check_request(m, rq, !std::isnan(rq->x2_um));
+  } catch (...) {
+    return caught(err, errlen);
+  }
+  struct ts_pass s1, s2;
+  int st = ts_search_pass(m, rq, 0, &s1, err, errlen);
+  if (st == TS_OK)
+    st = ts_search_pass(m, rq, 1, &s2, err, errlen);
+  if (st == TS_OK)
+    st = ts_search_combine(m, rq, &s1, &s2, out, err, errlen);
+  if (st == TS_OK && (s1.images_failed || s2.images_failed)) {
+    set_err(err, errlen, std::string(rq->dump_dir) + ": the images could not all be written");
+    return TS_E_IO;
+  }
+  return st;
 }

@@ -1,6 +1,11 @@
 # plugins/toothsearch/: the tooth-step search of G10/G11 (C++17, OpenCV 4).
-# Built position-independent, as the static library the plugin .so will
-# wrap; ./s42 itself never links it (nor OpenCV).  The tool-model parser is
+# Two shared objects (tscv.h):
+#   $(BUILD)/plugins/toothsearch.so     the plugin s42 loads: descriptor,
+#       operator flow, tool model (plugin.c, toolmodel.c); plain C, no OpenCV
+#   $(BUILD)/plugins/toothsearch/toothsearch-cv.so   what its init() dlopens:
+#       libtoothsearch.a (render, measure; C++17 and OpenCV) behind one C
+#       entry (cventry.c).  In a subfolder, so the plugin scan never sees it.
+# ./s42 itself never links either (nor OpenCV).  The tool-model parser is
 # plain C and also goes into the unit tests and the fuzzer.
 #   make toothsearch        the accuracy test set (part of make check)
 #   make toothsearch-bench  time per image and per search
@@ -24,6 +29,30 @@ $(TS_LIB): $(TS_C_OBJS) $(TS_CXX_OBJS)
 	rm -f $@
 	$(AR) rcs $@ $^
 
+# the plugin and its heavy part; `all` and every plugin target build both
+TS_PLUGIN := $(BUILD)/plugins/toothsearch.so
+TS_CV_SO  := $(BUILD)/plugins/toothsearch/toothsearch-cv.so
+TS_CV_OBJ := $(BUILD)/$(TS_DIR)/cventry.o
+PLUGIN_SOS += $(TS_PLUGIN)
+$(TS_PLUGIN): $(TS_DIR)/plugin.c $(TS_DIR)/toolmodel.c $(TS_DIR)/toolmodel.h $(TS_DIR)/tscv.h \
+              $(TS_DIR)/toothsearch.h include/s42_plugin.h | $(TS_CV_SO)
+	@mkdir -p $(@D)
+	$(CC) -D_GNU_SOURCE $(WARN) $(CFLAGS) $(PLUGIN_FLAGS) -I$(TS_DIR) $(LDFLAGS) -o $@ $(filter %.c,$^) -ldl -lm
+$(TS_CV_OBJ): $(TS_DIR)/cventry.c
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) -I$(TS_DIR) $(WARN) $(CFLAGS) -fPIC -fvisibility=hidden -c -o $@ $<
+# the static library's own symbols stay inside (--exclude-libs): only
+# ts_cv_entry is exported
+$(TS_CV_SO): $(TS_CV_OBJ) $(TS_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(CFLAGS) $(LDFLAGS) -shared -Wl,--exclude-libs,ALL -o $@ $^ $(OPENCV_LIBS) -lm
+
+.PHONY: install-toothsearch
+install: install-toothsearch
+install-toothsearch: $(TS_CV_SO)
+	install -d $(DESTDIR)$(PLUGINDIR)/toothsearch
+	install -m 644 $(TS_CV_SO) $(DESTDIR)$(PLUGINDIR)/toothsearch/toothsearch-cv.so
+
 $(BUILD)/tests/toothsearch/%.o $(BUILD)/$(TS_DIR)/bench.o: MOD_CPPFLAGS := -I$(TS_DIR)
 $(TS_TEST): $(BUILD)/tests/toothsearch/accuracy.o $(TS_LIB)
 	$(CXX) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(OPENCV_LIBS) -lm
@@ -32,12 +61,14 @@ $(TS_BENCH): $(BUILD)/$(TS_DIR)/bench.o $(TS_LIB)
 
 .PHONY: toothsearch toothsearch-bin toothsearch-bench
 toothsearch-bin: $(TS_TEST) $(TS_BENCH)
-# every model in tests/toothsearch measured against its truth; under ASan
-# OpenCV's process-long allocations are not ours (lsan.supp)
-toothsearch: $(TS_TEST)
-	LSAN_OPTIONS="suppressions=$(CURDIR)/tests/toothsearch/lsan.supp$${LSAN_OPTIONS:+:$$LSAN_OPTIONS}" \
-	  $(TS_TEST) tests/toothsearch/*.tool
+# every model in tests/toothsearch measured against its truth, then the
+# plugin through s42 run against the truth of eight of them (plugin.sh);
+# under ASan OpenCV's process-long allocations are not ours (lsan.supp)
+TS_LSAN = LSAN_OPTIONS="suppressions=$(CURDIR)/tests/toothsearch/lsan.supp$${LSAN_OPTIONS:+:$$LSAN_OPTIONS}"
+toothsearch: $(TS_TEST) $(S42) $(PLUGIN_SOS)
+	$(TS_LSAN) $(TS_TEST) tests/toothsearch/*.tool
+	$(TS_LSAN) sh tests/toothsearch/plugin.sh $(S42)
 toothsearch-bench: $(TS_BENCH)
 	$(TS_BENCH) tests/toothsearch/t004_reamer_seed.tool tests/toothsearch/t150_saw_fine.tool
 
--include $(TS_C_OBJS:.o=.d) $(TS_CXX_OBJS:.o=.d) $(BUILD)/tests/toothsearch/accuracy.d $(BUILD)/$(TS_DIR)/bench.d
+-include $(TS_C_OBJS:.o=.d) $(TS_CXX_OBJS:.o=.d) $(TS_CV_OBJ:.o=.d) $(BUILD)/tests/toothsearch/accuracy.d $(BUILD)/$(TS_DIR)/bench.d

@@ -15,9 +15,9 @@ extern "C" {
 #endif
 
 /* The search turns the tool at this speed unless M12 gives F (deg/min):
- * 1440 deg/min = 4 rev/min, one revolution in 15 s.  A probe search on the
- * ВЗ-208Ф3 is slow; the seed's example sets F1000 with M12. */
-#define TS_DEFAULT_SPEED 1440.0
+ * 2000 deg/min, one revolution in 10.8 s -- language.md section 7's
+ * default search speed. */
+#define TS_DEFAULT_SPEED 2000.0
 #define TS_MAX_SPEED 36000.0        /* deg/min: 100 rev/min */
 /* Images the camera takes during one revolution, at evenly spaced A. */
 #define TS_SHOTS 4
@@ -40,6 +40,7 @@ struct ts_request {
   double diameter_um;    /* D1, for UG; <= 0: the model's diameter */
   double speed_deg_min;  /* M12 with F; <= 0: TS_DEFAULT_SPEED */
   const char *dump_dir;  /* NULL, or a directory for the images (PNG) */
+  const char *dump_prefix; /* NULL, or the start of their names ("N10_") */
 };
 
 struct ts_result {
@@ -73,6 +74,31 @@ int ts_search(const struct tm_model *m, const struct ts_request *rq, struct ts_r
 
 /* Simulated seconds of one revolution at this speed (deg/min, <= 0 default). */
 double ts_revolution_time(double speed_deg_min);
+
+/* One search (one revolution, TS_SHOTS images) at a time, for a host that
+ * runs them between the operator's actions: ts_search is pass 0, pass 1,
+ * then ts_search_combine (and TS_E_IO when images were not written). */
+struct ts_pass {
+  int teeth;
+  double a0_deg;                    /* A when the revolution started */
+  double psi_deg[TM_MAX_TEETH];     /* each face's tool-frame angle, degrees */
+  double centre_px[2];              /* the calibrated axis */
+  int images_failed;                /* some --dump-images file was not written */
+};
+/* which 0: the search in section 1 (rq->x2_um and a2_deg are not looked
+ * at); which 1: section 2 when rq->x2_um is a number (M10), otherwise the
+ * second revolution in section 1, from a1 + 360.  E-TEETH here when the
+ * images show no teeth, more than 150, or no consistent count. */
+int ts_search_pass(const struct tm_model *m, const struct ts_request *rq, int which, struct ts_pass *out,
+                   char *err, size_t errlen);
+/* Steps, TK, UG and hand from the two passes (as ts_search). */
+int ts_search_combine(const struct tm_model *m, const struct ts_request *rq, const struct ts_pass *p1,
+                      const struct ts_pass *p2, struct ts_result *out, char *err, size_t errlen);
+/* The tooth (0-based, model order) the probe meets first when A turns
+ * forward from a_deg in section x_um, the tool mounted as the operator's
+ * probe placement (x1_um, a1_deg) in section 1 put it: 0 when the probe is
+ * in the flute before tooth 1 -- where a search's tooth order starts. */
+int ts_first_tooth(const struct tm_model *m, double x1_um, double a1_deg, double x_um, double a_deg);
 
 #ifdef __cplusplus
 }

@@ -1,5 +1,5 @@
 #!/bin/sh
-# s42 plot: for every programs/*.kp (with programs/NAME.operator when there
+# s42 plot: for every programs/*.kp (with programs/NAME.operator and NAME.tool when there
 # is one) draw a PNG and an SVG and check them with check.py: the PNG's size
 # from its header, path pixels where the run moved, nothing where it did
 # not, the SVG well-formed.  Also: the PDF, the refusal of an unknown
@@ -23,7 +23,8 @@ for kp in "$PROGS"/*.kp; do
   [ -f "$kp" ] || continue
   name=$(basename "$kp" .kp)
   set -- "$kp"
-  [ -f "$PROGS/$name.operator" ] && set -- "$kp" --operator "$PROGS/$name.operator"
+  [ -f "$PROGS/$name.operator" ] && set -- "$@" --operator "$PROGS/$name.operator"
+  [ -f "$PROGS/$name.tool" ] && set -- "$@" --tool "$PROGS/$name.tool"
   "$S42" run "$@" --trace=json >"$T/$name.jsonl" 2>/dev/null
   want=$?
   "$S42" run "$@" --dump >"$T/$name.dump" 2>/dev/null

@@ -288,6 +288,34 @@ see "[E-STATE]"
 keys q
 ended 0
 
+# ---- 8. the tooth search: the section move by jogs, P5 paged by + and - ----
+printf '№1 G10 D1+50000 M10 M12 F6000 ^\n№2 M02 ^\n' > "$WORK/search.kp"
+start search C.UTF-8 search.kp --tool "$ROOT/tests/toothsearch/t012_straight_noisy.tool"
+see "ready: Пуск starts the cycle"
+keys f g                                     # as fast as possible; Пуск
+see "упор в перетин 1"
+see "│РУЧНИЙ"
+keys g                                       # the probe is in the flute: Пуск
+see "упорку в переріз 2" 20
+see "to section 2"
+keys j X X X                                 # step 10000: the table +30 mm
+see_re "│X +30\.000 mm"
+keys g
+see "відвести упорку" 20
+see "│РЕЗУЛЬТАТИ"
+see "КРОКИ, 0.001°             1-8/12"
+keys +
+see "КРОКИ, 0.001°            9-12/12"
+see " 12   "
+keys -
+see "КРОКИ, 0.001°             1-8/12"
+keys Enter                                   # ПС: the probe is out
+gone "відвести упорку"
+keys g
+see "end (M2)" 10
+keys q
+ended 0
+
 # ---- 7. no program, then open one; a missing file; not a terminal ----
 start empty C.UTF-8
 see "no program: F3 (or o) opens one"

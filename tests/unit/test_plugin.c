@@ -159,7 +159,7 @@ START_TEST(wrong_abi_refused)
   ck_assert_int_eq(plug_find(&ps, 'G', 51, NULL), -1);
   ck_assert_uint_eq(ps.nbad, 1);
   ck_assert_ptr_nonnull(strstr(ps.bad[0].msg, "built for plugin ABI 2.0"));
-  ck_assert_ptr_nonnull(strstr(ps.bad[0].msg, "this s42 has ABI 1.0"));
+  ck_assert_ptr_nonnull(strstr(ps.bad[0].msg, "this s42 has ABI 1.1"));
 }
 END_TEST
 
@@ -182,7 +182,22 @@ START_TEST(init_failure_is_e_plugin)
   ck_assert_int_eq(go(), SE_ERROR);
   ck_assert_int_eq(s->vm.err.code, S42_E_PLUGIN);
   ck_assert_ptr_nonnull(strstr(s->vm.err.msg, "initfail plugin"));
+  ck_assert_ptr_nonnull(strstr(s->vm.err.msg, "failed to start: the fixture's licence is missing"));
+  ck_assert_int_eq(ps.v[i].usage, 0);
   ck_assert_int_eq(s->m.pos[0], 10);
+}
+END_TEST
+
+START_TEST(abi_10_plugin_still_loads)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "old10"));
+  ck_assert_uint_eq(ps.nbad, 0);
+  int i = plug_find(&ps, 'M', 8, NULL);
+  ck_assert_int_ge(i, 0);
+  ck_assert_int_eq(ps.v[i].d->abi_minor, 0);
+  load("N1 R5+1\nN4 M8\nN5 M2\n");
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_double_eq(s->vm.reg[5], 14);
 }
 END_TEST
 
@@ -406,6 +421,7 @@ Suite *suite_plugin(void)
   tcase_add_test(tc, wrong_abi_refused);
   tcase_add_test(tc, no_entry_refused);
   tcase_add_test(tc, init_failure_is_e_plugin);
+  tcase_add_test(tc, abi_10_plugin_still_loads);
   tcase_add_test(tc, failing_callbacks);
   tcase_add_test(tc, missing_plugin_is_e_plugin_at_check);
   suite_add_tcase(su, tc);

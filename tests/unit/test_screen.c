@@ -7,6 +7,7 @@
 #include "messages.h"
 #include "screen.h"
 #include "session.h"
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1242,6 +1243,98 @@ START_TEST(sess_g34_english_pusk_clears)
 }
 END_TEST
 
+/* ---- P5: the results of a tooth-step search ------------------------ */
+
+static const double steps12[12] = {30000, 29995, 30010, 29990, 30005, 30000,
+                                   29998, 30002, 30001, 29999, 30004, 29996};
+
+START_TEST(p5_with_lead_and_paging)
+{
+  S.block = 10;
+  ck_assert_int_eq(scr_p5_set(&S, 12, steps12, 1, 249998.6, 37012.4, 1), 0);
+  scr_set_directive(&S, "відвести упорку");
+  render();
+  CK_SCREEN(G, "РЕЗУЛЬТАТИ                   N10",
+            "ЗУБІВ                         12",
+            "КРОК ГВИНТА TK, мкм       249999",
+            "КУТ ГВИНТА UG, 0.001°      37012",
+            "ГВИНТ                     ПРАВИЙ",
+            "",
+            "КРОКИ, 0.001°             1-8/12",
+            "  1                        30000",
+            "  2                        29995",
+            "  3                        30010",
+            "  4                        29990",
+            "  5                        30005",
+            "  6                        30000",
+            "  7                        29998",
+            "  8                        30002",
+            "відвести упорку");
+  ck_assert_int_eq(scr_p5_page(&S, -1), -1);   /* no page before the first */
+  ck_assert_int_eq(scr_p5_page(&S, 1), 0);
+  render();
+  CK_SCREEN(G, "РЕЗУЛЬТАТИ                   N10",
+            "ЗУБІВ                         12",
+            "КРОК ГВИНТА TK, мкм       249999",
+            "КУТ ГВИНТА UG, 0.001°      37012",
+            "ГВИНТ                     ПРАВИЙ",
+            "",
+            "КРОКИ, 0.001°            9-12/12",
+            "  9                        30001",
+            " 10                        29999",
+            " 11                        30004",
+            " 12                        29996",
+            NULL, NULL, NULL, NULL,
+            "відвести упорку");
+  ck_assert_int_eq(scr_p5_page(&S, 1), -1);    /* none after the last */
+  ck_assert_int_eq(scr_p5_page(&S, -1), 0);
+  ck_assert_int_eq(S.res.page, 0);
+}
+END_TEST
+
+START_TEST(p5_without_lead_english)
+{
+  S.en = 1;
+  const double st[4] = {90002, 79997, 110003, 79998};
+  ck_assert_int_eq(scr_p5_set(&S, 4, st, 0, 0, 0, 0), 0);
+  render();
+  CK_SCREEN(G, "RESULTS",
+            "TEETH                          4",
+            "LEAD TK, µm             not meas",
+            "HELIX ANGLE UG, 0.001°  not meas",
+            "",
+            "",
+            "STEPS, 0.001°              1-4/4",
+            "  1                        90002",
+            "  2                        79997",
+            "  3                       110003",
+            "  4                        79998");
+  ck_assert_int_eq(scr_p5_page(&S, 1), -1);
+}
+END_TEST
+
+START_TEST(p5_left_hand_and_refusals)
+{
+  const double st[2] = {180000, 180000};
+  ck_assert_int_eq(scr_p5_set(&S, 0, st, 1, 0, 0, 0), -1);
+  ck_assert_int_eq(scr_p5_set(&S, 151, st, 1, 0, 0, 0), -1);
+  ck_assert_int_eq(scr_p5_set(&S, 2, NULL, 1, 0, 0, 0), -1);
+  ck_assert_int_eq(scr_p5_set(&S, 2, st, 1, NAN, 0, 0), -1);
+  ck_assert_int_eq(S.p5, 0);
+  ck_assert_int_eq(scr_p5_page(&S, 1), -1);
+  ck_assert_int_eq(scr_p5_set(&S, 2, st, 1, 120000, 27000, -1), 0);
+  render();
+  ck_assert_int_eq(G[4][27], 0x041B);   /* ЛІВИЙ in columns 28..32 */
+  /* a dialog line or a G29 display takes the work area back */
+  scr_center(&S, "КІНЕЦЬ");
+  ck_assert_int_eq(S.p5, 0);
+  ck_assert_int_eq(scr_p5_set(&S, 2, st, 1, 120000, 27000, -1), 0);
+  scr_p3_add(&S, "ДАНІ");
+  ck_assert_int_eq(S.p5, 0);
+  ck_assert_int_eq(S.p3, 1);
+}
+END_TEST
+
 Suite *suite_screen(void)
 {
   Suite *su = suite_create("screen");
@@ -1278,6 +1371,9 @@ Suite *suite_screen(void)
   tcase_add_test(tc, buffer_full_english);
   tcase_add_test(tc, scroll_short_buffer);
   tcase_add_test(tc, fixed_line_m27_m28);
+  tcase_add_test(tc, p5_with_lead_and_paging);
+  tcase_add_test(tc, p5_without_lead_english);
+  tcase_add_test(tc, p5_left_hand_and_refusals);
   suite_add_tcase(su, tc);
 
   TCase *ts = tcase_create("session");
