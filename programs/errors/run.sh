@@ -19,7 +19,7 @@
 S42=$(cd "$(dirname "${1:-./s42}")" && pwd)/$(basename "${1:-./s42}")
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
-PENDING="E-TEETH"          # the tooth search's own work (README.md here)
+PENDING=""                # every code has its program
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/dg-errors.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 trap 'exit 1' INT TERM HUP
@@ -47,7 +47,7 @@ check_one() {
   rm -rf "$dir"
   mkdir -p "$dir/alone"
   cp "$HERE"/*.kp "$dir/"
-  cp "$HERE"/*.operator "$dir/" 2>/dev/null
+  cp "$HERE"/*.operator "$HERE"/*.tool "$dir/" 2>/dev/null
   cp "$S42" "$dir/alone/s42"
   plugindir=$(cd "$dir" && alone/s42 plugins 2>/dev/null | sed -n 's/.*searched: //p')
   if grep -q '^\$ alone/s42' "$HERE/$name.expect"; then
