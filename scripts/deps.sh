@@ -4,7 +4,7 @@
 # otherwise it prints the exact command and fails.
 #   sh scripts/deps.sh           install what is missing
 #   sh scripts/deps.sh --check   only say what is missing (exit 1 if any)
-PKGS="build-essential pkg-config check libncurses-dev libmodbus-dev libopencv-dev libcairo2-dev tmux python3 valgrind mbpoll"
+PKGS="build-essential pkg-config check libncurses-dev libmodbus-dev libopencv-dev libcairo2-dev tmux python3 valgrind mbpoll groff-base man-db"
 
 missing=""
 if command -v dpkg-query >/dev/null 2>&1; then
