@@ -73,6 +73,7 @@ struct tui {
   struct session s;
   struct pace pace;
   int fast, held;
+  int stopped_mid;          /* Стоп ended the cycle during a held move: the axes stay where they stopped */
   int osc;                  /* the oscillation plugin says it is on */
   int override;             /* the feed override switch, % */
   double last_t;            /* simulated time at the end of the last row */
@@ -381,6 +382,7 @@ static void start_run(struct tui *t)
   t->run = R_RUN;
   t->osc = 0;
   t->held = 0;
+  t->stopped_mid = 0;
   t->cur.valid = 0;
   t->nchg = 0;
   t->m15_saves = 0;
@@ -542,6 +544,7 @@ static void press_stop(struct tui *t)
     return;
   }
   sess_key_stop(&t->s);
+  t->stopped_mid = t->held;   /* the pace stays held: the readouts keep the stopping point */
   t->held = 0;
   t->run = R_DONE;
   say(t, "Стоп: the cycle was stopped");
@@ -1216,7 +1219,7 @@ static void shown_pos(const struct tui *t, double pos[4], double *tm, double *fe
   for (int a = 0; a < 4; a++)
     pos[a] = (double)t->s.m.pos[a];
   *tm = t->s.m.t;
-  if (t->fast || !t->cur.valid || t->s.state == SE_WAIT || t->run != R_RUN)
+  if (t->fast || !t->cur.valid || t->s.state == SE_WAIT || (t->run != R_RUN && !t->stopped_mid))
     return;
   double now = pace_now(&t->pace);
   if (now >= t->cur.t1 || t->cur.t1 <= t->cur.t0)
@@ -1227,7 +1230,7 @@ static void shown_pos(const struct tui *t, double pos[4], double *tm, double *fe
   for (int a = 0; a < 4; a++)
     pos[a] = (double)t->cur.from[a] + (double)(t->cur.to[a] - t->cur.from[a]) * f;
   *tm = now > t->cur.t0 ? now : t->cur.t0;
-  *feed = t->cur.feed;
+  *feed = t->run == R_RUN ? t->cur.feed : 0;
 }
 
 static const char *state_text(const struct tui *t, char *b, size_t n)

@@ -316,6 +316,24 @@ see "end (M2)" 10
 keys q
 ended 0
 
+# ---- 9. Стоп twice mid-move: the axes stay where the feed hold stopped them ----
+cp "$ROOT/programs/drill_point.kp" "$WORK/point.kp"
+start stopmid C.UTF-8 point.kp
+see "ready: Пуск starts the cycle"
+keys g
+see "|  running  |"
+sleep 2.5                                    # well inside sub 40's first lip stroke
+keys s
+see "feed hold (Стоп)"
+x1=$(pane | grep -o '│X  *[-0-9.]* mm' | head -1)
+keys s
+see "Стоп: the cycle was stopped"
+x2=$(pane | grep -o '│X  *[-0-9.]* mm' | head -1)
+if [ -n "$x1" ] && [ "$x1" = "$x2" ]; then ok; else bad "X moved when the held cycle stopped ('$x1', '$x2')"; fi
+see_re "│feed +0\.0 mm/min"
+keys q
+ended 0
+
 # ---- 7. no program, then open one; a missing file; not a terminal ----
 start empty C.UTF-8
 see "no program: F3 (or o) opens one"
