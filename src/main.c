@@ -676,6 +676,17 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
   return r->s.state == SE_END ? EXIT_END : r->s.state == SE_ERROR ? EXIT_PROGRAM : EXIT_STOPPED;
 }
 
+static void headless_free(struct runner *r, char *state_path, struct program *p, struct diag_list *d, char *src)
+{
+  free(state_path);
+  free(r->watch);
+  free(r->runs);
+  ops_free(&r->ops);
+  prog_free(p);
+  diag_free(d);
+  free(src);
+}
+
 /* The headless run of `s42 run` and `s42 plot` (plot != NULL). */
 static int headless(const struct opts *opt, struct plot *plot)
 {
@@ -785,13 +796,7 @@ static int headless(const struct opts *opt, struct plot *plot)
       fprintf(stderr, "s42: %s\n", why);
       fprintf(stderr, "%s:%u:%u: note: %s: the first block that needs it\n", o.program, b->line, b->col,
               bname(b->number ? b->number : -1, nbuf));
-      free(state_path);
-      free(r.watch);
-      free(r.runs);
-      ops_free(&r.ops);
-      prog_free(&p);
-      diag_free(&d);
-      free(src);
+      headless_free(&r, state_path, &p, &d, src);
       return EXIT_USAGE;
     }
   }
@@ -912,13 +917,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     fprintf(stderr, "s42: error writing the output\n");
     status = EXIT_IO;
   }
-  free(state_path);
-  free(r.watch);
-  free(r.runs);
-  ops_free(&r.ops);
-  prog_free(&p);
-  diag_free(&d);
-  free(src);
+  headless_free(&r, state_path, &p, &d, src);
   return status;
 }
 

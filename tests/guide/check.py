@@ -26,6 +26,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import transcript  # noqa: E402  (tests/transcript.py)
+
 s42 = os.path.abspath(sys.argv[1])
 root = os.path.abspath(sys.argv[2])
 guide_md = os.path.join(root, "docs", "guide.md")
@@ -159,37 +162,7 @@ try:
     for ln, info, content, mk in blocks:
         if info != "console":
             continue
-        cmds = []        # (command, expected output lines)
-        for l in content.rstrip("\n").split("\n"):
-            if l.startswith("$ "):
-                cmds.append((l[2:], []))
-            elif cmds:
-                cmds[-1][1].append(l)
-            else:
-                bad("guide.md:%d: a console block must start with a $ line" % ln)
-                break
-        script = []
-        for k, (c, _) in enumerate(cmds):
-            script.append("(%s) >.o%d 2>.e%d; __st=$?; cat .o%d .e%d > .out%d; rm -f .o%d .e%d; (exit $__st)"
-                          % (c, k, k, k, k, k, k, k))
-        subprocess.run(["sh", "-c", "\n".join(script)], cwd=con, env=env,
-                       stdin=subprocess.DEVNULL)
-
-        def norm(ls):
-            ls = [x.rstrip() for x in ls]
-            while ls and not ls[-1]:
-                ls.pop()
-            return ls
-        for k, (c, want) in enumerate(cmds):
-            outf = os.path.join(con, ".out%d" % k)
-            got = open(outf, encoding="utf-8", errors="replace").read().split("\n") if os.path.exists(outf) else ["(not run)"]
-            if norm(got) == norm(want):
-                ok()
-            else:
-                bad("guide.md:%d: `%s` printed (expected the block's lines):\n%s"
-                    % (ln, c, "\n".join("    | " + x for x in norm(got))))
-            if os.path.exists(outf):
-                os.unlink(outf)
+        transcript.run("guide.md:%d" % ln, content, con, env, ok, bad)
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 

@@ -37,6 +37,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import transcript  # noqa: E402  (tests/transcript.py)
+
 root = os.path.abspath(sys.argv[1])
 passed = failed = 0
 tmp = tempfile.mkdtemp(prefix="dg-tutorial.")
@@ -63,8 +66,10 @@ def squeeze(s):
 # The copy's make and commands must not inherit the make that runs this test
 # (-j jobserver fds, BUILD=, S42=, CFLAGS= of make asan ...).
 env = dict(os.environ)
+# make exports its command-line variables to recipes, so make asan's BUILD=,
+# S42=, CFLAGS= and LDFLAGS= arrive here as environment variables too.
 for k in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL", "MAKEOVERRIDES", "GNUMAKEFLAGS",
-          "S42_PLUGIN_PATH"):
+          "S42_PLUGIN_PATH", "BUILD", "S42", "CFLAGS", "LDFLAGS"):
     env.pop(k, None)
 env.update(LC_ALL="C.UTF-8", MANPAGER="cat", PAGER="cat", MANWIDTH="80")
 
@@ -212,36 +217,7 @@ def run_table(rows, tui_running):
 
 
 def run_console(ln, content):
-    cmds = []
-    for l in content.rstrip("\n").split("\n"):
-        if l.startswith("$ "):
-            cmds.append((l[2:], []))
-        elif cmds:
-            cmds[-1][1].append(l)
-        else:
-            bad("README.md:%d: a console block must start with a $ line" % ln)
-            return
-    script = []
-    for k, (c, _) in enumerate(cmds):
-        script.append("(%s) >.o%d 2>.e%d; __st=$?; cat .o%d .e%d > .out%d; rm -f .o%d .e%d; (exit $__st)"
-                      % (c, k, k, k, k, k, k, k))
-    subprocess.run(["sh", "-c", "\n".join(script)], cwd=repo, env=env, stdin=subprocess.DEVNULL)
-
-    def norm(ls):
-        ls = [x.rstrip() for x in ls]
-        while ls and not ls[-1]:
-            ls.pop()
-        return ls
-    for k, (c, want) in enumerate(cmds):
-        outf = os.path.join(repo, ".out%d" % k)
-        got = open(outf, encoding="utf-8", errors="replace").read().split("\n") if os.path.exists(outf) else []
-        if os.path.exists(outf):
-            os.unlink(outf)
-        if norm(got) == norm(want):
-            ok()
-        else:
-            bad("README.md:%d: `%s` printed (the README shows other lines):\n%s"
-                % (ln, c, "\n".join("    | " + x for x in norm(got))))
+    transcript.run("README.md:%d" % ln, content, repo, env, ok, bad)
 
 
 def run_sh(cmd):
