@@ -379,6 +379,15 @@ static void start_run(struct tui *t)
   t->s.sink.warn = on_warn;
   t->s.sink.log = on_log;
   t->s.plugins = t->o.plugins;
+  char why[300], nb[16];
+  size_t fb = 0;
+  if (sess_start_plugins(&t->s, why, sizeof why, &fb)) {   /* --tool missing or bad, as s42 run says */
+    const struct prog_block *b = &t->prog.blocks[fb];
+    say(t, "%s; %u:%u %s needs it: the cycle does not start", why, b->line, b->col,
+        bname(b->number ? (int)b->number : -1, nb));
+    end_run(t);
+    return;
+  }
   t->run = R_RUN;
   t->osc = 0;
   t->held = 0;
@@ -415,7 +424,6 @@ static void start_run(struct tui *t)
       show_error(t);
       return;
     }
-    char nb[16];
     say(t, "restart: the cycle goes on at the M15 block %s", bname(sess_block_number(&t->s), nb));
   }
   if (t->override != 100 && sess_override(&t->s, t->override) == 0)

@@ -315,6 +315,13 @@ keys g
 see "end (M2)" 10
 keys q
 ended 0
+start notool C.UTF-8 search.kp                # no --tool: Пуск says so, nothing starts
+see "ready: Пуск starts the cycle"
+keys g
+see "needs a tool model: give --tool FILE"
+see "ready: Пуск starts the cycle"
+keys q
+ended 0
 
 # ---- 9. Стоп twice mid-move: the axes stay where the feed hold stopped them ----
 cp "$ROOT/programs/drill_point.kp" "$WORK/point.kp"
