@@ -524,7 +524,9 @@ static void new_cycle(struct runner *r, struct both_sink *bs)
   int en = s->en, yield_all = s->vm.yield_all;
   uint64_t max_blocks = s->vm.max_blocks;
   const uint8_t *watch = s->vm.watch;
+  struct plug_set *pl = s->plugins;
   sess_init(s, s->p);
+  s->plugins = pl;
   s->sink = sink;
   s->en = en;
   s->scr.en = en;

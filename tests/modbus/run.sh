@@ -132,6 +132,16 @@ else
     want=$("$py" -c "import json,sys; p=json.load(open(sys.argv[1]))['pos']; print(p['x'],p['y'],p['z'],p['a'],'')" "$tmp/out" 2>/dev/null)
     [ -n "$want" ] && [ "$pos" = "$want" ] && ok || fail "mbpoll $prog: positions '$pos', the dump says '$want'"
   done
+  # a program with plugins (helix, oscillation): Пуск after M2 runs it again
+  if start programs/helical_flute.kp; then
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    wait_state 5 && ok || fail "mbpoll helical_flute: first cycle never reached M2 (state $(value 2 -t 3))"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    sleep 0.5
+    wait_state 5 && [ "$(value 4 -t 3)" = 0 ] && ok ||
+      fail "mbpoll helical_flute: the second cycle: state $(value 2 -t 3), error $(value 4 -t 3)"
+    stop
+  fi
 fi
 
 # 5. s42 tui --modbus in tmux: a client's keys are the panel's keys, the map
