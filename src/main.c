@@ -374,13 +374,7 @@ static void modbus_row(struct both_sink *b, const struct sess_row *row)
   if (!b->realtime || dur <= 0)
     return;
   double start = mm->motion.end > 0 && now - mm->motion.end < 0.05 ? mm->motion.end : now;
-  mm->motion.active = 1;
-  mm->motion.held = 0;
-  mm->motion.start = start;
-  mm->motion.end = start + dur;
-  memcpy(mm->motion.d, row->d, sizeof mm->motion.d);
-  mm->motion.feed = row->feed;
-  mm->motion.block = row->n;
+  mb_motion_start(mm, start, dur, row->d, row->feed, row->n);
 }
 
 static void row_sink(void *ctx, const struct session *s, const struct sess_row *row)

@@ -121,6 +121,18 @@ static double motion_frac(const struct mb_machine *m, double now)
   return f < 0 ? 0 : f;
 }
 
+void mb_motion_start(struct mb_machine *m, double start, double dur, const int64_t d[4], double feed, int block)
+{
+  m->motion.active = 1;
+  m->motion.held = 0;
+  m->motion.held_frac = 0;
+  m->motion.start = start;
+  m->motion.end = start + dur;
+  memcpy(m->motion.d, d, sizeof m->motion.d);
+  m->motion.feed = feed;
+  m->motion.block = block;
+}
+
 int mb_run_state(const struct mb_machine *m, double now)
 {
   const struct session *s = m->s;

@@ -116,6 +116,9 @@ long mb_frame(const uint8_t *buf, size_t have);
  * returned. */
 int mb_dev_request(struct mb_dev *d, const uint8_t *req, size_t len, uint8_t *rsp, double now);
 int mb_dev_key(struct mb_dev *d);
+/* A block's motion goes on the wall clock from `start` for `dur` seconds
+ * (not held): what the host shows the map while it plays a block out. */
+void mb_motion_start(struct mb_machine *m, double start, double dur, const int64_t d[4], double feed, int block);
 /* The run state (enum mb_run) the map shows now. */
 int mb_run_state(const struct mb_machine *m, double now);
 /* CLOCK_MONOTONIC in seconds. */

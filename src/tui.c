@@ -280,7 +280,7 @@ static void on_row(void *ctx, const struct session *s, const struct sess_row *r)
   t->cur.feed = r->feed;
   t->cur.line = r->line;
   t->cur.n = r->n;
-  t->osc = r->extra && strstr(r->extra, "\"osc\":\"on\"") != NULL;
+  t->osc = sess_oscillating(s);
   t->last_t = r->t;
   for (int i = 0; i < 114; i++) {
     double v = s->vm.reg[i];

@@ -43,15 +43,9 @@ static void update(void *ctx, struct tui *t)
   memset(&x->mm.motion, 0, sizeof x->mm.motion);
   if (!m.active)
     return;
-  double now = mb_now();
-  x->mm.motion.active = 1;
+  mb_motion_start(&x->mm, mb_now() - m.frac * m.dur, m.dur, m.d, m.feed, m.block);
   x->mm.motion.held = m.held;
   x->mm.motion.held_frac = m.frac;
-  x->mm.motion.start = now - m.frac * m.dur;
-  x->mm.motion.end = x->mm.motion.start + m.dur;
-  memcpy(x->mm.motion.d, m.d, sizeof m.d);
-  x->mm.motion.feed = m.feed;
-  x->mm.motion.block = m.block;
 }
 
 static int poll_timeout(void *ctx, int want_ms)
