@@ -27,6 +27,12 @@ INCLUDEDIR ?= $(PREFIX)/include
 
 CPPFLAGS += -DS42_VERSION='"$(VERSION)"'
 
+# $(call pkg,VAR,ARGS[,FALLBACK]): pkg-config ARGS, asked once and only when a
+# recipe first needs VAR -- never while make reads the Makefile, so that
+# `make run` and `make check` ask it after scripts/deps.sh has installed
+# what was missing (their sub-make builds).
+pkg = $(eval $1 := $$(shell pkg-config $2 2>/dev/null$(if $3, || echo $3)))$($1)
+
 include vm/module.mk
 include display/module.mk
 include src/module.mk
@@ -53,7 +59,10 @@ deps:
 	@sh scripts/deps.sh
 
 # On a terminal: the TUI on the drill dialog; otherwise the headless run.
-run: deps $(S42)
+# The packages first, then a sub-make builds s42 and its plugins (the
+# bundled cycles need them) with the flags pkg-config gives now.
+run: deps
+	@$(MAKE) --no-print-directory all
 	@if [ -t 0 ] && [ -t 1 ]; then $(S42) tui programs/drill_dialog.kp; \
 	else $(S42) run programs/reamer_rake.kp --trace --dump; fi
 

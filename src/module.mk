@@ -5,20 +5,20 @@ SRC_OBJS     := $(SRC_SRCS:%.c=$(BUILD)/%.o)
 SRC_MAIN_OBJ := $(BUILD)/src/main.o $(BUILD)/src/tui.o $(BUILD)/src/tui_modbus.o
 $(SRC_OBJS) $(SRC_MAIN_OBJ): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude
 # plot.c draws with cairo (the only part of src/ that needs it)
-CAIRO_CFLAGS := $(shell pkg-config --cflags cairo 2>/dev/null)
+CAIRO_CFLAGS = $(call pkg,CAIRO_CFLAGS,--cflags cairo)
 # cairo is loaded with dlopen when a plot is drawn (src/cairo_dl.c): linking
 # it would load two dozen libraries at every start-up
-$(BUILD)/src/plot.o $(BUILD)/src/cairo_dl.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(CAIRO_CFLAGS)
+$(BUILD)/src/plot.o $(BUILD)/src/cairo_dl.o: MOD_CPPFLAGS = -Isrc -Ivm -Idisplay -Iinclude $(CAIRO_CFLAGS)
 LDLIBS += -ldl
 # where `make install` puts the plugins: s42 looks there last
 $(BUILD)/src/plugin.o: CPPFLAGS += -DS42_PLUGINDIR='"$(PLUGINDIR)"'
 # tui.c draws with ncursesw
-CURSES_CFLAGS := $(shell pkg-config --cflags ncursesw 2>/dev/null)
-CURSES_LIBS   := $(shell pkg-config --libs ncursesw 2>/dev/null || echo -lncursesw)
-$(BUILD)/src/tui.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(CURSES_CFLAGS)
+CURSES_CFLAGS = $(call pkg,CURSES_CFLAGS,--cflags ncursesw)
+CURSES_LIBS   = $(call pkg,CURSES_LIBS,--libs ncursesw,-lncursesw)
+$(BUILD)/src/tui.o: MOD_CPPFLAGS = -Isrc -Ivm -Idisplay -Iinclude $(CURSES_CFLAGS)
 LDLIBS += $(CURSES_LIBS)
 # modbus.c serves the machine over Modbus TCP with libmodbus
-MODBUS_CFLAGS := $(shell pkg-config --cflags libmodbus 2>/dev/null)
-MODBUS_LIBS   := $(shell pkg-config --libs libmodbus 2>/dev/null || echo -lmodbus)
-$(BUILD)/src/modbus.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(MODBUS_CFLAGS)
+MODBUS_CFLAGS = $(call pkg,MODBUS_CFLAGS,--cflags libmodbus)
+MODBUS_LIBS   = $(call pkg,MODBUS_LIBS,--libs libmodbus,-lmodbus)
+$(BUILD)/src/modbus.o: MOD_CPPFLAGS = -Isrc -Ivm -Idisplay -Iinclude $(MODBUS_CFLAGS)
 LDLIBS += $(MODBUS_LIBS)

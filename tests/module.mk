@@ -1,11 +1,11 @@
 # tests/: Check unit suites (tests/unit), golden programs (tests/conformance),
 # the bundled programs, and the shared conformance cases when ../shared exists.
-CHECK_CFLAGS := $(shell pkg-config --cflags check 2>/dev/null)
-CHECK_LIBS   := $(shell pkg-config --libs check 2>/dev/null || echo -lcheck)
+CHECK_CFLAGS = $(call pkg,CHECK_CFLAGS,--cflags check)
+CHECK_LIBS   = $(call pkg,CHECK_LIBS,--libs check,-lcheck)
 TEST_SRCS    := $(wildcard tests/unit/*.c)
 TEST_OBJS    := $(TEST_SRCS:%.c=$(BUILD)/%.o)
 UNIT_BIN     := $(BUILD)/tests/unit/run-unit
-$(TEST_OBJS): MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude -I$(TS_DIR) $(CHECK_CFLAGS)
+$(TEST_OBJS): MOD_CPPFLAGS = -Isrc -Ivm -Idisplay -Iinclude -I$(TS_DIR) $(CHECK_CFLAGS)
 
 .PHONY: unit-bin fixtures
 fixtures: $(FIXTURE_SOS)

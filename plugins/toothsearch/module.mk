@@ -10,8 +10,9 @@
 #   make toothsearch        the accuracy test set (part of make check)
 #   make toothsearch-bench  time per image and per search
 TS_DIR        := plugins/toothsearch
-OPENCV_CFLAGS := $(shell pkg-config --cflags opencv4 2>/dev/null)
-OPENCV_LIBS   := $(shell pkg-config --libs-only-L opencv4 2>/dev/null) -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
+OPENCV_CFLAGS = $(call pkg,OPENCV_CFLAGS,--cflags opencv4)
+OPENCV_LIBS_L = $(call pkg,OPENCV_LIBS_L,--libs-only-L opencv4)
+OPENCV_LIBS   = $(OPENCV_LIBS_L) -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
 TS_CXXWARN    := -std=c++17 -Wall -Wextra -Wshadow -Wformat=2
 TS_C_OBJS     := $(BUILD)/$(TS_DIR)/toolmodel.o
 TS_CXX_OBJS   := $(BUILD)/$(TS_DIR)/render.o $(BUILD)/$(TS_DIR)/measure.o
