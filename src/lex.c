@@ -78,10 +78,18 @@ static int32_t lookalike(int32_t c)
   }
 }
 
+/* A CR not followed by LF ends a line (classic Mac OS files); in CR LF the
+ * CR is only whitespace and the LF ends the line. */
+static int lone_cr(const struct lex *l, size_t p)
+{
+  return l->s[p] == '\r' && (p + 1 >= l->n || l->s[p + 1] != '\n');
+}
+
 static void step(struct lex *l, size_t len, int32_t c)
 {
+  int eol = c == '\n' || (c == '\r' && lone_cr(l, l->pos));
   l->pos += len;
-  if (c == '\n') {
+  if (eol) {
     l->line++;
     l->col = 1;
   } else {
@@ -106,12 +114,20 @@ int32_t lex_peek(struct lex *l)
     }
     size_t len;
     int32_t c = decode(l, l->pos, &len);
+    if (c == '\r' && lone_cr(l, l->pos)) {
+      if (!l->cr_noted) {
+        l->cr_noted = 1;
+        diag_add(l->d, DIAG_NOTE, 0, l->line, l->col, l->number,
+                 "lines end with CR alone (an old Mac OS file): each CR is read as a line end");
+      }
+      c = '\n';
+    }
     if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
       step(l, len, c);
       continue;
     }
     if (c == ';') {          /* comment to the end of the line */
-      while (l->pos < l->n && l->s[l->pos] != '\n') {
+      while (l->pos < l->n && l->s[l->pos] != '\n' && !lone_cr(l, l->pos)) {
         c = decode(l, l->pos, &len);
         step(l, len, c);
       }
@@ -171,9 +187,7 @@ int32_t lex_raw_peek(struct lex *l)
     return LX_EOF;
   size_t len;
   int32_t c = decode(l, l->pos, &len);
-  if (c == '\n' || c == '^')
-    return LX_EOB;
-  if (c == '\r' && l->pos + 1 < l->n && l->s[l->pos + 1] == '\n')
+  if (c == '\n' || c == '^' || c == '\r')   /* CR alone, or the CR of CR LF */
     return LX_EOB;
   return c;
 }

@@ -20,6 +20,7 @@ struct lex {
   struct diag_list *d;
   int number;             /* the current block's number, for diagnostics */
   int noted;              /* look-alike note given */
+  int cr_noted;           /* CR-only line ends noted */
   unsigned blen;          /* significant characters of the current block */
   /* what lex_peek saw: */
   int peeked;

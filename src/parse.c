@@ -168,8 +168,9 @@ static void fmt_uint(char *p, unsigned n)
   *p = 0;
 }
 
-/* An unsigned integer of at most `maxdig` digits (whitespace between digits
- * is insignificant, as everywhere outside text). */
+/* An unsigned integer of at most `maxdig` significant digits: leading
+ * zeros are insignificant however many (`G001`, `№0002`, language.md
+ * sec. 9), and whitespace between digits too, as everywhere outside text. */
 static long number(struct pstate *s, int maxdig, const char *what)
 {
   char buf[32];
@@ -179,9 +180,12 @@ static long number(struct pstate *s, int maxdig, const char *what)
   long v = 0;
   int nd = 0;
   while (isdig(peek(s))) {
-    if (nd < 12)
-      v = v * 10 + (peek(s) - '0');
-    nd++;
+    int dig = peek(s) - '0';
+    if (nd || dig) {
+      if (nd < 12)
+        v = v * 10 + dig;
+      nd++;
+    }
     adv(s);
   }
   if (nd > maxdig)

@@ -73,19 +73,25 @@ int tui_text_set(struct tui_text *t, const char *buf, size_t n, char *err, size_
     return -1;
   }
   /* \r\n line ends are taken off (and put back on save) only when every
-   * line has one: a stray \r in a mixed file stays where it was */
-  size_t lf = 0, crlf = 0;
+   * line has one: a stray \r in a mixed file stays where it was.  A file
+   * with no \n but \r has CR-only line ends (old Mac OS), as the compiler
+   * reads them: its lines are split at \r and saved with \r. */
+  size_t lf = 0, crlf = 0, cr = 0;
   for (size_t i = 0; i < n; i++)
     if (buf[i] == '\n') {
       lf++;
       crlf += i > 0 && buf[i - 1] == '\r';
+    } else if (buf[i] == '\r') {
+      cr++;
     }
   struct tui_text nt;
   tui_text_init(&nt);
-  nt.final_eol = n == 0 || buf[n - 1] == '\n';
+  nt.cr = !lf && cr;
+  char eolc = nt.cr ? '\r' : '\n';
+  nt.final_eol = n == 0 || buf[n - 1] == eolc;
   nt.crlf = lf && crlf == lf;
   for (size_t i = 0; i < n;) {
-    const char *e = memchr(buf + i, '\n', n - i);
+    const char *e = memchr(buf + i, eolc, n - i);
     size_t len = e ? (size_t)(e - (buf + i)) : n - i;
     size_t next = i + len + (e ? 1 : 0);
     if (e && nt.crlf)
@@ -146,7 +152,7 @@ int tui_text_load(struct tui_text *t, const char *path, char *err, size_t errn)
 
 char *tui_text_join(const struct tui_text *t, size_t *n)
 {
-  const char *eol = t->crlf ? "\r\n" : "\n";
+  const char *eol = t->crlf ? "\r\n" : t->cr ? "\r" : "\n";
   size_t el = strlen(eol), total = 1;
   for (size_t i = 0; i < t->n; i++)
     total += strlen(t->line[i]) + el;

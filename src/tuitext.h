@@ -12,6 +12,7 @@ struct tui_text {
   char **line;           /* UTF-8, without the line end */
   size_t n, cap;
   int crlf;              /* the file's lines ended with \r\n */
+  int cr;                /* ... with \r alone (old Mac OS) */
   int final_eol;         /* the last line ended with a line end */
   /* the text before the last change, for undo */
   char **old;

@@ -22,7 +22,7 @@ static int32_t next(void)
 
 START_TEST(spaces_and_tabs_skipped)
 {
-  start("  X \t+ 1\r 0");
+  start("  X \t+ 1\v 0");
   ck_assert_int_eq(next(), 'X');
   ck_assert_int_eq(next(), '+');
   ck_assert_int_eq(next(), '1');
@@ -39,6 +39,37 @@ START_TEST(comment_runs_to_end_of_line)
   ck_assert_uint_eq(l.line, 2);
   ck_assert_int_eq(next(), 'A');
   ck_assert_int_eq(lex_peek(&l), LX_EOF);
+}
+END_TEST
+
+/* CR alone is a line end (old Mac OS files), noted once; CR LF is one */
+START_TEST(cr_only_line_ends)
+{
+  start("X ; a comment\rY\r\rZ\r\nA");
+  ck_assert_int_eq(next(), 'X');
+  ck_assert_int_eq(next(), LX_EOB);     /* the comment ends at the CR */
+  ck_assert_uint_eq(l.line, 2);
+  ck_assert_int_eq(next(), 'Y');
+  ck_assert_int_eq(next(), LX_EOB);
+  ck_assert_int_eq(next(), LX_EOB);
+  ck_assert_uint_eq(l.line, 4);
+  ck_assert_int_eq(next(), 'Z');
+  ck_assert_int_eq(next(), LX_EOB);     /* CR LF: one line end */
+  ck_assert_uint_eq(l.line, 5);
+  ck_assert_uint_eq(l.col, 1);
+  ck_assert_int_eq(next(), 'A');
+  ck_assert_int_eq(lex_peek(&l), LX_EOF);
+  ck_assert_uint_eq(tp_count(&d, DIAG_NOTE), 1);
+  ck_assert_ptr_nonnull(strstr(d.v[0].msg, "CR alone"));
+}
+END_TEST
+
+START_TEST(cr_lf_file_has_no_cr_note)
+{
+  start("X\r\nY\r\n");
+  while (next() != LX_EOF)
+    ;
+  ck_assert_uint_eq(d.n, 0);
 }
 END_TEST
 
@@ -368,6 +399,8 @@ Suite *suite_lex(void)
   tcase_add_test(tc, blen_counts_significant_characters);
   tcase_add_test(tc, mark_and_reset);
   tcase_add_test(tc, skip_block);
+  tcase_add_test(tc, cr_only_line_ends);
+  tcase_add_test(tc, cr_lf_file_has_no_cr_note);
   tcase_add_test(tc, utf8_encode);
   tcase_add_test(tc, numero_sign_passes_through);
   suite_add_tcase(s, tc);

@@ -174,8 +174,20 @@ END_TEST
 
 START_TEST(g_m_numbers_leading_zeros)
 {
-  first("N1 G01 G9 M03 M5 G019");
-  ck_assert_int_eq(d.nerr, 1);        /* G019 has three digits */
+  /* leading zeros are insignificant however many (language.md sec. 9) */
+  first("N0001 G001 G0009 M0003 M005 G00019");
+  ck_assert_int_eq(d.nerr, 0);
+  ck_assert_int_eq(b->number, 1);
+  ck_assert(b->g == ((1ull << 1) | (1ull << 9) | (1ull << 19)));
+  ck_assert(b->m == ((1u << 3) | (1u << 5)));
+  first("N1 G100");
+  ck_assert_int_eq(d.nerr, 1);        /* three significant digits */
+  first("№0000002 L0000002 P0003 R00001+1");
+  ck_assert_int_eq(d.nerr, 1);        /* (counted since the start) none new */
+  ck_assert_int_eq(b->number, 2);
+  ck_assert_int_eq(b->bad, 0);
+  first("N000");
+  ck_assert_int_eq(d.nerr, 2);        /* 0 however written is no block number */
   first("N1 G01 G9 M03 M5");
   ck_assert_int_eq(b->bad, 0);
   ck_assert(b->g == ((1ull << 1) | (1ull << 9)));

@@ -39,6 +39,7 @@ START_TEST(text_roundtrip)
   roundtrip("№1 G04 X+2 ^\n№2 M02 ^");          /* no final line end */
   roundtrip("№1 G04 X+2 ^\r\n№2 M02 ^\r\n");    /* CRLF kept */
   roundtrip("\n\n;\n");
+  roundtrip("; old Mac\r№1 G04 X+2 ^\r№2 M02 ^\r");   /* CR-only line ends kept */
 }
 END_TEST
 
@@ -56,6 +57,10 @@ START_TEST(text_lines_and_nul)
   ck_assert_int_eq(tui_text_set(&t, "a\0b\n", 4, err, sizeof err), -1);
   ck_assert_ptr_nonnull(strstr(err, "NUL"));
   ck_assert_uint_eq(t.n, 3);              /* unchanged */
+  /* CR alone ends the lines of a file with no LF, as the compiler reads it */
+  ck_assert_int_eq(tui_text_set(&t, "; c\r№1 M02\r", 12, err, sizeof err), 0);
+  ck_assert_uint_eq(t.n, 2);
+  ck_assert_str_eq(t.line[0], "; c");
   tui_text_free(&t);
 }
 END_TEST
