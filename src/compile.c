@@ -48,6 +48,7 @@ struct comp {
   /* within a block: which slots are given, with known constant values */
   uint16_t given;
   uint16_t isconst;
+  uint16_t badslot;        /* a slot whose word was refused (its checks would cascade) */
   double kval[SL__COUNT];
   int stack, maxstack;
   const struct plug_set *plugins;
@@ -380,8 +381,13 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
   if (!e || c->b->bad)
     return;   /* a block that did not parse is not compiled: it cannot run */
   int k = fold(c, e, &v, &failed);
-  if (failed)
+  /* a refused word is reported once: the checks that need its value (the
+   * arc's radius) skip it rather than report a second, false error */
+  uint16_t bit = dest >= VM_NREG ? (uint16_t)(1u << (dest - VM_NREG)) : 0;
+  if (failed) {
+    c->badslot |= bit;
     return;
+  }
   if (k) {
     if (w.round)
       v = round(v);
@@ -390,6 +396,7 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
         warn(c, col, "%s%.10g is over %.0f: clamped to %.0f", w.name, v, w.hi, w.hi);
       } else {
         err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w.name, v, w.lo, w.hi);
+        c->badslot |= bit;
         return;
       }
     }
@@ -485,6 +492,8 @@ static void check_arc_const(struct comp *c, int plane, unsigned col)
   double v[4];
   for (int i = 0; i < 4; i++) {
     int s = need[i];
+    if (c->badslot & (1u << s))
+      return;   /* refused already, with its own error */
     if (!(c->given & (1u << s)))
       v[i] = 0;
     else if (c->isconst & (1u << s))
@@ -513,18 +522,33 @@ static int text_len_check(struct comp *c, const struct text *t, const char *fn, 
   return 1;
 }
 
-/* Characters of a display text outside its ((Rn reference. */
+/* The ((Rn reference at p, read as the screen draws it (display/screen.c):
+ * spaces before and after R (or Cyrillic Р), then the number up to the
+ * first non-digit.  Its end, or NULL when p starts none. */
+static const char *ref_end(const char *p)
+{
+  if (strncmp(p, "((", 2) != 0)
+    return NULL;
+  const char *q = p + 2;
+  while (*q == ' ') q++;
+  if (*q == 'R') q++;
+  else if (strncmp(q, "\xD0\xA0", 2) == 0) q += 2;
+  else return NULL;
+  while (*q == ' ') q++;
+  if (*q < '0' || *q > '9')
+    return NULL;
+  while (*q >= '0' && *q <= '9') q++;
+  return q;
+}
+
+/* Characters of a display text outside its ((Rn references. */
 static unsigned text_chars_outside_ref(const char *s)
 {
   unsigned n = 0;
-  const char *ref = s ? strstr(s, "((") : NULL;
   for (const char *p = s; p && *p;) {
-    if (p == ref) {
-      p += 2;
-      while (*p == ' ') p++;
-      if (*p == 'R') p++;
-      else if (strncmp(p, "\xD0\xA0", 2) == 0) p += 2;
-      while (*p == ' ' || (*p >= '0' && *p <= '9')) p++;
+    const char *e = ref_end(p);
+    if (e) {
+      p = e;
       continue;
     }
     if (((unsigned char)*p & 0xC0) != 0x80)
@@ -635,6 +659,21 @@ static void check_block(struct comp *c)
     if (slot_word(b, s, &col)) { naxis++; if (!axcol) axcol = col; }
   for (int s = SL_I; s <= SL_K; s++)
     if (slot_word(b, s, &col)) { ncentre++; if (!cecol) cecol = col; }
+  /* a dialog or display function (group 4) stands with no function of
+   * groups 1-3 and no axis or centre word: only assignments, array
+   * operations and M functions beside it (language.md sec. 8) */
+  if (seen[4]) {
+    for (int i = 0; i < b->nw; i++) {
+      const struct word *w = &b->w[i];
+      int grp = w->kind == WK_G ? group_of(c, w->num) : 0;
+      if (grp >= 1 && grp <= 3)
+        err(c, S42_E_GROUP, w->col, "G%02d (dialog and display, group 4) stands without functions of groups 1-3: "
+            "G%02d belongs in another block", seen[4], w->num);
+    }
+    if (naxis || ncentre)
+      err(c, S42_E_GROUP, axcol && (!cecol || axcol < cecol) ? axcol : cecol,
+          "G%02d (dialog and display, group 4) stands without axis or centre words", seen[4]);
+  }
   const struct word *F = NULL;
   for (int i = 0; i < b->nw; i++)
     if (b->w[i].kind == WK_REG && b->w[i].letter == 'F')
@@ -749,9 +788,14 @@ static void check_block(struct comp *c)
     text_len_check(c, &b->g33, "G33", 32);
     text_refs(c, &b->g33, "G33", 0);
   }
-  if (M(18)) {
-    text_len_check(c, &b->m18, "M18", 32);
-    text_refs(c, &b->m18, "M18", 0);
+  if (M(18) && text_len_check(c, &b->m18, "M18", 32)) {
+    int refs = text_refs(c, &b->m18, "M18", 0);
+    /* each ((Rn shows as an 8-column field: the line can be wider than
+     * its text, and the screen cuts it at 32 columns (language.md sec. 9) */
+    unsigned shown = text_chars_outside_ref(b->m18.s) + 8u * (unsigned)refs;
+    if (refs && shown > 32)
+      warn(c, b->m18.col, "M18: with its %d value field%s of 8 columns the directive can be %u columns wide; "
+           "the screen shows the first 32", refs, refs > 1 ? "s" : "", shown);
   }
   for (int i = 0; i < b->ng29; i++) {
     int refs = text_refs(c, &b->g29[i], "G29", 1);
@@ -839,7 +883,7 @@ static void compile_block(struct comp *c)
     mo = MO_M19;
   else if (mo == MO_NONE && (G(27) || G(28) || G(29) || G(33) || G(34)))
     mo = MO_DIALOG;
-  c->given = c->isconst = 0;
+  c->given = c->isconst = c->badslot = 0;
   c->stack = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
 
