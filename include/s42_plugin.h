@@ -191,7 +191,8 @@ struct s42_host {
   int64_t (*position)(struct s42_block *b, int axis);
   double (*time)(struct s42_block *b);
   double (*axis_speed)(int axis);                /* the axis's maximum, mm/min */
-  /* Does this block's contour move `axis` (a non-zero increment)? */
+  /* Does this block's contour move `axis`: a non-zero increment, or an arc
+   * (or helix) in a plane that holds the axis, whatever its end point? */
   int (*moves_axis)(struct s42_block *b, int axis);
   int (*move)(struct s42_block *b, const struct s42_move *m);
   /* Move an axis outside the contour (oscillation): counts in the position,

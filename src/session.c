@@ -169,10 +169,21 @@ static int contour_block(const struct session *s)
   }
 }
 
+/* Does the block's contour move the axis?  An arc moves both axes of its
+ * plane whatever its end point (a half circle back to the same Z, a full
+ * circle): the oscillating axis may not be one of them (language.md sec. 9
+ * M13); otherwise a non-zero increment moves it. */
 static int h_moves_axis(struct s42_block *b, int axis)
 {
   const struct session *s = b->s;
-  return axis >= 0 && axis < 4 && contour_block(s) && BIT(cur_attr(s)->slots, axis) && s->mb.w[axis] != 0;
+  if (axis < 0 || axis >= 4 || !contour_block(s))
+    return 0;
+  const struct kp_attr *at = cur_attr(s);
+  int arc = at->motion == MO_G02 || at->motion == MO_G03 || at->motion == MO_G12 || at->motion == MO_G13;
+  if (arc && ((at->plane == 17 && (axis == 0 || axis == 1)) || (at->plane == 18 && (axis == 1 || axis == 2)) ||
+              (at->plane == 19 && (axis == 0 || axis == 2))))
+    return 1;
+  return BIT(at->slots, axis) && s->mb.w[axis] != 0;
 }
 
 static int h_move(struct s42_block *b, const struct s42_move *mv)
