@@ -511,6 +511,14 @@ void sess_plugin_json(const struct session *s, int what, char *buf, size_t n)
   }
 }
 
+/* The blocks that open M16's correction window when they start: G20, M19
+ * and the dialog (language.md sec. 14). */
+static int window_block(const struct kp_attr *at)
+{
+  return at->motion == MO_G20 || at->motion == MO_M19 || at->motion == MO_DIALOG || BIT(at->m, 27) ||
+         BIT(at->m, 28) || BIT(at->m, 29);
+}
+
 /* The rest of a block after its machine work and waits: M16, the row. */
 static void finish_block(struct session *s)
 {
@@ -521,6 +529,8 @@ static void finish_block(struct session *s)
     int axis = it->axis == 'X' ? 0 : it->axis == 'Y' ? 1 : it->axis == 'Z' ? 2 : 3;
     vm_set_reg(&s->vm, it->reg, (double)(it->sign * s->m.corr[axis]));
   }
+  if (at->nm16)
+    memset(s->m.corr, 0, sizeof s->m.corr);   /* a correction is recorded once: a new window */
   emit_row(s);
   s->wait = W_NONE;
   s->state = SE_START;
@@ -767,21 +777,18 @@ static int after_motion(struct session *s)
     scr_set_directive(&s->scr, kp_str(s->p, at->m18));
   }
   if (at->motion == MO_G20) {
-    memset(s->m.corr, 0, sizeof s->m.corr);   /* M16 counts from here */
     s->scr.mode = SCR_MANUAL;
     s->wait = at->m18 ? W_PS : W_PUSK;
     return SE_WAIT;
   }
   if (at->motion == MO_M19) {
-    memset(s->m.corr, 0, sizeof s->m.corr);
     if (teach_start(s, at) == SE_ERROR)
       return SE_ERROR;
     s->scr.mode = SCR_MANUAL;
     s->wait = W_TEACH;
     return SE_WAIT;
   }
-  if (at->motion == MO_DIALOG || BIT(at->m, 27) || BIT(at->m, 28) || BIT(at->m, 29)) {
-    memset(s->m.corr, 0, sizeof s->m.corr);   /* M16 counts from a dialog block */
+  if (window_block(at)) {
     int r = dialog(s, at);
     if (r >= 0)
       return r;
@@ -808,10 +815,12 @@ static int do_block(struct session *s)
     warn(s, "%s%.10g is over %.0f: clamped to %.0f", ru->name, s->vm.clamped_from, ru->hi, ru->hi);
     s->vm.clamped = 0;
   }
-  if (s->vm.pp_jumps != s->pp_seen) {        /* M16 counts from the last PP jump */
-    s->pp_seen = s->vm.pp_jumps;
+  /* a G20, M19 or dialog block opens M16's correction window as it starts:
+   * at its VM_EV_START when the host acted there (an `at` correction is
+   * in the window), else here; a PP jump opens none (language.md sec. 14) */
+  if (window_block(at) && !s->window_opened)
     memset(s->m.corr, 0, sizeof s->m.corr);
-  }
+  s->window_opened = 0;
   struct mach_block *b = &s->mb;
   b->motion = at->motion;
   b->plane = at->plane;
@@ -850,6 +859,9 @@ enum sess_ev sess_run(struct session *s)
     int r;
     switch (ev) {
     case VM_EV_START:
+      s->window_opened = window_block(kp_attr(s->p, s->vm.cur));
+      if (s->window_opened)
+        memset(s->m.corr, 0, sizeof s->m.corr);
       return (enum sess_ev)(s->state = SE_START);
     case VM_EV_BLOCK:
       r = do_block(s);

@@ -69,7 +69,7 @@ struct session {
   double answer;         /* the number the last G27 took */
   int have_answer;       /* a G27 took a number that no G28 stored yet */
   int m15_seen;          /* a restart point passed: G29 extends the display */
-  uint32_t pp_seen;
+  int window_opened;     /* M16's window opened at this block's VM_EV_START */
   /* plugins: the host sets `plugins` before the first sess_run */
   struct plug_set *plugins;
   uint32_t every;        /* started plugins that see every block */
