@@ -44,7 +44,7 @@ include bench/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: all check test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial
+.PHONY: all check test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -71,7 +71,7 @@ check: deps
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus errors guide tutorial
+test: unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus errors guide tutorial cli
 
 # programs/errors/: one program per error class, its diagnostics exactly
 errors: $(S42)

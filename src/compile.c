@@ -1118,7 +1118,7 @@ static void structure(struct comp *c)
       serr(c, i, S[i].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
            t, t, count[t]);
     else {
-      if (mp >= 0 && first[t] > mp)
+      if (mp >= 0 && first[t] > mp && !start[first[t]])   /* once a sub, however many call it */
         serr(c, (size_t)first[t], 0, S42_E_SUB, "sub %d starts after block 1: subs come before the main program", t);
       start[first[t]] = 1;
     }

@@ -1005,7 +1005,22 @@ static int cmd_tui(int argc, char **argv)
   return rc;
 }
 
+static int command(int argc, char **argv);
+
+/* Every command's output is checked once more at the end: a full disk or a
+ * closed pipe is status 4 with the reason, never a silent success. */
 int main(int argc, char **argv)
+{
+  int rc = command(argc, argv);
+  if (fflush(stdout) != 0 || ferror(stdout)) {
+    if (rc != EXIT_IO)   /* the headless run said so already */
+      fprintf(stderr, "s42: error writing the output: %s\n", strerror(errno ? errno : EIO));
+    rc = EXIT_IO;
+  }
+  return rc;
+}
+
+static int command(int argc, char **argv)
 {
   if (argc < 2) {
     fputs(usage, stderr);

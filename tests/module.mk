@@ -74,6 +74,10 @@ valgrind: $(S42)
 	  --error-exitcode=99 $(S42) check programs/*.kp
 	@echo "valgrind: no leaks, no errors"
 
+# The command line's promises: output errors are status 4, CR-only files
+cli: $(S42)
+	sh tests/cli/run.sh $(S42)
+
 # s42 tui in a real terminal: tmux send-keys, capture-pane
 tui: $(S42)
 	sh tests/tui/run.sh $(S42)

@@ -619,6 +619,11 @@ END_TEST
 START_TEST(err_sub_after_mp)
 {
   expect_error("N1 L5\nN2 M2\nN5 M17\n", S42_E_SUB, 3, 1);
+  /* called twice: one diagnostic, not one per call */
+  struct tprog t;
+  tp_compile(&t, "N1 L5\nN3 L5\nN2 M2\nN5 M17\n");
+  ck_assert_msg(t.d.n == 1, "%s", tp_diags(&t.d));
+  tp_free(&t);
 }
 END_TEST
 
