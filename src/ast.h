@@ -61,6 +61,7 @@ struct block {
   unsigned ncol;            /* column of the number */
   unsigned len;             /* significant characters (E-BLOCKLEN) */
   int bad;                  /* a parse error was reported */
+  int badnum;               /* ... in its block number: what number it has is unknown */
   uint64_t g;               /* bit n: Gn present */
   uint32_t m;               /* bit n: Mn present */
   unsigned gcol[64], mcol[32];

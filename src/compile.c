@@ -26,7 +26,9 @@ const char *const kp_motion_name[MO__COUNT] = {
 
 /* Per-block summary for the structure checks, kept small: it lives for the
  * whole compile (number, line and column are in program.blocks). */
-enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8 };
+/* SF_NONUM: the block's number did not parse -- it may be the one a
+ * structure check misses, which then says nothing (one mistake, one error) */
+enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8, SF_NONUM = 16 };
 #define NOPC 0xffffu       /* no instruction to patch */
 struct summ {
   int16_t L, P, PP;        /* targets, -1 none */
@@ -394,6 +396,7 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
     if (!(v >= w.lo && v <= w.hi)) {
       if (w.clamp && v > w.hi) {
         warn(c, col, "%s%.10g is over %.0f: clamped to %.0f", w.name, v, w.hi, w.hi);
+        w.clamp = 2;   /* said once, here: not again when it runs */
       } else {
         err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w.name, v, w.lo, w.hi);
         c->badslot |= bit;
@@ -869,6 +872,8 @@ static void compile_block(struct comp *c)
   c->bstart = pb.code;
   if (b->bad)
     sm->flags |= SF_BAD;
+  if (b->badnum)
+    sm->flags |= SF_NONUM;
 
   at->g = b->g;
   at->m = b->m;
@@ -943,6 +948,12 @@ static void compile_block(struct comp *c)
   if (G(28) && b->g28min && b->g28max) {
     store(c, b->g28min, VM_NREG + SL_MIN, slot_rule(b, SL_MIN), b->g28col);
     store(c, b->g28max, VM_NREG + SL_MAX, slot_rule(b, SL_MAX), b->g28col);
+    /* |answer| must lie in min..max: bounds the wrong way round refuse
+     * every answer, and the operator could never leave the field */
+    const uint16_t both = 1u << SL_MIN | 1u << SL_MAX;
+    if ((c->given & both) == both && (c->isconst & both) == both && c->kval[SL_MIN] > c->kval[SL_MAX])
+      err(c, S42_E_RANGE, b->g28col, "G28 /%.10g:%.10g/: the minimum is over the maximum, so no number can pass",
+          c->kval[SL_MIN], c->kval[SL_MAX]);
   }
   if ((G(2) || G(3) || G(12) || G(13)) && at->plane)
     check_arc_const(c, at->plane, b->gcol[G(2) ? 2 : G(3) ? 3 : G(12) ? 12 : 13]);
@@ -1090,16 +1101,25 @@ static void structure(struct comp *c)
       count[B[i].number]++;
     }
   /* unit starts: block 1 and every L target */
-  char *start = calloc(n, 1);
+  char *start = calloc(n, 1), *into = calloc(n, 1);
   int *unit = malloc(n * sizeof *unit);
-  if (!start || !unit) {
+  if (!start || !unit || !into) {
     free(start);
+    free(into);
     free(unit);
     c->oom = 1;
     return;
   }
+  /* what a block that did not parse may have held: a number, an M2 */
+  int nonum = 0, anybad = 0;
+  for (size_t i = 0; i < n; i++) {
+    nonum |= (S[i].flags & SF_NONUM) != 0;
+    anybad |= (S[i].flags & SF_BAD) != 0;
+  }
   int mp = first[1];
-  if (mp < 0)
+  if (mp < 0 && nonum)
+    ;   /* block 1 may be the one whose number is wrong: that error says it */
+  else if (mp < 0)
     diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[0].line, B[0].col, B[0].number ? B[0].number : -1,
              "no block 1: the main program starts at block 1");
   else if (count[1] > 1)
@@ -1112,15 +1132,26 @@ static void structure(struct comp *c)
     if (S[i].L < 0 || S[i].L < 2 || S[i].L > 999)
       continue;
     int t = S[i].L;
-    if (count[t] == 0)
-      serr(c, i, S[i].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
+    if (count[t] == 0) {
+      if (!nonum)
+        serr(c, i, S[i].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
+    }
     else if (count[t] > 1)
       serr(c, i, S[i].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
            t, t, count[t]);
     else {
-      if (mp >= 0 && first[t] > mp && !start[first[t]])   /* once a sub, however many call it */
-        serr(c, (size_t)first[t], 0, S42_E_SUB, "sub %d starts after block 1: subs come before the main program", t);
-      start[first[t]] = 1;
+      size_t f = (size_t)first[t];
+      if (mp >= 0 && first[t] > mp && !start[f])   /* once a sub, however many call it */
+        serr(c, f, 0, S42_E_SUB, "sub %d starts after block 1: subs come before the main program", t);
+      else if (f > 0 && !start[f] && !into[f] && (int)f != mp &&
+               !(S[f - 1].flags & (SF_M2 | SF_M17 | SF_UNCOND | SF_BAD))) {
+        /* a call into the middle of a sub: the block before runs on into
+         * it, so the call is the mistake (not that sub's "end") */
+        into[f] = 1;
+        serr(c, i, S[i].Lcol, S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
+             "it); a sub starts after the end (M17, M2 or a jump) of the one before", t, t, B[f - 1].number);
+      }
+      start[f] = 1;
     }
   }
   /* units in text order: 0 = the MP, subs numbered from 1 */
@@ -1139,8 +1170,10 @@ static void structure(struct comp *c)
       int t = tg[k];
       if (t < 1)
         continue;
-      if (t > 999 || count[t] == 0)
-        serr(c, i, tc[k], S42_E_TARGET, "%s%d: there is no block %d", k ? "PP" : "P", t, t);
+      if (t > 999 || count[t] == 0) {
+        if (!nonum)
+          serr(c, i, tc[k], S42_E_TARGET, "%s%d: there is no block %d", k ? "PP" : "P", t, t);
+      }
       else if (count[t] > 1)
         serr(c, i, tc[k], S42_E_TARGET, "%s%d: block %d appears %d times; a jump target must be unique",
              k ? "PP" : "P", t, t, count[t]);
@@ -1149,13 +1182,19 @@ static void structure(struct comp *c)
              unit[i] == 0 ? "unit (a sub)" : "unit");
     }
   }
+  int anym2 = 0;
+  for (size_t i = 0; i < n; i++)
+    if ((S[i].flags & SF_M2) && unit[i] >= 0)
+      anym2 = 1;
   /* M17 in the MP, running off the end of a unit */
   for (size_t i = 0; i < n; i++) {
     if ((S[i].flags & SF_M17) && unit[i] == 0)
       serr(c, i, 0, S42_E_SUB, "M17 (end of sub) in the main program");
     int last = i + 1 == n || start[i + 1];
-    if (!last || unit[i] < 0 || (S[i].flags & SF_BAD))
+    if (!last || unit[i] < 0 || (S[i].flags & SF_BAD) || (i + 1 < n && into[i + 1]))
       continue;
+    if (unit[i] == 0 && !anym2)
+      continue;   /* the program has no M2 at all: that one error says it */
     int ok = (S[i].flags & (SF_M2 | SF_UNCOND)) || (unit[i] > 0 && (S[i].flags & SF_M17));
     if (!ok) {
       if (unit[i] == 0)
@@ -1164,13 +1203,9 @@ static void structure(struct comp *c)
         serr(c, i, 0, S42_E_SUB, "this sub can run off its end here: its last block needs M17, M2 or an unconditional jump");
     }
   }
-  int anym2 = 0;
-  for (size_t i = 0; i < n; i++)
-    if ((S[i].flags & SF_M2) && unit[i] >= 0)
-      anym2 = 1;
-  if (!anym2 && mp >= 0)
+  if (!anym2 && mp >= 0 && !anybad)
     diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[n - 1].line, B[n - 1].col, B[n - 1].number ? B[n - 1].number : -1,
-             "no M2: the program never ends");
+             "no M2: the program never ends (its last block needs M2 or an unconditional jump)");
 
   /* reachability, per unit, for the dead-code warning */
   char *reach = calloc(n, 1);
@@ -1244,6 +1279,7 @@ static void structure(struct comp *c)
     c->p->entry = c->p->blocks[mp].code;
   }
   free(start);
+  free(into);
   free(unit);
 }
 

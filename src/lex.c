@@ -161,6 +161,8 @@ int32_t lex_peek(struct lex *l)
       if (m) {
         if (!l->noted) {
           l->noted = 1;
+          l->note = l->d->n;
+          l->note_here = 1;
           diag_add(l->d, DIAG_NOTE, 0, l->line, l->col, l->number,
                    "Cyrillic look-alike letters are read as the Latin ones (first here)");
         }
@@ -199,6 +201,19 @@ void lex_raw_adv(struct lex *l)
   int32_t c = decode(l, l->pos, &len);
   l->blen++;
   step(l, len, c);
+}
+
+int lex_cyrillic(const struct lex *l)
+{
+  return l->peeked && l->cpos < l->n && (unsigned char)l->s[l->cpos] >= 0x80;
+}
+
+void lex_set_number(struct lex *l, int number)
+{
+  /* a note made in this block before its number was read is this block's */
+  if (l->note_here && l->note < l->d->n)
+    l->d->v[l->note].number = number;
+  l->number = number;
 }
 
 void lex_skip_block(struct lex *l)

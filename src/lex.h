@@ -20,6 +20,8 @@ struct lex {
   struct diag_list *d;
   int number;             /* the current block's number, for diagnostics */
   int noted;              /* look-alike note given */
+  size_t note;            /* its index in d (for the block number), if given */
+  int note_here;          /* ... during the current block (the parser clears it) */
   int cr_noted;           /* CR-only line ends noted */
   unsigned blen;          /* significant characters of the current block */
   /* what lex_peek saw: */
@@ -40,6 +42,11 @@ void lex_adv(struct lex *l);
  * newline or ^ (which end the block even inside text), LX_EOF at the end. */
 int32_t lex_raw_peek(struct lex *l);
 void lex_raw_adv(struct lex *l);
+/* The character lex_peek returned was a Cyrillic look-alike. */
+int lex_cyrillic(const struct lex *l);
+/* The current block's number is known now: diagnostics of this block made
+ * before it (the look-alike note) name it too. */
+void lex_set_number(struct lex *l, int number);
 /* Skip the rest of a malformed block up to (not including) its end mark. */
 void lex_skip_block(struct lex *l);
 struct lex_mark lex_mark(const struct lex *l);

@@ -498,7 +498,7 @@ static struct expr *prim(struct pstate *s)
       adv(s);
     }
     if (peek(s) != ':')
-      fail(s, S42_E_SYNTAX, 0, "relation must be R, B, M, BR, MR, BM, BMR or empty, found %s",
+      fail(s, S42_E_SYNTAX, 0, "relation must be R, B, M, BR or RB, MR or RM, BM, BMR or empty, found %s",
            show(peek(s), buf));
     adv(s);
     e->op = (uint8_t)mask;
@@ -935,6 +935,8 @@ int parse_block(struct parser *p, struct block *b)
   clear_block(b);
   p->nodes = 0;
   int32_t c;
+  l->number = -1;   /* before the first peek: a note there is this block's */
+  l->note_here = 0;
   for (;;) {
     c = lex_peek(l);
     if (c == LX_EOF)
@@ -944,18 +946,32 @@ int parse_block(struct parser *p, struct block *b)
     lex_adv(l);
   }
   l->blen = 0;
-  l->number = -1;
   b->line = l->cline;
   b->col = l->ccol;
+  b->badnum = 0;
   if (setjmp(s.jb) == 0) {
+    if (c == 'H' && lex_cyrillic(l)) {
+      /* Н, the Cyrillic N, looks like a Latin H: a block number meant */
+      struct lex_mark m = lex_mark(l);
+      lex_adv(l);
+      int dig = isdig(lex_peek(l));
+      lex_reset(l, m);
+      if (dig) {
+        b->badnum = 1;
+        fail(&s, S42_E_SYNTAX, b->col, "Cyrillic Н at the block start reads as the letter H: did you mean N "
+             "(the block number, N1 or №1)?");
+      }
+    }
     if (c == 'N' || c == 0x2116) {   /* N12, №12, № 12 */
       b->ncol = l->ccol;
+      b->badnum = 1;
       lex_adv(l);
       long n = number(&s, 3, "a block number");
       if (n < 1 || n > 999)
         fail(&s, S42_E_RANGE, b->ncol, "block number %ld outside 1..999", n);
       b->number = (int)n;
-      l->number = (int)n;
+      b->badnum = 0;
+      lex_set_number(l, (int)n);
     }
     for (;;) {
       c = lex_peek(l);

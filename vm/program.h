@@ -15,7 +15,8 @@
 struct prog_rule {
   double lo, hi;
   uint8_t round;     /* round half away from zero first */
-  uint8_t clamp_hi;  /* above hi: store hi instead of failing */
+  uint8_t clamp_hi;  /* above hi: store hi instead of failing (2: and the front end
+                        already warned, the value being known when it checked) */
   uint8_t err;       /* error code (vm/errors.h) when outside lo..hi */
   char name[13];     /* the word, for the message ("X", "R12", "F") */
 };

@@ -112,8 +112,10 @@ static int do_set(struct vm *vm, uint32_t pc, uint32_t a, double v)
     v = round(v);
   if (!(v >= r->lo && v <= r->hi)) {
     if (r->clamp_hi && v > r->hi) {
-      vm->clamped = (a >> 10) + 1;   /* the host warns */
-      vm->clamped_from = v;
+      if (r->clamp_hi == 1) {
+        vm->clamped = (a >> 10) + 1;   /* the host warns */
+        vm->clamped_from = v;
+      }
       v = r->hi;
     } else {
       raise_at(vm, pc, r->err, "%s = %s is outside %s..%s", r->name, num(b1, sizeof b1, v),

@@ -616,6 +616,87 @@ START_TEST(err_sub_duplicated_start)
 }
 END_TEST
 
+/* One mistake, one error (issue 15): a cascade of a block that did not
+ * parse, or of a missing M2, is not reported a second time. */
+START_TEST(one_mistake_one_error)
+{
+  static const struct want num[] = {{S42_E_RANGE, 1, 2}};
+  expect_errors("№1000 M2 ^\n", num, 1);                         /* not also "no block 1" */
+  static const struct want low[] = {{S42_E_SYNTAX, 2, 4}};
+  expect_errors("№1 G01 X+1000 F100 ^\n№2 m2 ^\n", low, 1);      /* not also "no M2" */
+  static const struct want nom2[] = {{S42_E_SUB, 1, 1}};
+  expect_errors("№1 G01 X+1000 F100 ^\n", nom2, 1);              /* not also "runs off its end" */
+  static const struct want tgt[] = {{S42_E_RANGE, 2, 2}};
+  expect_errors("№1 P5 ^\n№5000 M2 ^\n", tgt, 1);                 /* the target may be the bad block */
+  /* a call into the middle of a sub blames the call, once */
+  static const struct want mid[] = {{S42_E_SUB, 4, 4}};
+  expect_errors("№50 G01 X+10 F100 ^\n№51 G01 X+10 M17 ^\n№1 L50 ^\n№2 L51 ^\n№3 M02 ^\n", mid, 1);
+  /* Cyrillic Н for N: one error, with the hint */
+  struct tprog t;
+  tp_compile(&t, "Н1 X+1000 F100 ^\n№2 M02 ^\n");
+  ck_assert_msg(t.d.nerr == 1 && strstr(tp_diags(&t.d), "did you mean N"), "%s", tp_diags(&t.d));
+  tp_free(&t);
+}
+END_TEST
+
+START_TEST(g28_bounds_the_wrong_way)
+{
+  expect_error("№1 G27 /А/ ^\n№2 G28 /9:1/ R1 ^\n№3 M02 ^\n", S42_E_RANGE, 2, 9);
+  expect_ok("№1 G27 /А/ ^\n№2 G28 /1:9/ R1 ^\n№3 M02 ^\n");
+  expect_ok("№1 G27 /А/ ^\n№2 G28 /R5:1/ R1 ^\n№3 M02 ^\n");   /* known only when it runs */
+}
+END_TEST
+
+START_TEST(relation_message_lists_every_form)
+{
+  struct tprog t;
+  tp_compile(&t, "№1 P(R1:Q:2)1 M02 ^\n");
+  ck_assert_msg(strstr(tp_diags(&t.d), "BR or RB, MR or RM"), "%s", tp_diags(&t.d));
+  tp_free(&t);
+}
+END_TEST
+
+/* The look-alike note names the block it is in, not the one before. */
+START_TEST(lookalike_note_names_its_block)
+{
+  struct tprog t;
+  tp_compile(&t, "№1 G01 X+1000 F100 ^\nМ02 ^\n");
+  ck_assert_uint_eq(t.d.n, 1);
+  ck_assert_int_eq(t.d.v[0].sev, DIAG_NOTE);
+  ck_assert_int_eq(t.d.v[0].number, -1);
+  ck_assert_uint_eq(t.d.v[0].line, 2);
+  tp_free(&t);
+  tp_compile(&t, "№1 G01 X+1000 F100 ^\n№2 Х+1 ^\n№3 M02 ^\n");
+  ck_assert_int_eq(t.d.v[0].number, 2);
+  tp_free(&t);
+}
+END_TEST
+
+/* A clamp known when the program is checked is warned about then, and not
+ * again when it runs; one known only at run time is warned about then. */
+START_TEST(clamp_warned_once)
+{
+  struct tprog t;
+  struct vm vm;
+  tp_compile(&t, "№1 G01 X+1000 F7000 ^\n№2 M02 ^\n");
+  ck_assert_uint_eq(t.d.nwarn, 1);
+  vm_init(&vm, &t.p);
+  tp_run(&vm);
+  ck_assert_int_eq(vm.clamped, 0);
+  tp_free(&t);
+  tp_compile(&t, "№1 R1+7000 G01 X+1000 F+R1 ^\n№2 M02 ^\n");
+  ck_assert_uint_eq(t.d.nwarn, 0);
+  vm_init(&vm, &t.p);
+  vm.yield_all = 1;
+  enum vm_event ev;
+  int seen = 0;
+  while ((ev = vm_run(&vm)) == VM_EV_BLOCK || ev == VM_EV_START)
+    seen |= vm.clamped != 0;
+  ck_assert_int_eq(seen, 1);
+  tp_free(&t);
+}
+END_TEST
+
 START_TEST(err_sub_after_mp)
 {
   expect_error("N1 L5\nN2 M2\nN5 M17\n", S42_E_SUB, 3, 1);
@@ -818,6 +899,11 @@ Suite *suite_compile(void)
   tcase_add_test(tc, errors_name_their_block);
   tcase_add_test(tc, dead_code_and_recursion_warnings);
   tcase_add_test(tc, empty_program);
+  tcase_add_test(tc, one_mistake_one_error);
+  tcase_add_test(tc, g28_bounds_the_wrong_way);
+  tcase_add_test(tc, relation_message_lists_every_form);
+  tcase_add_test(tc, lookalike_note_names_its_block);
+  tcase_add_test(tc, clamp_warned_once);
   suite_add_tcase(s, tc);
   return s;
 }
