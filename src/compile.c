@@ -666,14 +666,17 @@ static void check_block(struct comp *c)
    * groups 1-3 and no axis or centre word: only assignments, array
    * operations and M functions beside it (language.md sec. 8) */
   if (seen[4]) {
-    for (int i = 0; i < b->nw; i++) {
+    int other = 0;   /* one error a block: the first thing that does not belong */
+    for (int i = 0; i < b->nw && !other; i++) {
       const struct word *w = &b->w[i];
       int grp = w->kind == WK_G ? group_of(c, w->num) : 0;
-      if (grp >= 1 && grp <= 3)
+      if (grp >= 1 && grp <= 3) {
         err(c, S42_E_GROUP, w->col, "G%02d (dialog and display, group 4) stands without functions of groups 1-3: "
             "G%02d belongs in another block", seen[4], w->num);
+        other = 1;
+      }
     }
-    if (naxis || ncentre)
+    if ((naxis || ncentre) && !other)
       err(c, S42_E_GROUP, axcol && (!cecol || axcol < cecol) ? axcol : cecol,
           "G%02d (dialog and display, group 4) stands without axis or centre words", seen[4]);
   }
@@ -1305,6 +1308,8 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   }
   p->ext = c.x;
   p->ext_free = ext_free;
+  d->src = src;   /* the source lines under the diagnostics */
+  d->nsrc = n;
   p->saved_reg = REG_F;
   p->file = d->file;
   struct parser ps;

@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 void diag_init(struct diag_list *d, const char *file)
 {
@@ -91,24 +92,159 @@ const struct diag *diag_first_error(const struct diag_list *d)
   return NULL;
 }
 
-void diag_print_one(FILE *f, const char *file, const struct diag *g)
+static void print_head(FILE *f, const char *file, const struct diag *g, int color)
 {
   static const char *const sev[] = {"error", "warning", "note"};
+  static const char *const sgr[] = {"\033[1;31m", "\033[1;35m", "\033[1;36m"};
   char nb[16];
   if (g->number >= 0)
     snprintf(nb, sizeof nb, "N%d", g->number);
   else
     strcpy(nb, "N-");
-  fprintf(f, "%s:%u:%u: %s: %s: %s", file ? file : "-", g->line, g->col, sev[g->sev], nb, g->msg);
+  int s = g->sev >= 0 && g->sev <= 2 ? g->sev : 0;
+  fprintf(f, "%s:%u:%u: %s%s%s: %s: %s", file ? file : "-", g->line, g->col, color ? sgr[s] : "", sev[s],
+          color ? "\033[0m" : "", nb, g->msg);
   if (g->code)
     fprintf(f, " [%s]", err_code(g->code));
   fputc('\n', f);
 }
 
+void diag_print_one(FILE *f, const char *file, const struct diag *g)
+{
+  print_head(f, file, g, 0);
+}
+
+/* Where lines start, as the lexer reads them: LF ends a line, and so does a
+ * CR that no LF follows (CR LF is one line end). */
+struct cursor { const char *s; size_t n, pos; unsigned line; };
+
+static int eol_at(const struct cursor *c, size_t p, size_t *len)
+{
+  if (c->s[p] == '\n') { *len = 1; return 1; }
+  if (c->s[p] == '\r') {
+    if (p + 1 < c->n && c->s[p + 1] == '\n') { *len = 2; return 1; }
+    *len = 1;
+    return 1;
+  }
+  return 0;
+}
+
+/* Move the cursor to the start of `line` (forward only); 0 when the text
+ * has no such line. */
+static int seek_line(struct cursor *c, unsigned line)
+{
+  size_t len;
+  while (c->line < line) {
+    while (c->pos < c->n && !eol_at(c, c->pos, &len))
+      c->pos++;
+    if (c->pos >= c->n)
+      return 0;
+    c->pos += len;
+    c->line++;
+  }
+  return c->line == line;
+}
+
+/* The length in bytes of the UTF-8 sequence at p, 0 when invalid. */
+static size_t u8len(const unsigned char *p, size_t left)
+{
+  unsigned char b = p[0];
+  size_t k = b < 0x80 ? 1 : (b & 0xE0) == 0xC0 ? 2 : (b & 0xF0) == 0xE0 ? 3 : (b & 0xF8) == 0xF0 ? 4 : 0;
+  if (k == 0 || k > left)
+    return 0;
+  for (size_t i = 1; i < k; i++)
+    if ((p[i] & 0xC0) != 0x80)
+      return 0;
+  return k;
+}
+
+#define SHOW_COLS 100   /* a longer line is shown as a window round the column */
+
+/* The source line at the cursor and a caret under column col (columns
+ * count characters); what cannot be shown as it is (control characters,
+ * bytes that are not UTF-8) shows as '?'. */
+static void print_source(FILE *f, const struct cursor *c, unsigned col, int color)
+{
+  const unsigned char *s = (const unsigned char *)c->s;
+  size_t p = c->pos, len;
+  unsigned first = col > SHOW_COLS / 2 ? col - SHOW_COLS / 2 : 1, k = 1;
+  /* skip to the window's first character */
+  while (p < c->n && !eol_at(c, p, &len) && k < first) {
+    size_t u = u8len(s + p, c->n - p);
+    p += u ? u : 1;
+    k++;
+  }
+  char line[SHOW_COLS * 4 + 8], mark[SHOW_COLS + 8];
+  size_t nl = 0, nm = 0;
+  if (first > 1)
+    nl += (size_t)snprintf(line, sizeof line, "...");
+  for (; p < c->n && !eol_at(c, p, &len) && k < first + SHOW_COLS; k++) {
+    size_t u = u8len(s + p, c->n - p);
+    int tab = s[p] == '\t';
+    if (u == 1 && (s[p] < 0x20 || s[p] == 0x7F) && !tab)
+      u = 0;
+    if (u) {
+      memcpy(line + nl, s + p, u);
+      nl += u;
+      p += u;
+    } else {
+      line[nl++] = '?';
+      p++;
+    }
+    if (k < col)
+      mark[nm++] = tab ? '\t' : ' ';
+  }
+  int more = p < c->n && !eol_at(c, p, &len);
+  if (more)
+    nl += (size_t)snprintf(line + nl, sizeof line - nl, "...");
+  line[nl] = 0;
+  mark[nm] = 0;
+  if (col > k)
+    return;   /* the column is past the shown part of the line */
+  fprintf(f, "%5u | %s\n      | %s%s%s\n", c->line, line, first > 1 ? "   " : "", mark,
+          color ? "\033[1;32m^\033[0m" : "^");
+}
+
+static void print_in(FILE *f, const struct diag_list *d, const struct diag *g, struct cursor *c)
+{
+  print_head(f, d->file, g, d->color);
+  if (d->src && g->line > 0 && g->col > 0) {
+    if (c->line > g->line) {   /* out of order: from the start again */
+      c->pos = 0;
+      c->line = 1;
+    }
+    if (seek_line(c, g->line))
+      print_source(f, c, g->col, d->color);
+  }
+}
+
+static void cursor_init(struct cursor *c, const struct diag_list *d)
+{
+  c->s = d->src;
+  c->n = d->nsrc;
+  c->pos = d->nsrc >= 3 && memcmp(d->src, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;   /* not the byte-order mark */
+  c->line = 1;
+}
+
+void diag_print_in(FILE *f, const struct diag_list *d, const struct diag *g)
+{
+  struct cursor c;
+  cursor_init(&c, d);
+  print_in(f, d, g, &c);
+}
+
 void diag_print(FILE *f, const struct diag_list *d)
 {
+  struct cursor c;
+  cursor_init(&c, d);
   for (size_t i = 0; i < d->n; i++)
-    diag_print_one(f, d->file, &d->v[i]);
+    print_in(f, d, &d->v[i], &c);
   if (d->dropped)
     fprintf(f, "%s: note: %zu more diagnostics not shown\n", d->file ? d->file : "-", d->dropped);
+}
+
+int diag_want_color(FILE *f)
+{
+  const char *nc = getenv("NO_COLOR"), *term = getenv("TERM");
+  return isatty(fileno(f)) && !(nc && *nc) && !(term && strcmp(term, "dumb") == 0);
 }

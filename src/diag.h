@@ -1,6 +1,10 @@
 /* Diagnostics: every error, warning and note of a compile or a run, with
  * file, line, column and block number, printed as
- *   FILE:LINE:COL: error|warning|note: N<n>: MESSAGE [E-CODE]          */
+ *   FILE:LINE:COL: error|warning|note: N<n>: MESSAGE [E-CODE]
+ * and, when the program text is known, its source line with a caret under
+ * the column, as gcc and rustc print them:
+ *       3 | №3 G02 G17 X+100 Z+5 ^
+ *         |                  ^                                           */
 #ifndef S42_DIAG_H
 #define S42_DIAG_H
 
@@ -23,6 +27,9 @@ struct diag_list {
   size_t n, cap;
   size_t nerr, nwarn, dropped;
   const char *file;
+  const char *src;         /* the program text, for the source lines (not owned), or NULL */
+  size_t nsrc;
+  int color;               /* colour the severities (a terminal, and no NO_COLOR) */
 };
 
 void diag_init(struct diag_list *d, const char *file);
@@ -33,6 +40,11 @@ void diag_add(struct diag_list *d, int sev, int code, unsigned line, unsigned co
 void diag_sort(struct diag_list *d);
 const struct diag *diag_first_error(const struct diag_list *d);
 void diag_print_one(FILE *f, const char *file, const struct diag *g);
+/* One diagnostic with d's file, source line and colour (a run-time error). */
+void diag_print_in(FILE *f, const struct diag_list *d, const struct diag *g);
 void diag_print(FILE *f, const struct diag_list *d);
+/* Should diagnostics on this stream be coloured: a terminal, NO_COLOR
+ * unset or empty (no-color.org), TERM not "dumb". */
+int diag_want_color(FILE *f);
 
 #endif

@@ -228,6 +228,7 @@ static int load(const char *path, struct program *p, struct diag_list *d, char *
 {
   prog_init(p);
   diag_init(d, path);
+  d->color = diag_want_color(stderr);
   if (read_file(path, MAX_PROGRAM_BYTES, src, n))
     return EXIT_IO;
   int r = comp_program_with(*src, *n, d, p, plugins_init(NULL));
@@ -888,7 +889,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     g.col = e->col ? e->col : b->col;
     g.number = b->number ? b->number : -1;
     snprintf(g.msg, sizeof g.msg, "%s", e->msg);
-    diag_print_one(stderr, o.program, &g);
+    diag_print_in(stderr, &d, &g);
     memset(&de, 0, sizeof de);
     de.code = err_code(e->code);
     de.n = g.number;

@@ -44,5 +44,40 @@ fi
 printf '; a comment\r№1 G01 X+1000 F100 ^\r№2 M02 ^\r' >"$T/cr2.kp"
 if "$S42" run "$T/cr2.kp" --dump 2>/dev/null | grep -q '"status":"end"'; then ok; else bad "CR-only file does not run"; fi
 
+# the source line and a caret under the column
+printf '№1 G01 X+1000 F100 ^\n№2 G02 G17 I+1 Z+5 ^\n№3 M02 ^\n' >"$T/caret.kp"
+"$S42" check "$T/caret.kp" 2>"$T/err"
+printf '%s\n' "$T/caret.kp:2:16: error: N2: Z is not in the G17 plane of this arc (XY) [E-PLANE]" \
+  '    2 | №2 G02 G17 I+1 Z+5 ^' '      |                ^' >"$T/want"
+if cmp -s "$T/err" "$T/want"; then ok; else bad "caret: $(diff "$T/want" "$T/err")"; fi
+# a long line: a window round the column; a control character as ?
+python3 -c "
+import sys
+sys.stdout.write('№1 R1+' + '1+' * 200 + 'Q ^\n№2 M02 ^\n')" >"$T/long.kp"
+"$S42" check "$T/long.kp" 2>"$T/err"
+if sed -n 5p "$T/err" | grep -q '^    1 | \.\.\.1+1+1.*+1+Q \^$' && [ "$(sed -n 6p "$T/err" | tr -d ' |' )" = "^" ] &&
+   [ "$(sed -n 5p "$T/err" | awk '{ print index($0, "Q") }')" = "$(sed -n 6p "$T/err" | awk '{ print index($0, "^") }')" ] &&
+   [ "$(sed -n 2p "$T/err" | wc -c)" -lt 120 ]; then
+  ok
+else
+  bad "long line: $(cat "$T/err")"
+fi
+printf '№1 R1+1 \001 ^\n№2 M02 ^\n' >"$T/ctl.kp"
+"$S42" check "$T/ctl.kp" 2>"$T/err"
+if sed -n 2p "$T/err" | grep -q '^    1 | №1 R1+1 ? \^$'; then ok; else bad "control character: $(cat "$T/err")"; fi
+
+# colour on a terminal only, and never with NO_COLOR (script gives a pty)
+if command -v script >/dev/null 2>&1; then
+  script -qec "$S42 check $T/caret.kp" /dev/null >"$T/tty" 2>&1
+  if grep -q "$(printf '\033')\[1;31merror" "$T/tty"; then ok; else bad "no colour on a terminal: $(cat -v "$T/tty")"; fi
+  NO_COLOR=1 script -qec "$S42 check $T/caret.kp" /dev/null >"$T/tty" 2>&1
+  if grep -q "$(printf '\033')" "$T/tty"; then bad "colour despite NO_COLOR"; else ok; fi
+  TERM=dumb script -qec "$S42 check $T/caret.kp" /dev/null >"$T/tty" 2>&1
+  if grep -q "$(printf '\033')" "$T/tty"; then bad "colour on TERM=dumb"; else ok; fi
+  if grep -q "$(printf '\033')" "$T/err"; then bad "colour into a file"; else ok; fi
+else
+  echo "cli: script (util-linux) is not here: the colour cases were skipped"
+fi
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
