@@ -181,10 +181,16 @@ struct s42_host {
   /* run() of a block that waited: 0 on the first call, then 1, 2, ... */
   int (*resumed)(struct s42_block *b);
 
-  /* parameters (R0..R113, S42_D1, S42_TK, S42_UG, S42_F) and arrays */
+  /* parameters (R0..R113, S42_D1, S42_TK, S42_UG, S42_F) and arrays.
+   * What set_param and load_array write belongs to the block: a block that
+   * fails (any callback returns S42_FAIL, in any phase) leaves every
+   * parameter and both arrays as they were after the previous block, as
+   * the language's own words do (language.md sec. 7). */
   double (*param)(struct s42_block *b, int n);
   int (*set_param)(struct s42_block *b, int n, double v);   /* 0, -1 out of range */
-  /* Load array 1 or 2 with n values from the start, pointer at the start. */
+  /* Load array 1 or 2 with n <= 15 values from the start (the rest 0),
+   * pointer at the start.  0, or -1 for a bad array or n, or a value
+   * outside -9999999..9999999 (nothing is written). */
   int (*load_array)(struct s42_block *b, int array, const double *v, int n);
 
   /* the machine */

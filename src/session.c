@@ -130,6 +130,9 @@ static double h_param(struct s42_block *b, int n)
   return n >= 0 && n < VM_NREG ? b->s->vm.reg[n] : 0;
 }
 
+/* A plugin changes the VM only through the VM's journaled calls, so a block
+ * that fails after it wrote leaves the registers and arrays as after the
+ * previous block (language.md sec. 7), as the program's own words do. */
 static int h_set_param(struct s42_block *b, int n, double v)
 {
   if (n < 0 || n > REG_F || !isfinite(v))
@@ -140,14 +143,12 @@ static int h_set_param(struct s42_block *b, int n, double v)
 
 static int h_load_array(struct s42_block *b, int array, const double *v, int n)
 {
-  if (array < 1 || array > 2 || n < 0 || n > VM_ACELLS)
+  if (array < 1 || array > 2 || n < 0 || n > VM_ACELLS || (n && !v))
     return -1;
-  struct vm_array *a = &b->s->vm.arr[array - 1];
-  memset(a, 0, sizeof *a);
-  for (int i = 0; i < n; i++)
-    a->cell[i] = v[i];
-  a->len = n;
-  a->ptr = 0;
+  for (int i = 0; i < n; i++)   /* the cells' range, as array words have it (E-RANGE) */
+    if (!(fabs(v[i]) <= 9999999))
+      return -1;
+  vm_load_array(&b->s->vm, array - 1, v, n);
   return 0;
 }
 

@@ -215,6 +215,37 @@ START_TEST(failing_callbacks)
 }
 END_TEST
 
+/* A block that fails after its plugin wrote registers and arrays leaves
+ * them as after the block before it (language.md sec. 7): the host's
+ * set_param and load_array are part of the block's transaction. */
+START_TEST(failed_block_rolls_back_plugin_writes)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "txfail"));
+  load("N1 R1+7 R0+5\nN2 M06\nN3 M07\nN4 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_TEETH);
+  ck_assert_int_eq(sess_block_number(s), 3);
+  /* as N2 left them */
+  ck_assert_double_eq(s->vm.reg[0], 599);
+  ck_assert_double_eq(s->vm.reg[1], 8);       /* written after 600 writes of R0 */
+  ck_assert_double_eq(s->vm.reg[REG_TK], 1002);
+  ck_assert_double_eq(s->vm.reg[REG_UG], 2002);
+  ck_assert_int_eq(s->vm.arr[0].len, 3);
+  ck_assert_double_eq(s->vm.arr[0].cell[0], 2);
+  ck_assert_int_eq(s->vm.arr[1].len, 5);
+  ck_assert_double_eq(s->vm.arr[1].cell[4], 2);
+  /* the first block a plugin writes in fails: nothing of it stays */
+  load("N1 R1+7\nN3 M07\nN4 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_double_eq(s->vm.reg[0], 0);
+  ck_assert_double_eq(s->vm.reg[1], 7);
+  ck_assert_double_eq(s->vm.reg[REG_TK], 0);
+  ck_assert_int_eq(s->vm.arr[0].len, 0);
+  ck_assert_double_eq(s->vm.arr[0].cell[0], 0);
+  ck_assert_int_eq(s->vm.arr[1].len, 0);
+}
+END_TEST
+
 START_TEST(missing_plugin_is_e_plugin_at_check)
 {
   plug_scan(&ps, "/nonexistent/plugins");
@@ -423,6 +454,7 @@ Suite *suite_plugin(void)
   tcase_add_test(tc, init_failure_is_e_plugin);
   tcase_add_test(tc, abi_10_plugin_still_loads);
   tcase_add_test(tc, failing_callbacks);
+  tcase_add_test(tc, failed_block_rolls_back_plugin_writes);
   tcase_add_test(tc, missing_plugin_is_e_plugin_at_check);
   suite_add_tcase(su, tc);
   tc = tcase_create("oscillation");
