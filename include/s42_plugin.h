@@ -7,13 +7,18 @@
  *
  * returning a constant descriptor: the ABI it was built for, its name and
  * version, the G and M functions it implements and its callbacks.  s42
- * loads it with dlopen(RTLD_NOW | RTLD_LOCAL), checks abi_major, abi_minor
- * and the fingerprint before it calls anything else, and refuses a plugin
- * built for another major version (or a newer minor one) with a message
- * naming both versions.  Reading the descriptor costs nothing: init() runs
- * only when a program uses one of the plugin's functions, so a plugin with
- * heavy dependencies keeps them in a second library that init() dlopens
- * (see plugins/toothsearch/ in the s42 sources).
+ * opens a plugin file only when a program uses a function it may provide
+ * (one the language leaves to a plugin is looked for first in the file
+ * named after that plugin, helix.so for G12), loads it first in a child
+ * process -- so a constructor that crashes or exits is reported, not
+ * suffered -- then with dlopen(RTLD_NOW | RTLD_LOCAL), checks abi_major,
+ * abi_minor and the fingerprint before it calls anything else, and refuses
+ * a plugin built for another major version (or a newer minor one) with a
+ * message naming both versions.  A constructor therefore runs twice and
+ * must have no lasting effect.  Reading the descriptor costs nothing:
+ * init() runs only when a program uses one of the plugin's functions, so a
+ * plugin with heavy dependencies keeps them in a second library that
+ * init() dlopens (see plugins/toothsearch/ in the s42 sources).
  *
  * Host services arrive as a function table (struct s42_host) in init(); the
  * plugin never links against the s42 executable.  Every struct here carries
@@ -40,7 +45,10 @@
  *
  * A plugin may add G functions 0..63 and M functions 0..31 that the language
  * does not have, or implement those the language leaves to plugins (G07
- * G10-G13, M10 M12-M14).  The first plugin found for a function wins.
+ * G10-G13, M10 M12-M14); the language's other functions stay its own (a
+ * plugin's G01 is never called).  The first plugin found for a function
+ * wins; for one the language leaves to a plugin, the files named after
+ * that plugin (oscillation.so, toothsearch.so, helix.so) come first.
  *
  * One instance per process: init() runs once, reset() starts every run,
  * fini() ends it.  s42 runs one program at a time with a loaded plugin.

@@ -439,23 +439,22 @@ int sess_plugin_state(const struct session *s, int k, char *name, size_t nname, 
 
 int sess_plugin_restore(struct session *s, const char *name, const void *buf, size_t len, char *err, size_t n)
 {
-  for (size_t i = 0; s->plugins && i < s->plugins->n; i++) {
-    struct plug *pl = &s->plugins->v[i];
-    if (strcmp(pl->d->name, name) != 0)
-      continue;
-    if (plug_use(s->plugins, (int)i, &host)) {
-      snprintf(err, n, "%s", pl->err);
-      return -1;
-    }
-    mark_started(s, (int)i);
-    if (!pl->d->load || pl->d->load(pl->self, buf, len) != S42_OK) {
-      snprintf(err, n, "the %s plugin cannot take back its saved state", name);
-      return -1;
-    }
-    return 0;
+  int i = plug_by_name(s->plugins, name);   /* opened if this program did not need it yet */
+  if (i < 0) {
+    snprintf(err, n, "the restart state needs the %s plugin, which is not loaded", name);
+    return -1;
   }
-  snprintf(err, n, "the restart state needs the %s plugin, which is not loaded", name);
-  return -1;
+  struct plug *pl = &s->plugins->v[i];
+  if (plug_use(s->plugins, i, &host)) {
+    snprintf(err, n, "%s", pl->err);
+    return -1;
+  }
+  mark_started(s, i);
+  if (!pl->d->load || pl->d->load(pl->self, buf, len) != S42_OK) {
+    snprintf(err, n, "the %s plugin cannot take back its saved state", name);
+    return -1;
+  }
+  return 0;
 }
 
 static void tick(void *ctx, double dt)

@@ -166,8 +166,66 @@ END_TEST
 START_TEST(no_entry_refused)
 {
   plug_scan(&ps, dir_of("S42_FIXTURES", "noentry"));
+  ck_assert_uint_eq(ps.nbad, 0);          /* nothing is opened by scanning */
+  plug_open_all(&ps);
   ck_assert_uint_eq(ps.nbad, 1);
   ck_assert_ptr_nonnull(strstr(ps.bad[0].msg, "no entry symbol s42_plugin_entry"));
+}
+END_TEST
+
+/* A program that uses no plugin function opens no plugin file; one that
+ * uses a function the language does not have opens files until one
+ * provides it; G12 opens the helix plugin's file and no other. */
+START_TEST(files_open_only_when_needed)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "good"));
+  ck_assert_uint_eq(ps.nfiles, 1);
+  load("N1 G01 X+10 F100 M03\nN2 G04 X+1\nN3 M2\n");
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_uint_eq(ps.n, 0);
+  ck_assert_int_eq(ps.files[0].state, PF_NEW);
+  load("N1 M30\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_uint_eq(ps.n, 1);
+  ck_assert_int_eq(ps.files[0].state, PF_OPEN);
+  ck_assert_double_eq(s->vm.reg[1], 1);
+  plug_free(&ps);
+  plug_scan(&ps, dir_of("S42_PLUGINS", NULL));
+  ck_assert_uint_ge(ps.nfiles, 3);
+  compile_with("N1 G12 G17 X+0 Y+0 I-1000 J+0 Z+10 F100\nN2 M2\n");
+  ck_assert_int_eq(t.rc, 0);
+  ck_assert_uint_eq(ps.n, 1);
+  ck_assert_str_eq(ps.v[0].d->name, "helix");
+  for (size_t f = 0; f < ps.nfiles; f++)
+    ck_assert_int_eq(ps.files[f].state, strcmp(ps.files[f].stem, "helix") == 0 ? PF_OPEN : PF_NEW);
+}
+END_TEST
+
+/* The probe loads a file in a child: what its constructor does there is
+ * reported, never suffered (the badctor fixture chooses by S42_BADCTOR). */
+START_TEST(probe_survives_constructors)
+{
+  char why[300], so[4096];
+  snprintf(so, sizeof so, "%s", dir_of("S42_FIXTURES", "badctor/badctor.so"));
+  unsetenv("S42_BADCTOR");
+  ck_assert_int_eq(plug_probe(so, why, sizeof why), 0);
+  setenv("S42_BADCTOR", "crash", 1);
+  ck_assert_int_eq(plug_probe(so, why, sizeof why), -1);
+  ck_assert_str_eq(why, "cannot be used: its constructor crashed: signal 11 (SIGSEGV)");
+  setenv("S42_BADCTOR", "exit", 1);
+  ck_assert_int_eq(plug_probe(so, why, sizeof why), -1);
+  ck_assert_str_eq(why, "cannot be used: loading it ended the process: exit 0");
+  /* a program that needs it: E-FUNC, the file refused with the reason */
+  plug_scan(&ps, dir_of("S42_FIXTURES", "badctor"));
+  compile_with("N1 G53\nN2 M2\n");
+  unsetenv("S42_BADCTOR");
+  ck_assert_int_ge(tp_find(&t.d, DIAG_ERROR, S42_E_FUNC, 1, 4), 0);
+  ck_assert_uint_eq(ps.nbad, 1);
+  ck_assert_ptr_nonnull(strstr(ps.bad[0].msg, "loading it ended the process: exit 0"));
+  ck_assert_int_eq(ps.files[0].state, PF_REFUSED);
+  /* the probe's verdict stands for the process: the file is not tried again */
+  compile_with("N1 G53\nN2 M2\n");
+  ck_assert_int_ge(tp_find(&t.d, DIAG_ERROR, S42_E_FUNC, 1, 4), 0);
 }
 END_TEST
 
@@ -451,6 +509,8 @@ Suite *suite_plugin(void)
   tcase_add_test(tc, unknown_function_without_plugin);
   tcase_add_test(tc, wrong_abi_refused);
   tcase_add_test(tc, no_entry_refused);
+  tcase_add_test(tc, files_open_only_when_needed);
+  tcase_add_test(tc, probe_survives_constructors);
   tcase_add_test(tc, init_failure_is_e_plugin);
   tcase_add_test(tc, abi_10_plugin_still_loads);
   tcase_add_test(tc, failing_callbacks);
