@@ -480,8 +480,11 @@ static void scan_dir(struct plug_set *ps, size_t dir)
   free(names);
 }
 
-/* The build tree: ./s42 beside a Makefile has its plugins in build/plugins;
- * build-asan/s42 in build-asan/plugins. */
+/* Beside the executable: an installed s42 has its plugins in
+ * <exe>/../lib/s42/plugins wherever it was installed or copied to (DESTDIR,
+ * a moved tree), so it never depends on the prefix compiled in; the build
+ * tree's ./s42 beside a Makefile has them in build/plugins, build-asan/s42
+ * in build-asan/plugins. */
 static void exe_dirs(struct plug_set *ps)
 {
   char exe[PATH_MAX], p[PATH_MAX + 32];
@@ -493,6 +496,13 @@ static void exe_dirs(struct plug_set *ps)
   if (!slash)
     return;
   *slash = 0;
+  struct stat st;
+  char *up = strrchr(exe, '/');
+  if (up) {   /* /opt/s42/bin -> /opt/s42/lib/s42/plugins; only if it is there */
+    snprintf(p, sizeof p, "%.*s/lib/s42/plugins", (int)(up - exe), exe);
+    if (stat(p, &st) == 0 && S_ISDIR(st.st_mode))
+      add_dir(ps, p);
+  }
   snprintf(p, sizeof p, "%s/Makefile", exe);
   if (access(p, R_OK) == 0) {
     snprintf(p, sizeof p, "%s/build/plugins", exe);

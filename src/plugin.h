@@ -60,8 +60,8 @@ struct plug_set {
 };
 
 /* List the plugin files of `opt_dir` (--plugins, may be NULL), then
- * S42_PLUGIN_PATH (':'-separated), then the build tree beside the
- * executable and the installed directory.  Opens nothing.
+ * S42_PLUGIN_PATH (':'-separated), then <exe>/../lib/s42/plugins, the build
+ * tree beside the executable and the compiled-in directory.  Opens nothing.
  * Of two files whose plugins have the same name, the one found earlier
  * wins.  Never fails: what cannot be loaded later lands in ps->bad. */
 void plug_scan(struct plug_set *ps, const char *opt_dir);
