@@ -99,7 +99,7 @@ docs: docs/opcodes.md
 docs/opcodes.md: vm/opcodes.h $(S42)
 	$(S42) --opcodes-md > $@
 
-install: $(S42) $(PLUGIN_SOS) $(PLUGIN_SOS)
+install: $(S42) $(PLUGIN_SOS)
 	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)
 	install -m 755 $(S42) $(DESTDIR)$(BINDIR)/s42
 	install -d $(DESTDIR)$(PLUGINDIR) $(DESTDIR)$(INCLUDEDIR)

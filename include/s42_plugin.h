@@ -7,13 +7,18 @@
  *
  * returning a constant descriptor: the ABI it was built for, its name and
  * version, the G and M functions it implements and its callbacks.  s42
- * loads it with dlopen(RTLD_NOW | RTLD_LOCAL), checks abi_major, abi_minor
- * and the fingerprint before it calls anything else, and refuses a plugin
- * built for another major version (or a newer minor one) with a message
- * naming both versions.  Reading the descriptor costs nothing: init() runs
- * only when a program uses one of the plugin's functions, so a plugin with
- * heavy dependencies keeps them in a second library that init() dlopens
- * (see plugins/toothsearch/ in the s42 sources).
+ * opens a plugin file only when a program uses a function it may provide
+ * (one the language leaves to a plugin is looked for first in the file
+ * named after that plugin, helix.so for G12), loads it first in a child
+ * process -- so a constructor that crashes or exits is reported, not
+ * suffered -- then with dlopen(RTLD_NOW | RTLD_LOCAL), checks abi_major,
+ * abi_minor and the fingerprint before it calls anything else, and refuses
+ * a plugin built for another major version (or a newer minor one) with a
+ * message naming both versions.  A constructor therefore runs twice and
+ * must have no lasting effect.  Reading the descriptor costs nothing:
+ * init() runs only when a program uses one of the plugin's functions, so a
+ * plugin with heavy dependencies keeps them in a second library that
+ * init() dlopens (see plugins/toothsearch/ in the s42 sources).
  *
  * Host services arrive as a function table (struct s42_host) in init(); the
  * plugin never links against the s42 executable.  Every struct here carries
@@ -40,7 +45,10 @@
  *
  * A plugin may add G functions 0..63 and M functions 0..31 that the language
  * does not have, or implement those the language leaves to plugins (G07
- * G10-G13, M10 M12-M14).  The first plugin found for a function wins.
+ * G10-G13, M10 M12-M14); the language's other functions stay its own (a
+ * plugin's G01 is never called).  The first plugin found for a function
+ * wins; for one the language leaves to a plugin, the files named after
+ * that plugin (oscillation.so, toothsearch.so, helix.so) come first.
  *
  * One instance per process: init() runs once, reset() starts every run,
  * fini() ends it.  s42 runs one program at a time with a loaded plugin.
@@ -181,10 +189,16 @@ struct s42_host {
   /* run() of a block that waited: 0 on the first call, then 1, 2, ... */
   int (*resumed)(struct s42_block *b);
 
-  /* parameters (R0..R113, S42_D1, S42_TK, S42_UG, S42_F) and arrays */
+  /* parameters (R0..R113, S42_D1, S42_TK, S42_UG, S42_F) and arrays.
+   * What set_param and load_array write belongs to the block: a block that
+   * fails (any callback returns S42_FAIL, in any phase) leaves every
+   * parameter and both arrays as they were after the previous block, as
+   * the language's own words do (language.md sec. 7). */
   double (*param)(struct s42_block *b, int n);
   int (*set_param)(struct s42_block *b, int n, double v);   /* 0, -1 out of range */
-  /* Load array 1 or 2 with n values from the start, pointer at the start. */
+  /* Load array 1 or 2 with n <= 15 values from the start (the rest 0),
+   * pointer at the start.  0, or -1 for a bad array or n, or a value
+   * outside -9999999..9999999 (nothing is written). */
   int (*load_array)(struct s42_block *b, int array, const double *v, int n);
 
   /* the machine */

@@ -222,6 +222,22 @@ static struct plug_set *plugins_init(const char *dir)
   return &plugins;
 }
 
+/* A function no plugin found (E-FUNC) may belong to a file that was
+ * refused: say which files were, at the first such error. */
+static void refused_notes(struct diag_list *d, const struct plug_set *ps)
+{
+  for (size_t i = 0; i < d->n && ps->nbad; i++) {
+    const struct diag g = d->v[i];
+    if (g.sev != DIAG_ERROR || g.code != S42_E_FUNC)
+      continue;
+    for (size_t k = 0; k < ps->nbad; k++)
+      diag_add(d, DIAG_NOTE, 0, g.line, g.col, g.number, "the plugin file %s %s", ps->bad[k].path,
+               ps->bad[k].msg);
+    diag_sort(d);
+    return;
+  }
+}
+
 /* Compile a file; diagnostics to stderr.  Returns 0 ok, 1 program errors,
  * 4 I/O.  On success *src stays allocated for the caller. */
 static int load(const char *path, struct program *p, struct diag_list *d, char **src, size_t *n)
@@ -231,7 +247,9 @@ static int load(const char *path, struct program *p, struct diag_list *d, char *
   d->color = diag_want_color(stderr);
   if (read_file(path, MAX_PROGRAM_BYTES, src, n))
     return EXIT_IO;
-  int r = comp_program_with(*src, *n, d, p, plugins_init(NULL));
+  struct plug_set *ps = plugins_init(NULL);
+  int r = comp_program_with(*src, *n, d, p, ps);
+  refused_notes(d, ps);
   diag_print(stderr, d);
   return r ? EXIT_PROGRAM : 0;
 }

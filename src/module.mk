@@ -10,8 +10,16 @@ CAIRO_CFLAGS = $(call pkg,CAIRO_CFLAGS,--cflags cairo)
 # it would load two dozen libraries at every start-up
 $(BUILD)/src/plot.o $(BUILD)/src/cairo_dl.o: MOD_CPPFLAGS = -Isrc -Ivm -Idisplay -Iinclude $(CAIRO_CFLAGS)
 LDLIBS += -ldl
-# where `make install` puts the plugins: s42 looks there last
+# where `make install` puts the plugins: s42 looks there last.  plugin.o is
+# rebuilt when PLUGINDIR changes (make install PREFIX=...): the stamp holds
+# the value it was built with and is rewritten only when it differs.
 $(BUILD)/src/plugin.o: CPPFLAGS += -DS42_PLUGINDIR='"$(PLUGINDIR)"'
+$(BUILD)/src/plugin.o: $(BUILD)/src/plugindir.stamp
+$(BUILD)/src/plugindir.stamp: FORCE
+	@mkdir -p $(@D)
+	@echo '$(PLUGINDIR)' | cmp -s - $@ || echo '$(PLUGINDIR)' > $@
+.PHONY: FORCE
+FORCE:
 # tui.c draws with ncursesw
 CURSES_CFLAGS = $(call pkg,CURSES_CFLAGS,--cflags ncursesw)
 CURSES_LIBS   = $(call pkg,CURSES_LIBS,--libs ncursesw,-lncursesw)

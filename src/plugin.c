@@ -1,16 +1,25 @@
-/* Finding and loading plugins (src/plugin.h).  Every failure -- a file that
- * is not a shared object, a missing entry symbol, another ABI version, an
- * init that fails -- is caught here, reported with the file and the reason,
- * and the handle closed: a broken plugin never takes s42 down. */
+/* Finding and loading plugins (src/plugin.h).  Scanning lists files and
+ * opens none: a file is opened when a program asks for a function it may
+ * provide, and only after a child process has loaded it once (plug_probe),
+ * so a constructor that crashes, hangs or calls exit() costs a refusal, not
+ * the command.  Every other failure -- a file that is not a shared object, a
+ * missing entry symbol, another ABI version, an init that fails -- is caught
+ * here too, reported with the file and the reason, and the handle closed. */
 #include "plugin.h"
+#include "parse.h"
 #include <dirent.h>
 #include <dlfcn.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
+#include <poll.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #ifndef S42_PLUGINDIR
@@ -118,75 +127,283 @@ static int has_name(const struct plug_set *ps, const char *name)
 static const char *bad_descriptor(const struct s42_plugin *d)
 {
   if (!d->name || !*d->name || strlen(d->name) > 40)
-    return "it has no usable name";
+    return "has no usable name";
   if (!d->version)
-    return "it has no version";
+    return "has no version";
   if (d->nfunctions > 64 || (d->nfunctions && !d->functions))
-    return "its function table is malformed";
+    return "has a malformed function table";
   if (!d->init)
-    return "it has no init callback";
+    return "has no init callback";
   for (uint32_t i = 0; i < d->nfunctions; i++) {
     const struct s42_function *f = &d->functions[i];
     if (f->size < sizeof(struct s42_function) || (f->kind != 'G' && f->kind != 'M') || f->number < 0 ||
         f->number > (f->kind == 'G' ? 63 : 31) || (f->kind == 'G' && (f->group < 1 || f->group > 4)))
-      return "its function table is malformed";
+      return "has a malformed function table";
   }
   return NULL;
 }
 
-static void load_one(struct plug_set *ps, const char *dir, const char *path)
+/* The descriptor of a loaded file, or NULL with why.  phase >= 0 (the probe
+ * child): a byte before each step, so the parent knows which one died. */
+static const struct s42_plugin *read_descriptor(void *h, int phase, char *why, size_t n);
+
+/* ---- the probe: load a file once in a child process ---- */
+
+static void send_all(int fd, const char *p, size_t k)
 {
-  char ver[96];
+  while (k > 0) {
+    ssize_t w = write(fd, p, k);
+    if (w < 0 && errno == EINTR)
+      continue;
+    if (w <= 0)
+      _exit(127);
+    p += w;
+    k -= (size_t)w;
+  }
+}
+
+static size_t touch(const char *s)
+{
+  return s ? strlen(s) : 0;
+}
+
+/* The child: load, read the descriptor, report over fd.  Records: one byte
+ * per step ('L' loading, 'E' the entry function, 'C' reading the
+ * descriptor), then 'K' (usable) or 'R' and the reason with its NUL. */
+static _Noreturn void probe_child(const char *path, int fd)
+{
+  /* a crash must end the child with its signal, not in a handler the
+   * parent installed (the sanitizers') */
+  static const int crash[] = {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGTRAP, SIGSYS};
+  for (size_t i = 0; i < sizeof crash / sizeof crash[0]; i++)
+    signal(crash[i], SIG_DFL);
+  int null = open("/dev/null", O_WRONLY);   /* what the plugin prints is not ours */
+  if (null >= 0) {
+    dup2(null, STDOUT_FILENO);
+    dup2(null, STDERR_FILENO);
+  }
+  char why[300];
+  send_all(fd, "L", 1);
   dlerror();
   void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+  const struct s42_plugin *d = NULL;
   if (!h) {
     const char *e = dlerror();
-    refuse(ps, path, NULL, "cannot be loaded: %s", e ? e : "unknown reason");
-    return;
+    snprintf(why, sizeof why, "cannot be loaded: %s", e ? e : "unknown reason");
+  } else if ((d = read_descriptor(h, fd, why, sizeof why)) != NULL) {
+    /* every string `s42 plugins` and the session will read */
+    size_t k = touch(d->version) + touch(d->summary) + touch(d->trace_key);
+    for (uint32_t i = 0; i < d->nfunctions; i++)
+      k += touch(d->functions[i].operands) + touch(d->functions[i].summary);
+    (void)k;
+    send_all(fd, "K", 1);
+    _exit(0);
   }
+  send_all(fd, "R", 1);
+  send_all(fd, why, strlen(why) + 1);
+  _exit(0);
+}
+
+/* What the child sent: 1 usable, -1 refused (*reason), 0 no final record
+ * yet; *step is the last step it reached. */
+static int record(const char *buf, size_t k, char *step, const char **reason)
+{
+  size_t i = 0;
+  while (i < k && (buf[i] == 'L' || buf[i] == 'E' || buf[i] == 'C'))
+    i++;
+  if (step)
+    *step = i ? buf[i - 1] : 0;
+  if (i < k && buf[i] == 'K')
+    return 1;
+  if (i < k && buf[i] == 'R' && memchr(buf + i, 0, k - i)) {
+    if (reason)
+      *reason = buf + i + 1;
+    return -1;
+  }
+  return 0;
+}
+
+static const char *signame(int sig)
+{
+  switch (sig) {
+  case SIGSEGV: return " (SIGSEGV)";
+  case SIGBUS: return " (SIGBUS)";
+  case SIGILL: return " (SIGILL)";
+  case SIGFPE: return " (SIGFPE)";
+  case SIGABRT: return " (SIGABRT)";
+  case SIGKILL: return " (SIGKILL)";
+  case SIGTRAP: return " (SIGTRAP)";
+  case SIGSYS: return " (SIGSYS)";
+  default: return "";
+  }
+}
+
+static double now(void)
+{
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + t.tv_nsec / 1e9;
+}
+
+/* The probe; with `later`, a child that reported a usable file is left to
+ * exit on its own while the parent goes on (its pid in *later, for
+ * plug_free to reap): waiting for its exit would double the cost. */
+static int probe(const char *path, char *why, size_t n, pid_t *later)
+{
+  int fd[2];
+  if (pipe2(fd, O_CLOEXEC)) {
+    snprintf(why, n, "cannot be probed: pipe: %s", strerror(errno));
+    return -1;
+  }
+  pid_t pid = fork();
+  if (pid < 0) {
+    snprintf(why, n, "cannot be probed: fork: %s", strerror(errno));
+    close(fd[0]);
+    close(fd[1]);
+    return -1;
+  }
+  if (pid == 0) {
+    close(fd[0]);
+    probe_child(path, fd[1]);
+  }
+  close(fd[1]);
+  char buf[400];
+  size_t k = 0;
+  int late = 0, done = 0;
+  double end = now() + PLUG_PROBE_SECONDS;
+  while (!done && k < sizeof buf - 1) {
+    int ms = (int)((end - now()) * 1000);
+    if (ms <= 0) {
+      late = 1;
+      break;
+    }
+    struct pollfd pf = {fd[0], POLLIN, 0};
+    int r = poll(&pf, 1, ms);
+    if (r < 0 && errno == EINTR)
+      continue;
+    if (r == 0) {
+      late = 1;
+      break;
+    }
+    ssize_t got = r > 0 ? read(fd[0], buf + k, sizeof buf - 1 - k) : -1;
+    if (got < 0 && errno == EINTR)
+      continue;
+    if (got <= 0)
+      break;                      /* the child is gone */
+    k += (size_t)got;
+    done = record(buf, k, NULL, NULL) != 0;
+  }
+  close(fd[0]);
+  char step;
+  const char *reason;
+  int r = record(buf, k, &step, &reason);
+  if (r > 0 && later) {
+    *later = pid;
+    return 0;
+  }
+  if (late)
+    kill(pid, SIGKILL);
+  int st = 0;
+  while (waitpid(pid, &st, 0) < 0 && errno == EINTR)
+    ;
+  if (r > 0)
+    return 0;
+  if (r < 0) {
+    snprintf(why, n, "%s", reason);
+    return -1;
+  }
+  /* no record: the last step reached says what died */
+  const char *what = step == 'E' ? "its entry function" : step == 'C' ? "reading its descriptor" : "loading it";
+  if (late)
+    snprintf(why, n, "cannot be used: %s did not end within %d s", what, PLUG_PROBE_SECONDS);
+  else if (WIFSIGNALED(st) && step == 'L')
+    snprintf(why, n, "cannot be used: its constructor crashed: signal %d%s", WTERMSIG(st), signame(WTERMSIG(st)));
+  else if (WIFSIGNALED(st))
+    snprintf(why, n, "cannot be used: %s crashed: signal %d%s", what, WTERMSIG(st), signame(WTERMSIG(st)));
+  else
+    snprintf(why, n, "cannot be used: %s ended the process: exit %d", what, WIFEXITED(st) ? WEXITSTATUS(st) : -1);
+  return -1;
+}
+
+int plug_probe(const char *path, char *why, size_t n)
+{
+  return probe(path, why, n, NULL);
+}
+
+static const struct s42_plugin *read_descriptor(void *h, int phase, char *why, size_t n)
+{
+  char ver[96];
   s42_plugin_entry_fn entry;
   void *sym = dlsym(h, S42_PLUGIN_ENTRY_NAME);
   memcpy(&entry, &sym, sizeof entry);
   if (!sym) {
-    refuse(ps, path, NULL, "has no entry symbol %s()", S42_PLUGIN_ENTRY_NAME);
-    dlclose(h);
-    return;
+    snprintf(why, n, "has no entry symbol %s()", S42_PLUGIN_ENTRY_NAME);
+    return NULL;
   }
+  if (phase >= 0)
+    send_all(phase, "E", 1);
   const struct s42_plugin *d = entry();
+  if (phase >= 0)
+    send_all(phase, "C", 1);
   /* the version, before anything else of the descriptor is trusted */
   if (!d || d->size < offsetof(struct s42_plugin, name) + sizeof d->name ||
       d->fingerprint != S42_ABI_FINGERPRINT) {
-    refuse(ps, path, NULL, "is not an s42 plugin (no descriptor or a wrong fingerprint)");
-    dlclose(h);
-    return;
+    snprintf(why, n, "is not an s42 plugin (no descriptor or a wrong fingerprint)");
+    return NULL;
   }
   if (d->abi_major != S42_ABI_MAJOR || d->abi_minor > S42_ABI_MINOR) {
-    char mine[32];
     snprintf(ver, sizeof ver, "%u.%u", (unsigned)d->abi_major, (unsigned)d->abi_minor);
-    snprintf(mine, sizeof mine, "%d.%d", S42_ABI_MAJOR, S42_ABI_MINOR);
-    refuse(ps, path, NULL, "was built for plugin ABI %s; this s42 has ABI %s", ver, mine);
+    snprintf(why, n, "was built for plugin ABI %s; this s42 has ABI %d.%d", ver, S42_ABI_MAJOR, S42_ABI_MINOR);
+    return NULL;
+  }
+  const char *bad = d->size < sizeof *d ? "has a descriptor shorter than ABI 1.0's" : bad_descriptor(d);
+  if (bad) {
+    snprintf(why, n, "%s", bad);
+    return NULL;
+  }
+  return d;
+}
+
+/* ---- opening a file when it is needed ---- */
+
+static void open_file(struct plug_set *ps, size_t f)
+{
+  struct plug_file *pf = &ps->files[f];
+  if (pf->state != PF_NEW)
+    return;
+  pf->state = PF_REFUSED;
+  char why[300];
+  if (probe(pf->path, why, sizeof why, &pf->probe)) {
+    refuse(ps, pf->path, NULL, "%s", why);
+    return;
+  }
+  dlerror();
+  void *h = dlopen(pf->path, RTLD_NOW | RTLD_LOCAL);
+  if (!h) {
+    const char *e = dlerror();
+    refuse(ps, pf->path, NULL, "cannot be loaded: %s", e ? e : "unknown reason");
+    return;
+  }
+  const struct s42_plugin *d = read_descriptor(h, -1, why, sizeof why);
+  if (!d) {
+    refuse(ps, pf->path, NULL, "%s", why);
     dlclose(h);
     return;
   }
-  const char *why = d->size < sizeof *d ? "its descriptor is shorter than ABI 1.0's" : bad_descriptor(d);
-  if (why) {
-    refuse(ps, path, NULL, "%s", why);
-    dlclose(h);
-    return;
-  }
-  if (has_name(ps, d->name)) {   /* an earlier directory wins */
+  if (has_name(ps, d->name)) {   /* a file opened earlier has the name */
+    pf->state = PF_SHADOWED;
     dlclose(h);
     return;
   }
   if (ps->n == PLUG_MAX) {
-    refuse(ps, path, d->name, "is one plugin too many (at most %d)", PLUG_MAX);
+    refuse(ps, pf->path, d->name, "is one plugin too many (at most %d)", PLUG_MAX);
     dlclose(h);
     return;
   }
   struct plug *p = &ps->v[ps->n];
   memset(p, 0, sizeof *p);
-  p->path = dupstr(path);
-  p->dir = dupstr(dir);
+  p->path = dupstr(pf->path);
+  p->dir = dupstr(ps->dirs[pf->dir]);
   if (!p->path || !p->dir) {
     free(p->path);
     free(p->dir);
@@ -196,17 +413,44 @@ static void load_one(struct plug_set *ps, const char *dir, const char *path)
   p->handle = h;
   p->d = d;
   p->state = PLUG_FOUND;
-  ps->n++;
+  pf->state = PF_OPEN;
+  pf->plug = (int)ps->n++;
 }
+
+void plug_open_all(struct plug_set *ps)
+{
+  for (size_t f = 0; f < ps->nfiles; f++)
+    open_file(ps, f);
+}
+
+/* ---- scanning: names only ---- */
 
 static int by_name(const void *a, const void *b)
 {
   return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
-static void scan_dir(struct plug_set *ps, const char *dir)
+static void add_file(struct plug_set *ps, size_t dir, const char *path)
 {
-  DIR *dp = opendir(dir);
+  char st[sizeof ps->files->stem];
+  stem(path, st, sizeof st);
+  struct plug_file *v = realloc(ps->files, (ps->nfiles + 1) * sizeof *v);
+  if (!v)
+    return;
+  ps->files = v;
+  struct plug_file *pf = &v[ps->nfiles];
+  memset(pf, 0, sizeof *pf);
+  if (!(pf->path = dupstr(path)))
+    return;
+  pf->dir = dir;
+  memcpy(pf->stem, st, sizeof st);
+  pf->state = PF_NEW;
+  ps->nfiles++;
+}
+
+static void scan_dir(struct plug_set *ps, size_t dir)
+{
+  DIR *dp = opendir(ps->dirs[dir]);
   if (!dp)
     return;
   char **names = NULL;
@@ -228,17 +472,20 @@ static void scan_dir(struct plug_set *ps, const char *dir)
   for (size_t i = 0; i < n; i++) {
     char path[PATH_MAX];
     struct stat st;
-    if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, names[i]) < sizeof path && stat(path, &st) == 0 &&
-        S_ISREG(st.st_mode))
-      load_one(ps, dir, path);
+    if ((size_t)snprintf(path, sizeof path, "%s/%s", ps->dirs[dir], names[i]) < sizeof path &&
+        stat(path, &st) == 0 && S_ISREG(st.st_mode))
+      add_file(ps, dir, path);
     free(names[i]);
   }
   free(names);
 }
 
-/* The build tree: ./s42 beside a Makefile has its plugins in build/plugins;
- * build-asan/s42 in build-asan/plugins. */
-static void build_dirs(struct plug_set *ps)
+/* Beside the executable: an installed s42 has its plugins in
+ * <exe>/../lib/s42/plugins wherever it was installed or copied to (DESTDIR,
+ * a moved tree), so it never depends on the prefix compiled in; the build
+ * tree's ./s42 beside a Makefile has them in build/plugins, build-asan/s42
+ * in build-asan/plugins. */
+static void exe_dirs(struct plug_set *ps)
 {
   char exe[PATH_MAX], p[PATH_MAX + 32];
   ssize_t k = readlink("/proc/self/exe", exe, sizeof exe - 1);
@@ -249,6 +496,13 @@ static void build_dirs(struct plug_set *ps)
   if (!slash)
     return;
   *slash = 0;
+  struct stat st;
+  char *up = strrchr(exe, '/');
+  if (up) {   /* /opt/s42/bin -> /opt/s42/lib/s42/plugins; only if it is there */
+    snprintf(p, sizeof p, "%.*s/lib/s42/plugins", (int)(up - exe), exe);
+    if (stat(p, &st) == 0 && S_ISDIR(st.st_mode))
+      add_dir(ps, p);
+  }
   snprintf(p, sizeof p, "%s/Makefile", exe);
   if (access(p, R_OK) == 0) {
     snprintf(p, sizeof p, "%s/build/plugins", exe);
@@ -272,10 +526,10 @@ void plug_scan(struct plug_set *ps, const char *opt_dir)
       add_dir(ps, t);
     free(copy);
   }
-  build_dirs(ps);
+  exe_dirs(ps);
   add_dir(ps, S42_PLUGINDIR);
   for (size_t i = 0; i < ps->ndirs; i++)
-    scan_dir(ps, ps->dirs[i]);
+    scan_dir(ps, i);
 }
 
 void plug_free(struct plug_set *ps)
@@ -296,22 +550,71 @@ void plug_free(struct plug_set *ps)
   for (size_t i = 0; i < ps->ndirs; i++)
     free(ps->dirs[i]);
   free(ps->dirs);
+  for (size_t i = 0; i < ps->nfiles; i++) {
+    while (ps->files[i].probe > 0 && waitpid(ps->files[i].probe, NULL, 0) < 0 && errno == EINTR)
+      ;
+    free(ps->files[i].path);
+  }
+  free(ps->files);
   memset(ps, 0, sizeof *ps);
 }
 
-int plug_find(const struct plug_set *ps, char kind, int number, const struct s42_function **fn)
+/* ---- looking functions up ---- */
+
+/* Is kind/number a function of the language that is no plugin's (G01)? */
+static int core_function(char kind, int number)
+{
+  if (plug_owner(kind, number, NULL))
+    return 0;
+  return kind == 'G' ? kp_valid_g(number) : kp_valid_m(number);
+}
+
+static const struct s42_function *provides(const struct plug *p, char kind, int number)
+{
+  for (uint32_t k = 0; k < p->d->nfunctions; k++)
+    if (p->d->functions[k].kind == kind && p->d->functions[k].number == number)
+      return &p->d->functions[k];
+  return NULL;
+}
+
+int plug_find(const struct plug_set *cps, char kind, int number, const struct s42_function **fn)
+{
+  if (!cps || core_function(kind, number))
+    return -1;
+  /* Opening a file only fills in what the set already stands for (the
+   * files it lists); the set itself is never const (plug_scan filled it). */
+  struct plug_set *ps = (struct plug_set *)cps;
+  const char *owner = plug_owner(kind, number, NULL);
+  for (int pass = owner ? 0 : 1; pass < 2; pass++)
+    for (size_t f = 0; f < ps->nfiles; f++) {
+      if (pass == 0 && strcmp(ps->files[f].stem, owner) != 0)
+        continue;
+      open_file(ps, f);
+      if (ps->files[f].state != PF_OPEN)
+        continue;
+      const struct s42_function *found = provides(&ps->v[ps->files[f].plug], kind, number);
+      if (found) {
+        if (fn)
+          *fn = found;
+        return ps->files[f].plug;
+      }
+    }
+  return -1;
+}
+
+int plug_by_name(struct plug_set *ps, const char *name)
 {
   if (!ps)
     return -1;
-  for (size_t i = 0; i < ps->n; i++) {
-    const struct s42_plugin *d = ps->v[i].d;
-    for (uint32_t k = 0; k < d->nfunctions; k++)
-      if (d->functions[k].kind == kind && d->functions[k].number == number) {
-        if (fn)
-          *fn = &d->functions[k];
-        return (int)i;
-      }
-  }
+  for (int pass = 0; pass < 3; pass++)
+    for (size_t f = 0; f < ps->nfiles; f++) {
+      if (pass == 1 && strcmp(ps->files[f].stem, name) == 0)
+        open_file(ps, f);
+      else if (pass == 2)
+        open_file(ps, f);
+      if (ps->files[f].state == PF_OPEN && strcmp(ps->v[ps->files[f].plug].d->name, name) == 0)
+        return ps->files[f].plug;
+    }
   return -1;
 }
 
@@ -395,15 +698,19 @@ int plug_use(struct plug_set *ps, int i, const struct s42_host *host)
   return 0;
 }
 
-void plug_list(const struct plug_set *ps, FILE *f)
+void plug_list(struct plug_set *ps, FILE *f)
 {
+  plug_open_all(ps);
   fprintf(f, "plugin ABI %d.%d; searched:", S42_ABI_MAJOR, S42_ABI_MINOR);
   for (size_t i = 0; i < ps->ndirs; i++)
     fprintf(f, " %s", ps->dirs[i]);
   fputc('\n', f);
   if (!ps->n && !ps->nbad)
     fputs("no plugins found\n", f);
-  for (size_t i = 0; i < ps->n; i++) {
+  for (size_t j = 0; j < ps->nfiles; j++) {
+    if (ps->files[j].state != PF_OPEN)
+      continue;
+    int i = ps->files[j].plug;
     const struct s42_plugin *d = ps->v[i].d;
     fprintf(f, "%s %s (ABI %u.%u) %s\n", d->name, d->version, (unsigned)d->abi_major, (unsigned)d->abi_minor,
             ps->v[i].path);
@@ -411,9 +718,13 @@ void plug_list(const struct plug_set *ps, FILE *f)
       fprintf(f, "  %s\n", d->summary);
     for (uint32_t k = 0; k < d->nfunctions; k++) {
       const struct s42_function *fn = &d->functions[k];
-      int shadow = plug_find(ps, fn->kind, fn->number, NULL);
-      fprintf(f, "  %c%02d  %s%s\n", fn->kind, fn->number, fn->summary ? fn->summary : "",
-              shadow != (int)i ? "  (provided by an earlier plugin)" : "");
+      char note[80] = "";
+      int w = core_function(fn->kind, fn->number) ? -2 : plug_find(ps, fn->kind, fn->number, NULL);
+      if (w == -2)
+        snprintf(note, sizeof note, "  (the language's own: not used)");
+      else if (w != i && w >= 0)
+        snprintf(note, sizeof note, "  (provided by the %s plugin)", ps->v[w].d->name);
+      fprintf(f, "  %c%02d  %s%s\n", fn->kind, fn->number, fn->summary ? fn->summary : "", note);
     }
   }
   for (size_t i = 0; i < ps->nbad; i++)

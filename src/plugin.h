@@ -1,12 +1,14 @@
-/* Plugins (include/s42_plugin.h): finding them, reading their descriptors,
- * and starting them when a program first needs one.  The compiler asks
- * which functions exist; the session calls the block phases. */
+/* Plugins (include/s42_plugin.h): finding them, opening a file only when a
+ * program needs a function it may provide, reading its descriptor, and
+ * starting a plugin when a program first uses it.  The compiler asks which
+ * functions exist; the session calls the block phases. */
 #ifndef S42_PLUGIN_LOADER_H
 #define S42_PLUGIN_LOADER_H
 
 #include "s42_plugin.h"
 #include <stddef.h>
 #include <stdio.h>
+#include <sys/types.h>
 
 #define PLUG_MAX 32          /* plugins a session can use (a bit mask) */
 
@@ -32,24 +34,54 @@ struct plug_refused {
   char msg[300];
 };
 
+/* A *.so of a plugin directory.  Scanning only lists files; one is opened
+ * (probed in a child first, then dlopened) when a function it may provide
+ * is asked for. */
+enum plug_file_state { PF_NEW, PF_OPEN, PF_REFUSED, PF_SHADOWED };
+
+struct plug_file {
+  char *path;
+  size_t dir;                /* index in plug_set.dirs */
+  char stem[48];             /* "helix" of helix.so: the plugin it should be */
+  int state;                 /* enum plug_file_state */
+  int plug;                  /* PF_OPEN: its index in plug_set.v */
+  pid_t probe;               /* the probe's child, not yet reaped, or 0 */
+};
+
 struct plug_set {
-  struct plug v[PLUG_MAX];
+  struct plug v[PLUG_MAX];   /* the plugins opened, in the order they were */
   size_t n;
   struct plug_refused *bad;
   size_t nbad;
   char **dirs;               /* the directories searched, in order */
   size_t ndirs;
+  struct plug_file *files;   /* every candidate, in search order */
+  size_t nfiles;
 };
 
-/* Search `opt_dir` (--plugins, may be NULL), S42_PLUGIN_PATH (':'-separated),
- * the build tree beside the executable and the installed directory.  A
- * plugin found earlier shadows a later one of the same name.  Never fails:
- * what cannot be loaded lands in ps->bad. */
+/* List the plugin files of `opt_dir` (--plugins, may be NULL), then
+ * S42_PLUGIN_PATH (':'-separated), then <exe>/../lib/s42/plugins, the build
+ * tree beside the executable and the compiled-in directory.  Opens nothing.
+ * Of two files whose plugins have the same name, the one found earlier
+ * wins.  Never fails: what cannot be loaded later lands in ps->bad. */
 void plug_scan(struct plug_set *ps, const char *opt_dir);
 void plug_free(struct plug_set *ps);
 
-/* The plugin implementing function kind ('G'/'M') number, or -1. */
+/* The plugin implementing function kind ('G'/'M') number, or -1.  A
+ * function of the language that is not a plugin's (G01, M03) is never
+ * looked for.  One the language leaves to a plugin (G12) is looked for
+ * first in the files named after that plugin (helix.so), then, like a
+ * function the language does not have, in every file in search order; the
+ * first that provides it wins.  Files are opened as the search reaches
+ * them: the set is const to callers that only ask (the compiler), but it
+ * remembers what it opened. */
 int plug_find(const struct plug_set *ps, char kind, int number, const struct s42_function **fn);
+
+/* The plugin called `name` (a restart state names it), opened if needed; -1. */
+int plug_by_name(struct plug_set *ps, const char *name);
+
+/* Open every file (for `s42 plugins`). */
+void plug_open_all(struct plug_set *ps);
 
 /* The plugin a language function belongs to ("helix" for G12), or NULL
  * when the language leaves it to the core. */
@@ -68,7 +100,15 @@ const char *plug_option(const char *name);
 /* The reason init() gives with host->error(NULL, ...), for plug_use. */
 void plug_init_reason(const char *msg);
 
-/* `s42 plugins`: what was found, refused and where it looked. */
-void plug_list(const struct plug_set *ps, FILE *f);
+/* `s42 plugins`: what was found, refused and where it looked (opens all). */
+void plug_list(struct plug_set *ps, FILE *f);
+
+/* Load a file in a child process (fork, dlopen, the descriptor checked),
+ * so that a constructor that crashes, hangs or ends the process harms only
+ * the child.  0 when the parent may dlopen it; -1 with why ("its
+ * constructor crashed: signal 11").  The probe gives up after
+ * PLUG_PROBE_SECONDS. */
+#define PLUG_PROBE_SECONDS 5
+int plug_probe(const char *path, char *why, size_t n);
 
 #endif

@@ -130,6 +130,9 @@ static double h_param(struct s42_block *b, int n)
   return n >= 0 && n < VM_NREG ? b->s->vm.reg[n] : 0;
 }
 
+/* A plugin changes the VM only through the VM's journaled calls, so a block
+ * that fails after it wrote leaves the registers and arrays as after the
+ * previous block (language.md sec. 7), as the program's own words do. */
 static int h_set_param(struct s42_block *b, int n, double v)
 {
   if (n < 0 || n > REG_F || !isfinite(v))
@@ -140,14 +143,12 @@ static int h_set_param(struct s42_block *b, int n, double v)
 
 static int h_load_array(struct s42_block *b, int array, const double *v, int n)
 {
-  if (array < 1 || array > 2 || n < 0 || n > VM_ACELLS)
+  if (array < 1 || array > 2 || n < 0 || n > VM_ACELLS || (n && !v))
     return -1;
-  struct vm_array *a = &b->s->vm.arr[array - 1];
-  memset(a, 0, sizeof *a);
-  for (int i = 0; i < n; i++)
-    a->cell[i] = v[i];
-  a->len = n;
-  a->ptr = 0;
+  for (int i = 0; i < n; i++)   /* the cells' range, as array words have it (E-RANGE) */
+    if (!(fabs(v[i]) <= 9999999))
+      return -1;
+  vm_load_array(&b->s->vm, array - 1, v, n);
   return 0;
 }
 
@@ -449,23 +450,22 @@ int sess_plugin_state(const struct session *s, int k, char *name, size_t nname, 
 
 int sess_plugin_restore(struct session *s, const char *name, const void *buf, size_t len, char *err, size_t n)
 {
-  for (size_t i = 0; s->plugins && i < s->plugins->n; i++) {
-    struct plug *pl = &s->plugins->v[i];
-    if (strcmp(pl->d->name, name) != 0)
-      continue;
-    if (plug_use(s->plugins, (int)i, &host)) {
-      snprintf(err, n, "%s", pl->err);
-      return -1;
-    }
-    mark_started(s, (int)i);
-    if (!pl->d->load || pl->d->load(pl->self, buf, len) != S42_OK) {
-      snprintf(err, n, "the %s plugin cannot take back its saved state", name);
-      return -1;
-    }
-    return 0;
+  int i = plug_by_name(s->plugins, name);   /* opened if this program did not need it yet */
+  if (i < 0) {
+    snprintf(err, n, "the restart state needs the %s plugin, which is not loaded", name);
+    return -1;
   }
-  snprintf(err, n, "the restart state needs the %s plugin, which is not loaded", name);
-  return -1;
+  struct plug *pl = &s->plugins->v[i];
+  if (plug_use(s->plugins, i, &host)) {
+    snprintf(err, n, "%s", pl->err);
+    return -1;
+  }
+  mark_started(s, i);
+  if (!pl->d->load || pl->d->load(pl->self, buf, len) != S42_OK) {
+    snprintf(err, n, "the %s plugin cannot take back its saved state", name);
+    return -1;
+  }
+  return 0;
 }
 
 static void tick(void *ctx, double dt)

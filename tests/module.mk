@@ -55,9 +55,11 @@ plot: $(S42)
 	sh tests/plot/run.sh $(S42)
 
 # plugins from the outside: built against the installed header, searched,
-# refused, missing; OpenCV only for programs that search teeth
-plugins: $(S42) $(PLUGIN_SOS) $(FIXTURE_SOS)
+# refused, missing; OpenCV only for programs that search teeth; then
+# `make install` into a temporary root and the installed s42 (install.sh)
+plugins: $(S42) $(PLUGIN_SOS) $(TS_CV_SO) $(FIXTURE_SOS)
 	sh tests/plugins/run.sh $(S42) $(BUILD)
+	sh tests/plugins/install.sh $(S42) $(BUILD) $(PREFIX)
 
 # Limits and bad input: deep nesting, huge blocks, files and scripts, bytes
 # that are not UTF-8, NUL, CRLF, an empty file, a directory.

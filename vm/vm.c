@@ -84,7 +84,15 @@ void vm_set_reg(struct vm *vm, unsigned reg, double v)
 {
   if (reg >= VM_NREG)
     return;
-  journal(vm, reg);
+  /* A host may write one register many times in a block (a plugin's loop):
+   * its first old value is all the rollback needs, and keeping one entry
+   * per register keeps the journal from filling up and dropping a later
+   * register's old value. */
+  unsigned i = 0;
+  while (i < vm->nundo && vm->undo[i].reg != reg)
+    i++;
+  if (i == vm->nundo)
+    journal(vm, reg);
   vm->reg[reg] = v;
 }
 
@@ -94,6 +102,18 @@ static inline void save_arrays(struct vm *vm)
     memcpy(vm->arr_old, vm->arr, sizeof vm->arr);
     vm->arr_saved = 1;
   }
+}
+
+void vm_load_array(struct vm *vm, int k, const double *v, int n)
+{
+  if (k < 0 || k > 1 || n < 0 || n > VM_ACELLS)
+    return;
+  save_arrays(vm);
+  struct vm_array *a = &vm->arr[k];
+  memset(a, 0, sizeof *a);
+  for (int i = 0; i < n; i++)
+    a->cell[i] = v[i];
+  a->len = n;
 }
 
 static const char *num(char *buf, size_t n, double v)

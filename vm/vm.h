@@ -71,9 +71,13 @@ enum vm_event vm_run(struct vm *vm);
  * and end the run with that error.  vm_run then returns VM_EV_ERROR. */
 void vm_fail(struct vm *vm, int code, const char *fmt, ...)
   __attribute__((format(printf, 3, 4)));
-/* Set a register from the host (dialog input, teach-in, M16), journaled as
- * part of the open block. */
+/* Set a register from the host (dialog input, teach-in, M16, a plugin),
+ * journaled as part of the open block however often the host writes. */
 void vm_set_reg(struct vm *vm, unsigned reg, double v);
+/* Load array k (0 or 1) from the host (a plugin's results): n <= VM_ACELLS
+ * values from the start, the rest 0, the pointer at the start; snapshotted
+ * as part of the open block, as the program's own array words are. */
+void vm_load_array(struct vm *vm, int k, const double *v, int n);
 
 /* Block number of block index b (0 when it has none). */
 static inline unsigned vm_block_number(const struct vm *vm, uint32_t b)

@@ -50,12 +50,13 @@ grep -q "G12 (helical interpolation) needs the helix plugin, which was not found
 grep -q "M11 is not a function of the 2С42 or of a plugin found" "$tmp/err" && ok || bad "M11 without plugin: $(cat "$tmp/err")"
 
 # OpenCV is the tooth search's alone: never mapped without G10/G11, even
-# with --tool given and the light toothsearch.so loaded to read its
-# descriptor; a program that searches maps it when it starts
+# with --tool given; such a program does not even open toothsearch.so (it
+# opens the files of the plugins it uses); a program that searches maps
+# OpenCV when it starts
 LD_DEBUG=files "$S42" run programs/reamer_rake.kp --tool tests/toothsearch/t004_reamer_seed.tool >/dev/null 2>"$tmp/ld"
 if grep -q "opencv" "$tmp/ld"; then bad "a program without G10/G11 loaded OpenCV"; else ok; fi
 grep -q "oscillation.so" "$tmp/ld" && ok || bad "LD_DEBUG shows no plugin loading (the check above proves nothing)"
-grep -q "toothsearch.so" "$tmp/ld" && ok || bad "the light toothsearch.so was not read"
+if grep -q "toothsearch.so\|helix.so" "$tmp/ld"; then bad "a program with only G07/M13/M14 opened toothsearch.so or helix.so"; else ok; fi
 if grep -q "toothsearch-cv.so" "$tmp/ld"; then bad "a program without G10/G11 loaded toothsearch-cv.so"; else ok; fi
 LD_DEBUG=files "$S42" plugins >/dev/null 2>"$tmp/ld"
 if grep -q "opencv" "$tmp/ld"; then bad "s42 plugins loaded OpenCV"; else ok; fi
@@ -82,6 +83,74 @@ printf '№1 G01 X+10 F100 ^\n№2 M02 ^\n' > "$tmp/plain.kp"
 "$tmp/bin/s42" run "$tmp/plain.kp" --plugins "$tmp/light" --tool tests/toothsearch/t004_reamer_seed.tool >/dev/null 2>"$tmp/err"
 st=$?
 [ $st -eq 0 ] && ok || bad "a program without G10 beside a broken toothsearch: status $st: $(cat "$tmp/err")"
+
+# A plugin file is opened only for a program that needs a function it may
+# provide, and then first in a child (the probe), so a constructor that
+# crashes, calls _exit(0) or hangs costs a refusal, not the command.  The
+# badctor fixture does what its file name says; marker*.so writes $S42_MARKER.
+so="$BUILD/test-plugins/badctor/badctor.so"
+mkdir -p "$tmp/bad" "$tmp/hang" "$tmp/hx" "$tmp/only-bad"
+for n in crash exit marker; do cp "$so" "$tmp/bad/$n.so"; done
+cp "$so" "$tmp/only-bad/crash.so"
+cp "$so" "$tmp/only-bad/exit.so"
+cp "$so" "$tmp/hang/hang.so"
+cp "$so" "$tmp/hx/helix.so"
+export S42_MARKER="$tmp/marker"
+rm -f "$S42_MARKER"
+# a core program: run, check, disasm and plot unaffected, no plugin file
+# of any directory opened (LD_DEBUG=files lists what the loader maps)
+LD_DEBUG=files "$S42" run "$tmp/plain.kp" --plugins "$tmp/bad" --dump >"$tmp/out" 2>"$tmp/ld"
+st=$?
+[ $st -eq 0 ] && grep -q '"status":"end"' "$tmp/out" && ok || bad "core run beside broken plugins: status $st: $(head -c 300 "$tmp/out")"
+if grep -q "$tmp/bad/\|/plugins/[a-z]*\.so" "$tmp/ld"; then bad "a core program opened a plugin file: $(grep '\.so' "$tmp/ld" | grep -v '/lib/' | head -3)"; else ok; fi
+"$S42" check "$tmp/plain.kp" --plugins "$tmp/bad" >/dev/null 2>"$tmp/err" && ok || bad "core check beside broken plugins: $(cat "$tmp/err")"
+"$S42" disasm "$tmp/plain.kp" --plugins "$tmp/bad" >"$tmp/out" 2>"$tmp/err" && [ -s "$tmp/out" ] && ok ||
+  bad "core disasm beside broken plugins: $(cat "$tmp/err")"
+[ -e "$S42_MARKER" ] && bad "a core program loaded marker.so" || ok
+# G12: the helix plugin's file, and no other
+"$S42" run "$tmp/helix.kp" --plugins "$tmp/bad" --dump >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -q '"z":100' "$tmp/out" && ok || bad "G12 beside broken plugins: status $st: $(cat "$tmp/err")"
+[ -e "$S42_MARKER" ] && bad "a G12 program loaded marker.so" || ok
+# a function the language does not have: every file in order until one has
+# it (crash.so and exit.so refused on the way, marker.so provides G53)
+printf '№1 G53 ^\n№2 M02 ^\n' > "$tmp/g53.kp"
+"$S42" run "$tmp/g53.kp" --plugins "$tmp/bad" --dump >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -q '"status":"end"' "$tmp/out" && ok || bad "G53 from marker.so: status $st: $(cat "$tmp/err")"
+grep -q "^marker$" "$S42_MARKER" 2>/dev/null && ok || bad "G53 did not load marker.so"
+"$S42" check "$tmp/g53.kp" --plugins "$tmp/only-bad" 2>"$tmp/err"
+st=$?
+[ $st -eq 1 ] && grep -q "g53.kp:1:4: error: N1: G53 is not a function of the 2С42 or of a plugin found \[E-FUNC\]" "$tmp/err" &&
+  grep -q "g53.kp:1:4: note: N1: the plugin file $tmp/only-bad/crash.so cannot be used: its constructor crashed: signal 11 (SIGSEGV)" "$tmp/err" &&
+  grep -q "note: N1: the plugin file $tmp/only-bad/exit.so cannot be used: loading it ended the process: exit 0" "$tmp/err" &&
+  ok || bad "G53 with only broken files: status $st: $(cat "$tmp/err")"
+# s42 plugins probes every file and lists the broken ones with the reason
+"$S42" plugins --plugins "$tmp/bad" >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ $st -eq 0 ] && ok || bad "s42 plugins beside broken plugins: status $st"
+grep -q "^refused: $tmp/bad/crash.so cannot be used: its constructor crashed: signal 11 (SIGSEGV)$" "$tmp/out" &&
+  grep -q "^refused: $tmp/bad/exit.so cannot be used: loading it ended the process: exit 0$" "$tmp/out" &&
+  grep -q "^marker 0.1 (ABI 1.1) $tmp/bad/marker.so$" "$tmp/out" && grep -q "^helix 1.0" "$tmp/out" && ok ||
+  bad "s42 plugins beside broken plugins: $(cat "$tmp/out")"
+"$S42" plugins --plugins "$tmp/hang" >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -q "^refused: $tmp/hang/hang.so cannot be used: loading it did not end within 5 s$" "$tmp/out" && ok ||
+  bad "a constructor that hangs: status $st: $(cat "$tmp/out")"
+# a program that needs a broken plugin (a helix.so that crashes, away from
+# the build tree's good one): E-PLUGIN naming the file and why, and the dump
+S42_BADCTOR=crash "$tmp/bin/s42" run "$tmp/helix.kp" --plugins "$tmp/hx" --dump >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ $st -eq 1 ] && grep -q "G12 (helical interpolation) needs the helix plugin: $tmp/hx/helix.so cannot be used: its constructor crashed: signal 11 (SIGSEGV) \[E-PLUGIN\]" "$tmp/err" &&
+  grep -q '"status":"error","error":{"code":"E-PLUGIN"' "$tmp/out" && ok || bad "a crashing helix.so: status $st: $(cat "$tmp/err")"
+S42_BADCTOR=exit "$tmp/bin/s42" run "$tmp/helix.kp" --plugins "$tmp/hx" --dump >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ $st -eq 1 ] && grep -q "needs the helix plugin: $tmp/hx/helix.so cannot be used: loading it ended the process: exit 0" "$tmp/err" &&
+  grep -q '"code":"E-PLUGIN"' "$tmp/out" && ok || bad "a helix.so that exits: status $st: $(cat "$tmp/err")"
+# the same broken helix.so before the build tree's good one: the good one runs
+S42_BADCTOR=crash "$S42" run "$tmp/helix.kp" --plugins "$tmp/hx" --dump >"$tmp/out" 2>"$tmp/err" && ok ||
+  bad "a broken helix.so shadowed the good one: $(cat "$tmp/err")"
+unset S42_MARKER
 
 echo "plugins: $pass passed, $fail failed"
 [ $fail -eq 0 ]

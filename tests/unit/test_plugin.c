@@ -166,8 +166,66 @@ END_TEST
 START_TEST(no_entry_refused)
 {
   plug_scan(&ps, dir_of("S42_FIXTURES", "noentry"));
+  ck_assert_uint_eq(ps.nbad, 0);          /* nothing is opened by scanning */
+  plug_open_all(&ps);
   ck_assert_uint_eq(ps.nbad, 1);
   ck_assert_ptr_nonnull(strstr(ps.bad[0].msg, "no entry symbol s42_plugin_entry"));
+}
+END_TEST
+
+/* A program that uses no plugin function opens no plugin file; one that
+ * uses a function the language does not have opens files until one
+ * provides it; G12 opens the helix plugin's file and no other. */
+START_TEST(files_open_only_when_needed)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "good"));
+  ck_assert_uint_eq(ps.nfiles, 1);
+  load("N1 G01 X+10 F100 M03\nN2 G04 X+1\nN3 M2\n");
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_uint_eq(ps.n, 0);
+  ck_assert_int_eq(ps.files[0].state, PF_NEW);
+  load("N1 M30\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_uint_eq(ps.n, 1);
+  ck_assert_int_eq(ps.files[0].state, PF_OPEN);
+  ck_assert_double_eq(s->vm.reg[1], 1);
+  plug_free(&ps);
+  plug_scan(&ps, dir_of("S42_PLUGINS", NULL));
+  ck_assert_uint_ge(ps.nfiles, 3);
+  compile_with("N1 G12 G17 X+0 Y+0 I-1000 J+0 Z+10 F100\nN2 M2\n");
+  ck_assert_int_eq(t.rc, 0);
+  ck_assert_uint_eq(ps.n, 1);
+  ck_assert_str_eq(ps.v[0].d->name, "helix");
+  for (size_t f = 0; f < ps.nfiles; f++)
+    ck_assert_int_eq(ps.files[f].state, strcmp(ps.files[f].stem, "helix") == 0 ? PF_OPEN : PF_NEW);
+}
+END_TEST
+
+/* The probe loads a file in a child: what its constructor does there is
+ * reported, never suffered (the badctor fixture chooses by S42_BADCTOR). */
+START_TEST(probe_survives_constructors)
+{
+  char why[300], so[4096];
+  snprintf(so, sizeof so, "%s", dir_of("S42_FIXTURES", "badctor/badctor.so"));
+  unsetenv("S42_BADCTOR");
+  ck_assert_int_eq(plug_probe(so, why, sizeof why), 0);
+  setenv("S42_BADCTOR", "crash", 1);
+  ck_assert_int_eq(plug_probe(so, why, sizeof why), -1);
+  ck_assert_str_eq(why, "cannot be used: its constructor crashed: signal 11 (SIGSEGV)");
+  setenv("S42_BADCTOR", "exit", 1);
+  ck_assert_int_eq(plug_probe(so, why, sizeof why), -1);
+  ck_assert_str_eq(why, "cannot be used: loading it ended the process: exit 0");
+  /* a program that needs it: E-FUNC, the file refused with the reason */
+  plug_scan(&ps, dir_of("S42_FIXTURES", "badctor"));
+  compile_with("N1 G53\nN2 M2\n");
+  unsetenv("S42_BADCTOR");
+  ck_assert_int_ge(tp_find(&t.d, DIAG_ERROR, S42_E_FUNC, 1, 4), 0);
+  ck_assert_uint_eq(ps.nbad, 1);
+  ck_assert_ptr_nonnull(strstr(ps.bad[0].msg, "loading it ended the process: exit 0"));
+  ck_assert_int_eq(ps.files[0].state, PF_REFUSED);
+  /* the probe's verdict stands for the process: the file is not tried again */
+  compile_with("N1 G53\nN2 M2\n");
+  ck_assert_int_ge(tp_find(&t.d, DIAG_ERROR, S42_E_FUNC, 1, 4), 0);
 }
 END_TEST
 
@@ -212,6 +270,37 @@ START_TEST(failing_callbacks)
   ck_assert_int_eq(go(), SE_ERROR);
   ck_assert_int_eq(s->vm.err.code, S42_E_PLUGIN);
   ck_assert_ptr_nonnull(strstr(s->vm.err.msg, "cbfail plugin failed in check()"));
+}
+END_TEST
+
+/* A block that fails after its plugin wrote registers and arrays leaves
+ * them as after the block before it (language.md sec. 7): the host's
+ * set_param and load_array are part of the block's transaction. */
+START_TEST(failed_block_rolls_back_plugin_writes)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "txfail"));
+  load("N1 R1+7 R0+5\nN2 M06\nN3 M07\nN4 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_TEETH);
+  ck_assert_int_eq(sess_block_number(s), 3);
+  /* as N2 left them */
+  ck_assert_double_eq(s->vm.reg[0], 599);
+  ck_assert_double_eq(s->vm.reg[1], 8);       /* written after 600 writes of R0 */
+  ck_assert_double_eq(s->vm.reg[REG_TK], 1002);
+  ck_assert_double_eq(s->vm.reg[REG_UG], 2002);
+  ck_assert_int_eq(s->vm.arr[0].len, 3);
+  ck_assert_double_eq(s->vm.arr[0].cell[0], 2);
+  ck_assert_int_eq(s->vm.arr[1].len, 5);
+  ck_assert_double_eq(s->vm.arr[1].cell[4], 2);
+  /* the first block a plugin writes in fails: nothing of it stays */
+  load("N1 R1+7\nN3 M07\nN4 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_double_eq(s->vm.reg[0], 0);
+  ck_assert_double_eq(s->vm.reg[1], 7);
+  ck_assert_double_eq(s->vm.reg[REG_TK], 0);
+  ck_assert_int_eq(s->vm.arr[0].len, 0);
+  ck_assert_double_eq(s->vm.arr[0].cell[0], 0);
+  ck_assert_int_eq(s->vm.arr[1].len, 0);
 }
 END_TEST
 
@@ -420,9 +509,12 @@ Suite *suite_plugin(void)
   tcase_add_test(tc, unknown_function_without_plugin);
   tcase_add_test(tc, wrong_abi_refused);
   tcase_add_test(tc, no_entry_refused);
+  tcase_add_test(tc, files_open_only_when_needed);
+  tcase_add_test(tc, probe_survives_constructors);
   tcase_add_test(tc, init_failure_is_e_plugin);
   tcase_add_test(tc, abi_10_plugin_still_loads);
   tcase_add_test(tc, failing_callbacks);
+  tcase_add_test(tc, failed_block_rolls_back_plugin_writes);
   tcase_add_test(tc, missing_plugin_is_e_plugin_at_check);
   suite_add_tcase(su, tc);
   tc = tcase_create("oscillation");
