@@ -227,6 +227,19 @@ $T resize-window -t s42 -x 120 -y 40
 see "┌─ machine ─"
 layout 120 utf8
 $T resize-window -t s42 -x 100 -y 30
+# back to the size it started with before quitting, so that the tty's own
+# settings compare equal: wait until the pane and the layout are 100x30
+# (tmux applies a resize in its own time; under load it lags)
+n=0
+while [ "$($T display -p -t s42 '#{pane_width}x#{pane_height}')" != 100x30 ] && [ $n -lt 100 ]; do
+  sleep 0.1; n=$((n + 1))
+done
+see "┌─ machine ─"
+n=0
+while ! pane | python3 -c 'import sys; r = sys.stdin.read().split("\n"); sys.exit(0 if any(len(l) == 100 and l.startswith("┌") for l in r) else 1)' && [ $n -lt 100 ]; do
+  sleep 0.1; n=$((n + 1))
+done
+layout 100 utf8
 keys C-c
 ended 130
 
