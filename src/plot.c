@@ -76,6 +76,12 @@ struct plot {
   double t;             /* time at the end of the last row */
   int64_t pos[4];       /* position at the end of the last row */
   int oom;
+  /* how the run ended (plot_result): what the dump says */
+  int ended, status;
+  unsigned long long blocks;
+  double t_end;
+  int64_t end_pos[4];
+  char why[240];        /* "stopped: E-DIV0 at N3"; "" at the end */
 };
 
 struct plot *plot_new(void)
@@ -218,6 +224,21 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
       g->flags |= F_TEACH_ARC;
     }
   }
+}
+
+void plot_result(struct plot *pl, const struct session *s, int status, const char *code, int n, unsigned line)
+{
+  if (!pl)
+    return;
+  pl->ended = 1;
+  pl->status = status;
+  pl->blocks = s ? (unsigned long long)s->vm.blocks : 0;
+  pl->t_end = s ? s->m.t : 0;
+  for (int a = 0; a < 4; a++)
+    pl->end_pos[a] = s ? s->m.pos[a] : 0;
+  (void)code;
+  (void)n;
+  (void)line;
 }
 
 int plot_check_path(const char *path, char *err, size_t n)
@@ -1019,12 +1040,13 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
   text_at(cr, 40 + text_w(cr, title, 22, 1) + 14, 34, "tool path of a headless run of s42 (2С42-65)", 13, 0, 0);
   for (int a = 0; a < 4; a++) {
     char v[32];
-    fmt_num(v, sizeof v, pl->pos[a] / 1000.0, 3);
-    snprintf(n[a], sizeof n[a], "%s%s", pl->pos[a] > 0 ? "+" : "", v);
+    int64_t e = pl->ended ? pl->end_pos[a] : pl->pos[a];
+    fmt_num(v, sizeof v, e / 1000.0, 3);
+    snprintf(n[a], sizeof n[a], "%s%s", e > 0 ? "+" : "", v);
   }
-  fmt_num(tt, sizeof tt, pl->t, 1);
+  fmt_num(tt, sizeof tt, pl->ended ? pl->t_end : pl->t, 1);
   snprintf(line, sizeof line, "%llu blocks, %s s simulated; end position X %s  Y %s  Z %s mm  A %s°",
-           pl->rows, tt, n[0], n[1], n[2], n[3]);
+           pl->ended ? pl->blocks : pl->rows, tt, n[0], n[1], n[2], n[3]);
   rgb(cr, C_LABEL);
   text_at(cr, 1560, 34, line, 13, 0, 1);
   if (pl->oom) {

@@ -16,6 +16,12 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
 /* A session `moved` sink: a plugin moved an axis outside the contour
  * (oscillation), by d discretes; drawn apart from the programmed path. */
 void plot_sample(struct plot *pl, const struct session *s, int axis, int64_t d);
+/* How the run ended, at its end: s the session (NULL: the program did not
+ * compile), status the exit status (0 end, 1 program error, 3 stopped),
+ * code, n and line the error's code, block number (-1 none) and source
+ * line (0 unknown) for status 1.  The header counts s's blocks, as the
+ * dump does. */
+void plot_result(struct plot *pl, const struct session *s, int status, const char *code, int n, unsigned line);
 /* Is the output path's extension one we can write (.png .svg .pdf)? */
 int plot_check_path(const char *path, char *err, size_t n);
 /* Draw and write the file (title: the program's name).  0, or -1 with err. */

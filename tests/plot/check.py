@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Check the pictures of `s42 plot` (tests/plot/run.sh calls this).
 
-check.py PNG SVG TRACE.jsonl DUMP.json
+check.py PNG SVG TRACE.jsonl DUMP.json [PDF]
   PNG: must be 1600 x 1000; its pixels are decoded here (zlib, no PIL) and
   each panel is checked against what the trace says moved:
     - a panel whose axes the program moves holds path pixels (the blue of
@@ -13,14 +13,19 @@ check.py PNG SVG TRACE.jsonl DUMP.json
     - the A panel: a trace that spans the time axis, and at least half the
       panel's height when A moves by 1 degree or more; flat when A never moves.
   SVG: well-formed XML, an <svg> root of 1600pt x 1000pt.
+  PDF (its text, read by pdftext.py): the header says what the dump says --
+    the blocks the run counted, the simulated time, the end position.
 Prints nothing and exits 0 when all is well; otherwise prints the failures
 and exits 1.
 """
 import json
+import re
 import struct
 import sys
 import xml.etree.ElementTree as ET
 import zlib
+
+import pdftext
 
 W, H = 1600, 1000
 # The frames of src/plot.c: (name, u axis, v axis, x).  y 96..676, w 490.
@@ -141,7 +146,39 @@ class Img:
         return False
 
 
-def check(png, svg, trace, dump):
+def fmt(v, dec):
+    """plot.c's fmt_num: at most dec decimals, trailing zeros dropped."""
+    if abs(v) < 0.5 * 10 ** -dec:
+        v = 0.0
+    t = "%.*f" % (dec, v)
+    if "." in t:
+        t = t.rstrip("0").rstrip(".")
+    return t
+
+
+def check_header(texts, d):
+    """The summary line says what the run counted (the dump)."""
+    hdr = [r.text for r in texts if " blocks, " in r.text]
+    if len(hdr) != 1:
+        return ["PDF: %d header lines with 'blocks' in them, want 1" % len(hdr)]
+    m = re.match(r"(\d+) blocks, (\S+) s simulated; (?:end position|position at the stop) "
+                 r"X (\S+)  Y (\S+)  Z (\S+) mm  A (\S+)°$", hdr[0])
+    if not m:
+        return ["PDF: header %r not understood" % hdr[0]]
+    fails = []
+    if int(m.group(1)) != d["blocks"]:
+        fails.append("header: %s blocks, the run counted %d" % (m.group(1), d["blocks"]))
+    if m.group(2) != fmt(d["time"], 1):
+        fails.append("header: %s s, the run took %s" % (m.group(2), fmt(d["time"], 1)))
+    for i, a in enumerate("xyza"):
+        v = d["pos"][a]
+        want = ("+" if v > 0 else "") + fmt(v / 1000.0, 3)
+        if m.group(3 + i) != want:
+            fails.append("header: %s %s, the run ended at %s" % (a.upper(), m.group(3 + i), want))
+    return fails
+
+
+def check(png, svg, trace, dump, pdf=None):
     fails = []
     data = open(png, "rb").read()
     if data[:8] != b"\x89PNG\r\n\x1a\n" or data[12:16] != b"IHDR":
@@ -152,7 +189,10 @@ def check(png, svg, trace, dump):
     img = Img(*decode_png(data))
 
     rows = [json.loads(l) for l in open(trace) if l.strip()]
-    final = json.load(open(dump))["pos"]
+    dumped = json.load(open(dump))
+    final = dumped["pos"]
+    if pdf:
+        fails += check_header(pdftext.runs(pdf), dumped)
     axes = "xyza"
     pos = [0, 0, 0, 0]
     pts = [tuple(pos)]
@@ -258,7 +298,7 @@ def check(png, svg, trace, dump):
 
 if __name__ == "__main__":
     try:
-        f = check(*sys.argv[1:5])
+        f = check(*sys.argv[1:6])
     except Exception as e:  # a broken file is a failure, not a crash
         f = ["%s: %s" % (type(e).__name__, e)]
     for m in f:

@@ -1,9 +1,10 @@
 #!/bin/sh
 # s42 plot: for every programs/*.kp (with programs/NAME.operator and NAME.tool when there
-# is one) draw a PNG and an SVG and check them with check.py: the PNG's size
-# from its header, path pixels where the run moved, nothing where it did
-# not, the SVG well-formed.  Also: the PDF, the refusal of an unknown
-# extension, and that a failed plot leaves no file behind.
+# is one) and the tutorial's cycle draw a PNG, an SVG and a PDF and check them
+# with check.py: the PNG's size from its header, path pixels where the run
+# moved, nothing where it did not, the SVG well-formed, the PDF's header
+# text as the dump says.  Also: the refusal of an unknown extension, and
+# that a failed plot leaves no file behind.
 #   sh tests/plot/run.sh ./s42
 S42=${1:-./s42}
 PY=${PYTHON:-python3}
@@ -19,33 +20,45 @@ fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL $1"; shift; [ $# -gt 0 ] && printf '%s\n' "$@" | sed 's/^/  /'; }
 
+# case NAME PROGRAM.kp [options]: run it (trace, dump) and plot it to PNG,
+# SVG and PDF; the plot's status is the run's; check.py checks the pictures
+case_() {
+  name=$1
+  shift
+  "$S42" run "$@" --trace=json >"$T/$name.jsonl" 2>/dev/null
+  want=$?
+  "$S42" run "$@" --dump >"$T/$name.dump" 2>/dev/null
+  st=
+  for ext in png svg pdf; do
+    "$S42" plot "$@" -o "$T/$name.$ext" 2>>"$T/$name.err"
+    st="$st $?"
+  done
+  if [ "$st" != " $want $want $want" ]; then
+    bad "$name" "plot exit$st (png svg pdf), run exit $want" "$(cat "$T/$name.err")"
+    return
+  fi
+  if [ ! -s "$T/$name.png" ] || [ ! -s "$T/$name.svg" ] || [ ! -s "$T/$name.pdf" ]; then
+    bad "$name" "no picture written" "$(cat "$T/$name.err")"
+    return
+  fi
+  if msg=$("$PY" "$HERE/check.py" "$T/$name.png" "$T/$name.svg" "$T/$name.jsonl" "$T/$name.dump" \
+           "$T/$name.pdf"); then
+    ok
+  else
+    bad "$name" "$msg"
+  fi
+}
+
 for kp in "$PROGS"/*.kp; do
   [ -f "$kp" ] || continue
   name=$(basename "$kp" .kp)
   set -- "$kp"
   [ -f "$PROGS/$name.operator" ] && set -- "$@" --operator "$PROGS/$name.operator"
   [ -f "$PROGS/$name.tool" ] && set -- "$@" --tool "$PROGS/$name.tool"
-  "$S42" run "$@" --trace=json >"$T/$name.jsonl" 2>/dev/null
-  want=$?
-  "$S42" run "$@" --dump >"$T/$name.dump" 2>/dev/null
-  "$S42" plot "$@" -o "$T/$name.png" 2>"$T/$name.err"
-  st_png=$?
-  "$S42" plot "$@" -o "$T/$name.svg" 2>>"$T/$name.err"
-  st_svg=$?
-  if [ $st_png -ne $want ] || [ $st_svg -ne $want ]; then
-    bad "$name" "plot exit $st_png (png) / $st_svg (svg), run exit $want" "$(cat "$T/$name.err")"
-    continue
-  fi
-  if [ ! -s "$T/$name.png" ] || [ ! -s "$T/$name.svg" ]; then
-    bad "$name" "no picture written" "$(cat "$T/$name.err")"
-    continue
-  fi
-  if msg=$("$PY" "$HERE/check.py" "$T/$name.png" "$T/$name.svg" "$T/$name.jsonl" "$T/$name.dump"); then
-    ok
-  else
-    bad "$name" "$msg"
-  fi
+  case_ "$name" "$@"
 done
+# the tutorial's cycle: its jump-only blocks (P) count in the header
+case_ tutorial docs/tutorial/cycle.kp --operator docs/tutorial/cycle.operator
 
 # the same picture as PDF
 first=$(ls "$PROGS"/*.kp | head -n 1)
