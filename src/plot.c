@@ -236,9 +236,41 @@ void plot_result(struct plot *pl, const struct session *s, int status, const cha
   pl->t_end = s ? s->m.t : 0;
   for (int a = 0; a < 4; a++)
     pl->end_pos[a] = s ? s->m.pos[a] : 0;
-  (void)code;
-  (void)n;
-  (void)line;
+  pl->why[0] = 0;
+  if (status != 1 && status != 3)
+    return;
+  /* where: the block's number, else its source line */
+  char at[48] = "";
+  if (status == 3 && s) {
+    int num = sess_block_number(s);
+    n = num;
+    line = s->vm.cur < s->p->nblocks ? s->p->blocks[s->vm.cur].line : 0;
+  }
+  if (n > 0)
+    snprintf(at, sizeof at, " at N%d", n);
+  else if (line)
+    snprintf(at, sizeof at, " at line %u", line);
+  if (status == 1 && !s)
+    snprintf(pl->why, sizeof pl->why, "not run: %s%s (the program does not compile)", code ? code : "error", at);
+  else if (status == 1)
+    snprintf(pl->why, sizeof pl->why, "stopped: %s%s", code ? code : "error", at);
+  else if (s && s->state == SE_WAIT)
+    snprintf(pl->why, sizeof pl->why, "stopped: the operator script had no action for %s%s", sess_wait_text(s), at);
+  else if (s && s->state == SE_STOPPED)
+    snprintf(pl->why, sizeof pl->why, "stopped (key STOP)%s", at);
+  else
+    snprintf(pl->why, sizeof pl->why, "stopped%s", at);
+}
+
+/* Where the machine was at the end (mm), the contour's end without
+ * oscillation in con. */
+static void final_pos(const struct plot *pl, double at[4], double con[4])
+{
+  for (int a = 0; a < 4; a++) {
+    int64_t e = pl->ended ? pl->end_pos[a] : pl->pos[a] + pl->disp[a];
+    at[a] = e / 1000.0;
+    con[a] = (e - pl->disp[a]) / 1000.0;
+  }
 }
 
 int plot_check_path(const char *path, char *err, size_t n)
@@ -377,6 +409,8 @@ static void rgb(cairo_t *cr, unsigned c)
 #define C_OSC 0x2e9e44u
 #define C_START 0x1a9933u
 #define C_END 0xd91a1au
+#define C_STOP 0xffd400u       /* the stop marker: a yellow octagon, outlined dark */
+#define C_STOPTEXT 0xb3000fu
 #define C_GRID 0xe6e6e6u
 #define C_AXIS 0xbfbfbfu
 #define C_TEXT 0x222222u
@@ -520,6 +554,15 @@ static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
         cairo_stroke(cr);
     }
     end_of(g, prev);
+  }
+  /* a correction after the last block */
+  double at[4], con[4], x0, y0, x1, y1;
+  final_pos(pl, at, con);
+  if (con[P->u] != prev[P->u] || con[P->v] != prev[P->v]) {
+    pmap(P, prev[P->u], prev[P->v], &x0, &y0);
+    pmap(P, con[P->u], con[P->v], &x1, &y1);
+    cairo_move_to(cr, x0, y0);
+    cairo_line_to(cr, x1, y1);
   }
   cairo_stroke(cr);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
@@ -723,11 +766,36 @@ static void draw_panel_furniture(cairo_t *cr, const struct panel *P, double step
   text_at(cr, P->x + text_w(cr, P->name, 15, 1) + 8, P->y - 8, P->plane, 12, 0, 0);
 }
 
+/* The stop marker: a yellow octagon outlined dark, as a stop sign. */
+static void stop_sign(cairo_t *cr, double x, double y)
+{
+  const double r = 7.5;
+  cairo_new_path(cr);
+  for (int k = 0; k < 8; k++) {
+    double th = M_PI / 8 + k * M_PI / 4;
+    if (k)
+      cairo_line_to(cr, x + r * cos(th), y + r * sin(th));
+    else
+      cairo_move_to(cr, x + r * cos(th), y + r * sin(th));
+  }
+  cairo_close_path(cr);
+  rgb(cr, C_STOP);
+  cairo_fill_preserve(cr);
+  rgb(cr, C_TEXT);
+  cairo_set_line_width(cr, 1.6);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_MITER);
+  cairo_stroke(cr);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+}
+
+/* end: 0 the program start, 1 the end, 2 where a failed run stopped */
 static void marker(cairo_t *cr, const struct panel *P, const double pt[4], int end)
 {
   double x, y;
   pmap(P, pt[P->u], pt[P->v], &x, &y);
-  if (end) {
+  if (end == 2) {
+    stop_sign(cr, x, y);
+  } else if (end) {
     cairo_new_path(cr);
     cairo_rectangle(cr, x - 4, y - 4, 8, 8);
     rgb(cr, C_END);
@@ -785,12 +853,14 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
     draw_scale(cr, &P, step);
     draw_panel_path(cr, &P, pl);
     draw_panel_osc(cr, &P, pl);
-    double z[4] = {0, 0, 0, 0}, e[4];
-    for (int a = 0; a < 4; a++)
-      e[a] = pl->pos[a] / 1000.0;
-    if (pl->n)
+    double z[4] = {0, 0, 0, 0}, e[4], con[4];
+    final_pos(pl, e, con);
+    int stopped = pl->why[0] != 0;
+    if (pl->n && !stopped)
       marker(cr, &P, e, 1);
-    marker(cr, &P, z, 0);
+    if (stopped)
+      marker(cr, &P, e, 2);
+    marker(cr, &P, z, 0);   /* over the stop sign: a run that stopped before it moved */
     if (P.occ)
       draw_labels(cr, &P, pl);
     if (du < minext && dv < minext) {
@@ -807,8 +877,11 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
 static void draw_a(cairo_t *cr, const struct plot *pl)
 {
   const double X = 90, Y = 724, W = 1470, H = 200;
-  double tend = pl->t > 0 ? pl->t : 1;
-  double amin = 0, amax = 0, a = 0;
+  double t_end = pl->ended && pl->t_end > pl->t ? pl->t_end : pl->t;
+  double tend = t_end > 0 ? t_end : 1;
+  double fin[4], con[4];
+  final_pos(pl, fin, con);
+  double amin = fmin(0, fmin(fin[3], con[3])), amax = fmax(0, fmax(fin[3], con[3])), a = 0;
   for (size_t i = 0; i < pl->n; i++) {
     const struct seg *g = &pl->v[i];
     double v[3] = {g->start[3] / 1000.0, (g->start[3] + g->d[3]) / 1000.0,
@@ -888,6 +961,10 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
     }
     a = (g->start[3] + g->d[3] + g->jog[3]) / 1000.0;
   }
+  if (con[3] != a) {   /* a correction after the last block */
+    cairo_move_to(cr, TX(t_end), AY(a));
+    cairo_line_to(cr, TX(t_end), AY(con[3]));
+  }
   cairo_stroke(cr);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
   rgb(cr, C_JOG);
@@ -928,6 +1005,10 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
       cairo_move_to(cr, TX(g->t1), AY(a));
   }
   cairo_line_to(cr, TX(tend), AY(a));
+  if (con[3] != a) {
+    cairo_move_to(cr, TX(t_end), AY(con[3]));
+    cairo_line_to(cr, TX(tend), AY(con[3]));
+  }
   cairo_stroke(cr);
   /* A oscillating: the programmed A plus its displacement */
   rgb(cr, C_OSC);
@@ -949,6 +1030,8 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
     rgb(cr, C_LABEL);
     text_at(cr, X + W / 2, Y + H / 2 - 14, "A does not move", 13, 0, 0.5);
   }
+  if (pl->why[0])
+    stop_sign(cr, TX(t_end), AY(fin[3]));
   cairo_restore(cr);
   rgb(cr, C_FRAME);
   cairo_rectangle(cr, X + 0.5, Y + 0.5, W - 1, H - 1);
@@ -957,7 +1040,7 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
 #undef AY
 }
 
-static void legend(cairo_t *cr, double x, double y)
+static void legend(cairo_t *cr, double x, double y, int stopped)
 {
   static const struct { unsigned c; int style; const char *text; } items[] = {
     {C_PATH, 0, "programmed move (arcs as arcs)"},
@@ -966,9 +1049,21 @@ static void legend(cairo_t *cr, double x, double y)
     {C_OSC, 0, "oscillation (G07 M13)"},
     {C_START, 3, "program start"},
     {C_END, 4, "end"},
+    {C_STOP, 6, "stopped here"},
     {C_LABEL, 5, "block number at the block's start"},
   };
-  for (size_t i = 0; i < sizeof items / sizeof items[0]; i++) {
+  const size_t k = sizeof items / sizeof items[0];
+  /* a run ends or stops: the one that happened; the gaps share what is left
+   * of the line */
+  double used = 0, gap;
+  for (size_t i = 0; i < k; i++)
+    if (items[i].style != (stopped ? 4 : 6))
+      used += 34 + text_w(cr, items[i].text, 12, 0);
+  gap = (PW - 2 * x - used) / (double)(k - 2);
+  gap = gap > 26 ? 26 : gap < 8 ? 8 : gap;
+  for (size_t i = 0; i < k; i++) {
+    if (items[i].style == (stopped ? 4 : 6))
+      continue;
     rgb(cr, items[i].c);
     cairo_new_path(cr);
     switch (items[i].style) {
@@ -996,6 +1091,9 @@ static void legend(cairo_t *cr, double x, double y)
       cairo_rectangle(cr, x + 10, y - 8, 8, 8);
       cairo_fill(cr);
       break;
+    case 6:
+      stop_sign(cr, x + 14, y - 4);
+      break;
     default:
       cairo_arc(cr, x + 4, y - 4, 1.6, 0, 2 * M_PI);
       cairo_fill(cr);
@@ -1004,7 +1102,7 @@ static void legend(cairo_t *cr, double x, double y)
     }
     rgb(cr, C_TEXT);
     text_at(cr, x + 34, y, items[i].text, 12, 0, 0);
-    x += 34 + text_w(cr, items[i].text, 12, 0) + 26;
+    x += 34 + text_w(cr, items[i].text, 12, 0) + gap;
   }
 }
 
@@ -1026,9 +1124,13 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
     if (seg_has_jog(g))
       bb_curve(&bb, g, 1);
   }
+  double fin[4], con[4];
+  final_pos(pl, fin, con);
+  bb_add(&bb, fin);
+  bb_add(&bb, con);
   draw_xyz(cr, pl, &bb);
   draw_a(cr, pl);
-  legend(cr, 40, 984);
+  legend(cr, 40, 984, pl->why[0] != 0);
 
   /* title and summary */
   const char *base = strrchr(program, '/');
@@ -1044,14 +1146,25 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
     fmt_num(v, sizeof v, e / 1000.0, 3);
     snprintf(n[a], sizeof n[a], "%s%s", e > 0 ? "+" : "", v);
   }
-  fmt_num(tt, sizeof tt, pl->ended ? pl->t_end : pl->t, 1);
-  snprintf(line, sizeof line, "%llu blocks, %s s simulated; end position X %s  Y %s  Z %s mm  A %s°",
-           pl->ended ? pl->blocks : pl->rows, tt, n[0], n[1], n[2], n[3]);
+  double tsim = pl->ended ? pl->t_end : pl->t;
+  fmt_num(tt, sizeof tt, tsim, tsim < 1 ? 3 : 1);   /* a short run is not "0 s" */
+  snprintf(line, sizeof line, "%llu blocks, %s s simulated; %s X %s  Y %s  Z %s mm  A %s°",
+           pl->ended ? pl->blocks : pl->rows, tt, pl->why[0] ? "position at the stop" : "end position", n[0],
+           n[1], n[2], n[3]);
   rgb(cr, C_LABEL);
   text_at(cr, 1560, 34, line, 13, 0, 1);
+  if (pl->why[0]) {
+    /* how the run failed, under the title, with the marker of the panels */
+    stop_sign(cr, 48, 57);
+    double size = 15, room = 1520 - 22 - (pl->oom ? 300 : 0);
+    while (size > 8 && text_w(cr, pl->why, size, 1) > room)
+      size -= 0.5;
+    rgb(cr, C_STOPTEXT);
+    text_at(cr, 62, 62, pl->why, size, 1, 0);
+  }
   if (pl->oom) {
     rgb(cr, C_END);
-    text_at(cr, 1560, 56, "out of memory: the path is cut short", 13, 1, 1);
+    text_at(cr, 1560, 62, "out of memory: the path is cut short", 13, 1, 1);
   }
 }
 

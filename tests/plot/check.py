@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Check the pictures of `s42 plot` (tests/plot/run.sh calls this).
 
-check.py PNG SVG TRACE.jsonl DUMP.json [PDF]
+check.py PNG SVG TRACE.jsonl DUMP.json [PDF [TITLE]]
   PNG: must be 1600 x 1000; its pixels are decoded here (zlib, no PIL) and
   each panel is checked against what the trace says moved:
     - a panel whose axes the program moves holds path pixels (the blue of
@@ -15,6 +15,10 @@ check.py PNG SVG TRACE.jsonl DUMP.json [PDF]
   SVG: well-formed XML, an <svg> root of 1600pt x 1000pt.
   PDF (its text, read by pdftext.py): the header says what the dump says --
     the blocks the run counted, the simulated time, the end position.
+  A run that failed (the dump's status): the line under the title says how
+    (TITLE, or "stopped: CODE at Nn" from the dump's error), the stop sign
+    marks every panel -- where the run stopped, when the fit is known -- and
+    the legend, and no end marker is drawn; a run that ended has neither.
 Prints nothing and exits 0 when all is well; otherwise prints the failures
 and exits 1.
 """
@@ -90,7 +94,10 @@ def decode_png(data):
 
 def classify(r, g, b):
     """'P' programmed path blue, 'M' manual orange, 'C' correction magenta,
-    'S' start green, 'E' end red, None otherwise (white, grey, text)."""
+    'S' start green, 'E' end red, 'X' the yellow stop sign, None otherwise
+    (white, grey, text)."""
+    if r > 200 and g > 185 and b < 90:
+        return "X"
     if b - r > 50 and b - g > 30:
         return "P"
     if r - b > 80 and r > 150 and 60 < g < 200 and r - g > 40:
@@ -168,8 +175,9 @@ def check_header(texts, d):
     fails = []
     if int(m.group(1)) != d["blocks"]:
         fails.append("header: %s blocks, the run counted %d" % (m.group(1), d["blocks"]))
-    if m.group(2) != fmt(d["time"], 1):
-        fails.append("header: %s s, the run took %s" % (m.group(2), fmt(d["time"], 1)))
+    t = fmt(d["time"], 3 if d["time"] < 1 else 1)
+    if m.group(2) != t:
+        fails.append("header: %s s, the run took %s" % (m.group(2), t))
     for i, a in enumerate("xyza"):
         v = d["pos"][a]
         want = ("+" if v > 0 else "") + fmt(v / 1000.0, 3)
@@ -178,7 +186,44 @@ def check_header(texts, d):
     return fails
 
 
-def check(png, svg, trace, dump, pdf=None):
+def check_stop(texts, d, want):
+    """The line under the title and the legend say how the run ended."""
+    fails = []
+    line = [r.text for r in texts if 50 < r.y < 70 and r.x < 200]
+    legend = [r.text for r in texts if r.y > 975]
+    if d["status"] == "end":
+        if line:
+            fails.append("title: %r for a run that ended" % line[0])
+        if "end" not in legend or "stopped here" in legend:
+            fails.append("legend: %s, want 'end' and no 'stopped here'" % legend)
+        return fails
+    if want is None and d["status"] == "error" and d["error"]:
+        e = d["error"]
+        want = "stopped: %s%s" % (e["code"], " at N%d" % e["n"] if e["n"] is not None else "")
+    if not line:
+        fails.append("title: nothing says the run %s" % ("failed" if d["status"] == "error" else "stopped"))
+    elif want is not None and line[0] != want:
+        fails.append("title: %r, want %r" % (line[0], want))
+    if "stopped here" not in legend or "end" in legend:
+        fails.append("legend: %s, want 'stopped here' and no 'end'" % legend)
+    return fails
+
+
+def fit(pts, u, v, x):
+    """The documented fitting rule: mm -> pixel in the panel at x."""
+    ix0, iy0 = x + IN_L, PY + IN_T
+    iw, ih = PW_ - IN_L - IN_R, PH_ - IN_T - IN_B
+    lo_u = min(p[u] for p in pts) / 1000.0; hi_u = max(p[u] for p in pts) / 1000.0
+    lo_v = min(p[v] for p in pts) / 1000.0; hi_v = max(p[v] for p in pts) / 1000.0
+    du, dv = hi_u - lo_u, hi_v - lo_v
+    s = min(iw / max(du, MINEXT), ih / max(dv, MINEXT))
+    if du < MINEXT and dv < MINEXT:
+        s = min(iw, ih) / 1.0
+    u0, v0 = (lo_u + hi_u) / 2, (lo_v + hi_v) / 2
+    return lambda pu, pv: (ix0 + iw / 2 + (pu / 1000.0 - u0) * s, iy0 + ih / 2 - (pv / 1000.0 - v0) * s)
+
+
+def check(png, svg, trace, dump, pdf=None, title=None):
     fails = []
     data = open(png, "rb").read()
     if data[:8] != b"\x89PNG\r\n\x1a\n" or data[12:16] != b"IHDR":
@@ -192,7 +237,10 @@ def check(png, svg, trace, dump, pdf=None):
     dumped = json.load(open(dump))
     final = dumped["pos"]
     if pdf:
-        fails += check_header(pdftext.runs(pdf), dumped)
+        texts = pdftext.runs(pdf)
+        fails += check_header(texts, dumped)
+        fails += check_stop(texts, dumped, title)
+    stopped = dumped["status"] != "end"
     axes = "xyza"
     pos = [0, 0, 0, 0]
     pts = [tuple(pos)]
@@ -238,7 +286,9 @@ def check(png, svg, trace, dump, pdf=None):
                     bb = list(b) if bb is None else [min(bb[0], b[0]), min(bb[1], b[1]),
                                                      max(bb[2], b[2]), max(bb[3], b[3])]
                 spanw, spanh = bb[2] - bb[0], bb[3] - bb[1]
-                if spanw < 0.9 * iw and spanh < 0.9 * ih:
+                du, dv = (hi_u - lo_u) / 1000.0, (hi_v - lo_v) / 1000.0
+                sc = min(iw / max(du, MINEXT), ih / max(dv, MINEXT))
+                if spanw < 0.9 * du * sc and spanh < 0.9 * dv * sc:
                     fails.append("%s: the path is not fitted to the panel: it spans %dx%d px of %dx%d"
                                  % (name, spanw, spanh, iw, ih))
                 if found.get("P") and not arcs:
@@ -249,18 +299,26 @@ def check(png, svg, trace, dump, pdf=None):
             if blue:
                 fails.append("%s: nothing moves %s/%s but the panel has %d path pixels"
                              % (name, axes[u].upper(), axes[v].upper(), blue))
+        if stopped:
+            if "X" not in found:
+                fails.append("%s: the run stopped but no stop sign marks where" % name)
+            elif exact:
+                b = found["X"][1]
+                cx, cy = (b[0] + b[2]) / 2.0, (b[1] + b[3]) / 2.0
+                ex, ey = fit(pts, u, v, x)(final[axes[u]], final[axes[v]])
+                if abs(cx - ex) > 2 or abs(cy - ey) > 2:
+                    fails.append("%s: the stop sign is at (%.0f, %.0f), the run stopped at (%.0f, %.0f)"
+                                 % (name, cx, cy, ex, ey))
+            if "E" in found:
+                fails.append("%s: an end marker for a run that stopped" % name)
+        elif "X" in found:
+            fails.append("%s: a stop sign for a run that ended" % name)
         if exact and (moved[u] or moved[v] or manual[u] or manual[v]):
-            lo_u = min(p[u] for p in pts) / 1000.0; hi_u = max(p[u] for p in pts) / 1000.0
-            lo_v = min(p[v] for p in pts) / 1000.0; hi_v = max(p[v] for p in pts) / 1000.0
-            du, dv = hi_u - lo_u, hi_v - lo_v
-            s = min(iw / max(du, MINEXT), ih / max(dv, MINEXT))
-            if du < MINEXT and dv < MINEXT:
-                s = min(iw, ih) / 1.0
-            u0, v0 = (lo_u + hi_u) / 2, (lo_v + hi_v) / 2
+            mapping = fit(pts, u, v, x)
             miss = 0
             for p in pts:
-                px = int(round(ix0 + iw / 2 + (p[u] / 1000.0 - u0) * s))
-                py = int(round(iy0 + ih / 2 - (p[v] / 1000.0 - v0) * s))
+                px, py = mapping(p[u], p[v])
+                px, py = int(round(px)), int(round(py))
                 if py > PY + PH_ - 36:
                     continue   # under the scale-bar band
                 if not img.ink_near(px, py):
@@ -270,11 +328,14 @@ def check(png, svg, trace, dump, pdf=None):
 
     x0, y0, x1, y1 = A_FRAME
     found = img.scan(x0, y0, x1, y1)
+    if stopped != ("X" in found):
+        fails.append("A: %s" % ("no stop sign for a run that stopped" if stopped else "a stop sign for a run that ended"))
     if "P" not in found:
         fails.append("A: no trace")
     else:
         b = found["P"][1]
-        if b[2] < A_TEND_X - 2:
+        right = max(b[2], found["X"][1][2] if "X" in found else 0)   # the stop sign covers its end
+        if right < A_TEND_X - 2:
             fails.append("A: the trace ends at x=%d, not at the end of the time axis (%d)" % (b[2], A_TEND_X))
         ys = [found[k][1] for k in "PMC" if k in found]
         top, bot = min(q[1] for q in ys), max(q[3] for q in ys)
@@ -298,7 +359,7 @@ def check(png, svg, trace, dump, pdf=None):
 
 if __name__ == "__main__":
     try:
-        f = check(*sys.argv[1:6])
+        f = check(*sys.argv[1:7])
     except Exception as e:  # a broken file is a failure, not a crash
         f = ["%s: %s" % (type(e).__name__, e)]
     for m in f:

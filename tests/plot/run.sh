@@ -21,12 +21,17 @@ ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL $1"; shift; [ $# -gt 0 ] && printf '%s\n' "$@" | sed 's/^/  /'; }
 
 # case NAME PROGRAM.kp [options]: run it (trace, dump) and plot it to PNG,
-# SVG and PDF; the plot's status is the run's; check.py checks the pictures
+# SVG and PDF; the plot's status is the run's (and $expect when set);
+# check.py checks the pictures (the line under the title: $title when set)
 case_() {
   name=$1
   shift
   "$S42" run "$@" --trace=json >"$T/$name.jsonl" 2>/dev/null
   want=$?
+  if [ -n "$expect" ] && [ "$want" != "$expect" ]; then
+    bad "$name" "the run's exit status is $want, the test expects $expect"
+    return
+  fi
   "$S42" run "$@" --dump >"$T/$name.dump" 2>/dev/null
   st=
   for ext in png svg pdf; do
@@ -42,7 +47,7 @@ case_() {
     return
   fi
   if msg=$("$PY" "$HERE/check.py" "$T/$name.png" "$T/$name.svg" "$T/$name.jsonl" "$T/$name.dump" \
-           "$T/$name.pdf"); then
+           "$T/$name.pdf" ${title:+"$title"}); then
     ok
   else
     bad "$name" "$msg"
@@ -58,7 +63,27 @@ for kp in "$PROGS"/*.kp; do
   case_ "$name" "$@"
 done
 # the tutorial's cycle: its jump-only blocks (P) count in the header
-case_ tutorial docs/tutorial/cycle.kp --operator docs/tutorial/cycle.operator
+expect=0 case_ tutorial docs/tutorial/cycle.kp --operator docs/tutorial/cycle.operator
+
+# runs that fail: the status is the run's, the picture is still written, the
+# line under the title says how and the stop sign marks where
+expect=1; title=
+case_ e-div0 programs/errors/e-div0.kp
+title='not run: E-SYNTAX at N2 (the program does not compile)'
+case_ e-syntax programs/errors/e-syntax.kp
+expect=3; title='stopped: the operator script had no action for Пуск (key PUSK) at N4'
+case_ no-action docs/tutorial/cycle.kp --operator "$HERE/no-action.operator"
+title='stopped (key STOP) at N7'
+case_ stop-key docs/tutorial/cycle.kp --operator "$HERE/stop-key.operator"
+expect=; title=
+# a failed run whose picture cannot be written: 4, and no file
+"$S42" plot programs/errors/e-div0.kp -o "$T/nodir/div0.png" 2>"$T/nodir-div0.err"
+st=$?
+if [ $st -eq 4 ] && [ ! -e "$T/nodir/div0.png" ] && grep -q 'nodir' "$T/nodir-div0.err"; then
+  ok
+else
+  bad "io-error-failed-run" "exit $st for a failed run and a missing directory, want 4" "$(cat "$T/nodir-div0.err")"
+fi
 
 # the same picture as PDF
 first=$(ls "$PROGS"/*.kp | head -n 1)
