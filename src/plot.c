@@ -75,7 +75,7 @@ struct plot {
   unsigned long long rows;
   double t;             /* time at the end of the last row */
   int64_t pos[4];       /* position at the end of the last row */
-  int oom;
+  int oom, retimed;
   /* how the run ended (plot_result): what the dump says */
   int ended, status;
   unsigned long long blocks;
@@ -406,7 +406,7 @@ static void rgb(cairo_t *cr, unsigned c)
 #define C_PATH 0x1f4db3u
 #define C_JOG 0xe67300u
 #define C_CORR 0xbf1a99u
-#define C_OSC 0x2e9e44u
+#define C_OSC 0x0f9aa6u        /* teal: apart from the start's green */
 #define C_START 0x1a9933u
 #define C_END 0xd91a1au
 #define C_STOP 0xffd400u       /* the stop marker: a yellow octagon, outlined dark */
@@ -581,7 +581,52 @@ static void point_at(const struct plot *pl, double t, size_t *j, double out[4])
   seg_point(g, u < 0 ? 0 : u > 1 ? 1 : u, 0, out);
 }
 
-/* Oscillation: the programmed path plus the axis's displacement. */
+/* Oscillation: the programmed path plus the axis's displacement.  Between
+ * two points the axis moves evenly while the contour may curve: `steps`
+ * points from point i-1 to point i follow it; this is the k-th (mm). */
+static int osc_steps(const struct plot *pl, size_t i)
+{
+  return i == 0 || pl->osc[i].start ? 1 : 16;
+}
+
+static void osc_point(const struct plot *pl, size_t i, int k, size_t *j, double pt[4])
+{
+  const struct osc_pt *o = &pl->osc[i];
+  int steps = osc_steps(pl, i);
+  double f = (double)k / steps;
+  double t = steps == 1 ? o->t : pl->osc[i - 1].t + (o->t - pl->osc[i - 1].t) * f;
+  double off = steps == 1 ? (double)o->off : pl->osc[i - 1].off + (o->off - pl->osc[i - 1].off) * f;
+  point_at(pl, t, j, pt);
+  pt[o->axis] += off / 1000.0;
+}
+
+/* The plugin reports an advance's turning points all at its end time (the
+ * machine's clock moves first): spread them over the advance, in
+ * proportion to the way the axis travelled, as it runs at one speed.  An
+ * advance starts where the point before it was reported. */
+static void osc_retime(struct plot *pl)
+{
+  for (size_t i = 1; i < pl->nosc;) {
+    const struct osc_pt *o = &pl->osc[i];
+    size_t e = i;
+    while (e + 1 < pl->nosc && !pl->osc[e + 1].start && pl->osc[e + 1].t == o->t &&
+           pl->osc[e + 1].axis == o->axis)
+      e++;
+    double t0 = pl->osc[i - 1].t, t1 = o->t, way = 0, done = 0;
+    if (o->start || e == i || !(t1 > t0) || pl->osc[i - 1].axis != o->axis) {
+      i = e + 1;
+      continue;
+    }
+    for (size_t k = i; k <= e; k++)
+      way += fabs((double)(pl->osc[k].off - pl->osc[k - 1].off));
+    for (size_t k = i; k <= e && way > 0; k++) {
+      done += fabs((double)(pl->osc[k].off - pl->osc[k - 1].off));
+      pl->osc[k].t = k == e ? t1 : t0 + (t1 - t0) * done / way;
+    }
+    i = e + 1;
+  }
+}
+
 static void draw_panel_osc(cairo_t *cr, const struct panel *P, const struct plot *pl)
 {
   if (!pl->nosc || !pl->n)
@@ -591,16 +636,12 @@ static void draw_panel_osc(cairo_t *cr, const struct panel *P, const struct plot
   size_t j = 0;
   for (size_t i = 0; i < pl->nosc; i++) {
     const struct osc_pt *o = &pl->osc[i];
-    double pt[4], x, y;
-    /* between two points the axis moves evenly while the contour may curve:
-     * a few steps in between follow it */
-    int steps = i == 0 || o->start ? 1 : 16;
+    double pt[4], x = 0, y = 0;
+    int steps = osc_steps(pl, i);
+    if (o->axis != P->u && o->axis != P->v)
+      continue;   /* it would only cover the contour */
     for (int k = 1; k <= steps; k++) {
-      double f = (double)k / steps;
-      double t = i == 0 || o->start ? o->t : pl->osc[i - 1].t + (o->t - pl->osc[i - 1].t) * f;
-      double off = i == 0 || o->start ? (double)o->off : pl->osc[i - 1].off + (o->off - pl->osc[i - 1].off) * f;
-      point_at(pl, t, &j, pt);
-      pt[o->axis] += off / 1000.0;
+      osc_point(pl, i, k, &j, pt);
       pmap(P, pt[P->u], pt[P->v], &x, &y);
       if (i == 0 || o->start)
         cairo_move_to(cr, x, y);
@@ -891,9 +932,12 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
       if (v[k] > amax) amax = v[k];
     }
   }
-  for (size_t i = 0; i < pl->nosc; i++)
+  /* A oscillating: as drawn, the programmed A plus its displacement */
+  for (size_t i = 0, j = 0; i < pl->nosc && pl->n; i++)
     if (pl->osc[i].axis == 3) {
-      double v = pl->osc[i].off / 1000.0;
+      double pt[4];
+      point_at(pl, pl->osc[i].t, &j, pt);
+      double v = pt[3] + pl->osc[i].off / 1000.0;
       if (v < amin) amin = v;
       if (v > amax) amax = v;
     }
@@ -1128,6 +1172,13 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
   final_pos(pl, fin, con);
   bb_add(&bb, fin);
   bb_add(&bb, con);
+  /* the oscillation's strokes, point by point as they are drawn */
+  for (size_t i = 0, j = 0; i < pl->nosc && pl->n; i++)
+    for (int k = 1, steps = osc_steps(pl, i); k <= steps; k++) {
+      double pt[4];
+      osc_point(pl, i, k, &j, pt);
+      bb_add(&bb, pt);
+    }
   draw_xyz(cr, pl, &bb);
   draw_a(cr, pl);
   legend(cr, 40, 984, pl->why[0] != 0);
@@ -1220,6 +1271,10 @@ int plot_write(struct plot *pl, const char *program, const char *path, char *err
     if (kind == 2)
       cairo_pdf_surface_set_metadata(sf, CAIRO_PDF_METADATA_TITLE, program);
     cairo_t *cr = cairo_create(sf);
+    if (!pl->retimed) {
+      osc_retime(pl);
+      pl->retimed = 1;
+    }
     draw(cr, pl, program);
     st = cairo_status(cr);
     cairo_destroy(cr);

@@ -2,6 +2,7 @@
 """Check the pictures of `s42 plot` (tests/plot/run.sh calls this).
 
 check.py PNG SVG TRACE.jsonl DUMP.json [PDF [TITLE]]
+check.py --tips PNG PANEL LEAST   (see tips())
   PNG: must be 1600 x 1000; its pixels are decoded here (zlib, no PIL) and
   each panel is checked against what the trace says moved:
     - a panel whose axes the program moves holds path pixels (the blue of
@@ -94,10 +95,12 @@ def decode_png(data):
 
 def classify(r, g, b):
     """'P' programmed path blue, 'M' manual orange, 'C' correction magenta,
-    'S' start green, 'E' end red, 'X' the yellow stop sign, None otherwise
-    (white, grey, text)."""
+    'S' start green, 'E' end red, 'X' the yellow stop sign, 'O' oscillation
+    teal, None otherwise (white, grey, text)."""
     if r > 200 and g > 185 and b < 90:
         return "X"
+    if g - r > 50 and b - r > 50 and abs(g - b) < 45:
+        return "O"
     if b - r > 50 and b - g > 30:
         return "P"
     if r - b > 80 and r > 150 and 60 < g < 200 and r - g > 40:
@@ -265,7 +268,13 @@ def check(png, svg, trace, dump, pdf=None, title=None):
                 pos[i] += j[axes[i]]
             pts.append(tuple(pos))
     corr = [pos[i] != final[axes[i]] for i in range(4)]
-    exact = not arcs and not any(corr) and len(pts) < 4000
+    osc = dumped.get("osc") or {}
+    oa = osc.get("axis")
+    osc_axis = axes.index(oa) if isinstance(oa, str) and len(oa) == 1 and oa in axes else -1
+    osc_stroke = abs(osc.get("stroke", 0)) / 1000.0
+    oscillated = any(r.get("osc") == "on" for r in rows)
+    # (the strokes widen the fit beyond what the trace knows)
+    exact = not arcs and not any(corr) and not oscillated and len(pts) < 4000
 
     for name, u, v, x in PANELS:
         found = img.scan(x, PY, x + PW_, PY + PH_)
@@ -299,6 +308,21 @@ def check(png, svg, trace, dump, pdf=None, title=None):
             if blue:
                 fails.append("%s: nothing moves %s/%s but the panel has %d path pixels"
                              % (name, axes[u].upper(), axes[v].upper(), blue))
+        # the oscillation's strokes fit the panel's scale like the rest
+        if "O" in found:
+            b = found["O"][1]
+            if b[0] < ix0 - 3 or b[2] > ix0 + iw + 3 or b[1] < iy0 - 3 or b[3] > iy0 + ih + 3:
+                fails.append("%s: oscillation strokes outside the fitted area: %s" % (name, b))
+            if osc_axis in (u, v) and osc_stroke >= MINEXT:
+                bb = None
+                for k, (n, b) in found.items():
+                    bb = list(b) if bb is None else [min(bb[0], b[0]), min(bb[1], b[1]),
+                                                     max(bb[2], b[2]), max(bb[3], b[3])]
+                if bb[2] - bb[0] < 0.9 * iw and bb[3] - bb[1] < 0.9 * ih:
+                    fails.append("%s: the oscillation is not fitted to the panel: it spans %dx%d px of %dx%d"
+                                 % (name, bb[2] - bb[0], bb[3] - bb[1], iw, ih))
+        elif osc_axis in (u, v) and oscillated:
+            fails.append("%s: %s oscillates but no stroke is drawn" % (name, axes[osc_axis].upper()))
         if stopped:
             if "X" not in found:
                 fails.append("%s: the run stopped but no stop sign marks where" % name)
@@ -328,6 +352,8 @@ def check(png, svg, trace, dump, pdf=None, title=None):
 
     x0, y0, x1, y1 = A_FRAME
     found = img.scan(x0, y0, x1, y1)
+    if "O" in found and (found["O"][1][1] < y0 + 3 or found["O"][1][3] > y1 - 3):
+        fails.append("A: oscillation strokes leave the panel's scale: %s" % found["O"][1])
     if stopped != ("X" in found):
         fails.append("A: %s" % ("no stop sign for a run that stopped" if stopped else "a stop sign for a run that ended"))
     if "P" not in found:
@@ -357,9 +383,26 @@ def check(png, svg, trace, dump, pdf=None, title=None):
     return fails
 
 
+def tips(png, panel, least):
+    """The oscillation's turning points on the far side (the top of the teal
+    strokes in PANEL) are spread along the path: at least LEAST of them
+    apart, not bunched where a block ends."""
+    img = Img(*decode_png(open(png, "rb").read()))
+    x = dict((p[0], p[3]) for p in PANELS)[panel]
+    found = img.scan(x, PY, x + PW_, PY + PH_)
+    if "O" not in found:
+        return ["%s: no oscillation drawn" % panel]
+    top = found["O"][1][1]
+    cols = sorted(set(xx for xx in range(x, x + PW_) for yy in (top, top + 1) if img.px(xx, yy) == "O"))
+    groups = sum(1 for i, c in enumerate(cols) if i == 0 or c - cols[i - 1] > 2)
+    if groups < int(least):
+        return ["%s: the strokes turn at %d places along the path, want %s or more" % (panel, groups, least)]
+    return []
+
+
 if __name__ == "__main__":
     try:
-        f = check(*sys.argv[1:7])
+        f = tips(*sys.argv[2:5]) if sys.argv[1] == "--tips" else check(*sys.argv[1:7])
     except Exception as e:  # a broken file is a failure, not a crash
         f = ["%s: %s" % (type(e).__name__, e)]
     for m in f:

@@ -76,6 +76,17 @@ case_ no-action docs/tutorial/cycle.kp --operator "$HERE/no-action.operator"
 title='stopped (key STOP) at N7'
 case_ stop-key docs/tutorial/cycle.kp --operator "$HERE/stop-key.operator"
 expect=; title=
+
+# oscillation: the strokes are in the scale (reamer_rake above: 100 mm of X
+# while nothing else moves X), A's too, and they turn along the path
+case_ osc-a "$HERE/osc-a.kp"
+case_ osc-line "$HERE/osc-line.kp"
+if msg=$("$PY" "$HERE/check.py" --tips "$T/osc-line.png" XZ 12); then
+  ok
+else
+  bad "osc-tips" "$msg"
+fi
+
 # a failed run whose picture cannot be written: 4, and no file
 "$S42" plot programs/errors/e-div0.kp -o "$T/nodir/div0.png" 2>"$T/nodir-div0.err"
 st=$?
