@@ -3,21 +3,27 @@
  * The picture is always 1600 x 1000 (pixels for PNG, points for SVG and
  * PDF).  Layout, top to bottom (the test tests/plot/run.sh relies on the
  * frames):
- *   - a title line with the program's name and a summary line;
+ *   - a title line with the program's name and a summary line (the blocks,
+ *     time and end position the run counted); when the run failed, a line
+ *     under it says how ("stopped: E-DIV0 at N3");
  *   - three panels, the projections XY (plane G17), XZ (G19) and YZ (G18),
  *     each with the plane's first axis to the right and its second axis up,
  *     so that G03 turns counter-clockwise on the page.  Frames: x 40..530,
- *     555..1045, 1070..1560; y 96..676.  Each panel has its own scale (equal
- *     on both axes), a scale bar in mm, a grid with the bar's step, the
- *     program start marked by a green dot and the end by a red square;
+ *     555..1045, 1070..1560; y 96..676.  A band of LB px at the left and BB
+ *     px at the bottom of each frame holds the tick labels (coordinates in
+ *     mm), the scale bar and the axis arrows; everything drawn is fitted
+ *     into the inner area (left 62, top 22, right 18, bottom 62 px in from
+ *     the frame), with one scale on both axes; a grid at the bar's step; the
+ *     program start marked by a green ring, the end by a red square or, for
+ *     a run that failed, where it stopped by a yellow octagon;
  *   - the A panel: A (degrees) against simulated time (s), frame x 90..1560,
- *     y 724..924;
+ *     y 724..924, labelled along both;
  *   - a legend.
  * Programmed moves are solid blue lines (arcs as true arcs in their plane,
  * projected point by point in the other panels); manual moves -- jogs in
  * G20 stops and M19 teach-in -- dashed orange; a position change between
- * blocks (a correction while the cycle runs) dotted magenta.  Block numbers
- * label block starts where there is room.
+ * blocks (a correction while the cycle runs) dotted magenta; oscillation
+ * teal.  Block numbers label block starts where there is room.
  *
  * Every row that moves is kept as one struct seg (about 100 bytes), so
  * 100,000 blocks take about 10 MB. */
@@ -27,6 +33,7 @@
 #include "cairo_dl.h"
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <locale.h>
 #include <math.h>
 #include <stdint.h>
@@ -379,10 +386,17 @@ static void bb_curve(struct bbox *b, const struct seg *g, int teach)
 
 /* ---- drawing ---- */
 
+/* A plane panel's frame holds, at its left and bottom, bands for the tick
+ * labels (LB and BB px); the grid and the path are in the rest, the
+ * region. */
+#define LB 50.0
+#define BB 50.0
+
 struct panel {
   int u, v;                 /* axes right and up */
   const char *name, *plane;
   double x, y, w, h;        /* the frame */
+  double rx, ry, rw, rh;    /* the region inside the tick bands */
   double ix, iy, iw, ih;    /* the area the path is fitted into */
   double s;                 /* px per mm */
   double u0, v0;            /* mm at the centre of the inner area */
@@ -678,7 +692,7 @@ static void draw_labels(cairo_t *cr, struct panel *P, const struct plot *pl)
     cairo_text_extents(cr, s, &e);
     double lx = x0 + 3, ly = y0 - 3;   /* baseline left */
     double rx0 = lx - 1, ry0 = ly - 10, rx1 = lx + e.x_advance + 1, ry1 = ly + 2;
-    if (rx0 < P->x + 2 || rx1 > P->x + P->w - 2 || ry0 < P->y + 2 || ry1 > P->y + P->h - 40)
+    if (rx0 < P->rx + 2 || rx1 > P->rx + P->rw - 2 || ry0 < P->ry + 2 || ry1 > P->ry + P->rh - 2)
       continue;
     int c0 = (int)((rx0 - P->x) / 4), c1 = (int)((rx1 - P->x) / 4);
     int r0 = (int)((ry0 - P->y) / 4), r1 = (int)((ry1 - P->y) / 4);
@@ -718,49 +732,146 @@ static void draw_labels(cairo_t *cr, struct panel *P, const struct plot *pl)
   }
 }
 
+/* Tick labels: the grid has a line at every k*step; a label goes on every
+ * m-th, m the least for which m*step is itself a round step (1, 2, 5 x
+ * 10^n) and labels `ext` px long along the axis keep 6 px apart at px_step
+ * px a step. */
+static long label_every(double step, double px_step, double ext)
+{
+  double lab = step;
+  for (int i = 0; i < 60; i++) {
+    long m = lround(lab / step);
+    if (m >= 1 && fabs(m * step - lab) <= 1e-9 * lab && m * px_step >= ext + 6)
+      return m;
+    double e = pow(10, floor(log10(lab) + 1e-9)), f = lab / e;
+    lab = (f < 1.5 ? 2 : f < 3.5 ? 5 : 10) * e;
+  }
+  return LONG_MAX;
+}
+
+/* The label of tick k: k*step with the step's decimals. */
+static void tick_text(char *buf, size_t n, long k, double step, int dec, const char *unit)
+{
+  char num[40];
+  fmt_num(num, sizeof num, (double)k * step, dec);
+  snprintf(buf, n, "%s%s", num, unit);
+}
+
 static void draw_scale(cairo_t *cr, const struct panel *P, double step)
 {
   /* grid at multiples of the step, axes through the program start */
   double xa, ya;
   cairo_save(cr);
-  cairo_rectangle(cr, P->x, P->y, P->w, P->h);
+  cairo_rectangle(cr, P->rx, P->ry, P->rw, P->rh);
   cairo_clip(cr);
-  double umin = P->u0 - (P->iw / 2 + 40) / P->s, umax = P->u0 + (P->iw / 2 + 40) / P->s;
-  double vmin = P->v0 - (P->ih / 2 + 60) / P->s, vmax = P->v0 + (P->ih / 2 + 40) / P->s;
+  double umin = P->u0 + (P->rx - (P->ix + P->iw / 2)) / P->s, umax = umin + P->rw / P->s;
+  double vmax = P->v0 + ((P->iy + P->ih / 2) - P->ry) / P->s, vmin = vmax - P->rh / P->s;
   if ((umax - umin) / step < 200 && (vmax - vmin) / step < 200) {
-    for (double u = ceil(umin / step) * step; u <= umax; u += step) {
-      pmap(P, u, 0, &xa, &ya);
-      cairo_move_to(cr, floor(xa) + 0.5, P->y);
-      cairo_line_to(cr, floor(xa) + 0.5, P->y + P->h);
+    for (long k = (long)ceil(umin / step); k * step <= umax; k++) {
+      pmap(P, k * step, 0, &xa, &ya);
+      cairo_move_to(cr, floor(xa) + 0.5, P->ry);
+      cairo_line_to(cr, floor(xa) + 0.5, P->ry + P->rh);
     }
-    for (double v = ceil(vmin / step) * step; v <= vmax; v += step) {
-      pmap(P, 0, v, &xa, &ya);
-      cairo_move_to(cr, P->x, floor(ya) + 0.5);
-      cairo_line_to(cr, P->x + P->w, floor(ya) + 0.5);
+    for (long k = (long)ceil(vmin / step); k * step <= vmax; k++) {
+      pmap(P, 0, k * step, &xa, &ya);
+      cairo_move_to(cr, P->rx, floor(ya) + 0.5);
+      cairo_line_to(cr, P->rx + P->rw, floor(ya) + 0.5);
     }
     rgb(cr, C_GRID);
     cairo_set_line_width(cr, 1);
     cairo_stroke(cr);
   }
   pmap(P, 0, 0, &xa, &ya);
-  cairo_move_to(cr, floor(xa) + 0.5, P->y);
-  cairo_line_to(cr, floor(xa) + 0.5, P->y + P->h);
-  cairo_move_to(cr, P->x, floor(ya) + 0.5);
-  cairo_line_to(cr, P->x + P->w, floor(ya) + 0.5);
+  cairo_move_to(cr, floor(xa) + 0.5, P->ry);
+  cairo_line_to(cr, floor(xa) + 0.5, P->ry + P->rh);
+  cairo_move_to(cr, P->rx, floor(ya) + 0.5);
+  cairo_line_to(cr, P->rx + P->rw, floor(ya) + 0.5);
   rgb(cr, C_AXIS);
   cairo_set_line_width(cr, 1);
   cairo_stroke(cr);
   cairo_restore(cr);
 }
 
+/* Ticks on the region's left and bottom edges at the grid's lines, with
+ * the coordinates in mm: the same labelled step on both axes, labels that
+ * do not fit the frame left out. */
+static void draw_ticks(cairo_t *cr, const struct panel *P, double step, int dec)
+{
+  double umin = P->u0 + (P->rx - (P->ix + P->iw / 2)) / P->s, umax = umin + P->rw / P->s;
+  double vmax = P->v0 + ((P->iy + P->ih / 2) - P->ry) / P->s, vmin = vmax - P->rh / P->s;
+  long u0 = (long)ceil(umin / step), u1 = (long)floor(umax / step);
+  long v0 = (long)ceil(vmin / step), v1 = (long)floor(vmax / step);
+  if (u1 - u0 > 400 || v1 - v0 > 400)
+    return;
+  char t[48];
+  const double fu = 10;
+  double wu = 0, wv = 0, fv = 10;
+  for (long k = u0; k <= u1; k++) {
+    tick_text(t, sizeof t, k, step, dec, "");
+    wu = fmax(wu, text_w(cr, t, fu, 0));
+  }
+  for (long k = v0; k <= v1; k++) {
+    tick_text(t, sizeof t, k, step, dec, "");
+    wv = fmax(wv, text_w(cr, t, fv, 0));
+  }
+  if (wv > LB - 12) {
+    fv = fmax(6.5, fv * (LB - 12) / wv);   /* long numbers: a smaller font */
+    wv = 0;
+    for (long k = v0; k <= v1; k++) {
+      tick_text(t, sizeof t, k, step, dec, "");
+      wv = fmax(wv, text_w(cr, t, fv, 0));
+    }
+  }
+  long mu = label_every(step, step * P->s, wu), mv = label_every(step, step * P->s, fv + 2);
+  long m = mu > mv ? mu : mv;
+  double xa, ya, by = P->ry + P->rh, lx = P->rx;
+  /* the region's edges, and a tick at every grid line */
+  rgb(cr, C_FRAME);
+  cairo_set_line_width(cr, 1);
+  cairo_move_to(cr, lx + 0.5, P->ry);
+  cairo_line_to(cr, lx + 0.5, by + 0.5);
+  cairo_line_to(cr, P->rx + P->rw, by + 0.5);
+  for (long k = u0; k <= u1; k++) {
+    pmap(P, k * step, 0, &xa, &ya);
+    cairo_move_to(cr, floor(xa) + 0.5, by);
+    cairo_line_to(cr, floor(xa) + 0.5, by + (k % m ? 3 : 6));
+  }
+  for (long k = v0; k <= v1; k++) {
+    pmap(P, 0, k * step, &xa, &ya);
+    cairo_move_to(cr, lx, floor(ya) + 0.5);
+    cairo_line_to(cr, lx - (k % m ? 3 : 6), floor(ya) + 0.5);
+  }
+  cairo_stroke(cr);
+  rgb(cr, C_TEXT);
+  for (long k = u0; k <= u1; k++) {
+    if (k % m)
+      continue;
+    tick_text(t, sizeof t, k, step, dec, "");
+    double w = text_w(cr, t, fu, 0);
+    pmap(P, k * step, 0, &xa, &ya);
+    xa = floor(xa) + 0.5;
+    /* clear of the axis arrows in the corner and of the frame */
+    if (xa - w / 2 < P->x + 30 || xa + w / 2 > P->x + P->w - 4)
+      continue;
+    text_at(cr, xa, by + 16, t, fu, 0, 0.5);
+  }
+  for (long k = v0; k <= v1; k++) {
+    if (k % m)
+      continue;
+    tick_text(t, sizeof t, k, step, dec, "");
+    pmap(P, 0, k * step, &xa, &ya);
+    double base = floor(ya) + 0.5 + 0.35 * fv;
+    if (base - 0.75 * fv < P->y + 3 || base + 0.25 * fv > by + 4)
+      continue;
+    text_at(cr, lx - 8, base, t, fv, 0, 1);
+  }
+}
+
 static void draw_panel_furniture(cairo_t *cr, const struct panel *P, double step, int dec)
 {
-  /* white band for the scale bar and axis arrows */
-  cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
-  cairo_rectangle(cr, P->x + 1, P->y + P->h - 34, P->w - 2, 33);
-  cairo_fill(cr);
-  /* the scale bar, bottom right */
-  double len = step * P->s, bx1 = P->x + P->w - 16, bx0 = bx1 - len, by = P->y + P->h - 12;
+  draw_ticks(cr, P, step, dec);
+  /* the scale bar, bottom right, under the tick labels */
+  double len = step * P->s, bx1 = P->x + P->w - 16, bx0 = bx1 - len, by = P->y + P->h - 9;
   rgb(cr, C_TEXT);
   cairo_set_line_width(cr, 2);
   cairo_move_to(cr, bx0, by);
@@ -775,28 +886,28 @@ static void draw_panel_furniture(cairo_t *cr, const struct panel *P, double step
   char num[32], lab[48];
   fmt_num(num, sizeof num, step, dec);
   snprintf(lab, sizeof lab, "%s mm", num);
-  text_at(cr, (bx0 + bx1) / 2, by - 6, lab, 11, 0, 0.5);
-  /* axis arrows, bottom left */
+  text_at(cr, bx0 - 6, by + 3, lab, 10, 0, 1);
+  /* axis arrows, in the corner between the tick bands */
   static const char *const names = "XYZA";
-  double ox = P->x + 14, oy = P->y + P->h - 10;
+  double ox = P->x + 12, oy = P->y + P->h - 10;
   cairo_set_line_width(cr, 1.3);
   cairo_move_to(cr, ox, oy);
-  cairo_line_to(cr, ox + 26, oy);
+  cairo_line_to(cr, ox + 22, oy);
   cairo_move_to(cr, ox, oy);
-  cairo_line_to(cr, ox, oy - 22);
+  cairo_line_to(cr, ox, oy - 18);
   cairo_stroke(cr);
-  cairo_move_to(cr, ox + 30, oy);
-  cairo_line_to(cr, ox + 24, oy - 3);
-  cairo_line_to(cr, ox + 24, oy + 3);
+  cairo_move_to(cr, ox + 26, oy);
+  cairo_line_to(cr, ox + 20, oy - 3);
+  cairo_line_to(cr, ox + 20, oy + 3);
   cairo_close_path(cr);
-  cairo_move_to(cr, ox, oy - 26);
-  cairo_line_to(cr, ox - 3, oy - 20);
-  cairo_line_to(cr, ox + 3, oy - 20);
+  cairo_move_to(cr, ox, oy - 22);
+  cairo_line_to(cr, ox - 3, oy - 16);
+  cairo_line_to(cr, ox + 3, oy - 16);
   cairo_close_path(cr);
   cairo_fill(cr);
   char a[2] = {names[P->u], 0}, b[2] = {names[P->v], 0};
-  text_at(cr, ox + 34, oy + 4, a, 11, 1, 0);
-  text_at(cr, ox + 6, oy - 18, b, 11, 1, 0);
+  text_at(cr, ox + 29, oy + 4, a, 11, 1, 0);
+  text_at(cr, ox + 5, oy - 14, b, 11, 1, 0);
   /* the frame and the title */
   rgb(cr, C_FRAME);
   cairo_set_line_width(cr, 1);
@@ -854,9 +965,9 @@ static void marker(cairo_t *cr, const struct panel *P, const double pt[4], int e
 static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
 {
   static const struct { int u, v; const char *name, *plane; } def[3] = {
-    {AX_X, AX_Y, "XY", "plane G17"},
-    {AX_X, AX_Z, "XZ", "plane G19"},
-    {AX_Y, AX_Z, "YZ", "plane G18"},
+    {AX_X, AX_Y, "XY", "plane G17, mm"},
+    {AX_X, AX_Z, "XZ", "plane G19, mm"},
+    {AX_Y, AX_Z, "YZ", "plane G18, mm"},
   };
   static const double fx[3] = {40, 555, 1070};
   for (int k = 0; k < 3; k++) {
@@ -870,10 +981,14 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
     P.y = 96;
     P.w = 490;
     P.h = 580;
-    P.ix = P.x + 28;
-    P.iy = P.y + 24;
-    P.iw = P.w - 56;
-    P.ih = P.h - 24 - 46;
+    P.rx = P.x + LB;
+    P.ry = P.y;
+    P.rw = P.w - LB;
+    P.rh = P.h - BB;
+    P.ix = P.rx + 12;
+    P.iy = P.ry + 22;
+    P.iw = P.rw - 12 - 18;
+    P.ih = P.rh - 22 - 12;
     double du = bb->hi[P.u] - bb->lo[P.u], dv = bb->hi[P.v] - bb->lo[P.v];
     const double minext = 0.02;   /* mm: never zoom in further than this */
     double su = du > minext ? du : minext, sv = dv > minext ? dv : minext;
@@ -889,7 +1004,7 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
     double step = nice_step(P.iw / 4 / P.s, &dec);
 
     cairo_save(cr);
-    cairo_rectangle(cr, P.x, P.y, P.w, P.h);
+    cairo_rectangle(cr, P.rx, P.ry, P.rw, P.rh);
     cairo_clip(cr);
     draw_scale(cr, &P, step);
     draw_panel_path(cr, &P, pl);
@@ -906,7 +1021,7 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
       draw_labels(cr, &P, pl);
     if (du < minext && dv < minext) {
       rgb(cr, C_LABEL);
-      text_at(cr, P.x + P.w / 2, P.y + P.h / 2 + 28, "no move in this plane", 13, 0, 0.5);
+      text_at(cr, P.rx + P.rw / 2, P.ry + P.rh / 2 + 28, "no move in this plane", 13, 0, 0.5);
     }
     cairo_restore(cr);
     draw_panel_furniture(cr, &P, step, dec);
@@ -953,30 +1068,41 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
   double sx = (W - 20) / tend, sy = (H - 16) / (amax - amin);
 #define TX(t) (X + 10 + (t) * sx)
 #define AY(v) (Y + H - 8 - ((v) - amin) * sy)
-  /* grid and ticks */
+  /* grid and ticks: a line at every step, a label where there is room
+   * (label_every), as on the plane panels */
   int dt_dec, da_dec;
   double dt = nice_step(tend / 8, &dt_dec), da = nice_step((amax - amin) / 4, &da_dec);
-  char num[32], lab[48];
+  char lab[48];
+  long t1 = (long)floor(tend * 1.0001 / dt), a0 = (long)ceil(amin / da), a1 = (long)floor(amax / da);
+  double wt = 0;
+  for (long k = 0; k <= t1; k++) {
+    tick_text(lab, sizeof lab, k, dt, dt_dec, "");
+    wt = fmax(wt, text_w(cr, lab, 11, 0));
+  }
+  long mt = label_every(dt, dt * sx, wt), ma = label_every(da, da * sy, 13);
   cairo_set_line_width(cr, 1);
-  for (double t = 0; t <= tend * 1.0001; t += dt) {
-    double x = floor(TX(t)) + 0.5;
+  for (long k = 0; k <= t1; k++) {
+    double x = floor(TX(k * dt)) + 0.5;
     rgb(cr, C_GRID);
     cairo_move_to(cr, x, Y);
     cairo_line_to(cr, x, Y + H);
     cairo_stroke(cr);
+    if (k % mt)
+      continue;
     rgb(cr, C_TEXT);
-    fmt_num(num, sizeof num, t, dt_dec);
-    text_at(cr, x, Y + H + 15, num, 11, 0, 0.5);
+    tick_text(lab, sizeof lab, k, dt, dt_dec, "");
+    text_at(cr, x, Y + H + 15, lab, 11, 0, 0.5);
   }
-  for (double v = ceil(amin / da) * da; v <= amax; v += da) {
-    double y = floor(AY(v)) + 0.5;
-    rgb(cr, fabs(v) < da / 1e6 ? C_AXIS : C_GRID);
+  for (long k = a0; k <= a1; k++) {
+    double y = floor(AY(k * da)) + 0.5;
+    rgb(cr, k == 0 ? C_AXIS : C_GRID);
     cairo_move_to(cr, X, y);
     cairo_line_to(cr, X + W, y);
     cairo_stroke(cr);
+    if (k % ma)
+      continue;
     rgb(cr, C_TEXT);
-    fmt_num(num, sizeof num, fabs(v) < da / 1e6 ? 0 : v, da_dec);
-    snprintf(lab, sizeof lab, "%s°", num);
+    tick_text(lab, sizeof lab, k, da, da_dec, "°");
     text_at(cr, X - 6, y + 4, lab, 11, 0, 1);
   }
   rgb(cr, C_TEXT);

@@ -1,7 +1,8 @@
 /* `s42 plot`: the tool path of a headless run drawn with cairo (PNG, SVG or
  * PDF by the file's extension): the planes XY, XZ and YZ side by side with
- * scale bars, block numbers at block starts, arcs as true arcs, manual and
- * jog moves drawn apart from programmed ones, and A against time. */
+ * coordinate ticks and scale bars, block numbers at block starts, arcs as
+ * true arcs, manual and jog moves drawn apart from programmed ones, and A
+ * against time; a run that failed is marked where and how it stopped. */
 #ifndef S42_PLOT_H
 #define S42_PLOT_H
 

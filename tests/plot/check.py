@@ -16,6 +16,11 @@ check.py --tips PNG PANEL LEAST   (see tips())
   SVG: well-formed XML, an <svg> root of 1600pt x 1000pt.
   PDF (its text, read by pdftext.py): the header says what the dump says --
     the blocks the run counted, the simulated time, the end position.
+  Tick labels (check_ticks): coordinates along both axes of every plane
+    panel and along time and A, at a round step, where their values are
+    (where the fit is known: the fit's scale and origin), one scale on both
+    axes of a plane, not overlapping, inside the frame; the PNG has text and
+    the SVG glyphs where the PDF has each label.
   A run that failed (the dump's status): the line under the title says how
     (TITLE, or "stopped: CODE at Nn" from the dump's error), the stop sign
     marks every panel -- where the run stopped, when the fit is known -- and
@@ -24,6 +29,7 @@ Prints nothing and exits 0 when all is well; otherwise prints the failures
 and exits 1.
 """
 import json
+import math
 import re
 import struct
 import sys
@@ -36,10 +42,11 @@ W, H = 1600, 1000
 # The frames of src/plot.c: (name, u axis, v axis, x).  y 96..676, w 490.
 PANELS = [("XY", 0, 1, 40), ("XZ", 0, 2, 555), ("YZ", 1, 2, 1070)]
 PY, PW_, PH_ = 96, 490, 580
-IN_L, IN_T, IN_R, IN_B = 28, 24, 28, 46      # inner area margins
+IN_L, IN_T, IN_R, IN_B = 62, 22, 18, 62      # inner area margins (left and bottom: the tick bands)
 MINEXT = 0.02                                 # mm
 A_FRAME = (90, 724, 1560, 924)                # x0, y0, x1, y1
 A_TEND_X = 90 + 10 + (1470 - 20)              # where the A trace ends
+LB, BB = 50, 50                               # the tick bands, left and bottom
 
 
 def decode_png(data):
@@ -99,7 +106,7 @@ def classify(r, g, b):
     teal, None otherwise (white, grey, text)."""
     if r > 200 and g > 185 and b < 90:
         return "X"
-    if g - r > 50 and b - r > 50 and abs(g - b) < 45:
+    if g - r > 50 and b - r > 50 and abs(g - b) < 20 and g > 145:
         return "O"
     if b - r > 50 and b - g > 30:
         return "P"
@@ -212,6 +219,116 @@ def check_stop(texts, d, want):
     return fails
 
 
+def nice(step):
+    """1, 2 or 5 times a power of ten"""
+    e = 10 ** math.floor(math.log10(step) + 1e-9)
+    return any(abs(step - m * e) <= 1e-6 * step for m in (1, 2, 5, 10))
+
+
+def ticks_along(labs, pos, name, unit=""):
+    """Labels [(position, Run)] along one axis: numbers at one round step,
+    evenly placed.  Returns (fails, slope px per unit, position of 0)."""
+    fails, vals = [], []
+    for p, r in labs:
+        t = r.text[:-len(unit)] if unit and r.text.endswith(unit) else r.text
+        try:
+            vals.append((p, float(t), r))
+        except ValueError:
+            fails.append("%s: a tick label %r is not a number%s" % (name, r.text, unit and " with " + unit))
+    if len(vals) < 2:
+        return fails + ["%s: %d tick labels, want 2 or more" % (name, len(vals))], None, None
+    vals.sort(key=lambda q: q[0])
+    step = abs(vals[1][1] - vals[0][1])
+    for (p0, v0, _), (p1, v1, _) in zip(vals, vals[1:]):
+        if abs(abs(v1 - v0) - step) > 1e-6 * max(step, 1e-9):
+            fails.append("%s: tick labels %g and %g are not one step (%g) apart" % (name, v0, v1, step))
+    if step <= 0 or not nice(step):
+        fails.append("%s: the labelled step %g is not 1, 2 or 5 x 10^n" % (name, step))
+    for _, v, _ in vals:
+        if step > 0 and abs(v / step - round(v / step)) > 1e-6:
+            fails.append("%s: %g is not a multiple of the step %g" % (name, v, step))
+    slope = (vals[-1][0] - vals[0][0]) / (vals[-1][1] - vals[0][1]) if vals[-1][1] != vals[0][1] else 0
+    for p, v, r in vals:
+        if abs(vals[0][0] + slope * (v - vals[0][1]) - p) > 1.0:
+            fails.append("%s: the label %r is not where its value is on the axis" % (name, r.text))
+    return fails, slope, vals[0][0] - slope * vals[0][1]
+
+
+def check_ticks(texts, img, uses, mappings):
+    """Tick labels: on every plane panel along both axes, on the A panel along
+    time and A: round steps, evenly placed at their values, one scale on
+    both axes of a plane, apart, inside the frame -- and the same labels in
+    the PNG's pixels and the SVG's glyphs.  mappings: {panel: (fit, 1)}
+    where the fitting rule is known, to check the coordinates themselves."""
+    fails = []
+    drawn = []
+
+    def apart(labs, name, along):
+        for (_, a), (_, b) in zip(labs, labs[1:]):
+            if (along == "x" and a.x + a.w + 2 > b.x) or (along == "y" and abs(a.y - b.y) < a.size + 1):
+                fails.append("%s: the tick labels %r and %r overlap" % (name, a.text, b.text))
+
+    for name, u, v, x in PANELS:
+        base_u = PY + PH_ - BB + 16
+        ul = sorted(((r.x + r.w / 2, r) for r in texts
+                     if abs(r.y - base_u) < 0.6 and x <= r.x < x + PW_), key=lambda q: q[0])
+        vl = sorted(((r.y - 0.35 * r.size, r) for r in texts
+                     if x <= r.x and abs(r.x + r.w - (x + LB - 8)) < 0.6 and PY < r.y < PY + PH_ - BB + 10),
+                    key=lambda q: q[0])
+        f1, su, zu = ticks_along(ul, None, "%s %s ticks" % (name, "XYZA"[u]))
+        f2, sv, zv = ticks_along(vl, None, "%s %s ticks" % (name, "XYZA"[v]))
+        fails += f1 + f2
+        apart(ul, name, "x")
+        apart(vl, name, "y")
+        for _, r in ul + vl:
+            if r.x < x or r.x + r.w > x + PW_:
+                fails.append("%s: the tick label %r leaves the frame" % (name, r.text))
+        if su is not None and sv is not None:
+            if su <= 0 or sv >= 0:
+                fails.append("%s: the tick labels do not grow right and up" % name)
+            elif abs(su + sv) > 0.01 * su:
+                fails.append("%s: %.3f px a mm along %s, %.3f along %s: not one scale"
+                             % (name, su, "XYZA"[u], -sv, "XYZA"[v]))
+            if name in mappings:
+                mp = mappings[name]
+                x0, y0 = mp(0, 0)
+                s_fit = mp(1000, 0)[0] - x0
+                if abs(su - s_fit) > 0.005 * s_fit or abs(zu - (math.floor(x0) + 0.5)) > 1.2 \
+                        or abs(zv - (math.floor(y0) + 0.5)) > 1.2:
+                    fails.append("%s: the tick labels put 0 at (%.1f, %.1f) with %.3f px a mm; the fit says "
+                                 "(%.1f, %.1f) with %.3f" % (name, zu, zv, su, x0, y0, s_fit))
+        drawn += [r for _, r in ul + vl]
+
+    x0, y0, x1, y1 = A_FRAME
+    tl = sorted(((r.x + r.w / 2, r) for r in texts if abs(r.y - (y1 + 15)) < 0.6 and x0 - 30 < r.x < x1 + 30),
+                key=lambda q: q[0])
+    al = sorted(((r.y - 4, r) for r in texts if abs(r.x + r.w - (x0 - 6)) < 0.6 and y0 - 10 < r.y < y1 + 10),
+                key=lambda q: q[0])
+    f1, st, zt = ticks_along(tl, None, "A time ticks")
+    f2, sa, za = ticks_along(al, None, "A degree ticks", "°")
+    fails += f1 + f2
+    apart(tl, "A", "x")
+    apart(al, "A", "y")
+    if zt is not None and abs(zt - (math.floor(x0 + 10) + 0.5)) > 1.2:
+        fails.append("A: the time labels put 0 s at x=%.1f, the axis starts at %d" % (zt, x0 + 10))
+    drawn += [r for _, r in tl + al]
+
+    # the same labels in the other formats
+    for r in drawn:
+        ink = 0
+        for yy in range(int(r.y - 0.7 * r.size), int(r.y) + 1):
+            for xx in range(int(r.x), int(r.x + r.w) + 1):
+                o = xx * img.bpp
+                p = img.rows[yy][o:o + 3]
+                if p[0] == p[1] == p[2] and p[0] < 140:
+                    ink += 1
+        if ink < 3:
+            fails.append("PNG: no text where the tick label %r is (%.0f, %.0f)" % (r.text, r.x, r.y))
+        if uses is not None and not any(abs(uy - r.y) < 0.6 and r.x - 0.6 <= ux <= r.x + r.w for ux, uy in uses):
+            fails.append("SVG: no glyph where the tick label %r is (%.0f, %.0f)" % (r.text, r.x, r.y))
+    return fails
+
+
 def fit(pts, u, v, x):
     """The documented fitting rule: mm -> pixel in the panel at x."""
     ix0, iy0 = x + IN_L, PY + IN_T
@@ -276,7 +393,10 @@ def check(png, svg, trace, dump, pdf=None, title=None):
     # (the strokes widen the fit beyond what the trace knows)
     exact = not arcs and not any(corr) and not oscillated and len(pts) < 4000
 
+    mappings = {}
     for name, u, v, x in PANELS:
+        if exact:
+            mappings[name] = fit(pts, u, v, x)
         found = img.scan(x, PY, x + PW_, PY + PH_)
         ix0, iy0 = x + IN_L, PY + IN_T
         iw, ih = PW_ - IN_L - IN_R, PH_ - IN_T - IN_B
@@ -309,7 +429,7 @@ def check(png, svg, trace, dump, pdf=None, title=None):
                 fails.append("%s: nothing moves %s/%s but the panel has %d path pixels"
                              % (name, axes[u].upper(), axes[v].upper(), blue))
         # the oscillation's strokes fit the panel's scale like the rest
-        if "O" in found:
+        if found.get("O", [0])[0] >= 5:   # a stray blend of two colours is not a stroke
             b = found["O"][1]
             if b[0] < ix0 - 3 or b[2] > ix0 + iw + 3 or b[1] < iy0 - 3 or b[3] > iy0 + ih + 3:
                 fails.append("%s: oscillation strokes outside the fitted area: %s" % (name, b))
@@ -343,8 +463,8 @@ def check(png, svg, trace, dump, pdf=None, title=None):
             for p in pts:
                 px, py = mapping(p[u], p[v])
                 px, py = int(round(px)), int(round(py))
-                if py > PY + PH_ - 36:
-                    continue   # under the scale-bar band
+                if py > PY + PH_ - 50:
+                    continue   # in the tick band
                 if not img.ink_near(px, py):
                     miss += 1
             if miss:
@@ -371,6 +491,7 @@ def check(png, svg, trace, dump, pdf=None, title=None):
         if not (moved[3] or manual[3] or corr[3]) and b[3] - b[1] > 4:
             fails.append("A: A never moves but the trace spans %d px in height" % (b[3] - b[1]))
 
+    uses = None
     try:
         root = ET.parse(svg).getroot()
         if not root.tag.endswith("svg"):
@@ -378,8 +499,12 @@ def check(png, svg, trace, dump, pdf=None, title=None):
         wa, ha = root.get("width", ""), root.get("height", "")
         if wa.replace("pt", "") not in ("1600", "1600.0") or ha.replace("pt", "") not in ("1000", "1000.0"):
             fails.append("SVG: size %s x %s, want 1600pt x 1000pt" % (wa, ha))
+        # cairo writes text as glyphs, each a <use> at its origin
+        uses = [(float(e.get("x", 0)), float(e.get("y", 0))) for e in root.iter() if e.tag.endswith("}use")]
     except ET.ParseError as e:
         fails.append("SVG: not well-formed XML: %s" % e)
+    if pdf:
+        fails += check_ticks(texts, img, uses, mappings)
     return fails
 
 
