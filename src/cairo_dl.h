@@ -19,6 +19,7 @@
   F(cairo_debug_reset_static_data) \
   F(cairo_destroy) \
   F(cairo_fill) \
+  F(cairo_fill_preserve) \
   F(cairo_image_surface_create) \
   F(cairo_line_to) \
   F(cairo_move_to) \
@@ -69,6 +70,7 @@ int s42_cairo_load(char *err, size_t n);
 #define cairo_debug_reset_static_data (*s42_cairo.cairo_debug_reset_static_data)
 #define cairo_destroy (*s42_cairo.cairo_destroy)
 #define cairo_fill (*s42_cairo.cairo_fill)
+#define cairo_fill_preserve (*s42_cairo.cairo_fill_preserve)
 #define cairo_image_surface_create (*s42_cairo.cairo_image_surface_create)
 #define cairo_line_to (*s42_cairo.cairo_line_to)
 #define cairo_move_to (*s42_cairo.cairo_move_to)

@@ -731,6 +731,10 @@ static int headless(const struct opts *opt, struct plot *plot)
   char *src = NULL;
   size_t n = 0;
   int rc = load(o.program, &p, &d, &src, &n);
+  if (rc == EXIT_PROGRAM && plot) {
+    const struct diag *g = diag_first_error(&d);
+    plot_result(plot, NULL, rc, g ? err_code(g->code) : "E-SYNTAX", g ? g->number : -1, g ? g->line : 0);
+  }
   if (rc) {
     if (o.dump && rc == EXIT_PROGRAM) {
       const struct diag *g = diag_first_error(&d);
@@ -921,6 +925,8 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
   if (o.dump)
     report_dump(stdout, st, dep, &r.s);
+  if (plot)
+    plot_result(plot, &r.s, status, dep ? dep->code : NULL, dep ? dep->n : -1, dep ? dep->line : 0);
   if (o.screen) {
     uint32_t grid[SCR_ROWS][SCR_COLS];
     if (status == EXIT_PROGRAM)

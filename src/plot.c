@@ -3,21 +3,27 @@
  * The picture is always 1600 x 1000 (pixels for PNG, points for SVG and
  * PDF).  Layout, top to bottom (the test tests/plot/run.sh relies on the
  * frames):
- *   - a title line with the program's name and a summary line;
+ *   - a title line with the program's name and a summary line (the blocks,
+ *     time and end position the run counted); when the run failed, a line
+ *     under it says how ("stopped: E-DIV0 at N3");
  *   - three panels, the projections XY (plane G17), XZ (G19) and YZ (G18),
  *     each with the plane's first axis to the right and its second axis up,
  *     so that G03 turns counter-clockwise on the page.  Frames: x 40..530,
- *     555..1045, 1070..1560; y 96..676.  Each panel has its own scale (equal
- *     on both axes), a scale bar in mm, a grid with the bar's step, the
- *     program start marked by a green dot and the end by a red square;
+ *     555..1045, 1070..1560; y 96..676.  A band of LB px at the left and BB
+ *     px at the bottom of each frame holds the tick labels (coordinates in
+ *     mm), the scale bar and the axis arrows; everything drawn is fitted
+ *     into the inner area (left 62, top 22, right 18, bottom 62 px in from
+ *     the frame), with one scale on both axes; a grid at the bar's step; the
+ *     program start marked by a green ring, the end by a red square or, for
+ *     a run that failed, where it stopped by a yellow octagon;
  *   - the A panel: A (degrees) against simulated time (s), frame x 90..1560,
- *     y 724..924;
+ *     y 724..924, labelled along both;
  *   - a legend.
  * Programmed moves are solid blue lines (arcs as true arcs in their plane,
  * projected point by point in the other panels); manual moves -- jogs in
  * G20 stops and M19 teach-in -- dashed orange; a position change between
- * blocks (a correction while the cycle runs) dotted magenta.  Block numbers
- * label block starts where there is room.
+ * blocks (a correction while the cycle runs) dotted magenta; oscillation
+ * teal.  Block numbers label block starts where there is room.
  *
  * Every row that moves is kept as one struct seg (about 100 bytes), so
  * 100,000 blocks take about 10 MB. */
@@ -27,6 +33,7 @@
 #include "cairo_dl.h"
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <locale.h>
 #include <math.h>
 #include <stdint.h>
@@ -75,7 +82,13 @@ struct plot {
   unsigned long long rows;
   double t;             /* time at the end of the last row */
   int64_t pos[4];       /* position at the end of the last row */
-  int oom;
+  int oom, retimed;
+  /* how the run ended (plot_result): what the dump says */
+  int ended, status;
+  unsigned long long blocks;
+  double t_end;
+  int64_t end_pos[4];
+  char why[240];        /* "stopped: E-DIV0 at N3"; "" at the end */
 };
 
 struct plot *plot_new(void)
@@ -220,6 +233,53 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
   }
 }
 
+void plot_result(struct plot *pl, const struct session *s, int status, const char *code, int n, unsigned line)
+{
+  if (!pl)
+    return;
+  pl->ended = 1;
+  pl->status = status;
+  pl->blocks = s ? (unsigned long long)s->vm.blocks : 0;
+  pl->t_end = s ? s->m.t : 0;
+  for (int a = 0; a < 4; a++)
+    pl->end_pos[a] = s ? s->m.pos[a] : 0;
+  pl->why[0] = 0;
+  if (status != 1 && status != 3)
+    return;
+  /* where: the block's number, else its source line */
+  char at[48] = "";
+  if (status == 3 && s) {
+    int num = sess_block_number(s);
+    n = num;
+    line = s->vm.cur < s->p->nblocks ? s->p->blocks[s->vm.cur].line : 0;
+  }
+  if (n > 0)
+    snprintf(at, sizeof at, " at N%d", n);
+  else if (line)
+    snprintf(at, sizeof at, " at line %u", line);
+  if (status == 1 && !s)
+    snprintf(pl->why, sizeof pl->why, "not run: %s%s (the program does not compile)", code ? code : "error", at);
+  else if (status == 1)
+    snprintf(pl->why, sizeof pl->why, "stopped: %s%s", code ? code : "error", at);
+  else if (s && s->state == SE_WAIT)
+    snprintf(pl->why, sizeof pl->why, "stopped: the operator script had no action for %s%s", sess_wait_text(s), at);
+  else if (s && s->state == SE_STOPPED)
+    snprintf(pl->why, sizeof pl->why, "stopped (key STOP)%s", at);
+  else
+    snprintf(pl->why, sizeof pl->why, "stopped%s", at);
+}
+
+/* Where the machine was at the end (mm), the contour's end without
+ * oscillation in con. */
+static void final_pos(const struct plot *pl, double at[4], double con[4])
+{
+  for (int a = 0; a < 4; a++) {
+    int64_t e = pl->ended ? pl->end_pos[a] : pl->pos[a] + pl->disp[a];
+    at[a] = e / 1000.0;
+    con[a] = (e - pl->disp[a]) / 1000.0;
+  }
+}
+
 int plot_check_path(const char *path, char *err, size_t n)
 {
   const char *dot = path ? strrchr(path, '.') : NULL;
@@ -326,10 +386,17 @@ static void bb_curve(struct bbox *b, const struct seg *g, int teach)
 
 /* ---- drawing ---- */
 
+/* A plane panel's frame holds, at its left and bottom, bands for the tick
+ * labels (LB and BB px); the grid and the path are in the rest, the
+ * region. */
+#define LB 50.0
+#define BB 50.0
+
 struct panel {
   int u, v;                 /* axes right and up */
   const char *name, *plane;
   double x, y, w, h;        /* the frame */
+  double rx, ry, rw, rh;    /* the region inside the tick bands */
   double ix, iy, iw, ih;    /* the area the path is fitted into */
   double s;                 /* px per mm */
   double u0, v0;            /* mm at the centre of the inner area */
@@ -353,9 +420,11 @@ static void rgb(cairo_t *cr, unsigned c)
 #define C_PATH 0x1f4db3u
 #define C_JOG 0xe67300u
 #define C_CORR 0xbf1a99u
-#define C_OSC 0x2e9e44u
+#define C_OSC 0x0f9aa6u        /* teal: apart from the start's green */
 #define C_START 0x1a9933u
 #define C_END 0xd91a1au
+#define C_STOP 0xffd400u       /* the stop marker: a yellow octagon, outlined dark */
+#define C_STOPTEXT 0xb3000fu
 #define C_GRID 0xe6e6e6u
 #define C_AXIS 0xbfbfbfu
 #define C_TEXT 0x222222u
@@ -500,6 +569,15 @@ static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
     }
     end_of(g, prev);
   }
+  /* a correction after the last block */
+  double at[4], con[4], x0, y0, x1, y1;
+  final_pos(pl, at, con);
+  if (con[P->u] != prev[P->u] || con[P->v] != prev[P->v]) {
+    pmap(P, prev[P->u], prev[P->v], &x0, &y0);
+    pmap(P, con[P->u], con[P->v], &x1, &y1);
+    cairo_move_to(cr, x0, y0);
+    cairo_line_to(cr, x1, y1);
+  }
   cairo_stroke(cr);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
   cairo_set_dash(cr, NULL, 0, 0);
@@ -517,7 +595,52 @@ static void point_at(const struct plot *pl, double t, size_t *j, double out[4])
   seg_point(g, u < 0 ? 0 : u > 1 ? 1 : u, 0, out);
 }
 
-/* Oscillation: the programmed path plus the axis's displacement. */
+/* Oscillation: the programmed path plus the axis's displacement.  Between
+ * two points the axis moves evenly while the contour may curve: `steps`
+ * points from point i-1 to point i follow it; this is the k-th (mm). */
+static int osc_steps(const struct plot *pl, size_t i)
+{
+  return i == 0 || pl->osc[i].start ? 1 : 16;
+}
+
+static void osc_point(const struct plot *pl, size_t i, int k, size_t *j, double pt[4])
+{
+  const struct osc_pt *o = &pl->osc[i];
+  int steps = osc_steps(pl, i);
+  double f = (double)k / steps;
+  double t = steps == 1 ? o->t : pl->osc[i - 1].t + (o->t - pl->osc[i - 1].t) * f;
+  double off = steps == 1 ? (double)o->off : pl->osc[i - 1].off + (o->off - pl->osc[i - 1].off) * f;
+  point_at(pl, t, j, pt);
+  pt[o->axis] += off / 1000.0;
+}
+
+/* The plugin reports an advance's turning points all at its end time (the
+ * machine's clock moves first): spread them over the advance, in
+ * proportion to the way the axis travelled, as it runs at one speed.  An
+ * advance starts where the point before it was reported. */
+static void osc_retime(struct plot *pl)
+{
+  for (size_t i = 1; i < pl->nosc;) {
+    const struct osc_pt *o = &pl->osc[i];
+    size_t e = i;
+    while (e + 1 < pl->nosc && !pl->osc[e + 1].start && pl->osc[e + 1].t == o->t &&
+           pl->osc[e + 1].axis == o->axis)
+      e++;
+    double t0 = pl->osc[i - 1].t, t1 = o->t, way = 0, done = 0;
+    if (o->start || e == i || !(t1 > t0) || pl->osc[i - 1].axis != o->axis) {
+      i = e + 1;
+      continue;
+    }
+    for (size_t k = i; k <= e; k++)
+      way += fabs((double)(pl->osc[k].off - pl->osc[k - 1].off));
+    for (size_t k = i; k <= e && way > 0; k++) {
+      done += fabs((double)(pl->osc[k].off - pl->osc[k - 1].off));
+      pl->osc[k].t = k == e ? t1 : t0 + (t1 - t0) * done / way;
+    }
+    i = e + 1;
+  }
+}
+
 static void draw_panel_osc(cairo_t *cr, const struct panel *P, const struct plot *pl)
 {
   if (!pl->nosc || !pl->n)
@@ -527,16 +650,12 @@ static void draw_panel_osc(cairo_t *cr, const struct panel *P, const struct plot
   size_t j = 0;
   for (size_t i = 0; i < pl->nosc; i++) {
     const struct osc_pt *o = &pl->osc[i];
-    double pt[4], x, y;
-    /* between two points the axis moves evenly while the contour may curve:
-     * a few steps in between follow it */
-    int steps = i == 0 || o->start ? 1 : 16;
+    double pt[4], x = 0, y = 0;
+    int steps = osc_steps(pl, i);
+    if (o->axis != P->u && o->axis != P->v)
+      continue;   /* it would only cover the contour */
     for (int k = 1; k <= steps; k++) {
-      double f = (double)k / steps;
-      double t = i == 0 || o->start ? o->t : pl->osc[i - 1].t + (o->t - pl->osc[i - 1].t) * f;
-      double off = i == 0 || o->start ? (double)o->off : pl->osc[i - 1].off + (o->off - pl->osc[i - 1].off) * f;
-      point_at(pl, t, &j, pt);
-      pt[o->axis] += off / 1000.0;
+      osc_point(pl, i, k, &j, pt);
       pmap(P, pt[P->u], pt[P->v], &x, &y);
       if (i == 0 || o->start)
         cairo_move_to(cr, x, y);
@@ -573,7 +692,7 @@ static void draw_labels(cairo_t *cr, struct panel *P, const struct plot *pl)
     cairo_text_extents(cr, s, &e);
     double lx = x0 + 3, ly = y0 - 3;   /* baseline left */
     double rx0 = lx - 1, ry0 = ly - 10, rx1 = lx + e.x_advance + 1, ry1 = ly + 2;
-    if (rx0 < P->x + 2 || rx1 > P->x + P->w - 2 || ry0 < P->y + 2 || ry1 > P->y + P->h - 40)
+    if (rx0 < P->rx + 2 || rx1 > P->rx + P->rw - 2 || ry0 < P->ry + 2 || ry1 > P->ry + P->rh - 2)
       continue;
     int c0 = (int)((rx0 - P->x) / 4), c1 = (int)((rx1 - P->x) / 4);
     int r0 = (int)((ry0 - P->y) / 4), r1 = (int)((ry1 - P->y) / 4);
@@ -613,49 +732,146 @@ static void draw_labels(cairo_t *cr, struct panel *P, const struct plot *pl)
   }
 }
 
+/* Tick labels: the grid has a line at every k*step; a label goes on every
+ * m-th, m the least for which m*step is itself a round step (1, 2, 5 x
+ * 10^n) and labels `ext` px long along the axis keep 6 px apart at px_step
+ * px a step. */
+static long label_every(double step, double px_step, double ext)
+{
+  double lab = step;
+  for (int i = 0; i < 60; i++) {
+    long m = lround(lab / step);
+    if (m >= 1 && fabs(m * step - lab) <= 1e-9 * lab && m * px_step >= ext + 6)
+      return m;
+    double e = pow(10, floor(log10(lab) + 1e-9)), f = lab / e;
+    lab = (f < 1.5 ? 2 : f < 3.5 ? 5 : 10) * e;
+  }
+  return LONG_MAX;
+}
+
+/* The label of tick k: k*step with the step's decimals. */
+static void tick_text(char *buf, size_t n, long k, double step, int dec, const char *unit)
+{
+  char num[40];
+  fmt_num(num, sizeof num, (double)k * step, dec);
+  snprintf(buf, n, "%s%s", num, unit);
+}
+
 static void draw_scale(cairo_t *cr, const struct panel *P, double step)
 {
   /* grid at multiples of the step, axes through the program start */
   double xa, ya;
   cairo_save(cr);
-  cairo_rectangle(cr, P->x, P->y, P->w, P->h);
+  cairo_rectangle(cr, P->rx, P->ry, P->rw, P->rh);
   cairo_clip(cr);
-  double umin = P->u0 - (P->iw / 2 + 40) / P->s, umax = P->u0 + (P->iw / 2 + 40) / P->s;
-  double vmin = P->v0 - (P->ih / 2 + 60) / P->s, vmax = P->v0 + (P->ih / 2 + 40) / P->s;
+  double umin = P->u0 + (P->rx - (P->ix + P->iw / 2)) / P->s, umax = umin + P->rw / P->s;
+  double vmax = P->v0 + ((P->iy + P->ih / 2) - P->ry) / P->s, vmin = vmax - P->rh / P->s;
   if ((umax - umin) / step < 200 && (vmax - vmin) / step < 200) {
-    for (double u = ceil(umin / step) * step; u <= umax; u += step) {
-      pmap(P, u, 0, &xa, &ya);
-      cairo_move_to(cr, floor(xa) + 0.5, P->y);
-      cairo_line_to(cr, floor(xa) + 0.5, P->y + P->h);
+    for (long k = (long)ceil(umin / step); k * step <= umax; k++) {
+      pmap(P, k * step, 0, &xa, &ya);
+      cairo_move_to(cr, floor(xa) + 0.5, P->ry);
+      cairo_line_to(cr, floor(xa) + 0.5, P->ry + P->rh);
     }
-    for (double v = ceil(vmin / step) * step; v <= vmax; v += step) {
-      pmap(P, 0, v, &xa, &ya);
-      cairo_move_to(cr, P->x, floor(ya) + 0.5);
-      cairo_line_to(cr, P->x + P->w, floor(ya) + 0.5);
+    for (long k = (long)ceil(vmin / step); k * step <= vmax; k++) {
+      pmap(P, 0, k * step, &xa, &ya);
+      cairo_move_to(cr, P->rx, floor(ya) + 0.5);
+      cairo_line_to(cr, P->rx + P->rw, floor(ya) + 0.5);
     }
     rgb(cr, C_GRID);
     cairo_set_line_width(cr, 1);
     cairo_stroke(cr);
   }
   pmap(P, 0, 0, &xa, &ya);
-  cairo_move_to(cr, floor(xa) + 0.5, P->y);
-  cairo_line_to(cr, floor(xa) + 0.5, P->y + P->h);
-  cairo_move_to(cr, P->x, floor(ya) + 0.5);
-  cairo_line_to(cr, P->x + P->w, floor(ya) + 0.5);
+  cairo_move_to(cr, floor(xa) + 0.5, P->ry);
+  cairo_line_to(cr, floor(xa) + 0.5, P->ry + P->rh);
+  cairo_move_to(cr, P->rx, floor(ya) + 0.5);
+  cairo_line_to(cr, P->rx + P->rw, floor(ya) + 0.5);
   rgb(cr, C_AXIS);
   cairo_set_line_width(cr, 1);
   cairo_stroke(cr);
   cairo_restore(cr);
 }
 
+/* Ticks on the region's left and bottom edges at the grid's lines, with
+ * the coordinates in mm: the same labelled step on both axes, labels that
+ * do not fit the frame left out. */
+static void draw_ticks(cairo_t *cr, const struct panel *P, double step, int dec)
+{
+  double umin = P->u0 + (P->rx - (P->ix + P->iw / 2)) / P->s, umax = umin + P->rw / P->s;
+  double vmax = P->v0 + ((P->iy + P->ih / 2) - P->ry) / P->s, vmin = vmax - P->rh / P->s;
+  long u0 = (long)ceil(umin / step), u1 = (long)floor(umax / step);
+  long v0 = (long)ceil(vmin / step), v1 = (long)floor(vmax / step);
+  if (u1 - u0 > 400 || v1 - v0 > 400)
+    return;
+  char t[48];
+  const double fu = 10;
+  double wu = 0, wv = 0, fv = 10;
+  for (long k = u0; k <= u1; k++) {
+    tick_text(t, sizeof t, k, step, dec, "");
+    wu = fmax(wu, text_w(cr, t, fu, 0));
+  }
+  for (long k = v0; k <= v1; k++) {
+    tick_text(t, sizeof t, k, step, dec, "");
+    wv = fmax(wv, text_w(cr, t, fv, 0));
+  }
+  if (wv > LB - 12) {
+    fv = fmax(6.5, fv * (LB - 12) / wv);   /* long numbers: a smaller font */
+    wv = 0;
+    for (long k = v0; k <= v1; k++) {
+      tick_text(t, sizeof t, k, step, dec, "");
+      wv = fmax(wv, text_w(cr, t, fv, 0));
+    }
+  }
+  long mu = label_every(step, step * P->s, wu), mv = label_every(step, step * P->s, fv + 2);
+  long m = mu > mv ? mu : mv;
+  double xa, ya, by = P->ry + P->rh, lx = P->rx;
+  /* the region's edges, and a tick at every grid line */
+  rgb(cr, C_FRAME);
+  cairo_set_line_width(cr, 1);
+  cairo_move_to(cr, lx + 0.5, P->ry);
+  cairo_line_to(cr, lx + 0.5, by + 0.5);
+  cairo_line_to(cr, P->rx + P->rw, by + 0.5);
+  for (long k = u0; k <= u1; k++) {
+    pmap(P, k * step, 0, &xa, &ya);
+    cairo_move_to(cr, floor(xa) + 0.5, by);
+    cairo_line_to(cr, floor(xa) + 0.5, by + (k % m ? 3 : 6));
+  }
+  for (long k = v0; k <= v1; k++) {
+    pmap(P, 0, k * step, &xa, &ya);
+    cairo_move_to(cr, lx, floor(ya) + 0.5);
+    cairo_line_to(cr, lx - (k % m ? 3 : 6), floor(ya) + 0.5);
+  }
+  cairo_stroke(cr);
+  rgb(cr, C_TEXT);
+  for (long k = u0; k <= u1; k++) {
+    if (k % m)
+      continue;
+    tick_text(t, sizeof t, k, step, dec, "");
+    double w = text_w(cr, t, fu, 0);
+    pmap(P, k * step, 0, &xa, &ya);
+    xa = floor(xa) + 0.5;
+    /* clear of the axis arrows in the corner and of the frame */
+    if (xa - w / 2 < P->x + 30 || xa + w / 2 > P->x + P->w - 4)
+      continue;
+    text_at(cr, xa, by + 16, t, fu, 0, 0.5);
+  }
+  for (long k = v0; k <= v1; k++) {
+    if (k % m)
+      continue;
+    tick_text(t, sizeof t, k, step, dec, "");
+    pmap(P, 0, k * step, &xa, &ya);
+    double base = floor(ya) + 0.5 + 0.35 * fv;
+    if (base - 0.75 * fv < P->y + 3 || base + 0.25 * fv > by + 4)
+      continue;
+    text_at(cr, lx - 8, base, t, fv, 0, 1);
+  }
+}
+
 static void draw_panel_furniture(cairo_t *cr, const struct panel *P, double step, int dec)
 {
-  /* white band for the scale bar and axis arrows */
-  cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
-  cairo_rectangle(cr, P->x + 1, P->y + P->h - 34, P->w - 2, 33);
-  cairo_fill(cr);
-  /* the scale bar, bottom right */
-  double len = step * P->s, bx1 = P->x + P->w - 16, bx0 = bx1 - len, by = P->y + P->h - 12;
+  draw_ticks(cr, P, step, dec);
+  /* the scale bar, bottom right, under the tick labels */
+  double len = step * P->s, bx1 = P->x + P->w - 16, bx0 = bx1 - len, by = P->y + P->h - 9;
   rgb(cr, C_TEXT);
   cairo_set_line_width(cr, 2);
   cairo_move_to(cr, bx0, by);
@@ -670,28 +886,28 @@ static void draw_panel_furniture(cairo_t *cr, const struct panel *P, double step
   char num[32], lab[48];
   fmt_num(num, sizeof num, step, dec);
   snprintf(lab, sizeof lab, "%s mm", num);
-  text_at(cr, (bx0 + bx1) / 2, by - 6, lab, 11, 0, 0.5);
-  /* axis arrows, bottom left */
+  text_at(cr, bx0 - 6, by + 3, lab, 10, 0, 1);
+  /* axis arrows, in the corner between the tick bands */
   static const char *const names = "XYZA";
-  double ox = P->x + 14, oy = P->y + P->h - 10;
+  double ox = P->x + 12, oy = P->y + P->h - 10;
   cairo_set_line_width(cr, 1.3);
   cairo_move_to(cr, ox, oy);
-  cairo_line_to(cr, ox + 26, oy);
+  cairo_line_to(cr, ox + 22, oy);
   cairo_move_to(cr, ox, oy);
-  cairo_line_to(cr, ox, oy - 22);
+  cairo_line_to(cr, ox, oy - 18);
   cairo_stroke(cr);
-  cairo_move_to(cr, ox + 30, oy);
-  cairo_line_to(cr, ox + 24, oy - 3);
-  cairo_line_to(cr, ox + 24, oy + 3);
+  cairo_move_to(cr, ox + 26, oy);
+  cairo_line_to(cr, ox + 20, oy - 3);
+  cairo_line_to(cr, ox + 20, oy + 3);
   cairo_close_path(cr);
-  cairo_move_to(cr, ox, oy - 26);
-  cairo_line_to(cr, ox - 3, oy - 20);
-  cairo_line_to(cr, ox + 3, oy - 20);
+  cairo_move_to(cr, ox, oy - 22);
+  cairo_line_to(cr, ox - 3, oy - 16);
+  cairo_line_to(cr, ox + 3, oy - 16);
   cairo_close_path(cr);
   cairo_fill(cr);
   char a[2] = {names[P->u], 0}, b[2] = {names[P->v], 0};
-  text_at(cr, ox + 34, oy + 4, a, 11, 1, 0);
-  text_at(cr, ox + 6, oy - 18, b, 11, 1, 0);
+  text_at(cr, ox + 29, oy + 4, a, 11, 1, 0);
+  text_at(cr, ox + 5, oy - 14, b, 11, 1, 0);
   /* the frame and the title */
   rgb(cr, C_FRAME);
   cairo_set_line_width(cr, 1);
@@ -702,11 +918,36 @@ static void draw_panel_furniture(cairo_t *cr, const struct panel *P, double step
   text_at(cr, P->x + text_w(cr, P->name, 15, 1) + 8, P->y - 8, P->plane, 12, 0, 0);
 }
 
+/* The stop marker: a yellow octagon outlined dark, as a stop sign. */
+static void stop_sign(cairo_t *cr, double x, double y)
+{
+  const double r = 7.5;
+  cairo_new_path(cr);
+  for (int k = 0; k < 8; k++) {
+    double th = M_PI / 8 + k * M_PI / 4;
+    if (k)
+      cairo_line_to(cr, x + r * cos(th), y + r * sin(th));
+    else
+      cairo_move_to(cr, x + r * cos(th), y + r * sin(th));
+  }
+  cairo_close_path(cr);
+  rgb(cr, C_STOP);
+  cairo_fill_preserve(cr);
+  rgb(cr, C_TEXT);
+  cairo_set_line_width(cr, 1.6);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_MITER);
+  cairo_stroke(cr);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+}
+
+/* end: 0 the program start, 1 the end, 2 where a failed run stopped */
 static void marker(cairo_t *cr, const struct panel *P, const double pt[4], int end)
 {
   double x, y;
   pmap(P, pt[P->u], pt[P->v], &x, &y);
-  if (end) {
+  if (end == 2) {
+    stop_sign(cr, x, y);
+  } else if (end) {
     cairo_new_path(cr);
     cairo_rectangle(cr, x - 4, y - 4, 8, 8);
     rgb(cr, C_END);
@@ -724,9 +965,9 @@ static void marker(cairo_t *cr, const struct panel *P, const double pt[4], int e
 static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
 {
   static const struct { int u, v; const char *name, *plane; } def[3] = {
-    {AX_X, AX_Y, "XY", "plane G17"},
-    {AX_X, AX_Z, "XZ", "plane G19"},
-    {AX_Y, AX_Z, "YZ", "plane G18"},
+    {AX_X, AX_Y, "XY", "plane G17, mm"},
+    {AX_X, AX_Z, "XZ", "plane G19, mm"},
+    {AX_Y, AX_Z, "YZ", "plane G18, mm"},
   };
   static const double fx[3] = {40, 555, 1070};
   for (int k = 0; k < 3; k++) {
@@ -740,10 +981,14 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
     P.y = 96;
     P.w = 490;
     P.h = 580;
-    P.ix = P.x + 28;
-    P.iy = P.y + 24;
-    P.iw = P.w - 56;
-    P.ih = P.h - 24 - 46;
+    P.rx = P.x + LB;
+    P.ry = P.y;
+    P.rw = P.w - LB;
+    P.rh = P.h - BB;
+    P.ix = P.rx + 12;
+    P.iy = P.ry + 22;
+    P.iw = P.rw - 12 - 18;
+    P.ih = P.rh - 22 - 12;
     double du = bb->hi[P.u] - bb->lo[P.u], dv = bb->hi[P.v] - bb->lo[P.v];
     const double minext = 0.02;   /* mm: never zoom in further than this */
     double su = du > minext ? du : minext, sv = dv > minext ? dv : minext;
@@ -759,22 +1004,24 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
     double step = nice_step(P.iw / 4 / P.s, &dec);
 
     cairo_save(cr);
-    cairo_rectangle(cr, P.x, P.y, P.w, P.h);
+    cairo_rectangle(cr, P.rx, P.ry, P.rw, P.rh);
     cairo_clip(cr);
     draw_scale(cr, &P, step);
     draw_panel_path(cr, &P, pl);
     draw_panel_osc(cr, &P, pl);
-    double z[4] = {0, 0, 0, 0}, e[4];
-    for (int a = 0; a < 4; a++)
-      e[a] = pl->pos[a] / 1000.0;
-    if (pl->n)
+    double z[4] = {0, 0, 0, 0}, e[4], con[4];
+    final_pos(pl, e, con);
+    int stopped = pl->why[0] != 0;
+    if (pl->n && !stopped)
       marker(cr, &P, e, 1);
-    marker(cr, &P, z, 0);
+    if (stopped)
+      marker(cr, &P, e, 2);
+    marker(cr, &P, z, 0);   /* over the stop sign: a run that stopped before it moved */
     if (P.occ)
       draw_labels(cr, &P, pl);
     if (du < minext && dv < minext) {
       rgb(cr, C_LABEL);
-      text_at(cr, P.x + P.w / 2, P.y + P.h / 2 + 28, "no move in this plane", 13, 0, 0.5);
+      text_at(cr, P.rx + P.rw / 2, P.ry + P.rh / 2 + 28, "no move in this plane", 13, 0, 0.5);
     }
     cairo_restore(cr);
     draw_panel_furniture(cr, &P, step, dec);
@@ -786,8 +1033,11 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
 static void draw_a(cairo_t *cr, const struct plot *pl)
 {
   const double X = 90, Y = 724, W = 1470, H = 200;
-  double tend = pl->t > 0 ? pl->t : 1;
-  double amin = 0, amax = 0, a = 0;
+  double t_end = pl->ended && pl->t_end > pl->t ? pl->t_end : pl->t;
+  double tend = t_end > 0 ? t_end : 1;
+  double fin[4], con[4];
+  final_pos(pl, fin, con);
+  double amin = fmin(0, fmin(fin[3], con[3])), amax = fmax(0, fmax(fin[3], con[3])), a = 0;
   for (size_t i = 0; i < pl->n; i++) {
     const struct seg *g = &pl->v[i];
     double v[3] = {g->start[3] / 1000.0, (g->start[3] + g->d[3]) / 1000.0,
@@ -797,9 +1047,12 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
       if (v[k] > amax) amax = v[k];
     }
   }
-  for (size_t i = 0; i < pl->nosc; i++)
+  /* A oscillating: as drawn, the programmed A plus its displacement */
+  for (size_t i = 0, j = 0; i < pl->nosc && pl->n; i++)
     if (pl->osc[i].axis == 3) {
-      double v = pl->osc[i].off / 1000.0;
+      double pt[4];
+      point_at(pl, pl->osc[i].t, &j, pt);
+      double v = pt[3] + pl->osc[i].off / 1000.0;
       if (v < amin) amin = v;
       if (v > amax) amax = v;
     }
@@ -815,30 +1068,41 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
   double sx = (W - 20) / tend, sy = (H - 16) / (amax - amin);
 #define TX(t) (X + 10 + (t) * sx)
 #define AY(v) (Y + H - 8 - ((v) - amin) * sy)
-  /* grid and ticks */
+  /* grid and ticks: a line at every step, a label where there is room
+   * (label_every), as on the plane panels */
   int dt_dec, da_dec;
   double dt = nice_step(tend / 8, &dt_dec), da = nice_step((amax - amin) / 4, &da_dec);
-  char num[32], lab[48];
+  char lab[48];
+  long t1 = (long)floor(tend * 1.0001 / dt), a0 = (long)ceil(amin / da), a1 = (long)floor(amax / da);
+  double wt = 0;
+  for (long k = 0; k <= t1; k++) {
+    tick_text(lab, sizeof lab, k, dt, dt_dec, "");
+    wt = fmax(wt, text_w(cr, lab, 11, 0));
+  }
+  long mt = label_every(dt, dt * sx, wt), ma = label_every(da, da * sy, 13);
   cairo_set_line_width(cr, 1);
-  for (double t = 0; t <= tend * 1.0001; t += dt) {
-    double x = floor(TX(t)) + 0.5;
+  for (long k = 0; k <= t1; k++) {
+    double x = floor(TX(k * dt)) + 0.5;
     rgb(cr, C_GRID);
     cairo_move_to(cr, x, Y);
     cairo_line_to(cr, x, Y + H);
     cairo_stroke(cr);
+    if (k % mt)
+      continue;
     rgb(cr, C_TEXT);
-    fmt_num(num, sizeof num, t, dt_dec);
-    text_at(cr, x, Y + H + 15, num, 11, 0, 0.5);
+    tick_text(lab, sizeof lab, k, dt, dt_dec, "");
+    text_at(cr, x, Y + H + 15, lab, 11, 0, 0.5);
   }
-  for (double v = ceil(amin / da) * da; v <= amax; v += da) {
-    double y = floor(AY(v)) + 0.5;
-    rgb(cr, fabs(v) < da / 1e6 ? C_AXIS : C_GRID);
+  for (long k = a0; k <= a1; k++) {
+    double y = floor(AY(k * da)) + 0.5;
+    rgb(cr, k == 0 ? C_AXIS : C_GRID);
     cairo_move_to(cr, X, y);
     cairo_line_to(cr, X + W, y);
     cairo_stroke(cr);
+    if (k % ma)
+      continue;
     rgb(cr, C_TEXT);
-    fmt_num(num, sizeof num, fabs(v) < da / 1e6 ? 0 : v, da_dec);
-    snprintf(lab, sizeof lab, "%s°", num);
+    tick_text(lab, sizeof lab, k, da, da_dec, "°");
     text_at(cr, X - 6, y + 4, lab, 11, 0, 1);
   }
   rgb(cr, C_TEXT);
@@ -866,6 +1130,10 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
         cairo_stroke(cr);
     }
     a = (g->start[3] + g->d[3] + g->jog[3]) / 1000.0;
+  }
+  if (con[3] != a) {   /* a correction after the last block */
+    cairo_move_to(cr, TX(t_end), AY(a));
+    cairo_line_to(cr, TX(t_end), AY(con[3]));
   }
   cairo_stroke(cr);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
@@ -907,6 +1175,10 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
       cairo_move_to(cr, TX(g->t1), AY(a));
   }
   cairo_line_to(cr, TX(tend), AY(a));
+  if (con[3] != a) {
+    cairo_move_to(cr, TX(t_end), AY(con[3]));
+    cairo_line_to(cr, TX(tend), AY(con[3]));
+  }
   cairo_stroke(cr);
   /* A oscillating: the programmed A plus its displacement */
   rgb(cr, C_OSC);
@@ -928,6 +1200,8 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
     rgb(cr, C_LABEL);
     text_at(cr, X + W / 2, Y + H / 2 - 14, "A does not move", 13, 0, 0.5);
   }
+  if (pl->why[0])
+    stop_sign(cr, TX(t_end), AY(fin[3]));
   cairo_restore(cr);
   rgb(cr, C_FRAME);
   cairo_rectangle(cr, X + 0.5, Y + 0.5, W - 1, H - 1);
@@ -936,7 +1210,7 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
 #undef AY
 }
 
-static void legend(cairo_t *cr, double x, double y)
+static void legend(cairo_t *cr, double x, double y, int stopped)
 {
   static const struct { unsigned c; int style; const char *text; } items[] = {
     {C_PATH, 0, "programmed move (arcs as arcs)"},
@@ -945,9 +1219,21 @@ static void legend(cairo_t *cr, double x, double y)
     {C_OSC, 0, "oscillation (G07 M13)"},
     {C_START, 3, "program start"},
     {C_END, 4, "end"},
+    {C_STOP, 6, "stopped here"},
     {C_LABEL, 5, "block number at the block's start"},
   };
-  for (size_t i = 0; i < sizeof items / sizeof items[0]; i++) {
+  const size_t k = sizeof items / sizeof items[0];
+  /* a run ends or stops: the one that happened; the gaps share what is left
+   * of the line */
+  double used = 0, gap;
+  for (size_t i = 0; i < k; i++)
+    if (items[i].style != (stopped ? 4 : 6))
+      used += 34 + text_w(cr, items[i].text, 12, 0);
+  gap = (PW - 2 * x - used) / (double)(k - 2);
+  gap = gap > 26 ? 26 : gap < 8 ? 8 : gap;
+  for (size_t i = 0; i < k; i++) {
+    if (items[i].style == (stopped ? 4 : 6))
+      continue;
     rgb(cr, items[i].c);
     cairo_new_path(cr);
     switch (items[i].style) {
@@ -975,6 +1261,9 @@ static void legend(cairo_t *cr, double x, double y)
       cairo_rectangle(cr, x + 10, y - 8, 8, 8);
       cairo_fill(cr);
       break;
+    case 6:
+      stop_sign(cr, x + 14, y - 4);
+      break;
     default:
       cairo_arc(cr, x + 4, y - 4, 1.6, 0, 2 * M_PI);
       cairo_fill(cr);
@@ -983,7 +1272,7 @@ static void legend(cairo_t *cr, double x, double y)
     }
     rgb(cr, C_TEXT);
     text_at(cr, x + 34, y, items[i].text, 12, 0, 0);
-    x += 34 + text_w(cr, items[i].text, 12, 0) + 26;
+    x += 34 + text_w(cr, items[i].text, 12, 0) + gap;
   }
 }
 
@@ -1005,9 +1294,20 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
     if (seg_has_jog(g))
       bb_curve(&bb, g, 1);
   }
+  double fin[4], con[4];
+  final_pos(pl, fin, con);
+  bb_add(&bb, fin);
+  bb_add(&bb, con);
+  /* the oscillation's strokes, point by point as they are drawn */
+  for (size_t i = 0, j = 0; i < pl->nosc && pl->n; i++)
+    for (int k = 1, steps = osc_steps(pl, i); k <= steps; k++) {
+      double pt[4];
+      osc_point(pl, i, k, &j, pt);
+      bb_add(&bb, pt);
+    }
   draw_xyz(cr, pl, &bb);
   draw_a(cr, pl);
-  legend(cr, 40, 984);
+  legend(cr, 40, 984, pl->why[0] != 0);
 
   /* title and summary */
   const char *base = strrchr(program, '/');
@@ -1019,17 +1319,29 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
   text_at(cr, 40 + text_w(cr, title, 22, 1) + 14, 34, "tool path of a headless run of s42 (2С42-65)", 13, 0, 0);
   for (int a = 0; a < 4; a++) {
     char v[32];
-    fmt_num(v, sizeof v, pl->pos[a] / 1000.0, 3);
-    snprintf(n[a], sizeof n[a], "%s%s", pl->pos[a] > 0 ? "+" : "", v);
+    int64_t e = pl->ended ? pl->end_pos[a] : pl->pos[a];
+    fmt_num(v, sizeof v, e / 1000.0, 3);
+    snprintf(n[a], sizeof n[a], "%s%s", e > 0 ? "+" : "", v);
   }
-  fmt_num(tt, sizeof tt, pl->t, 1);
-  snprintf(line, sizeof line, "%llu blocks, %s s simulated; end position X %s  Y %s  Z %s mm  A %s°",
-           pl->rows, tt, n[0], n[1], n[2], n[3]);
+  double tsim = pl->ended ? pl->t_end : pl->t;
+  fmt_num(tt, sizeof tt, tsim, tsim < 1 ? 3 : 1);   /* a short run is not "0 s" */
+  snprintf(line, sizeof line, "%llu blocks, %s s simulated; %s X %s  Y %s  Z %s mm  A %s°",
+           pl->ended ? pl->blocks : pl->rows, tt, pl->why[0] ? "position at the stop" : "end position", n[0],
+           n[1], n[2], n[3]);
   rgb(cr, C_LABEL);
   text_at(cr, 1560, 34, line, 13, 0, 1);
+  if (pl->why[0]) {
+    /* how the run failed, under the title, with the marker of the panels */
+    stop_sign(cr, 48, 57);
+    double size = 15, room = 1520 - 22 - (pl->oom ? 300 : 0);
+    while (size > 8 && text_w(cr, pl->why, size, 1) > room)
+      size -= 0.5;
+    rgb(cr, C_STOPTEXT);
+    text_at(cr, 62, 62, pl->why, size, 1, 0);
+  }
   if (pl->oom) {
     rgb(cr, C_END);
-    text_at(cr, 1560, 56, "out of memory: the path is cut short", 13, 1, 1);
+    text_at(cr, 1560, 62, "out of memory: the path is cut short", 13, 1, 1);
   }
 }
 
@@ -1085,6 +1397,10 @@ int plot_write(struct plot *pl, const char *program, const char *path, char *err
     if (kind == 2)
       cairo_pdf_surface_set_metadata(sf, CAIRO_PDF_METADATA_TITLE, program);
     cairo_t *cr = cairo_create(sf);
+    if (!pl->retimed) {
+      osc_retime(pl);
+      pl->retimed = 1;
+    }
     draw(cr, pl, program);
     st = cairo_status(cr);
     cairo_destroy(cr);

@@ -1,9 +1,10 @@
 #!/bin/sh
 # s42 plot: for every programs/*.kp (with programs/NAME.operator and NAME.tool when there
-# is one) draw a PNG and an SVG and check them with check.py: the PNG's size
-# from its header, path pixels where the run moved, nothing where it did
-# not, the SVG well-formed.  Also: the PDF, the refusal of an unknown
-# extension, and that a failed plot leaves no file behind.
+# is one) and the tutorial's cycle draw a PNG, an SVG and a PDF and check them
+# with check.py: the PNG's size from its header, path pixels where the run
+# moved, nothing where it did not, the SVG well-formed, the PDF's header
+# text as the dump says.  Also: the refusal of an unknown extension, and
+# that a failed plot leaves no file behind.
 #   sh tests/plot/run.sh ./s42
 S42=${1:-./s42}
 PY=${PYTHON:-python3}
@@ -19,33 +20,81 @@ fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL $1"; shift; [ $# -gt 0 ] && printf '%s\n' "$@" | sed 's/^/  /'; }
 
+# case NAME PROGRAM.kp [options]: run it (trace, dump) and plot it to PNG,
+# SVG and PDF; the plot's status is the run's (and $expect when set);
+# check.py checks the pictures (the line under the title: $title when set)
+case_() {
+  name=$1
+  shift
+  "$S42" run "$@" --trace=json >"$T/$name.jsonl" 2>/dev/null
+  want=$?
+  if [ -n "$expect" ] && [ "$want" != "$expect" ]; then
+    bad "$name" "the run's exit status is $want, the test expects $expect"
+    return
+  fi
+  "$S42" run "$@" --dump >"$T/$name.dump" 2>/dev/null
+  st=
+  for ext in png svg pdf; do
+    "$S42" plot "$@" -o "$T/$name.$ext" 2>>"$T/$name.err"
+    st="$st $?"
+  done
+  if [ "$st" != " $want $want $want" ]; then
+    bad "$name" "plot exit$st (png svg pdf), run exit $want" "$(cat "$T/$name.err")"
+    return
+  fi
+  if [ ! -s "$T/$name.png" ] || [ ! -s "$T/$name.svg" ] || [ ! -s "$T/$name.pdf" ]; then
+    bad "$name" "no picture written" "$(cat "$T/$name.err")"
+    return
+  fi
+  if msg=$("$PY" "$HERE/check.py" "$T/$name.png" "$T/$name.svg" "$T/$name.jsonl" "$T/$name.dump" \
+           "$T/$name.pdf" ${title:+"$title"}); then
+    ok
+  else
+    bad "$name" "$msg"
+  fi
+}
+
 for kp in "$PROGS"/*.kp; do
   [ -f "$kp" ] || continue
   name=$(basename "$kp" .kp)
   set -- "$kp"
   [ -f "$PROGS/$name.operator" ] && set -- "$@" --operator "$PROGS/$name.operator"
   [ -f "$PROGS/$name.tool" ] && set -- "$@" --tool "$PROGS/$name.tool"
-  "$S42" run "$@" --trace=json >"$T/$name.jsonl" 2>/dev/null
-  want=$?
-  "$S42" run "$@" --dump >"$T/$name.dump" 2>/dev/null
-  "$S42" plot "$@" -o "$T/$name.png" 2>"$T/$name.err"
-  st_png=$?
-  "$S42" plot "$@" -o "$T/$name.svg" 2>>"$T/$name.err"
-  st_svg=$?
-  if [ $st_png -ne $want ] || [ $st_svg -ne $want ]; then
-    bad "$name" "plot exit $st_png (png) / $st_svg (svg), run exit $want" "$(cat "$T/$name.err")"
-    continue
-  fi
-  if [ ! -s "$T/$name.png" ] || [ ! -s "$T/$name.svg" ]; then
-    bad "$name" "no picture written" "$(cat "$T/$name.err")"
-    continue
-  fi
-  if msg=$("$PY" "$HERE/check.py" "$T/$name.png" "$T/$name.svg" "$T/$name.jsonl" "$T/$name.dump"); then
-    ok
-  else
-    bad "$name" "$msg"
-  fi
+  case_ "$name" "$@"
 done
+# the tutorial's cycle: its jump-only blocks (P) count in the header
+expect=0 case_ tutorial docs/tutorial/cycle.kp --operator docs/tutorial/cycle.operator
+
+# runs that fail: the status is the run's, the picture is still written, the
+# line under the title says how and the stop sign marks where
+expect=1; title=
+case_ e-div0 programs/errors/e-div0.kp
+title='not run: E-SYNTAX at N2 (the program does not compile)'
+case_ e-syntax programs/errors/e-syntax.kp
+expect=3; title='stopped: the operator script had no action for Пуск (key PUSK) at N4'
+case_ no-action docs/tutorial/cycle.kp --operator "$HERE/no-action.operator"
+title='stopped (key STOP) at N7'
+case_ stop-key docs/tutorial/cycle.kp --operator "$HERE/stop-key.operator"
+expect=; title=
+
+# oscillation: the strokes are in the scale (reamer_rake above: 100 mm of X
+# while nothing else moves X), A's too, and they turn along the path
+case_ osc-a "$HERE/osc-a.kp"
+case_ osc-line "$HERE/osc-line.kp"
+if msg=$("$PY" "$HERE/check.py" --tips "$T/osc-line.png" XZ 12); then
+  ok
+else
+  bad "osc-tips" "$msg"
+fi
+
+# a failed run whose picture cannot be written: 4, and no file
+"$S42" plot programs/errors/e-div0.kp -o "$T/nodir/div0.png" 2>"$T/nodir-div0.err"
+st=$?
+if [ $st -eq 4 ] && [ ! -e "$T/nodir/div0.png" ] && grep -q 'nodir' "$T/nodir-div0.err"; then
+  ok
+else
+  bad "io-error-failed-run" "exit $st for a failed run and a missing directory, want 4" "$(cat "$T/nodir-div0.err")"
+fi
 
 # the same picture as PDF
 first=$(ls "$PROGS"/*.kp | head -n 1)
