@@ -1325,8 +1325,8 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
   }
   double tsim = pl->ended ? pl->t_end : pl->t;
   fmt_num(tt, sizeof tt, tsim, tsim < 1 ? 3 : 1);   /* a short run is not "0 s" */
-  snprintf(line, sizeof line, "%llu blocks, %s s simulated; %s X %s  Y %s  Z %s mm  A %s°",
-           pl->ended ? pl->blocks : pl->rows, tt, pl->why[0] ? "position at the stop" : "end position", n[0],
+  unsigned long long nb = pl->ended ? pl->blocks : pl->rows;
+  snprintf(line, sizeof line, "%llu block%s, %s s simulated; %s X %s  Y %s  Z %s mm  A %s°", nb, nb == 1 ? "" : "s", tt, pl->why[0] ? "position at the stop" : "end position", n[0],
            n[1], n[2], n[3]);
   rgb(cr, C_LABEL);
   text_at(cr, 1560, 34, line, 13, 0, 1);

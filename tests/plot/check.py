@@ -175,10 +175,10 @@ def fmt(v, dec):
 
 def check_header(texts, d):
     """The summary line says what the run counted (the dump)."""
-    hdr = [r.text for r in texts if " blocks, " in r.text]
+    hdr = [r.text for r in texts if re.search(r"\d+ blocks?, ", r.text)]
     if len(hdr) != 1:
         return ["PDF: %d header lines with 'blocks' in them, want 1" % len(hdr)]
-    m = re.match(r"(\d+) blocks, (\S+) s simulated; (?:end position|position at the stop) "
+    m = re.match(r"(\d+) blocks?, (\S+) s simulated; (?:end position|position at the stop) "
                  r"X (\S+)  Y (\S+)  Z (\S+) mm  A (\S+)°$", hdr[0])
     if not m:
         return ["PDF: header %r not understood" % hdr[0]]
