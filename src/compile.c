@@ -665,6 +665,7 @@ static void check_block(struct comp *c)
   /* a dialog or display function (group 4) stands with no function of
    * groups 1-3 and no axis or centre word: only assignments, array
    * operations and M functions beside it (language.md sec. 8) */
+  int g4_words = 0;   /* said: the block's axis or centre words do not belong */
   if (seen[4]) {
     int other = 0;   /* one error a block: the first thing that does not belong */
     for (int i = 0; i < b->nw && !other; i++) {
@@ -676,9 +677,11 @@ static void check_block(struct comp *c)
         other = 1;
       }
     }
-    if ((naxis || ncentre) && !other)
+    if ((naxis || ncentre) && !other) {
+      g4_words = 1;
       err(c, S42_E_GROUP, axcol && (!cecol || axcol < cecol) ? axcol : cecol,
           "G%02d (dialog and display, group 4) stands without axis or centre words", seen[4]);
+    }
   }
   const struct word *F = NULL;
   for (int i = 0; i < b->nw; i++)
@@ -739,7 +742,7 @@ static void check_block(struct comp *c)
               slot_name(p), slot_name(q));
     }
   } else {
-    if (ncentre)
+    if (ncentre && !g4_words)
       err(c, S42_E_BLOCK, cecol, "centre words I J K belong to an arc (G02 G03 G12 G13)");
     if (plane && !M(19))
       warn(c, b->gcol[plane], "G%d has no effect without an arc (G02 G03 G12 G13)", plane);

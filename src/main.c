@@ -238,9 +238,22 @@ static void refused_notes(struct diag_list *d, const struct plug_set *ps)
   }
 }
 
+static int load_as(const char *path, struct program *p, struct diag_list *d, char **src, size_t *n, int print);
+
 /* Compile a file; diagnostics to stderr.  Returns 0 ok, 1 program errors,
  * 4 I/O.  On success *src stays allocated for the caller. */
 static int load(const char *path, struct program *p, struct diag_list *d, char **src, size_t *n)
+{
+  return load_as(path, p, d, src, n, 1);
+}
+
+/* The same, printing no diagnostics (check --json prints them itself). */
+static int load_quiet(const char *path, struct program *p, struct diag_list *d, char **src, size_t *n)
+{
+  return load_as(path, p, d, src, n, 0);
+}
+
+static int load_as(const char *path, struct program *p, struct diag_list *d, char **src, size_t *n, int print)
 {
   prog_init(p);
   diag_init(d, path);
@@ -250,7 +263,8 @@ static int load(const char *path, struct program *p, struct diag_list *d, char *
   struct plug_set *ps = plugins_init(NULL);
   int r = comp_program_with(*src, *n, d, p, ps);
   refused_notes(d, ps);
-  diag_print(stderr, d);
+  if (print)
+    diag_print(stderr, d);
   return r ? EXIT_PROGRAM : 0;
 }
 
@@ -285,14 +299,47 @@ static int cmd_plugins(int argc, char **argv)
   return 0;
 }
 
+/* `s42 check --json`: one JSON object a diagnostic, one a line. */
+static void check_json(const struct diag_list *d, const char *file)
+{
+  static const char *const sev[] = {"error", "warning", "note"};
+  for (size_t i = 0; i < d->n; i++) {
+    const struct diag *g = &d->v[i];
+    fputs("{\"file\":", stdout);
+    json_string(stdout, file);
+    printf(",\"line\":%u,\"col\":%u,\"block\":", g->line, g->col);
+    if (g->number >= 0)
+      printf("%d", g->number);
+    else
+      fputs("null", stdout);
+    printf(",\"severity\":\"%s\",\"code\":", sev[g->sev >= 0 && g->sev <= 2 ? g->sev : 0]);
+    if (g->code)
+      printf("\"%s\"", err_code(g->code));
+    else
+      fputs("null", stdout);
+    fputs(",\"message\":", stdout);
+    json_string(stdout, g->msg);
+    fputs("}\n", stdout);
+  }
+}
+
+/* s42 check FILE...: the status is 1 when any program has errors, even when
+ * another file could not be read (4 then only when none has errors): the
+ * programs' verdict is what a script checking them asks for. */
 static int cmd_check(int argc, char **argv)
 {
-  int worst = 0, any = 0;
+  int errors = 0, io = 0, any = 0, json = 0;
   if (take_plugins_opt(&argc, argv))
     return EXIT_USAGE;
   for (int i = 2; i < argc; i++) {
-    if (argv[i][0] == '-' && argv[i][1]) {
-      fprintf(stderr, "s42: check takes only program files ('%s')\n", argv[i]);
+    if (strcmp(argv[i], "--json") == 0) {
+      json = 1;
+      for (int k = i; k + 1 < argc; k++)
+        argv[k] = argv[k + 1];
+      argc--;
+      i--;
+    } else if (argv[i][0] == '-' && argv[i][1]) {
+      fprintf(stderr, "s42: check takes only program files, --json and --plugins DIR ('%s')\n", argv[i]);
       return EXIT_USAGE;
     }
   }
@@ -302,9 +349,20 @@ static int cmd_check(int argc, char **argv)
     char *src = NULL;
     size_t n = 0;
     any = 1;
-    int r = load(argv[i], &p, &d, &src, &n);
-    if (r > worst)
-      worst = r;
+    int r = json ? load_quiet(argv[i], &p, &d, &src, &n) : load(argv[i], &p, &d, &src, &n);
+    if (json) {
+      if (r == EXIT_IO) {
+        fputs("{\"file\":", stdout);
+        json_string(stdout, argv[i]);
+        fputs(",\"line\":null,\"col\":null,\"block\":null,\"severity\":\"error\",\"code\":null,\"message\":", stdout);
+        json_string(stdout, "the file cannot be read (the reason is on stderr)");
+        fputs("}\n", stdout);
+      } else {
+        check_json(&d, argv[i]);
+      }
+    }
+    errors |= r == EXIT_PROGRAM;
+    io |= r == EXIT_IO;
     prog_free(&p);
     diag_free(&d);
     free(src);
@@ -313,7 +371,7 @@ static int cmd_check(int argc, char **argv)
     fprintf(stderr, "s42: check needs a program file\n%s", usage);
     return EXIT_USAGE;
   }
-  return worst;
+  return errors ? EXIT_PROGRAM : io ? EXIT_IO : 0;
 }
 
 static int cmd_disasm(int argc, char **argv)

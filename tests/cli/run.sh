@@ -79,5 +79,25 @@ else
   echo "cli: script (util-linux) is not here: the colour cases were skipped"
 fi
 
+# check --json: one object a diagnostic; the status: 1 when a program has
+# errors even when another file is missing, 4 when only a file is missing
+"$S42" check --json "$T/caret.kp" "$T/missing.kp" programs/drill_point.kp >"$T/json" 2>"$T/err"
+st=$?
+if [ "$st" -eq 1 ] && python3 - "$T/json" "$T/caret.kp" "$T/missing.kp" <<'PY'
+import json, sys
+rows = [json.loads(l) for l in open(sys.argv[1])]
+assert len(rows) == 2, rows
+a, b = rows
+assert a == {"file": sys.argv[2], "line": 2, "col": 16, "block": 2, "severity": "error", "code": "E-PLANE",
+             "message": "Z is not in the G17 plane of this arc (XY)"}, a
+assert b["file"] == sys.argv[3] and b["severity"] == "error" and b["line"] is None, b
+PY
+then ok; else bad "check --json: status $st, $(cat "$T/json")"; fi
+if grep -q 'missing.kp' "$T/err" && ! grep -q 'E-PLANE' "$T/err"; then ok; else bad "check --json stderr: $(cat "$T/err")"; fi
+"$S42" check "$T/missing.kp" programs/drill_point.kp 2>/dev/null
+st=$?; if [ "$st" -eq 4 ]; then ok; else bad "check of a missing file and a good one: status $st, expected 4"; fi
+"$S42" check "$T/missing.kp" "$T/caret.kp" 2>/dev/null
+st=$?; if [ "$st" -eq 1 ]; then ok; else bad "check of a missing file and a bad one: status $st, expected 1"; fi
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
