@@ -895,6 +895,20 @@ static int headless(const struct opts *opt, struct plot *plot)
     st = "error";
     r.s.state = SE_ERROR;
   }
+  bs.pace.stop = NULL;
+  int interruptible = o.realtime && !o.modbus;
+  if (interruptible) {
+    /* --realtime takes as long as the machine would: Ctrl-C (or SIGTERM)
+     * stops it at the next block boundary with the dump of that moment,
+     * as under --modbus */
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_quit;      /* no SA_RESTART: the pacing sleep returns at once */
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    bs.pace.stop = &quit_signal;
+  }
   pace_start(&bs.pace, r.s.m.t);     /* a restart goes on from the saved time */
   if (o.modbus && status == EXIT_END) {
     char err[300];
@@ -914,7 +928,16 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
 
   while (status == EXIT_END) {
-    r.s.vm.start_all = r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]);
+    r.s.vm.start_all = interruptible || (r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]));
+    if (quit_signal) {
+      const struct prog_block *b = &p.blocks[r.s.vm.cur];
+      char qb[16];
+      fprintf(stderr, "%s:%u:%u: note: %s: stopped by %s before this block\n", o.program, b->line, b->col,
+              bname(sess_block_number(&r.s), qb), quit_signal == SIGINT ? "Ctrl-C (SIGINT)" : "SIGTERM");
+      status = EXIT_STOPPED;
+      st = "stopped";
+      break;
+    }
     enum sess_ev ev = sess_run(&r.s);
     if (ev == SE_START) {
       if (state_path && ((kp_attr(&p, r.s.vm.cur)->m >> 15) & 1) &&

@@ -12,6 +12,7 @@ static double since(const struct timespec *t0)
 
 void pace_start(struct pace *p, double sim)
 {
+  /* p->stop is the owner's and stays as it was */
   clock_gettime(CLOCK_MONOTONIC, &p->t0);
   p->sim0 = sim;
   p->held = 0;
@@ -37,7 +38,8 @@ void pace_sleep_until(const struct pace *p, double sim)
   ts.tv_sec = (time_t)wait;
   ts.tv_nsec = (long)((wait - (double)ts.tv_sec) * 1e9);
   while (nanosleep(&ts, &ts) && errno == EINTR)
-    ;
+    if (p->stop && *p->stop)
+      return;
 }
 
 void pace_hold(struct pace *p, int on)

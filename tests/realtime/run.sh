@@ -2,18 +2,41 @@
 # --realtime paces a run at machine speed: a program of 0.5 simulated
 # seconds must not end sooner than that (a lower bound only: a loaded
 # machine may take longer), while a run without it takes no such time.
+# Ctrl-C (SIGINT) or SIGTERM stop a paced run at the next block boundary
+# with the dump of that moment, status 3, and a note naming the block.
 s42=$1
-prog=$(mktemp)
-trap 'rm -f "$prog"' EXIT
-printf '№1 G04 X+2 ^\n№2 G01 X+600 F120 ^\n№3 M02 ^\n' > "$prog"   # 0.2 s + 0.3 s
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+pass=0 fail=0
+printf '№1 G04 X+2 ^\n№2 G01 X+600 F120 ^\n№3 M02 ^\n' > "$T/p.kp"   # 0.2 s + 0.3 s
 ms() { date +%s%3N; }
-a=$(ms); "$s42" run "$prog" --realtime >/dev/null || { echo "realtime: 0 passed, 1 failed"; exit 1; }; b=$(ms)
+a=$(ms); "$s42" run "$T/p.kp" --realtime >/dev/null; st=$?; b=$(ms)
 took=$((b - a))
-if [ "$took" -ge 480 ]; then
-  echo "realtime: 0.5 s simulated took ${took} ms"
-  echo "realtime: 1 passed, 0 failed"
+if [ "$st" -ne 0 ]; then
+  echo "FAIL realtime: status $st"; fail=$((fail + 1))
+elif [ "$took" -ge 480 ]; then
+  echo "realtime: 0.5 s simulated took ${took} ms"; pass=$((pass + 1))
 else
-  echo "FAIL realtime: 0.5 s simulated took only ${took} ms"
-  echo "realtime: 0 passed, 1 failed"
-  exit 1
+  echo "FAIL realtime: 0.5 s simulated took only ${took} ms"; fail=$((fail + 1))
 fi
+
+# 100 one-second dwells: interrupted after about a second
+printf '№1 R1+0 ^\n№2 G04 X+10 R1+R1+1 ^\n№3 P(R1:M:100)2 ^\n№4 M02 ^\n' > "$T/long.kp"
+for sig in INT TERM; do
+  "$s42" run "$T/long.kp" --realtime --dump >"$T/out" 2>"$T/err" &
+  pid=$!
+  sleep 1.3
+  kill -s $sig $pid
+  wait $pid
+  st=$?
+  if [ "$st" -eq 3 ] && grep -q '"status":"stopped"' "$T/out" &&
+     grep -Eq 'long\.kp:[0-9]+:1: note: N[23]: stopped by (Ctrl-C \(SIGINT\)|SIGTERM) before this block' "$T/err" &&
+     python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if 1 <= d["r"][1] < 100 else 1)' "$T/out"; then
+    pass=$((pass + 1))
+  else
+    echo "FAIL realtime: SIG$sig: status $st, $(cat "$T/err") $(head -c 200 "$T/out")"
+    fail=$((fail + 1))
+  fi
+done
+echo "realtime: $pass passed, $fail failed"
+[ "$fail" -eq 0 ]
