@@ -338,6 +338,7 @@ struct runner {
   unsigned *runs;            /* runs per block number, for `at` */
   uint8_t *watch;
   int lenient;               /* --modbus: a wait the script cannot serve waits for a client */
+  size_t unfit;              /* 1 + the action reported as not fitting a wait, 0 none */
 };
 
 static void warn_sink(void *ctx, const struct session *s, const char *msg)
@@ -487,6 +488,7 @@ static int serve_wait(struct runner *r)
     if (ok) {
       if (r->lenient)
         return -1;
+      r->unfit = r->next + 1;
       const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s; the operator script's next action "
               "(line %u: %s) does not fit\n", r->file, b->line, b->col, bname(sess_block_number(&r->s), nb),
@@ -732,6 +734,23 @@ static int headless(const struct opts *opt, struct plot *plot)
     return rc;
   }
 
+  /* an `at` for a block the program does not have would never fire */
+  if (r.ops.nat) {
+    unsigned char have[1000] = {0};
+    for (size_t b = 0; b < p.nblocks; b++)
+      if (p.blocks[b].number < 1000)
+        have[p.blocks[b].number] = 1;
+    if (ops_check_at(&r.ops, have, o.operator_file, stderr)) {
+      fprintf(stderr, "%s: note: the operator script %s is refused: the run does not start\n", o.program,
+              o.operator_file);
+      prog_free(&p);
+      diag_free(&d);
+      free(src);
+      ops_free(&r.ops);
+      return EXIT_USAGE;
+    }
+  }
+
   sess_init(&r.s, &p);
   r.s.plugins = plugins_init(NULL);
   r.s.en = o.en;
@@ -800,7 +819,9 @@ static int headless(const struct opts *opt, struct plot *plot)
   const char *st = "end";
   struct dump_error de, *dep = NULL;
   char serr[512];
+  int ran = 1;                       /* the cycle started (not refused before its first block) */
   if (o.restart && state_load(&r.s, state_path, prog_hash, serr, sizeof serr)) {
+    ran = 0;
     fprintf(stderr, "%s:1:1: error: N-: restart refused: %s [E-STATE]\n", o.program, serr);
     memset(&de, 0, sizeof de);
     de.code = err_code(S42_E_STATE);
@@ -819,6 +840,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     char err[300];
     int bad;
     if (!(mb = mb_open(o.modbus, err, sizeof err, &bad))) {
+      ran = 0;
       fprintf(stderr, "s42: %s\n", err);
       status = bad ? EXIT_USAGE : EXIT_IO;
       st = "error";
@@ -900,6 +922,9 @@ static int headless(const struct opts *opt, struct plot *plot)
             o.en ? "the machine shows" : "на екрані", de.machine);
     dep = &de;
   }
+  /* what the script held that the run did not use (a run that started) */
+  if (o.operator_file && ran)
+    ops_warn_unused(&r.ops, r.next, r.unfit, r.runs, o.operator_file, stderr);
   if (o.dump)
     report_dump(stdout, st, dep, &r.s);
   if (o.screen) {

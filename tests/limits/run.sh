@@ -75,6 +75,31 @@ rm -f "$T/huge.kp"
 expect operator-size 4 'big\.op: too large: at most 1048576 bytes are read \[E-LIMIT\]' programs/drill_dialog.kp \
   --operator "$T/big.op"
 
+# the operator script: no word cut short, `at` for a block the program has,
+# and a warning for each action a run left
+op() { printf '%s\n' "$@" > "$T/s.op"; }
+op "answer 35000" "answer 95000" "answer 140" "answer 118" "override $(printf %064d 150)"
+expect op-long-word 2 "s.op:5:10: error: a word of 64 characters: at most 63 \(it is not read cut short\)" \
+  programs/drill_dialog.kp --operator "$T/s.op"
+op "at N$(printf %063d 22) key EXIT"              # before: read as at N2
+expect op-long-at 2 's.op:1:4: error: a word of 64 characters' programs/drill_dialog.kp --operator "$T/s.op"
+op "at N$(printf %062d 2) key STOP"               # 63 characters: read whole
+expect op-zeros-at 3 'note: N2: the cycle was stopped \(key STOP\)' tests/restart/loop.kp --operator "$T/s.op"
+printf 'answer 35\000000\n' > "$T/s.op"
+expect op-nul 2 's.op:1:8: error: a NUL byte inside a word' programs/drill_dialog.kp --operator "$T/s.op"
+op "answer 35000" "  at N22 key EXIT"
+expect op-at-missing 2 "s.op:2:3: error: at N22: the program has no block N22, so this never fires" \
+  programs/drill_dialog.kp --operator "$T/s.op"
+grep -q "drill_dialog.kp: note: the operator script $T/s.op is refused: the run does not start" "$T/err" &&
+  pass=$((pass + 1)) || { echo "FAIL limits op-at-missing: no note"; fail=$((fail + 1)); }
+op "at N1#5 key EXIT" "override 80" "key PUSK" "key PS"
+expect op-unused 0 "s.op:1:1: warning: at N1#5 key EXIT never fired: block N1 started only once" \
+  tests/restart/loop.kp --operator "$T/s.op"
+grep -q "s.op:3:1: warning: key PUSK was not used: the run ended before it" "$T/err" &&
+  grep -q "s.op:4:1: warning: key PS was not used: the run ended before it" "$T/err" &&
+  ! grep -q "s.op:2:" "$T/err" && pass=$((pass + 1)) ||
+  { echo "FAIL limits op-unused: the unused actions were not each warned"; sed 's/^/  /' "$T/err"; fail=$((fail + 1)); }
+
 # CRLF line ends: the same run, to the byte, as the LF original
 for f in programs/reamer_rake.kp programs/drill_dialog.kp; do
   b=$(basename "$f" .kp)
