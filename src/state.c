@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #define MAGIC "S42STATE"
@@ -57,8 +58,40 @@ uint64_t state_hash(const void *data, size_t n)
   return h;
 }
 
+/* An existing file at path is replaced only when it is a restart state (any
+ * version) or empty: `--state prog.kp` must not turn the program into a
+ * state.  A FIFO or a device is not even opened for long (O_NONBLOCK). */
+static int check_target(const char *path, char *err, size_t n)
+{
+  int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT)
+      return 0;
+    snprintf(err, n, "%s: %s", path, strerror(errno));
+    return -1;
+  }
+  struct stat st;
+  char magic[8];
+  int rc = -1;
+  if (fstat(fd, &st) != 0)
+    snprintf(err, n, "%s: %s", path, strerror(errno));
+  else if (!S_ISREG(st.st_mode))
+    snprintf(err, n, "%s is %s, not a restart state: it is not replaced", path, file_kind(st.st_mode));
+  else if (st.st_size == 0)
+    rc = 0;
+  else if (st.st_size < 8 || read(fd, magic, 8) != 8 || memcmp(magic, MAGIC, 8) != 0)
+    snprintf(err, n, "%s is not an s42 restart state: it is not replaced (remove it, or choose another --state)",
+             path);
+  else
+    rc = 0;
+  close(fd);
+  return rc;
+}
+
 int state_save(const struct session *s, const char *path, uint64_t prog_hash, char *err, size_t n)
 {
+  if (check_target(path, err, n))
+    return -1;
   struct payload *pl = calloc(1, sizeof *pl);
   if (!pl) {
     snprintf(err, n, "out of memory");
@@ -125,23 +158,32 @@ static int frames_fit(const struct program *p, const struct payload *pl)
 
 int state_load(struct session *s, const char *path, uint64_t prog_hash, char *err, size_t n)
 {
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    snprintf(err, n, "no restart state: %s: %s", path, strerror(errno));
+  /* a regular file only: a FIFO is refused, not waited on; one byte more
+   * than a state holds is read, so a longer file is damaged, not cut */
+  char *data;
+  size_t len;
+  int r = file_read_all(path, FILE_REGULAR, sizeof(struct header) + sizeof(struct payload) + 1, &data, &len, err, n);
+  if (r == -2) {
+    snprintf(err, n, "%s is damaged (checksum)", path);
+    return -1;
+  }
+  if (r) {
+    char why[400];
+    snprintf(why, sizeof why, "%s", err);
+    snprintf(err, n, "no restart state: %s", why);
     return -1;
   }
   struct header h;
   struct payload *pl = malloc(sizeof *pl);
   int rc = -1;
-  int extra;
   if (!pl) {
     snprintf(err, n, "out of memory");
-  } else if (fread(&h, sizeof h, 1, f) != 1 || memcmp(h.magic, MAGIC, 8) != 0) {
+  } else if (len < sizeof h || (memcpy(&h, data, sizeof h), memcmp(h.magic, MAGIC, 8) != 0)) {
     snprintf(err, n, "%s is not an s42 restart state", path);
   } else if (h.version != VERSION || h.size != sizeof *pl) {
     snprintf(err, n, "%s was written by another version of s42", path);
-  } else if (fread(pl, sizeof *pl, 1, f) != 1 || (extra = fgetc(f)) != EOF ||
-             state_hash(pl, sizeof *pl) != h.sum) {
+  } else if (len != sizeof h + sizeof *pl || (memcpy(pl, data + sizeof h, sizeof *pl),
+                                          state_hash(pl, sizeof *pl) != h.sum)) {
     snprintf(err, n, "%s is damaged (checksum)", path);
   } else if (pl->prog_hash != prog_hash) {
     snprintf(err, n, "the program text changed since the restart point was saved in %s", path);
@@ -179,7 +221,7 @@ int state_load(struct session *s, const char *path, uint64_t prog_hash, char *er
       rc = sess_plugin_restore(s, pl->plug[k].name, pl->plug[k].data, pl->plug[k].len, err, n);
     }
   }
-  fclose(f);
+  free(data);
   free(pl);
   return rc;
 }
