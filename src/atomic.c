@@ -1,11 +1,15 @@
-/* Atomic file writes (src/atomic.h). */
+/* Atomic file writes and careful reads (src/atomic.h). */
 #include "atomic.h"
+#include <ctype.h>
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -24,33 +28,71 @@ static int write_all(int fd, const char *p, size_t n)
   return 0;
 }
 
+/* A write killed between creating its temporary file and the rename leaves
+ * BASE.tmpXXXXXX behind.  Every writer holds an flock on its temporary file
+ * until after the rename, so one whose lock can be taken belongs to no live
+ * writer: it is removed.  Only that exact pattern (mkstemp's six letters
+ * and digits), only regular files of this user.  (Two processes saving the
+ * same file at the same moment could meet in the instant between mkstemp
+ * and flock; the one that loses its temporary file reports a failed save,
+ * and the old file stays whole.) */
+static void remove_stale(const char *dir, const char *base)
+{
+  DIR *d = opendir(dir);
+  if (!d)
+    return;
+  size_t bl = strlen(base);
+  struct dirent *e;
+  while ((e = readdir(d)) != NULL) {
+    const char *nm = e->d_name, *x = nm + bl + 4;
+    if (strncmp(nm, base, bl) != 0 || strncmp(nm + bl, ".tmp", 4) != 0 || strlen(x) != 6)
+      continue;
+    int ok = 1;
+    for (int i = 0; i < 6; i++)
+      ok &= isalnum((unsigned char)x[i]) != 0;
+    if (!ok)
+      continue;
+    int fd = openat(dirfd(d), nm, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+    if (fd < 0)
+      continue;
+    struct stat st;
+    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_uid == geteuid() && flock(fd, LOCK_EX | LOCK_NB) == 0)
+      unlinkat(dirfd(d), nm, 0);
+    close(fd);
+  }
+  closedir(d);
+}
+
 int atomic_write(const char *path, const char *shown, mode_t mode, const struct iovec *v, int nv, char *err,
                  size_t n)
 {
   size_t tl = strlen(path) + 16;
-  char *tmp = malloc(tl), *dir = strdup(path);
-  if (!tmp || !dir) {
+  char *tmp = malloc(tl), *dir = strdup(path), *base = strdup(path);
+  if (!tmp || !dir || !base) {
     free(tmp);
     free(dir);
+    free(base);
     snprintf(err, n, "out of memory");
     return -1;
   }
+  const char *dname = dirname(dir);
+  remove_stale(dname, basename(base));
   snprintf(tmp, tl, "%s.tmpXXXXXX", path);
   int fd = mkstemp(tmp), rc = -1, bad = 0;
   if (fd < 0) {
     snprintf(err, n, "%s: cannot create a temporary file beside it: %s", shown, strerror(errno));
     free(tmp);
     free(dir);
+    free(base);
     return -1;
   }
+  /* held until the rename: the temporary file is ours (remove_stale);
+   * a file system without locks still writes, only without that guard */
+  (void)flock(fd, LOCK_EX | LOCK_NB);
   bad = fchmod(fd, mode) != 0;
   for (int i = 0; i < nv && !bad; i++)
     bad = write_all(fd, v[i].iov_base, v[i].iov_len) != 0;
   if (bad || fsync(fd)) {
-    snprintf(err, n, "%s: %s", tmp, strerror(errno));
-    close(fd);
-    unlink(tmp);
-  } else if (close(fd)) {
     snprintf(err, n, "%s: %s", tmp, strerror(errno));
     unlink(tmp);
   } else if (rename(tmp, path)) {
@@ -58,14 +100,146 @@ int atomic_write(const char *path, const char *shown, mode_t mode, const struct 
     unlink(tmp);
   } else {
     /* the rename itself must reach the disk */
-    int dfd = open(dirname(dir), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    int dfd = open(dname, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (dfd >= 0) {
       fsync(dfd);
       close(dfd);
     }
     rc = 0;
   }
+  /* after fsync the bytes are on the disk: close only drops the lock */
+  close(fd);
   free(tmp);
   free(dir);
+  free(base);
   return rc;
+}
+
+/* ---- reading ---- */
+
+const char *file_kind(mode_t mode)
+{
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISREG(mode)) return "a regular file";
+  return "not a regular file";
+}
+
+/* st (of the file opened) is allowed; otherwise err says why. */
+static int allowed(const char *path, const struct stat *st, int allow, char *err, size_t n)
+{
+  if (S_ISREG(st->st_mode))
+    return 1;
+  struct stat in;
+  if (allow == FILE_OR_STDIN && S_ISFIFO(st->st_mode) && fstat(STDIN_FILENO, &in) == 0 && S_ISFIFO(in.st_mode) &&
+      in.st_dev == st->st_dev && in.st_ino == st->st_ino)
+    return 1;
+  if (S_ISDIR(st->st_mode))
+    snprintf(err, n, "%s: is a directory, not a file", path);
+  else
+    snprintf(err, n, "%s: is %s, not a regular file%s", path, file_kind(st->st_mode),
+             allow == FILE_OR_STDIN && S_ISFIFO(st->st_mode) ? " (a pipe is read only as standard input)" : "");
+  return 0;
+}
+
+int file_open_read(const char *path, int allow, char *err, size_t n)
+{
+  /* O_NONBLOCK: opening a FIFO without a writer would wait for one */
+  int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) {
+    snprintf(err, n, "%s: %s", path, strerror(errno));
+    return -1;
+  }
+  struct stat st;
+  if (fstat(fd, &st) != 0) {
+    snprintf(err, n, "%s: %s", path, strerror(errno));
+    close(fd);
+    return -1;
+  }
+  if (!allowed(path, &st, allow, err, n)) {
+    close(fd);
+    return -1;
+  }
+  /* a pipe on standard input is read as it comes (this descriptor is a
+   * file description of its own: fd 0's flags stay as they were) */
+  int fl = fcntl(fd, F_GETFL);
+  if (fl >= 0)
+    fcntl(fd, F_SETFL, fl & ~O_NONBLOCK);
+  return fd;
+}
+
+int file_read_all(const char *path, int allow, size_t max, char **buf, size_t *len, char *err, size_t n)
+{
+  int fd = file_open_read(path, allow, err, n);
+  if (fd < 0)
+    return -1;
+  struct stat st;
+  /* a regular file is read in one piece of its size; a pipe grows */
+  size_t cap = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && (uint64_t)st.st_size <= max ? (size_t)st.st_size + 1
+                                                                                          : 65536;
+  size_t got = 0;
+  char *b = malloc(cap);
+  int rc = 0;
+  while (b) {
+    if (got == cap) {
+      size_t nc = cap > max / 2 ? max + 2 : cap * 2;
+      char *nb = nc > cap ? realloc(b, nc) : NULL;
+      if (!nb) {
+        free(b);
+        b = NULL;
+        break;
+      }
+      b = nb;
+      cap = nc;
+    }
+    ssize_t r = read(fd, b + got, cap - got);
+    if (r < 0 && errno == EINTR)
+      continue;
+    if (r < 0) {
+      snprintf(err, n, "%s: %s", path, strerror(errno));
+      rc = -1;
+      break;
+    }
+    if (r == 0)
+      break;
+    got += (size_t)r;
+    if (got > max) {
+      snprintf(err, n, "%s: too large: at most %zu bytes are read", path, max);
+      rc = -2;
+      break;
+    }
+  }
+  close(fd);
+  if (!b) {
+    snprintf(err, n, "%s: out of memory", path);
+    return -1;
+  }
+  if (rc) {
+    free(b);
+    return rc;
+  }
+  if (got == cap) {   /* room for the NUL */
+    char *nb = realloc(b, cap + 1);
+    if (!nb) {
+      free(b);
+      snprintf(err, n, "%s: out of memory", path);
+      return -1;
+    }
+    b = nb;
+  }
+  b[got] = 0;
+  *buf = b;
+  *len = got;
+  return 0;
+}
+
+int file_check_read(const char *path, int allow, char *err, size_t n)
+{
+  struct stat st;
+  if (stat(path, &st) != 0)
+    return 0;   /* missing: whoever opens it says so in its own words */
+  return allowed(path, &st, allow, err, n) ? 0 : -1;
 }

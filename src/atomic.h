@@ -1,6 +1,10 @@
-/* Writing a file so that a crash never leaves it half written: the bytes go
- * to a temporary file beside it, which is synced, renamed over the old file,
- * and the directory synced.  Used by the M15 state and the TUI's editor. */
+/* Whole files, written and read safely.  Writing: a crash never leaves a
+ * file half written -- the bytes go to a temporary file beside it, which is
+ * synced, renamed over the old file, and the directory synced; the
+ * temporary file a killed writer left is removed by the next write.  Used
+ * by the M15 state and the TUI's editor.  Reading: only a regular file (or,
+ * when the caller allows it, a pipe that is s42's own standard input), so a
+ * FIFO or a device is a clear error rather than a hang. */
 #ifndef S42_ATOMIC_H
 #define S42_ATOMIC_H
 
@@ -12,5 +16,23 @@
  * Messages name `shown` (the name the user gave).  0, or -1 with err. */
 int atomic_write(const char *path, const char *shown, mode_t mode, const struct iovec *v, int nv, char *err,
                  size_t n);
+
+/* What may be read: a regular file only, or also a pipe that is standard
+ * input (`s42 run /dev/stdin`, `--operator /dev/stdin` at the end of a
+ * pipeline). */
+enum { FILE_REGULAR, FILE_OR_STDIN };
+
+/* "a FIFO", "a character device", ... for messages. */
+const char *file_kind(mode_t mode);
+/* Open for reading without blocking on a FIFO or a device, and refuse
+ * what `allow` does not allow.  The descriptor (blocking again), or -1
+ * with err "PATH: REASON". */
+int file_open_read(const char *path, int allow, char *err, size_t n);
+/* The whole file, NUL-terminated (*buf, malloc'd; *len without the NUL).
+ * 0; -1 with err; -2 when it holds more than max bytes (err says so). */
+int file_read_all(const char *path, int allow, size_t max, char **buf, size_t *len, char *err, size_t n);
+/* The same rules without opening (for a file someone else opens, such as
+ * a plugin's --tool): 0, or -1 with err. */
+int file_check_read(const char *path, int allow, char *err, size_t n);
 
 #endif

@@ -1,4 +1,5 @@
 /* s42: the command line (contracts.md section 1) and the headless runner. */
+#include "atomic.h"
 #include "compile.h"
 #include "disasm.h"
 #include "errors.h"
@@ -65,57 +66,16 @@ struct opts {
 #define MAX_PROGRAM_BYTES ((size_t)64 << 20)
 #define MAX_OPERATOR_BYTES ((size_t)1 << 20)
 
-/* Read a whole regular file (or a pipe) of at most `max` bytes, NUL-terminated. */
+/* Read a whole regular file of at most `max` bytes, NUL-terminated: a
+ * FIFO, a device or a socket is refused at once (src/atomic.h), a pipe
+ * only as standard input (`s42 run /dev/stdin`). */
 static int read_file(const char *path, size_t max, char **buf, size_t *len)
 {
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    fprintf(stderr, "s42: %s: %s\n", path, strerror(errno));
-    return -1;
-  }
-  struct stat st;
-  if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
-    fprintf(stderr, "s42: %s: is a directory, not a file\n", path);
-    fclose(f);
-    return -1;
-  }
-  /* a regular file is read in one piece of its size; a pipe grows */
-  size_t cap = S_ISREG(st.st_mode) && (uint64_t)st.st_size <= max ? (size_t)st.st_size + 1 : 65536, n = 0;
-  char *b = malloc(cap);
-  int toobig = 0;
-  while (b) {
-    size_t got = fread(b + n, 1, cap - n, f);
-    n += got;
-    if (n > max) {
-      toobig = 1;
-      break;
-    }
-    if (n < cap)
-      break;
-    size_t nc = cap * 2 > max + 2 ? max + 2 : cap * 2;
-    char *nb = realloc(b, nc);
-    if (!nb) {
-      free(b);
-      b = NULL;
-      break;
-    }
-    b = nb;
-    cap = nc;
-  }
-  int bad = ferror(f);
-  fclose(f);
-  if (!b || bad || toobig) {
-    if (toobig)
-      fprintf(stderr, "s42: %s: too large: at most %zu bytes are read [E-LIMIT]\n", path, max);
-    else
-      fprintf(stderr, "s42: %s: %s\n", path, b ? strerror(errno ? errno : EIO) : "out of memory");
-    free(b);
-    return -1;
-  }
-  b[n] = 0;
-  *buf = b;
-  *len = n;
-  return 0;
+  char err[600];
+  int r = file_read_all(path, FILE_OR_STDIN, max, buf, len, err, sizeof err);
+  if (r)
+    fprintf(stderr, "s42: %s%s\n", err, r == -2 ? " [E-LIMIT]" : "");
+  return r ? -1 : 0;
 }
 
 static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
@@ -190,6 +150,13 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
       return -1;
     }
     *val = argv[++i];
+  }
+  /* the tooth search's plugin opens --tool itself: a FIFO or a device
+   * would hang it, so it is refused here (a pipe only as standard input) */
+  char err[600];
+  if (o->tool && file_check_read(o->tool, FILE_OR_STDIN, err, sizeof err)) {
+    fprintf(stderr, "s42: --tool %s\n", err);
+    return -1;
   }
   /* what plugins may ask for (host->option) */
   plug_set_option("tool", o->tool);
@@ -415,6 +382,7 @@ struct runner {
   unsigned *runs;            /* runs per block number, for `at` */
   uint8_t *watch;
   int lenient;               /* --modbus: a wait the script cannot serve waits for a client */
+  size_t unfit;              /* 1 + the action reported as not fitting a wait, 0 none */
 };
 
 static void warn_sink(void *ctx, const struct session *s, const char *msg)
@@ -564,6 +532,7 @@ static int serve_wait(struct runner *r)
     if (ok) {
       if (r->lenient)
         return -1;
+      r->unfit = r->next + 1;
       const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s; the operator script's next action "
               "(line %u: %s) does not fit\n", r->file, b->line, b->col, bname(sess_block_number(&r->s), nb),
@@ -573,6 +542,21 @@ static int serve_wait(struct runner *r)
     r->next++;
   }
   return 0;
+}
+
+/* A block with M15 starts: save the restart point.  A save that fails
+ * (the disk, the directory, a --state that is not a state) ends the run
+ * there with E-STATE: the dump names it, and the status is 4 -- the file
+ * system refused, the program did nothing wrong. */
+static int save_m15(struct runner *r, const char *state_path, uint64_t prog_hash)
+{
+  char serr[512];
+  if (!state_path || !((kp_attr(r->s.p, r->s.vm.cur)->m >> 15) & 1) ||
+      state_save(&r->s, state_path, prog_hash, serr, sizeof serr) == 0)
+    return 0;
+  vm_fail(&r->s.vm, S42_E_STATE, "cannot save the M15 restart state: %s", serr);
+  r->s.state = SE_ERROR;
+  return -1;
 }
 
 /* ---- the headless run served over Modbus TCP (--modbus) ---- */
@@ -717,13 +701,9 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
         break;
       enum sess_ev ev = sess_run(&r->s);
       if (ev == SE_START) {
-        if (state_path && ((kp_attr(r->s.p, r->s.vm.cur)->m >> 15) & 1)) {
-          char serr[512];
-          if (state_save(&r->s, state_path, prog_hash, serr, sizeof serr)) {
-            fprintf(stderr, "s42: cannot save the M15 restart state: %s\n", serr);
-            *st = "error";
-            return EXIT_IO;
-          }
+        if (save_m15(r, state_path, prog_hash)) {
+          *st = "error";
+          return EXIT_IO;
         }
         at_boundary(r);
       }
@@ -813,6 +793,23 @@ static int headless(const struct opts *opt, struct plot *plot)
     return rc;
   }
 
+  /* an `at` for a block the program does not have would never fire */
+  if (r.ops.nat) {
+    unsigned char have[1000] = {0};
+    for (size_t b = 0; b < p.nblocks; b++)
+      if (p.blocks[b].number < 1000)
+        have[p.blocks[b].number] = 1;
+    if (ops_check_at(&r.ops, have, o.operator_file, stderr)) {
+      fprintf(stderr, "%s: note: the operator script %s is refused: the run does not start\n", o.program,
+              o.operator_file);
+      prog_free(&p);
+      diag_free(&d);
+      free(src);
+      ops_free(&r.ops);
+      return EXIT_USAGE;
+    }
+  }
+
   sess_init(&r.s, &p);
   r.s.plugins = plugins_init(NULL);
   r.s.en = o.en;
@@ -881,7 +878,9 @@ static int headless(const struct opts *opt, struct plot *plot)
   const char *st = "end";
   struct dump_error de, *dep = NULL;
   char serr[512];
+  int ran = 1;                       /* the cycle started (not refused before its first block) */
   if (o.restart && state_load(&r.s, state_path, prog_hash, serr, sizeof serr)) {
+    ran = 0;
     fprintf(stderr, "%s:1:1: error: N-: restart refused: %s [E-STATE]\n", o.program, serr);
     memset(&de, 0, sizeof de);
     de.code = err_code(S42_E_STATE);
@@ -914,6 +913,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     char err[300];
     int bad;
     if (!(mb = mb_open(o.modbus, err, sizeof err, &bad))) {
+      ran = 0;
       fprintf(stderr, "s42: %s\n", err);
       status = bad ? EXIT_USAGE : EXIT_IO;
       st = "error";
@@ -940,9 +940,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     }
     enum sess_ev ev = sess_run(&r.s);
     if (ev == SE_START) {
-      if (state_path && ((kp_attr(&p, r.s.vm.cur)->m >> 15) & 1) &&
-          state_save(&r.s, state_path, prog_hash, serr, sizeof serr)) {
-        fprintf(stderr, "s42: cannot save the M15 restart state: %s\n", serr);
+      if (save_m15(&r, state_path, prog_hash)) {
         status = EXIT_IO;
         st = "error";
         break;
@@ -981,7 +979,8 @@ static int headless(const struct opts *opt, struct plot *plot)
       fprintf(stderr, "%s:%u:%u: note: %s: the cycle was stopped (key STOP)\n", o.program, b->line, b->col,
               bname(sess_block_number(&r.s), nb));
   }
-  if (status == EXIT_PROGRAM && !dep) {
+  /* the program's error, or a failed M15 save's (status 4) */
+  if ((status == EXIT_PROGRAM || (status == EXIT_IO && r.s.state == SE_ERROR)) && !dep) {
     const struct vm_error *e = &r.s.vm.err;
     const struct prog_block *b = &p.blocks[e->block];
     struct diag g;
@@ -1004,13 +1003,16 @@ static int headless(const struct opts *opt, struct plot *plot)
             o.en ? "the machine shows" : "на екрані", de.machine);
     dep = &de;
   }
+  /* what the script held that the run did not use (a run that started) */
+  if (o.operator_file && ran)
+    ops_warn_unused(&r.ops, r.next, r.unfit, r.runs, o.operator_file, stderr);
   if (o.dump)
     report_dump(stdout, st, dep, &r.s);
   if (plot)
     plot_result(plot, &r.s, status, dep ? dep->code : NULL, dep ? dep->n : -1, dep ? dep->line : 0);
   if (o.screen) {
     uint32_t grid[SCR_ROWS][SCR_COLS];
-    if (status == EXIT_PROGRAM)
+    if (dep)
       scr_message(&r.s.scr, dep->machine);
     sess_screen(&r.s, grid);
     scr_print(stdout, grid);

@@ -2,6 +2,7 @@
 #include "operator.h"
 #include <ctype.h>
 #include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,7 +35,14 @@ const char *ops_describe(const struct op_action *a, char *buf, size_t n)
   return buf;
 }
 
-struct cur { const char *p, *end; };
+/* A line being read: w is where the last word (or the lack of one) is,
+ * for the column of a message. */
+struct cur { const char *p, *end, *line, *w; };
+
+static int delim(char ch)
+{
+  return ch == ' ' || ch == '\t' || ch == '\r' || ch == ';';
+}
 
 static void skipws(struct cur *c)
 {
@@ -42,17 +50,55 @@ static void skipws(struct cur *c)
     c->p++;
 }
 
+/* The next word into buf (check_words made sure it fits). */
 static int word(struct cur *c, char *buf, size_t n)
 {
   skipws(c);
+  c->w = c->p;
   size_t k = 0;
-  while (c->p < c->end && *c->p != ' ' && *c->p != '\t' && *c->p != '\r' && *c->p != ';') {
+  while (c->p < c->end && !delim(*c->p)) {
     if (k + 1 < n)
       buf[k++] = *c->p;
     c->p++;
   }
   buf[k] = 0;
   return k > 0;
+}
+
+/* 1-based column of `at` in its line, in characters (UTF-8). */
+static unsigned column(const char *line, const char *at)
+{
+  unsigned col = 1;
+  for (const char *q = line; q < at; q++)
+    col += ((unsigned char)*q & 0xC0) != 0x80;
+  return col;
+}
+
+/* Nothing is cut short: a word longer than OPS_WORD_MAX bytes, or one with
+ * a NUL byte, refuses its line (`override 000...0150` is not `override 0`).
+ * A comment is free text.  NULL, or the message with *at at the word. */
+static const char *check_words(const char *p, const char *e, const char **at)
+{
+  static char msg[96];
+  while (p < e && *p != ';') {
+    if (delim(*p)) {
+      p++;
+      continue;
+    }
+    const char *w = p;
+    int nul = 0;
+    while (p < e && !delim(*p))
+      nul |= *p++ == 0;
+    *at = w;
+    if (nul)
+      return "a NUL byte inside a word";
+    if (p - w > OPS_WORD_MAX) {
+      snprintf(msg, sizeof msg, "a word of %zu characters: at most %d (it is not read cut short)", (size_t)(p - w),
+               OPS_WORD_MAX);
+      return msg;
+    }
+  }
+  return NULL;
 }
 
 /* A whole number with an optional sign, within lo..hi. */
@@ -88,7 +134,7 @@ static int axis(const char *w)
 static const char *action(struct cur *c, struct op_action *a)
 {
   static char msg[160];
-  char w[64], w2[64];
+  char w[OPS_WORD_MAX + 1], w2[OPS_WORD_MAX + 1];
   if (!word(c, w, sizeof w))
     return "empty action";
   a->axis2 = -1;
@@ -137,6 +183,7 @@ static const char *action(struct cur *c, struct op_action *a)
     return msg;
   }
   skipws(c);
+  c->w = c->p;
   if (c->p < c->end && *c->p != ';')
     return "unexpected text after the action";
   return NULL;
@@ -154,7 +201,7 @@ int ops_parse(const char *text, size_t len, const char *file, struct opscript *s
     const char *e = memchr(p, '\n', (size_t)(end - p));
     if (!e)
       e = end;
-    struct cur c = {p, e};
+    struct cur c = {p, e, p, p};
     p = e + 1;
     skipws(&c);
     if (c.p >= c.end || *c.p == ';')
@@ -162,12 +209,19 @@ int ops_parse(const char *text, size_t len, const char *file, struct opscript *s
     struct op_action a;
     memset(&a, 0, sizeof a);
     a.line = line;
+    a.col = column(c.line, c.p);
     a.at_number = -1;
-    const char *msg = NULL;
-    char w[64];
+    const char *at = c.p;
+    const char *msg = check_words(c.p, c.end, &at);
+    if (msg) {
+      fprintf(err, "%s:%u:%u: error: %s\n", file, line, column(c.line, at), msg);
+      bad = 1;
+      continue;
+    }
+    char w[OPS_WORD_MAX + 1];
     struct cur save = c;
     if (word(&c, w, sizeof w) && strcmp(w, "at") == 0) {
-      char t[64];
+      char t[OPS_WORD_MAX + 1];
       if (!word(&c, t, sizeof t) || t[0] != 'N') {
         msg = "at needs a block: at N54 or at N54#3";
       } else {
@@ -182,16 +236,20 @@ int ops_parse(const char *text, size_t len, const char *file, struct opscript *s
         a.at_run = (unsigned)run;
       }
       if (!msg) {
+        skipws(&c);
+        const char *act = c.p;
         msg = action(&c, &a);
-        if (!msg && ops_is_waiting(&a))
+        if (!msg && ops_is_waiting(&a)) {
+          c.w = act;
           msg = "at fires at a block's start: only key EXIT, key STOP, correct and override";
+        }
       }
     } else {
       c = save;
       msg = action(&c, &a);
     }
     if (msg) {
-      fprintf(err, "%s:%u: error: %s\n", file, line, msg);
+      fprintf(err, "%s:%u:%u: error: %s\n", file, line, column(c.line, c.w), msg);
       bad = 1;
       continue;
     }
@@ -222,4 +280,43 @@ void ops_free(struct opscript *s)
   free(s->v);
   free(s->at);
   memset(s, 0, sizeof *s);
+}
+
+int ops_check_at(const struct opscript *s, const unsigned char have[1000], const char *file, FILE *err)
+{
+  int bad = 0;
+  for (size_t i = 0; i < s->nat; i++) {
+    const struct op_action *a = &s->at[i];
+    if (a->at_number >= 1 && a->at_number <= 999 && have[a->at_number])
+      continue;
+    fprintf(err, "%s:%u:%u: error: at N%d: the program has no block N%d, so this never fires\n", file, a->line,
+            a->col, a->at_number, a->at_number);
+    bad = 1;
+  }
+  return bad ? -1 : 0;
+}
+
+void ops_warn_unused(const struct opscript *s, size_t next, size_t skip, const unsigned *runs, const char *file,
+                     FILE *err)
+{
+  char what[96];
+  for (size_t i = next; i < s->n; i++)
+    if (i + 1 != skip)
+      fprintf(err, "%s:%u:%u: warning: %s was not used: the run ended before it\n", file, s->v[i].line, s->v[i].col,
+              ops_describe(&s->v[i], what, sizeof what));
+  for (size_t i = 0; i < s->nat; i++) {
+    const struct op_action *a = &s->at[i];
+    if (a->fired)
+      continue;
+    unsigned ran = runs && a->at_number >= 0 && a->at_number < 1000 ? runs[a->at_number] : 0;
+    char times[48];
+    if (ran == 0)
+      snprintf(times, sizeof times, "never started");
+    else if (ran == 1)
+      snprintf(times, sizeof times, "started only once");
+    else
+      snprintf(times, sizeof times, "started only %u times", ran);
+    fprintf(err, "%s:%u:%u: warning: at N%d#%u %s never fired: block N%d %s\n", file, a->line, a->col, a->at_number,
+            a->at_run, ops_describe(a, what, sizeof what), a->at_number, times);
+  }
 }

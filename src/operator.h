@@ -1,5 +1,7 @@
 /* Operator scripts for headless runs (contracts.md section 3): parsed whole
- * before the run; a malformed line refuses the script with its number. */
+ * before the run; a malformed line refuses the script with its line and
+ * column.  Nothing is cut short: a word longer than 63 characters or one
+ * with a NUL byte is an error, not read as its first 63 bytes. */
 #ifndef S42_OPERATOR_H
 #define S42_OPERATOR_H
 
@@ -15,7 +17,7 @@ struct op_action {
   int key;                 /* OA_KEY */
   int axis, axis2;         /* OA_JOG, OA_CORRECT, OA_SECTION (axis2 -1 none) */
   int64_t n, n2;           /* amounts; OA_ANSWER the number; OA_OVERRIDE % */
-  unsigned line;
+  unsigned line, col;       /* where the action (or its `at`) starts */
   int at_number;           /* `at N54#3 ...`: block number, -1 not an at line */
   unsigned at_run;         /* which run of it (1 = first) */
   int fired;
@@ -28,9 +30,20 @@ struct opscript {
   size_t nat;
 };
 
-/* Parse; on errors print FILE:LINE: messages to err and return -1. */
+#define OPS_WORD_MAX 63     /* characters in a word */
+
+/* Parse; on errors print FILE:LINE:COL: messages to err and return -1. */
 int ops_parse(const char *text, size_t len, const char *file, struct opscript *s, FILE *err);
 void ops_free(struct opscript *s);
+/* Before the run: every `at` names a block number the program has
+ * (have[n] for n 1..999).  -1 with FILE:LINE:COL: errors when one does not. */
+int ops_check_at(const struct opscript *s, const unsigned char have[1000], const char *file, FILE *err);
+/* After the run: a warning for each ordered action from `next` on that
+ * was not used (but `skip`, 1-based, already reported; 0 none), and for
+ * each `at` that never fired, with how often its block started (runs[n],
+ * or NULL). */
+void ops_warn_unused(const struct opscript *s, size_t next, size_t skip, const unsigned *runs, const char *file,
+                     FILE *err);
 /* Waiting actions are consumed when the machine waits; the others apply at
  * the next block boundary. */
 int ops_is_waiting(const struct op_action *a);

@@ -482,9 +482,11 @@ static int advance(struct tui *t)
       if (t->state_path && ((kp_attr(&t->prog, t->s.vm.cur)->m >> 15) & 1)) {
         char err[512];
         if (state_save(&t->s, t->state_path, t->hash, err, sizeof err)) {
-          say(t, "cannot save the M15 restart state: %s; the cycle is stopped", err);
-          sess_key_stop(&t->s);
+          /* as s42 run: the cycle ends there with E-STATE */
+          vm_fail(&t->s.vm, S42_E_STATE, "cannot save the M15 restart state: %s", err);
+          t->s.state = SE_ERROR;
           t->run = R_DONE;
+          show_error(t);
           return -1;
         }
         if (t->m15_saves++ == 0)   /* once in the log; a loop would fill it */

@@ -115,35 +115,16 @@ int tui_text_set(struct tui_text *t, const char *buf, size_t n, char *err, size_
 
 int tui_text_load(struct tui_text *t, const char *path, char *err, size_t errn)
 {
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    snprintf(err, errn, "%s: %s", path, strerror(errno));
+  /* a regular file only: a FIFO or a device is refused, not waited on */
+  char *b;
+  size_t n;
+  int r = file_read_all(path, FILE_REGULAR, (size_t)64 << 20, &b, &n, err, errn);
+  if (r == -2)
+    snprintf(err, errn, "%s: too large (over 64 MiB)", path);
+  if (r)
     return -1;
-  }
-  size_t cap = 65536, n = 0;
-  char *b = malloc(cap);
-  while (b) {
-    n += fread(b + n, 1, cap - n, f);
-    if (n < cap)
-      break;
-    char *nb = cap >= ((size_t)64 << 20) ? NULL : realloc(b, cap * 2);
-    if (!nb) {
-      free(b);
-      b = NULL;
-      break;
-    }
-    b = nb;
-    cap *= 2;
-  }
-  int bad = ferror(f);
-  fclose(f);
-  if (!b || bad) {
-    snprintf(err, errn, "%s: %s", path, b ? "read error" : "too large (over 64 MiB) or out of memory");
-    free(b);
-    return -1;
-  }
   char why[128];
-  int r = tui_text_set(t, b, n, why, sizeof why);
+  r = tui_text_set(t, b, n, why, sizeof why);
   free(b);
   if (r)
     snprintf(err, errn, "%s: %s", path, why);

@@ -31,6 +31,7 @@ regress: $(S42)
 	  if [ $$st -gt 3 ]; then echo "FAIL regress $$f: status $$st"; exit 1; fi; n=$$((n+1)); \
 	done; echo "regress: $$n passed, 0 failed"
 	@$(MB_REPLAY) tests/fuzz/corpus/modbus/*
+	@$(STATE_REPLAY) tests/fuzz/corpus/state/*
 
 # The Modbus request handler's fuzz harness, replayed without libFuzzer on
 # its seeds and on inputs that once crashed it (tests/fuzz/corpus/modbus/).
@@ -41,10 +42,23 @@ $(MB_REPLAY): tests/fuzz/fuzz_modbus.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJ
 regress: $(MB_REPLAY)
 # built with the objects' flags (make asan builds, then tests with plain CFLAGS)
 unit-bin: $(MB_REPLAY)
+# the same for the restart state's loader (tests/fuzz/corpus/state/)
+STATE_REPLAY := $(BUILD)/tests/fuzz/replay-state
+$(STATE_REPLAY): tests/fuzz/fuzz_state.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay -Iinclude $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
+regress: $(STATE_REPLAY)
+unit-bin: $(STATE_REPLAY)
 
-# SIGKILL at many points of a cycle with M15, then restart; damaged states.
-restart: $(S42)
-	sh tests/restart/run.sh $(S42)
+# SIGKILL at many points of a cycle with M15, then restart; damaged states,
+# and states edited by hand with a recomputed checksum (tests/restart/forge).
+FORGE := $(BUILD)/tests/restart/forge
+$(FORGE): tests/restart/forge.c src/state.h $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay -Iinclude $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
+unit-bin: $(FORGE)
+restart: $(S42) $(FORGE)
+	sh tests/restart/run.sh $(S42) $(FORGE)
 
 # --realtime paces the run at machine speed (a lower bound on the wall time)
 realtime: $(S42)
@@ -102,7 +116,7 @@ shared: $(S42)
 # that long, from the committed seeds in tests/fuzz/corpus/<harness>/ (new
 # inputs go to $(BUILD)/fuzz/corpus-<harness>/); crashes land in $(BUILD)/fuzz/.
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := compile vm operator toolmodel modbus
+FUZZ_TARGETS := compile vm operator toolmodel modbus state
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc -Ivm -Idisplay -Iinclude -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)

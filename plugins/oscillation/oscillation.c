@@ -179,8 +179,13 @@ static int load(void *self, const void *buf, size_t len)
   if (len != sizeof o)
     return S42_FAIL;
   memcpy(&o, buf, sizeof o);
-  if (o.axis < 0 || o.axis > 3 || !isfinite(o.stroke) || !isfinite(o.speed) || !isfinite(o.travel) ||
-      !isfinite(o.off))
+  /* a restart state edited by hand must not get past here: what G07 and
+   * M13 could have left, nothing else (the travel stays where a double
+   * still counts whole discretes) */
+  if ((o.defined != 0 && o.defined != 1) || (o.active != 0 && o.active != 1) || (o.active && !o.defined) ||
+      o.axis < 0 || o.axis > 3 || !(fabs(o.stroke) <= 9999999) || !(o.speed >= 0 && o.speed <= 6000) ||
+      !(o.travel >= 0 && o.travel <= 9007199254740992.0) || !(fabs(o.off) <= fabs(o.stroke)) ||
+      (o.defined && (o.stroke == 0 || !(o.speed > 0))))
     return S42_FAIL;
   memcpy(self, &o, sizeof o);
   return S42_OK;

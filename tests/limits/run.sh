@@ -75,6 +75,76 @@ rm -f "$T/huge.kp"
 expect operator-size 4 'big\.op: too large: at most 1048576 bytes are read \[E-LIMIT\]' programs/drill_dialog.kp \
   --operator "$T/big.op"
 
+# a FIFO, a device: refused at once, never waited on (timeout 20: status 124
+# would be a hang); a pipe on standard input is read
+mkfifo "$T/fifo"
+expect_t() {
+  name=$1
+  shift
+  timeout 20 "$@" >"$T/out" 2>"$T/err" </dev/null
+  echo $? > "$T/st"
+}
+chk() {   # NAME STATUS PATTERN: of the last expect_t
+  st=$(cat "$T/st")
+  if [ "$st" -ne "$2" ]; then
+    echo "FAIL limits $1: status $st, expected $2"; sed 's/^/  /' "$T/err" | head -5; fail=$((fail + 1))
+  elif ! grep -Eq -- "$3" "$T/err"; then
+    echo "FAIL limits $1: stderr does not match /$3/"; sed 's/^/  /' "$T/err" | head -5; fail=$((fail + 1))
+  else
+    pass=$((pass + 1))
+  fi
+}
+fifo_msg='fifo: is a FIFO, not a regular file \(a pipe is read only as standard input\)'
+expect_t fifo-program "$S42" run "$T/fifo"; chk fifo-program 4 "s42: $T/$fifo_msg"
+expect_t fifo-check "$S42" check "$T/fifo"; chk fifo-check 4 "s42: $T/$fifo_msg"
+expect_t fifo-operator "$S42" run programs/drill_dialog.kp --operator "$T/fifo"; chk fifo-operator 4 "$fifo_msg"
+expect_t fifo-tool "$S42" run programs/drill_dialog.kp --tool "$T/fifo"; chk fifo-tool 2 "s42: --tool $T/$fifo_msg"
+expect_t fifo-state-restart "$S42" run tests/restart/loop.kp --restart --state "$T/fifo" --dump
+chk fifo-state-restart 1 "restart refused: no restart state: $T/fifo: is a FIFO, not a regular file \[E-STATE\]"
+expect_t fifo-state-save "$S42" run tests/restart/loop.kp --state "$T/fifo" --dump
+chk fifo-state-save 4 "error: N3: cannot save the M15 restart state: $T/fifo is a FIFO, not a restart state: it is not replaced \[E-STATE\]"
+[ -p "$T/fifo" ] && pass=$((pass + 1)) || { echo "FAIL limits fifo-state-save: the FIFO was replaced"; fail=$((fail + 1)); }
+expect_t device-program "$S42" run /dev/zero; chk device-program 4 's42: /dev/zero: is a character device, not a regular file'
+expect_t device-operator "$S42" run programs/drill_dialog.kp --operator /dev/null
+chk device-operator 4 's42: /dev/null: is a character device, not a regular file'
+# standard input as a pipe: the program, and the operator script
+if cat programs/drill_point.kp | "$S42" run /dev/stdin --dump 2>"$T/err" | grep -q '"status":"end"'; then
+  pass=$((pass + 1))
+else
+  echo "FAIL limits stdin-program: a program on a pipe did not run"; sed 's/^/  /' "$T/err" | head -5; fail=$((fail + 1))
+fi
+if cat programs/drill_dialog.operator | "$S42" run programs/drill_dialog.kp --operator /dev/stdin --dump 2>"$T/err" |
+   grep -q '"status":"end"'; then
+  pass=$((pass + 1))
+else
+  echo "FAIL limits stdin-operator: a script on a pipe was not read"; sed 's/^/  /' "$T/err" | head -5; fail=$((fail + 1))
+fi
+
+# the operator script: no word cut short, `at` for a block the program has,
+# and a warning for each action a run left
+op() { printf '%s\n' "$@" > "$T/s.op"; }
+op "answer 35000" "answer 95000" "answer 140" "answer 118" "override $(printf %064d 150)"
+expect op-long-word 2 "s.op:5:10: error: a word of 64 characters: at most 63 \(it is not read cut short\)" \
+  programs/drill_dialog.kp --operator "$T/s.op"
+op "at N$(printf %063d 22) key EXIT"              # before: read as at N2
+expect op-long-at 2 's.op:1:4: error: a word of 64 characters' programs/drill_dialog.kp --operator "$T/s.op"
+op "at N$(printf %062d 2) key STOP"               # 63 characters: read whole
+expect op-zeros-at 3 'note: N2: the cycle was stopped \(key STOP\)' tests/restart/loop.kp --operator "$T/s.op"
+printf 'answer 35\000000\n' > "$T/s.op"
+expect op-nul 2 's.op:1:8: error: a NUL byte inside a word' programs/drill_dialog.kp --operator "$T/s.op"
+op "answer 35000" "  at N22 key EXIT"
+expect op-at-missing 2 "s.op:2:3: error: at N22: the program has no block N22, so this never fires" \
+  programs/drill_dialog.kp --operator "$T/s.op"
+grep -q "drill_dialog.kp: note: the operator script $T/s.op is refused: the run does not start" "$T/err" &&
+  pass=$((pass + 1)) || { echo "FAIL limits op-at-missing: no note"; fail=$((fail + 1)); }
+op "at N1#5 key EXIT" "override 80" "key PUSK" "key PS"
+expect op-unused 0 "s.op:1:1: warning: at N1#5 key EXIT never fired: block N1 started only once" \
+  tests/restart/loop.kp --operator "$T/s.op"
+grep -q "s.op:3:1: warning: key PUSK was not used: the run ended before it" "$T/err" &&
+  grep -q "s.op:4:1: warning: key PS was not used: the run ended before it" "$T/err" &&
+  ! grep -q "s.op:2:" "$T/err" && pass=$((pass + 1)) ||
+  { echo "FAIL limits op-unused: the unused actions were not each warned"; sed 's/^/  /' "$T/err"; fail=$((fail + 1)); }
+
 # CRLF line ends: the same run, to the byte, as the LF original
 for f in programs/reamer_rake.kp programs/drill_dialog.kp; do
   b=$(basename "$f" .kp)

@@ -300,6 +300,18 @@ see "помилка в КП №1: повторний пуск"
 see "[E-STATE]"
 keys q
 ended 0
+cp "$WORK/loop.kp" "$WORK/loop.copy"          # --state naming the program: never replaced
+start notstate C.UTF-8 loop.kp --state loop.kp
+keys g
+see "помилка в КП №2: повторний пуск"
+see "loop.kp is not an s42 restart state"
+cmp -s "$WORK/loop.kp" "$WORK/loop.copy" && ok || bad "the program was replaced by a state"
+keys q
+ended 0
+mkfifo "$WORK/fifo.kp"                        # a FIFO as the program: refused, not waited on
+start fifo C.UTF-8 fifo.kp
+see "s42 tui: fifo.kp: is a FIFO, not a regular file"
+ended 4
 
 # ---- 8. the tooth search: the section move by jogs, P5 paged by + and - ----
 printf '№1 G10 D1+50000 M10 M12 F6000 ^\n№2 M02 ^\n' > "$WORK/search.kp"

@@ -1,5 +1,6 @@
 /* Operator scripts (src/operator.h, contracts.md section 3): every action,
- * and the refusals with their line numbers. */
+ * the refusals with their lines and columns, words never cut short, `at`
+ * for a block the program lacks, and the warnings for what a run left. */
 #include "suites.h"
 #include "operator.h"
 #include "machine.h"
@@ -43,14 +44,28 @@ static const struct op_action *one(const char *text)
   return &sc.v[0];
 }
 
-static void refused(const char *text, unsigned line)
+/* Refused with FILE:LINE:COL: error: (col 0: any column). */
+static void refused_at(const char *text, size_t len, unsigned line, unsigned col, const char *msg)
 {
-  ck_assert_int_eq(parse(text), -1);
-  char want[32];
-  snprintf(want, sizeof want, "op.txt:%u: error:", line);
-  ck_assert_msg(strstr(errbuf, want) != NULL, "'%s': expected '%s' in '%s'", text, want, errbuf);
+  free(errbuf);
+  errbuf = NULL;
+  FILE *f = open_memstream(&errbuf, &errlen);
+  ck_assert_ptr_nonnull(f);
+  ops_free(&sc);
+  ck_assert_int_eq(ops_parse(text, len, "op.txt", &sc, f), -1);
+  fclose(f);
+  unsigned l = 0, c = 0;
+  ck_assert_msg(sscanf(errbuf, "op.txt:%u:%u: error: ", &l, &c) == 2, "'%s': no op.txt:LINE:COL in '%s'", text, errbuf);
+  ck_assert_msg(l == line && (!col || c == col), "'%s': expected line %u col %u in '%s'", text, line, col, errbuf);
+  if (msg)
+    ck_assert_msg(strstr(errbuf, msg) != NULL, "'%s': expected '%s' in '%s'", text, msg, errbuf);
   ck_assert_uint_eq(sc.n, 0);
   ck_assert_ptr_null(sc.v);
+}
+
+static void refused(const char *text, unsigned line)
+{
+  refused_at(text, strlen(text), line, 0, NULL);
 }
 
 START_TEST(answer_positive_and_negative)
@@ -274,6 +289,119 @@ START_TEST(reject_reports_every_bad_line)
 }
 END_TEST
 
+START_TEST(reject_columns)
+{
+  refused_at("jog Q +5", 8, 1, 5, "expected an axis");
+  refused_at("override 151", 12, 1, 10, "override takes a percentage 0..150");
+  refused_at("key PUSK now", 12, 1, 10, "unexpected text after the action");
+  refused_at("at N54 key PUSK", 15, 1, 8, "at fires at a block's start");
+  refused_at("  at 54 key EXIT", 16, 1, 6, "at needs a block");
+  refused_at("answer", 6, 1, 7, "answer needs a number");
+  refused_at("\tpress PUSK", 11, 1, 2, "unknown action 'press'");
+}
+END_TEST
+
+/* A word is never read cut short: 63 characters are read whole, 64 are
+ * an error (before, `override 000...0150` read as `override 0` and
+ * `at N000...022` fired at N2). */
+START_TEST(long_words_not_cut)
+{
+  char t[200];
+  snprintf(t, sizeof t, "override %0*d", 63, 150);          /* 60 zeros, then 150 */
+  ck_assert_int_eq(one(t)->n, 150);
+  snprintf(t, sizeof t, "override %0*d", 64, 150);
+  refused_at(t, strlen(t), 1, 10, "a word of 64 characters: at most 63");
+  snprintf(t, sizeof t, "at N%0*d key EXIT", 62, 22);       /* N and 62 digits: 63 */
+  ck_assert_int_eq(parse(t), 0);
+  ck_assert_uint_eq(sc.nat, 1);
+  ck_assert_int_eq(sc.at[0].at_number, 22);
+  snprintf(t, sizeof t, "at N%0*d key EXIT", 63, 22);
+  refused_at(t, strlen(t), 1, 4, "a word of 64 characters");
+  snprintf(t, sizeof t, "at N5#%0*d key EXIT", 60, 3);
+  ck_assert_int_eq(parse(t), 0);
+  ck_assert_uint_eq(sc.at[0].at_run, 3);
+  snprintf(t, sizeof t, "jog X -%0*d", 62, 20000);
+  ck_assert_int_eq(one(t)->n, -20000);
+  ck_assert_int_eq(one("answer 0000035")->n, 35);
+  refused_at("answer 00000035", 15, 1, 8, "at most 7 digits");   /* the field has 7 */
+  /* a long word in a comment is free text */
+  memset(t, 'x', 150);
+  t[150] = 0;
+  char line[200];
+  snprintf(line, sizeof line, "key PS ; %s", t);
+  ck_assert_int_eq(one(line)->key, KEY_PS);
+  /* a word of any length is refused, not read in pieces */
+  static char huge[100000];
+  memcpy(huge, "override ", 9);
+  memset(huge + 9, '0', sizeof huge - 13);
+  memcpy(huge + sizeof huge - 4, "150", 4);
+  refused_at(huge, strlen(huge), 1, 10, "a word of 99990 characters");
+}
+END_TEST
+
+START_TEST(nul_in_a_word)
+{
+  refused_at("key PU\0SK\n", 10, 1, 5, "a NUL byte inside a word");
+  refused_at("key PUSK\nanswer 3\0005\n", 19, 2, 8, "a NUL byte inside a word");
+  refused_at("\0", 1, 1, 1, "a NUL byte inside a word");
+  /* in a comment it changes nothing */
+  static const char c[] = "key PUSK ; a \0 in a comment\n";
+  ck_assert_int_eq(ops_parse(c, sizeof c - 1, "op.txt", &sc, stderr), 0);
+  ck_assert_uint_eq(sc.n, 1);
+}
+END_TEST
+
+START_TEST(at_block_must_exist)
+{
+  ck_assert_int_eq(parse("at N3 key EXIT\nkey PUSK\n  at N22#2 override 50\nat N999 key STOP\n"), 0);
+  unsigned char have[1000] = {0};
+  have[1] = have[3] = have[999] = 1;
+  free(errbuf);
+  errbuf = NULL;
+  FILE *f = open_memstream(&errbuf, &errlen);
+  ck_assert_int_eq(ops_check_at(&sc, have, "op.txt", f), -1);
+  fclose(f);
+  ck_assert_str_eq(errbuf, "op.txt:3:3: error: at N22: the program has no block N22, so this never fires\n");
+  have[22] = 1;
+  ck_assert_int_eq(ops_check_at(&sc, have, "op.txt", stderr), 0);
+}
+END_TEST
+
+START_TEST(unused_actions_warned)
+{
+  ck_assert_int_eq(parse("key PUSK\nanswer 5\njog X +3\nat N3#2 key EXIT\n at N4 key STOP\nat N7 override 9\n"), 0);
+  sc.at[1].fired = 1;
+  unsigned runs[1000] = {0};
+  runs[3] = 1;
+  free(errbuf);
+  errbuf = NULL;
+  FILE *f = open_memstream(&errbuf, &errlen);
+  ops_warn_unused(&sc, 1, 0, runs, "op.txt", f);
+  fclose(f);
+  ck_assert_str_eq(errbuf,
+                   "op.txt:2:1: warning: answer 5 was not used: the run ended before it\n"
+                   "op.txt:3:1: warning: jog X +3 was not used: the run ended before it\n"
+                   "op.txt:4:1: warning: at N3#2 key EXIT never fired: block N3 started only once\n"
+                   "op.txt:6:1: warning: at N7#1 override 9 never fired: block N7 never started\n");
+  /* the action already reported as not fitting a wait is not repeated */
+  free(errbuf);
+  errbuf = NULL;
+  f = open_memstream(&errbuf, &errlen);
+  sc.at[0].fired = sc.at[2].fired = 1;
+  runs[3] = 5;
+  ops_warn_unused(&sc, 1, 2, runs, "op.txt", f);
+  fclose(f);
+  ck_assert_str_eq(errbuf, "op.txt:3:1: warning: jog X +3 was not used: the run ended before it\n");
+  /* all used: nothing */
+  free(errbuf);
+  errbuf = NULL;
+  f = open_memstream(&errbuf, &errlen);
+  ops_warn_unused(&sc, 3, 0, NULL, "op.txt", f);
+  fclose(f);
+  ck_assert_str_eq(errbuf, "");
+}
+END_TEST
+
 Suite *suite_operator(void)
 {
   Suite *s = suite_create("operator");
@@ -304,6 +432,11 @@ Suite *suite_operator(void)
   tcase_add_test(tc, reject_bad_at);
   tcase_add_test(tc, reject_trailing_text);
   tcase_add_test(tc, reject_reports_every_bad_line);
+  tcase_add_test(tc, reject_columns);
+  tcase_add_test(tc, long_words_not_cut);
+  tcase_add_test(tc, nul_in_a_word);
+  tcase_add_test(tc, at_block_must_exist);
+  tcase_add_test(tc, unused_actions_warned);
   suite_add_tcase(s, tc);
   return s;
 }
