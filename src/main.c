@@ -57,6 +57,7 @@ struct opts {
   const char *program, *operator_file, *tool, *dump_images, *state, *plugins, *modbus, *out;
   int trace, json, dump, screen, restart, realtime, en;
   unsigned long long max_blocks;
+  struct mb_opts mb;         /* the Modbus server's: mb.addr is o->modbus */
 };
 
 /* Limits of the files s42 reads (README "Limits"): a program of the
@@ -122,6 +123,7 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
 {
   memset(o, 0, sizeof *o);
   o->max_blocks = 100000000ULL;
+  mb_opts_init(&o->mb);
   for (; i < argc; i++) {
     const char *a = argv[i];
     const char **val = NULL;
@@ -191,6 +193,7 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     }
     *val = argv[++i];
   }
+  o->mb.addr = o->modbus;
   /* what plugins may ask for (host->option) */
   plug_set_option("tool", o->tool);
   plug_set_option("dump-images", o->dump_images);
@@ -338,6 +341,8 @@ struct runner {
   unsigned *runs;            /* runs per block number, for `at` */
   uint8_t *watch;
   int lenient;               /* --modbus: a wait the script cannot serve waits for a client */
+  struct mb_server *mb;      /* --modbus: shown running while a key may compute (mb_publish_running) */
+  struct mb_machine *mm;
 };
 
 static void warn_sink(void *ctx, const struct session *s, const char *msg)
@@ -468,6 +473,8 @@ static int serve_wait(struct runner *r)
     }
     const struct op_action *a = &r->ops.v[r->next];
     int ok = -1;
+    if (r->mb && ops_is_waiting(a))
+      mb_publish_running(r->mb, r->mm);
     if (!ops_is_waiting(a)) {
       apply_immediate(r, a);
       ok = 0;
@@ -559,10 +566,13 @@ static void modbus_key(struct runner *r, struct both_sink *bs, int k)
         mm->motion.end = mm->motion.start + len;
         mm->motion.held = 0;
       }
+      mb_publish_running(r->mb, mm);
       sess_resume(s);
     } else if (s->state == SE_END) {
       new_cycle(r, bs);
     } else if (!moving) {
+      if (s->state == SE_WAIT)
+        mb_publish_running(r->mb, mm);   /* a tooth search may go on inside the key */
       sess_key_pusk(s);          /* a Пуск that fits no wait does nothing */
     }
     break;
@@ -576,8 +586,11 @@ static void modbus_key(struct runner *r, struct both_sink *bs, int k)
     sess_key_stop(s);
     break;
   case MB_KEY_PS:
-    if (!mm->idle && !moving)
+    if (!mm->idle && !moving) {
+      if (s->state == SE_WAIT)
+        mb_publish_running(r->mb, mm);
       sess_key_ps(s);
+    }
     break;
   case MB_KEY_EXIT:
     if (!mm->idle)
@@ -606,7 +619,10 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
   r->lenient = 1;
+  r->mb = mb;
+  r->mm = mm;
   r->s.vm.start_all = 1;        /* back to the loop at every block */
+  mb_publish(mb, mm);
   fprintf(stderr, "s42: Modbus TCP on %s%s\n", mb_address(mb),
           mm->idle ? "; the cycle starts with Пуск (coil 0)" : "");
   int told = -1;                /* the session state last reported on stderr */
@@ -628,8 +644,12 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
     }
     for (int k; (k = mb_key(mb)) != MB_KEY_NONE;)
       modbus_key(r, bs, k);
-    /* run the machine for a couple of milliseconds, or up to a paced motion */
+    mb_publish(mb, mm);
+    /* run the machine for a couple of milliseconds, or up to a paced motion;
+     * the server thread answers meanwhile from what was published (a trace
+     * that blocks or a plugin that computes stops only this loop) */
     double until = mb_now() + 0.002;
+    unsigned steps = 0;
     while (!mm->idle && !mm->motion.active && !quit_signal) {
       if (r->s.state == SE_WAIT) {
         if (r->next >= r->ops.n || serve_wait(r))
@@ -649,10 +669,12 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
           }
         }
         at_boundary(r);
+        mb_publish(mb, mm);      /* the block about to run, should it take long */
       }
-      if (mb_now() >= until)
-        break;
+      if ((++steps % 32 == 0 || ev != SE_START) && mb_now() >= until)
+        break;                   /* the clock is read every 32 blocks: it costs as much as one */
     }
+    mb_publish(mb, mm);
     if (r->s.state != told && (r->s.state == SE_END || r->s.state == SE_ERROR)) {
       const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
       if (r->s.state == SE_END)
@@ -818,7 +840,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   if (o.modbus && status == EXIT_END) {
     char err[300];
     int bad;
-    if (!(mb = mb_open(o.modbus, err, sizeof err, &bad))) {
+    if (!(mb = mb_open(&o.mb, err, sizeof err, &bad))) {
       fprintf(stderr, "s42: %s\n", err);
       status = bad ? EXIT_USAGE : EXIT_IO;
       st = "error";
@@ -829,6 +851,7 @@ static int headless(const struct opts *opt, struct plot *plot)
       bs.last_t = r.s.m.t;
       status = modbus_loop(&r, &bs, mb, state_path, prog_hash, &st);
       mb_close(mb);
+      r.mb = NULL;
     }
   }
 
@@ -994,7 +1017,7 @@ static int cmd_tui(int argc, char **argv)
   if (o.modbus) {
     char err[300];
     int addr_bad;
-    if (tui_modbus_open(o.modbus, &mb, err, sizeof err, &addr_bad)) {
+    if (tui_modbus_open(&o.mb, &mb, err, sizeof err, &addr_bad)) {
       fprintf(stderr, "s42: %s\n", err);
       return addr_bad ? EXIT_USAGE : EXIT_IO;
     }

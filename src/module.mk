@@ -21,4 +21,5 @@ LDLIBS += $(CURSES_LIBS)
 MODBUS_CFLAGS := $(shell pkg-config --cflags libmodbus 2>/dev/null)
 MODBUS_LIBS   := $(shell pkg-config --libs libmodbus 2>/dev/null || echo -lmodbus)
 $(BUILD)/src/modbus.o: MOD_CPPFLAGS := -Isrc -Ivm -Idisplay -Iinclude $(MODBUS_CFLAGS)
-LDLIBS += $(MODBUS_LIBS)
+# and answers from its own thread
+LDLIBS += $(MODBUS_LIBS) -pthread

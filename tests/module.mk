@@ -103,7 +103,7 @@ fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
 FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c src/cairo_dl.c,$(SRC_SRCS))
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRCS) $(wildcard src/*.h vm/*.h display/*.h)
 	@mkdir -p $(@D)
-	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) $(MODBUS_LIBS) -lm -ldl
+	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) $(MODBUS_LIBS) -pthread -lm -ldl
 # the tool-model parser alone (plugins/toothsearch/toolmodel.c)
 $(BUILD)/fuzz/fuzz_toolmodel: tests/fuzz/fuzz_toolmodel.c $(TS_DIR)/toolmodel.c $(TS_DIR)/toolmodel.h
 	@mkdir -p $(@D)
