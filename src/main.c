@@ -47,6 +47,8 @@ static const char usage[] =
   "  --max-blocks N     stop with E-LIMIT after N executed blocks (default 100000000)\n"
   "  --plugins DIR      where plugins are looked for (also S42_PLUGIN_PATH)\n"
   "  --modbus[=HOST:PORT] serve the machine over Modbus TCP (default 127.0.0.1:1502)\n"
+  "  --modbus-max-clients N  connections at once (default 8; a newcomer closes the longest idle)\n"
+  "  --modbus-idle SECONDS   close a connection silent that long (default 60; 0 never)\n"
   "  --realtime         pace the simulation at machine speed\n"
   "  --lang uk|en       language of machine messages (default uk)\n"
   "\n"
@@ -57,7 +59,8 @@ struct opts {
   const char *program, *operator_file, *tool, *dump_images, *state, *plugins, *modbus, *out;
   int trace, json, dump, screen, restart, realtime, en;
   unsigned long long max_blocks;
-  struct mb_opts mb;         /* the Modbus server's: mb.addr is o->modbus */
+  struct mb_opts mb;         /* --modbus-*: mb.addr is o->modbus */
+  const char *mb_opt;        /* the first --modbus-* option given (they need --modbus) */
 };
 
 /* Limits of the files s42 reads (README "Limits"): a program of the
@@ -134,6 +137,32 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     if (strcmp(a, "--screen") == 0) { o->screen = 1; continue; }
     if (strcmp(a, "--restart") == 0) { o->restart = 1; continue; }
     if (strcmp(a, "--realtime") == 0) { o->realtime = 1; continue; }
+    if (strcmp(a, "--modbus-max-clients") == 0 || strcmp(a, "--modbus-idle") == 0) {
+      if (i + 1 >= argc) {
+        fprintf(stderr, "s42: %s needs a value\n", a);
+        return -1;
+      }
+      const char *v = argv[++i];
+      o->mb_opt = o->mb_opt ? o->mb_opt : a;
+      char *end;
+      errno = 0;
+      if (a[9] == 'm') {
+        long n = strtol(v, &end, 10);
+        if (errno || *end || !*v || n < 1 || n > MB_CLIENTS_LIMIT) {
+          fprintf(stderr, "s42: --modbus-max-clients takes a whole number 1-%d, not '%s'\n", MB_CLIENTS_LIMIT, v);
+          return -1;
+        }
+        o->mb.max_clients = (int)n;
+      } else {
+        double d = strtod(v, &end);
+        if (errno || *end || !*v || !(d >= 0) || d > 1e6) {
+          fprintf(stderr, "s42: --modbus-idle takes seconds (0 for never), not '%s'\n", v);
+          return -1;
+        }
+        o->mb.idle = d;
+      }
+      continue;
+    }
     if (strncmp(a, "--modbus", 8) == 0 && (a[8] == 0 || a[8] == '=')) {
       /* --modbus=ADDR, --modbus ADDR (a word with ':' or a bare port), or alone */
       const char *v = i + 1 < argc ? argv[i + 1] : "";
@@ -192,6 +221,10 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
       return -1;
     }
     *val = argv[++i];
+  }
+  if (o->mb_opt && !o->modbus) {
+    fprintf(stderr, "s42: %s is an option of the Modbus server: it needs --modbus\n", o->mb_opt);
+    return -1;
   }
   o->mb.addr = o->modbus;
   /* what plugins may ask for (host->option) */

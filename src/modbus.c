@@ -610,6 +610,8 @@ struct mb_client {
   double since_in;     /* when the unfinished frame in `in` began */
   double since_out;    /* when the unsent reply in `out` was queued */
   double last;         /* last bytes received */
+  unsigned long serial; /* accepted as the serial-th: the older, the smaller */
+  int talked;          /* has sent a whole request */
   int eof;             /* it sent no more: answer what came, then close */
   int pend;            /* its write in mb->pend, -1 none */
   double pend_until;   /* answered 06 then, if the host has not taken it */
@@ -633,6 +635,7 @@ struct mb_server {
   /* the server thread's (or mb_step's caller's) alone */
   struct mb_client *cl;
   int ncl;
+  unsigned long accepted;   /* connections so far */
   struct pollfd *pfd;
   /* under lock */
   pthread_mutex_t lock;
@@ -907,6 +910,7 @@ static int pump(struct mb_server *mb, int i, double now)
     pthread_mutex_unlock(&mb->lock);
     if (r > 0)
       queued(c, r, now);
+    c->talked = 1;
     c->nin -= (size_t)fl;
     memmove(c->in, c->in + fl, c->nin);
     c->since_in = now;
@@ -940,6 +944,20 @@ static int settle(struct mb_server *mb, int i, double now)
   return pump(mb, i, now);       /* the requests behind it */
 }
 
+/* The connection to close for a newcomer when all are taken: one that has
+ * not sent a request yet (the oldest), else the longest silent. */
+static int victim(const struct mb_server *mb)
+{
+  int v = -1;
+  for (int i = 0; i < mb->ncl; i++) {
+    const struct mb_client *c = &mb->cl[i], *b = v >= 0 ? &mb->cl[v] : NULL;
+    if (!b || (!c->talked && b->talked) ||
+        (c->talked == b->talked && (c->talked && c->last != b->last ? c->last < b->last : c->serial < b->serial)))
+      v = i;
+  }
+  return v;
+}
+
 static void accept_all(struct mb_server *mb, double now)
 {
   for (int k = 0; k < 16; k++) {
@@ -947,10 +965,8 @@ static void accept_all(struct mb_server *mb, double now)
     modbus_set_socket(mb->ctx, -1);   /* the connection is ours, not the context's */
     if (fd < 0)
       return;                    /* EAGAIN: none left (or it went away) */
-    if (mb->ncl >= mb->max) {
-      close(fd);                 /* over the limit: refused at once */
-      continue;
-    }
+    if (mb->ncl >= mb->max)
+      drop(mb, victim(mb));
     int one = 1;
     fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
@@ -959,6 +975,7 @@ static void accept_all(struct mb_server *mb, double now)
     c->fd = fd;
     c->pend = -1;
     c->last = c->since_in = c->since_out = now;
+    c->serial = ++mb->accepted;
     pthread_mutex_lock(&mb->lock);
     mb->nclients = mb->ncl;
     pthread_mutex_unlock(&mb->lock);
@@ -1060,7 +1077,7 @@ void mb_step(struct mb_server *mb, int timeout_ms)
       drop(mb, i);               /* a truncated frame, a stuck reply, silence; all answered after a close */
   }
   if (fds[0].revents)
-    accept_all(mb, now);
+    accept_all(mb, now);         /* last: a newcomer may close the longest idle */
 }
 
 static void *server_main(void *arg)

@@ -15,9 +15,9 @@ struct session;
 
 #define MB_MAP_VERSION 0x0100
 #define MB_DEFAULT_ADDR "127.0.0.1:1502"
-#define MB_DEFAULT_CLIENTS 8  /* connections at once */
-#define MB_CLIENTS_LIMIT 256
-#define MB_DEFAULT_IDLE 60.0  /* s without a request before a connection is closed */
+#define MB_DEFAULT_CLIENTS 8  /* connections at once (--modbus-max-clients) */
+#define MB_CLIENTS_LIMIT 256  /* the most --modbus-max-clients takes */
+#define MB_DEFAULT_IDLE 60.0  /* s without a request before a connection is closed (--modbus-idle) */
 #define MB_FRAME_MAX 260      /* MBAP header (7) + the largest PDU (253) */
 #define MB_NREG 114           /* R0-R113 */
 
@@ -84,7 +84,7 @@ struct mb_machine {
 
 struct mb_opts {
   const char *addr;      /* "HOST:PORT", "[V6]:PORT", ":PORT" or "PORT" (host 127.0.0.1); NULL or "": MB_DEFAULT_ADDR */
-  int max_clients;       /* 1..MB_CLIENTS_LIMIT; more are accepted and closed at once */
+  int max_clients;       /* 1..MB_CLIENTS_LIMIT; a new client when all are taken closes the longest idle */
   double idle;           /* s without a request before a connection is closed; 0: never */
   /* for test harnesses */
   int no_thread;         /* no server thread: the caller runs mb_step */

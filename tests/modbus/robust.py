@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
 """The Modbus server under load it must survive (README "Modbus TCP",
-contracts.md sec. 6): pipelined requests, a machine whose stdout nobody
-reads, a tooth search that computes for seconds.  Every wait has a limit; a
+contracts.md sec. 6): pipelined requests, full slots, idle connections, a
+machine whose stdout nobody reads, a tooth search that computes for
+seconds.  Every wait has a limit; a
 round trip over 150 ms fails.
 
   robust.py pipeline PORT               (s42 run loop.kp --modbus, idle)
+  robust.py slots PORT MAX              (--modbus-max-clients MAX)
+  robust.py idle PORT SECONDS           (--modbus-idle SECONDS)
   robust.py probe PORT SECONDS          (round trips of a running server)
   robust.py tuisearch PORT              (s42 tui endmill_search.kp with a big tool: Пуск, Пуск, the search)
   robust.py stall S42 PROGRAM           (starts s42 itself: --trace=json into a pipe nobody reads)
@@ -77,6 +80,21 @@ def recv_frames(s, count, timeout=2.0):
             out.append(buf[:n])
             buf = buf[n:]
     return out, closed
+
+
+def closed_soon(s, wait):
+    """Whether the server closes s within `wait` seconds."""
+    s.settimeout(0.05)
+    end = time.monotonic() + wait
+    while time.monotonic() < end:
+        try:
+            if s.recv(300) == b"":
+                return True
+        except socket.timeout:
+            pass
+        except (ConnectionResetError, OSError):
+            return True
+    return False
 
 
 def rt(s, pdu):
@@ -153,6 +171,54 @@ def pipeline(port):
     got, closed = recv_frames(s, 21, 3.0)
     check(len(got) == 20 and closed, "half close: %d of 20 answered, closed %s" % (len(got), closed))
     s.close()
+
+
+def slots(port, most):
+    # a client that talks, then the other slots filled with silent sockets
+    active = connect(port)
+    r, _ = rt(active, read_ir(0, 1))
+    check(r is not None, "slots: the first client")
+    silent = [connect(port) for _ in range(most - 1)]
+    time.sleep(0.2)
+    # a newcomer is served at once, and one silent socket (the oldest) goes
+    for k in range(3):
+        s = connect(port)
+        r, ms = rt(s, read_ir(0, 1))
+        check(r is not None and ms <= LIMIT_MS, "slots full: newcomer %d got %r after %.0f ms" % (k, r, ms))
+        check(closed_soon(silent[k], 1.0), "slots full: the oldest silent socket %d was not closed" % k)
+        silent.append(s)   # it has talked now
+        r, ms = rt(active, read_ir(0, 1))
+        check(r is not None, "slots full: the client that talks was closed for newcomer %d" % k)
+    # everyone has talked: the newcomer closes the one silent longest
+    for c in silent[3:]:
+        rt(c, read_ir(0, 1))
+    time.sleep(0.1)
+    for c in silent[3:]:
+        rt(c, read_ir(0, 1))
+    s = connect(port)
+    r, ms = rt(s, read_ir(0, 1))
+    check(r is not None and ms <= LIMIT_MS, "all talked: the newcomer got %r after %.0f ms" % (r, ms))
+    check(closed_soon(active, 1.0), "all talked: the longest silent client was not closed")
+    for c in silent + [s, active]:
+        c.close()
+
+
+def idle(port, seconds):
+    quiet = connect(port)
+    busy = connect(port)
+    t0 = time.monotonic()
+    closed_at = None
+    busy_ok = True
+    while time.monotonic() - t0 < seconds * 2 + 1 and busy_ok:
+        r, _ = rt(busy, read_ir(0, 1))
+        busy_ok = r is not None
+        if closed_at is None and closed_soon(quiet, seconds / 4):
+            closed_at = time.monotonic() - t0
+    check(busy_ok, "idle: the client that kept asking was closed")
+    check(closed_at is not None and seconds - 0.1 <= closed_at <= seconds + 0.6,
+          "idle: a silent connection closed after %s s, expected %g" % (closed_at, seconds))
+    busy.close()
+    quiet.close()
 
 
 def free_port():
@@ -320,6 +386,10 @@ def main():
     what = sys.argv[1]
     if what == "pipeline":
         pipeline(int(sys.argv[2]))
+    elif what == "slots":
+        slots(int(sys.argv[2]), int(sys.argv[3]))
+    elif what == "idle":
+        idle(int(sys.argv[2]), float(sys.argv[3]))
     elif what == "probe":
         probe(int(sys.argv[2]), float(sys.argv[3]), "probe")
     elif what == "tuisearch":

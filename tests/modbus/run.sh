@@ -89,13 +89,32 @@ if start "$dir/loop.kp" --realtime; then
   [ "$STATUS" = 3 ] && ok || fail "SIGTERM before Пуск: status $STATUS, expected 3"
 fi
 
-# 3. robustness (tests/modbus/robust.py): pipelined requests, a machine
-# whose stdout nobody reads, a tooth search that computes for seconds
+# 3. robustness (tests/modbus/robust.py): pipelined requests, full slots,
+# idle connections, a machine whose stdout nobody reads, a tooth search that
+# computes for seconds
 rb() { timeout 120 "$py" "$dir/robust.py" "$@"; }
 if start "$dir/loop.kp"; then
   rb pipeline "$PORT" && ok || fail "pipelined requests"
   stop
 fi
+if start "$dir/loop.kp"; then
+  rb slots "$PORT" 8 && ok || fail "8 slots full"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-max-clients 3; then
+  rb slots "$PORT" 3 && ok || fail "--modbus-max-clients 3"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-idle 0.6; then
+  rb idle "$PORT" 0.6 && ok || fail "--modbus-idle 0.6"
+  stop
+fi
+for bad in "--modbus-idle 1" "--modbus --modbus-max-clients 0" "--modbus --modbus-max-clients 257" \
+           "--modbus --modbus-idle -1" "--modbus --modbus-idle x"; do
+  # shellcheck disable=SC2086
+  timeout 10 "$s42" run "$dir/loop.kp" $bad 2>"$tmp/e" </dev/null; st=$?
+  [ $st = 2 ] && [ -s "$tmp/e" ] && ok || fail "$bad: status $st, expected 2: $(cat "$tmp/e")"
+done
 rb stall "$s42" "$dir/loop.kp" && ok || fail "a trace into a pipe nobody reads stalled the server"
 sed 's/^image .*/image    = 4096/' programs/endmill_search.tool >"$tmp/big.tool"
 rb search "$s42" programs/endmill_search.kp --tool "$tmp/big.tool" --operator programs/endmill_search.operator \
