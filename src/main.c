@@ -47,6 +47,8 @@ static const char usage[] =
   "  --max-blocks N     stop with E-LIMIT after N executed blocks (default 100000000)\n"
   "  --plugins DIR      where plugins are looked for (also S42_PLUGIN_PATH)\n"
   "  --modbus[=HOST:PORT] serve the machine over Modbus TCP (default 127.0.0.1:1502)\n"
+  "  --modbus-allow ADDR[/BITS],...  serve only these clients (IPv4 or IPv6)\n"
+  "  --modbus-read-only refuse every write (exception 01): clients only watch\n"
   "  --modbus-max-clients N  connections at once (default 8; a newcomer closes the longest idle)\n"
   "  --modbus-idle SECONDS   close a connection silent that long (default 60; 0 never)\n"
   "  --realtime         pace the simulation at machine speed\n"
@@ -137,7 +139,13 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     if (strcmp(a, "--screen") == 0) { o->screen = 1; continue; }
     if (strcmp(a, "--restart") == 0) { o->restart = 1; continue; }
     if (strcmp(a, "--realtime") == 0) { o->realtime = 1; continue; }
-    if (strcmp(a, "--modbus-max-clients") == 0 || strcmp(a, "--modbus-idle") == 0) {
+    if (strcmp(a, "--modbus-read-only") == 0) {
+      o->mb.read_only = 1;
+      o->mb_opt = o->mb_opt ? o->mb_opt : a;
+      continue;
+    }
+    if (strcmp(a, "--modbus-allow") == 0 || strcmp(a, "--modbus-max-clients") == 0 ||
+        strcmp(a, "--modbus-idle") == 0) {
       if (i + 1 >= argc) {
         fprintf(stderr, "s42: %s needs a value\n", a);
         return -1;
@@ -146,7 +154,9 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
       o->mb_opt = o->mb_opt ? o->mb_opt : a;
       char *end;
       errno = 0;
-      if (a[9] == 'm') {
+      if (a[9] == 'a') {
+        o->mb.allow = v;       /* checked when the server opens */
+      } else if (a[9] == 'm') {
         long n = strtol(v, &end, 10);
         if (errno || *end || !*v || n < 1 || n > MB_CLIENTS_LIMIT) {
           fprintf(stderr, "s42: --modbus-max-clients takes a whole number 1-%d, not '%s'\n", MB_CLIENTS_LIMIT, v);
@@ -878,6 +888,8 @@ static int headless(const struct opts *opt, struct plot *plot)
       status = bad ? EXIT_USAGE : EXIT_IO;
       st = "error";
     } else {
+      if (*mb_warning(mb))
+        fprintf(stderr, "s42: warning: %s\n", mb_warning(mb));
       mm.s = &r.s;
       mm.idle = !o.operator_file;
       bs.mm = &mm;

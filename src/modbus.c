@@ -22,6 +22,7 @@
  * several error paths of modbus_reply. */
 #include "modbus.h"
 #include "session.h"
+#include <arpa/inet.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -46,6 +47,7 @@
 #define HEARTBEAT 0.25         /* s: an update at least this often (alive toggles) */
 #define FRAME_TIMEOUT 0.25     /* s: a frame once begun must be complete by then */
 #define SEND_TIMEOUT 2.0       /* s: a reply the client does not take */
+#define MAX_ALLOW 64           /* entries of --modbus-allow */
 #define DEFER (-1)             /* write_regs: the host decides */
 
 enum { EX_FUNC = 1, EX_ADDR = 2, EX_VALUE = 3, EX_BUSY = 6, EX_GATEWAY = 0x0B };
@@ -398,12 +400,20 @@ static int write_regs(struct mb_dev *d, unsigned a, unsigned q, const uint8_t *v
   return DEFER;
 }
 
+static int is_write(unsigned fc)
+{
+  return fc == MODBUS_FC_WRITE_SINGLE_COIL || fc == MODBUS_FC_WRITE_SINGLE_REGISTER ||
+         fc == MODBUS_FC_WRITE_MULTIPLE_COILS || fc == MODBUS_FC_WRITE_MULTIPLE_REGISTERS;
+}
+
 /* One request's PDU; the reply PDU goes to out.  Returns 0, an exception
  * or DEFER. */
 static int handle(struct mb_dev *d, const uint8_t *pdu, size_t pl, uint8_t *out, size_t *ol, double now)
 {
   unsigned fc = pdu[0];
   unsigned a = pl >= 5 ? be16(pdu + 1) : 0, q = pl >= 5 ? be16(pdu + 3) : 0;
+  if (d->read_only && is_write(fc))
+    return EX_FUNC;              /* --modbus-read-only: no writes at all */
   mb_dev_refresh(d, now);        /* every read of this request sees one image */
   switch (fc) {
   case MODBUS_FC_READ_COILS:
@@ -549,6 +559,103 @@ int mb_dev_apply(struct mb_dev *d, struct mb_machine *m, const struct mb_write *
   return 0;
 }
 
+/* ---- allow lists ---- */
+
+int mb_allow_parse(const char *s, struct mb_net *v, int max, char *err, size_t n)
+{
+  int nv = 0;
+  const char *p = s;
+  for (;;) {
+    size_t l = strcspn(p, ",");
+    char item[80], *slash;
+    if (!l || l >= sizeof item) {
+      snprintf(err, n, "--modbus-allow: '%.*s' in '%s' is not ADDRESS[/BITS]", (int)(l < 60 ? l : 60), p, s);
+      return -1;
+    }
+    if (nv >= max) {
+      snprintf(err, n, "--modbus-allow: more than %d entries", max);
+      return -1;
+    }
+    memcpy(item, p, l);
+    item[l] = 0;
+    struct mb_net *e = &v[nv];
+    memset(e, 0, sizeof *e);
+    int maxbits = 32;
+    if ((slash = strchr(item, '/')) != NULL)
+      *slash = 0;
+    if (inet_pton(AF_INET, item, e->a) == 1) {
+      e->family = AF_INET;
+    } else if (inet_pton(AF_INET6, item, e->a) == 1) {
+      e->family = AF_INET6;
+      maxbits = 128;
+    } else {
+      snprintf(err, n, "--modbus-allow: '%s' is not an IPv4 or IPv6 address", item);
+      return -1;
+    }
+    e->bits = maxbits;
+    if (slash) {
+      const char *b = slash + 1;
+      size_t bl = strlen(b);
+      if (!bl || bl > 3 || strspn(b, "0123456789") != bl || atoi(b) > maxbits) {
+        snprintf(err, n, "--modbus-allow: '/%s' after %s is not a prefix length 0-%d", b, item, maxbits);
+        return -1;
+      }
+      e->bits = atoi(b);
+    }
+    nv++;
+    p += l;
+    if (!*p)
+      return nv;
+    p++;
+  }
+}
+
+static int prefix_eq(const uint8_t *a, const uint8_t *b, int bits)
+{
+  int full = bits / 8, rest = bits % 8;
+  if (memcmp(a, b, (size_t)full))
+    return 0;
+  if (!rest)
+    return 1;
+  uint8_t mask = (uint8_t)(0xFF << (8 - rest));
+  return (a[full] & mask) == (b[full] & mask);
+}
+
+int mb_allow_match(const struct mb_net *v, int nv, const void *sa)
+{
+  const struct sockaddr *s = sa;
+  const uint8_t *a;
+  int fam = s->sa_family;
+  if (fam == AF_INET) {
+    a = (const uint8_t *)&((const struct sockaddr_in *)sa)->sin_addr;
+  } else if (fam == AF_INET6) {
+    const struct in6_addr *a6 = &((const struct sockaddr_in6 *)sa)->sin6_addr;
+    a = (const uint8_t *)a6;
+    if (IN6_IS_ADDR_V4MAPPED(a6)) {
+      fam = AF_INET;               /* an IPv4 client of a dual-stack socket */
+      a += 12;
+    }
+  } else {
+    return 0;
+  }
+  for (int i = 0; i < nv; i++)
+    if (v[i].family == fam && prefix_eq(a, v[i].a, v[i].bits))
+      return 1;
+  return 0;
+}
+
+/* A loopback address (127/8, ::1, ::ffff:127/104). */
+static int loopback(const struct sockaddr *s)
+{
+  if (s->sa_family == AF_INET)
+    return ((const uint8_t *)&((const struct sockaddr_in *)s)->sin_addr)[0] == 127;
+  if (s->sa_family == AF_INET6) {
+    const struct in6_addr *a6 = &((const struct sockaddr_in6 *)s)->sin6_addr;
+    return IN6_IS_ADDR_LOOPBACK(a6) || (IN6_IS_ADDR_V4MAPPED(a6) && a6->s6_addr[12] == 127);
+  }
+  return 0;
+}
+
 /* Split "HOST:PORT" / "[V6]:PORT" / ":PORT" / "PORT". */
 static int split_addr(const char *s, char *host, size_t hn, char *port, size_t pn, char *err, size_t en)
 {
@@ -626,8 +733,11 @@ struct mb_server {
   int lfd;
   int max;
   double idle;
+  struct mb_net allow[MAX_ALLOW];
+  int nallow;
   double (*clock)(void);
   char addr[96];
+  char warning[300];
   int to_host[2];           /* server -> host: a key or a write waits */
   int to_srv[2];            /* host -> server: a write was applied; stop */
   pthread_t thread;
@@ -715,6 +825,10 @@ struct mb_server *mb_open(const struct mb_opts *o, char *err, size_t n, int *usa
     snprintf(err, n, "--modbus-idle: %g is not a number of seconds", o->idle);
     return NULL;
   }
+  struct mb_net allow[MAX_ALLOW];
+  int nallow = 0;
+  if (o->allow && (nallow = mb_allow_parse(o->allow, allow, MAX_ALLOW, err, n)) < 0)
+    return NULL;
   struct addrinfo hints, *ai = NULL;
   memset(&hints, 0, sizeof hints);
   hints.ai_family = AF_UNSPEC;
@@ -737,6 +851,8 @@ struct mb_server *mb_open(const struct mb_opts *o, char *err, size_t n, int *usa
   pthread_mutex_init(&mb->lock, NULL);
   mb->max = o->max_clients;
   mb->idle = o->idle;
+  memcpy(mb->allow, allow, sizeof allow);
+  mb->nallow = nallow;
   mb->clock = o->clock ? o->clock : mb_now;
   mb->cl = calloc((size_t)mb->max, sizeof *mb->cl);
   mb->pfd = calloc((size_t)mb->max + 2, sizeof *mb->pfd);
@@ -766,11 +882,18 @@ struct mb_server *mb_open(const struct mb_opts *o, char *err, size_t n, int *usa
   socklen_t sl = sizeof ss;
   char h[80], sv[8];
   if (getsockname(mb->lfd, (struct sockaddr *)&ss, &sl) == 0 &&
-      getnameinfo((struct sockaddr *)&ss, sl, h, sizeof h, sv, sizeof sv, NI_NUMERICHOST | NI_NUMERICSERV) == 0)
+      getnameinfo((struct sockaddr *)&ss, sl, h, sizeof h, sv, sizeof sv, NI_NUMERICHOST | NI_NUMERICSERV) == 0) {
     snprintf(mb->addr, sizeof mb->addr, ss.ss_family == AF_INET6 ? "[%s]:%s" : "%s:%s", h, sv);
-  else
+    if (!nallow && !loopback((struct sockaddr *)&ss))
+      snprintf(mb->warning, sizeof mb->warning,
+               "Modbus on %s: not a loopback address, and no --modbus-allow: any host that reaches it can %s",
+               mb->addr, o->read_only ? "read the machine's state" :
+               "start and stop the cycle, set the feed override and write R0-R113");
+  } else {
     snprintf(mb->addr, sizeof mb->addr, "%s:%s", host, port);
+  }
   mb_dev_init(&mb->dev);
+  mb->dev.read_only = o->read_only;
   if (!o->no_thread) {
     /* the thread takes no signals: SIGINT, SIGTERM, SIGWINCH stay the host's */
     sigset_t all, old;
@@ -820,6 +943,11 @@ void mb_close(struct mb_server *mb)
 const char *mb_address(const struct mb_server *mb)
 {
   return mb->addr;
+}
+
+const char *mb_warning(const struct mb_server *mb)
+{
+  return mb->warning;
 }
 
 int mb_clients(struct mb_server *mb)
@@ -965,6 +1093,14 @@ static void accept_all(struct mb_server *mb, double now)
     modbus_set_socket(mb->ctx, -1);   /* the connection is ours, not the context's */
     if (fd < 0)
       return;                    /* EAGAIN: none left (or it went away) */
+    if (mb->nallow) {
+      struct sockaddr_storage ss;
+      socklen_t sl = sizeof ss;
+      if (getpeername(fd, (struct sockaddr *)&ss, &sl) || !mb_allow_match(mb->allow, mb->nallow, &ss)) {
+        close(fd);               /* not on --modbus-allow */
+        continue;
+      }
+    }
     if (mb->ncl >= mb->max)
       drop(mb, victim(mb));
     int one = 1;

@@ -64,7 +64,8 @@ struct mb_machine {
  *   char err[300]; int usage;
  *   struct mb_server *mb = mb_open(&o, err, sizeof err, &usage);
  *   if (!mb) { fprintf(stderr, "s42: %s\n", err); exit(usage ? 2 : 4); }
- *  *   for (;;) {
+ *   if (*mb_warning(mb)) fprintf(stderr, "s42: warning: %s\n", mb_warning(mb));
+ *   for (;;) {
  *     mb_poll(mb, &machine, busy ? 0 : 100);   // or poll mb_fd yourself, then mb_sync
  *     for (int k; (k = mb_key(mb)) != MB_KEY_NONE; ) press(k);
  *     step the machine a little;
@@ -86,6 +87,8 @@ struct mb_opts {
   const char *addr;      /* "HOST:PORT", "[V6]:PORT", ":PORT" or "PORT" (host 127.0.0.1); NULL or "": MB_DEFAULT_ADDR */
   int max_clients;       /* 1..MB_CLIENTS_LIMIT; a new client when all are taken closes the longest idle */
   double idle;           /* s without a request before a connection is closed; 0: never */
+  int read_only;         /* every write (coils, holding registers) gets exception 01 */
+  const char *allow;     /* "ADDR[/BITS],..." IPv4 or IPv6: only these clients; NULL: any */
   /* for test harnesses */
   int no_thread;         /* no server thread: the caller runs mb_step */
   double (*clock)(void); /* NULL: mb_now */
@@ -96,13 +99,16 @@ void mb_opts_init(struct mb_opts *o);
 struct mb_server;
 
 /* Listen and start the server thread.  Ignores SIGPIPE.  On failure returns
- * NULL with a message in err and *usage set when the address is bad (exit
- * 2) rather than a system error such as a port in use (exit 4). */
+ * NULL with a message in err and *usage set when the address or the allow
+ * list is bad (exit 2) rather than a system error such as a port in use
+ * (exit 4). */
 struct mb_server *mb_open(const struct mb_opts *o, char *err, size_t n, int *usage);
 /* Stop the thread, close every connection. */
 void mb_close(struct mb_server *mb);
 /* "HOST:PORT" as listened on, for messages. */
 const char *mb_address(const struct mb_server *mb);
+/* "" or why the address is exposed (a non-loopback address and no allow list). */
+const char *mb_warning(const struct mb_server *mb);
 
 /* The host's side, all on one thread. */
 /* Readable when a key or a write waits for the host (then mb_sync). */
@@ -165,6 +171,7 @@ struct mb_dev {
   double last_update;    /* time of the last update (heartbeat) */
   uint8_t keys[MB_KEYQ]; /* pressed, not yet taken */
   unsigned khead, nkeys;
+  int read_only;
   struct mb_write w;     /* the write mb_dev_request left to the host */
 };
 
@@ -194,6 +201,14 @@ void mb_motion_start(struct mb_machine *m, double start, double dur, const int64
 int mb_run_state(const struct mb_machine *m, double now);
 /* CLOCK_MONOTONIC in seconds. */
 double mb_now(void);
+
+/* ---- allow lists ---- */
+struct mb_net { int family; uint8_t a[16]; int bits; };
+/* Parse "ADDR[/BITS],..." into at most max entries: the count, or -1 with
+ * a message in err. */
+int mb_allow_parse(const char *s, struct mb_net *v, int max, char *err, size_t n);
+/* Whether the socket address (IPv4, IPv6, IPv4-mapped IPv6) is on the list. */
+int mb_allow_match(const struct mb_net *v, int nv, const void *sockaddr);
 
 /* ---- multi-register values, high word first (ABCD) ---- */
 void mb_put_u32(uint16_t w[2], uint32_t v);

@@ -29,10 +29,14 @@ static void mirror(struct tui_mb *x, struct tui *t)
 {
   x->t = t;
   if (!x->told) {
-    char m[160];
+    char m[400];
     snprintf(m, sizeof m, "Modbus TCP on %s: a client's Пуск, Стоп, ПС, cycle exit and reset are the panel's",
              mb_address(x->mb));
     tui_say(t, m);
+    if (*mb_warning(x->mb)) {
+      snprintf(m, sizeof m, "warning: %s", mb_warning(x->mb));
+      tui_say(t, m);
+    }
     x->told = 1;
   }
   const struct session *s = tui_session(t);
@@ -106,6 +110,8 @@ int tui_modbus_open(const struct mb_opts *o, struct tui_source *src, char *err, 
     free(x);
     return -1;
   }
+  if (*mb_warning(x->mb))
+    fprintf(stderr, "s42: warning: %s\n", mb_warning(x->mb));
   x->mm.set_override = set_override;
   x->mm.host = x;
   x->mm.idle = 1;

@@ -78,6 +78,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     m.motion.block = 1;
   }
   mb_dev_init(dev);
+  dev->read_only = (data[0] >> 3) & 1;
   data++;
   size--;
   uint8_t rsp[MB_FRAME_MAX];

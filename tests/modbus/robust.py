@@ -2,12 +2,14 @@
 """The Modbus server under load it must survive (README "Modbus TCP",
 contracts.md sec. 6): pipelined requests, full slots, idle connections, a
 machine whose stdout nobody reads, a tooth search that computes for
-seconds.  Every wait has a limit; a
+seconds, read-only and allow-listed servers.  Every wait has a limit; a
 round trip over 150 ms fails.
 
   robust.py pipeline PORT               (s42 run loop.kp --modbus, idle)
   robust.py slots PORT MAX              (--modbus-max-clients MAX)
   robust.py idle PORT SECONDS           (--modbus-idle SECONDS)
+  robust.py readonly PORT               (--modbus-read-only)
+  robust.py refused PORT                (--modbus-allow without 127.0.0.1)
   robust.py probe PORT SECONDS          (round trips of a running server)
   robust.py tuisearch PORT              (s42 tui endmill_search.kp with a big tool: Пуск, Пуск, the search)
   robust.py stall S42 PROGRAM           (starts s42 itself: --trace=json into a pipe nobody reads)
@@ -221,6 +223,30 @@ def idle(port, seconds):
     quiet.close()
 
 
+def readonly(port):
+    s = connect(port)
+    writes = [("coil", struct.pack(">BHH", 5, 0, 0xFF00)), ("register", struct.pack(">BHH", 6, 0, 50)),
+              ("coils", struct.pack(">BHHBB", 15, 0, 1, 1, 1)),
+              ("registers", struct.pack(">BHHB", 16, 104, 4, 8) + struct.pack(">d", 1.0)),
+              ("bad coil", struct.pack(">BHH", 5, 9, 0x1234))]
+    for name, pdu in writes:
+        r, _ = rt(s, pdu)
+        check(r is not None and r[7] == pdu[0] | 0x80 and r[8] == 1, "read-only: %s write got %r" % (name, r))
+    r, _ = rt(s, read_ir(0, 22))
+    check(r is not None and r[7] == 4 and regs(r)[0] == 0x0100, "read-only: a read got %r" % r)
+    r, _ = rt(s, struct.pack(">BHH", 1, 0, 5))
+    check(r is not None and r[7] == 1 and r[9] == 0, "read-only: the coils read %r" % r)
+    s.close()
+
+
+def refused(port):
+    s = connect(port)
+    s.sendall(frame(read_ir(0, 1)))
+    got, closed = recv_frames(s, 1, 1.0)
+    check(not got and closed, "allow list: a client not on it got %r, closed %s" % (got, closed))
+    s.close()
+
+
 def free_port():
     s = socket.socket()
     s.bind(("127.0.0.1", 0))
@@ -390,6 +416,10 @@ def main():
         slots(int(sys.argv[2]), int(sys.argv[3]))
     elif what == "idle":
         idle(int(sys.argv[2]), float(sys.argv[3]))
+    elif what == "readonly":
+        readonly(int(sys.argv[2]))
+    elif what == "refused":
+        refused(int(sys.argv[2]))
     elif what == "probe":
         probe(int(sys.argv[2]), float(sys.argv[3]), "probe")
     elif what == "tuisearch":

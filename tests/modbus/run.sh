@@ -90,8 +90,8 @@ if start "$dir/loop.kp" --realtime; then
 fi
 
 # 3. robustness (tests/modbus/robust.py): pipelined requests, full slots,
-# idle connections, a machine whose stdout nobody reads, a tooth search that
-# computes for seconds
+# idle connections, read-only and allow-listed servers, a machine whose
+# stdout nobody reads, a tooth search that computes for seconds
 rb() { timeout 120 "$py" "$dir/robust.py" "$@"; }
 if start "$dir/loop.kp"; then
   rb pipeline "$PORT" && ok || fail "pipelined requests"
@@ -109,12 +109,31 @@ if start "$dir/loop.kp" --modbus-idle 0.6; then
   rb idle "$PORT" 0.6 && ok || fail "--modbus-idle 0.6"
   stop
 fi
+if start "$dir/loop.kp" --modbus-read-only; then
+  rb readonly "$PORT" && ok || fail "--modbus-read-only"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-allow 10.1.0.0/16,::2; then
+  rb refused "$PORT" && ok || fail "--modbus-allow without loopback"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-allow 192.168.0.0/16,127.0.0.0/8; then
+  rb probe "$PORT" 0.3 >/dev/null && ok || fail "--modbus-allow 127.0.0.0/8 refused loopback"
+  grep -q "warning" "$tmp/err" && fail "a warning on a loopback address: $(cat "$tmp/err")" || ok
+  stop
+fi
 for bad in "--modbus-idle 1" "--modbus --modbus-max-clients 0" "--modbus --modbus-max-clients 257" \
-           "--modbus --modbus-idle -1" "--modbus --modbus-idle x"; do
+           "--modbus --modbus-idle -1" "--modbus --modbus-idle x" "--modbus-read-only" \
+           "--modbus --modbus-allow 300.1.1.1" "--modbus --modbus-allow 10.0.0.0/33" "--modbus --modbus-allow 10.0.0.1,"; do
   # shellcheck disable=SC2086
   timeout 10 "$s42" run "$dir/loop.kp" $bad 2>"$tmp/e" </dev/null; st=$?
   [ $st = 2 ] && [ -s "$tmp/e" ] && ok || fail "$bad: status $st, expected 2: $(cat "$tmp/e")"
 done
+# a server on every interface without an allow list says so (read-only, briefly)
+P2=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
+timeout 1 "$s42" run "$dir/loop.kp" --modbus "0.0.0.0:$P2" --modbus-read-only 2>"$tmp/e"
+grep -q "warning: Modbus on 0.0.0.0:$P2: not a loopback address" "$tmp/e" || grep -q "in use" "$tmp/e" && ok ||
+  fail "no warning on 0.0.0.0 without --modbus-allow: $(cat "$tmp/e")"
 rb stall "$s42" "$dir/loop.kp" && ok || fail "a trace into a pipe nobody reads stalled the server"
 sed 's/^image .*/image    = 4096/' programs/endmill_search.tool >"$tmp/big.tool"
 rb search "$s42" programs/endmill_search.kp --tool "$tmp/big.tool" --operator programs/endmill_search.operator \

@@ -1,7 +1,7 @@
 /* The Modbus device without sockets (src/modbus.h): golden words of our
  * big-endian encoders, MBAP framing, and requests against a session --
- * reads, key presses, parameter writes, the exceptions, the counter; and
- * the threaded server over loopback, its host played here: a
+ * reads, key presses, parameter writes, the exceptions, the counter; allow
+ * lists; and the threaded server over loopback, its host played here: a
  * write waits for the host's thread and is decided with the machine's real
  * state, a read after it sees the value. */
 #include "suites.h"
@@ -302,6 +302,25 @@ START_TEST(positions_between_blocks)
 }
 END_TEST
 
+START_TEST(read_only_device)
+{
+  mm.idle = 1;
+  dev.read_only = 1;
+  static const uint8_t coil[] = {5, 0, 0, 0xFF, 0}, ovr[] = {6, 0, 0, 0, 50}, coils[] = {15, 0, 0, 0, 1, 1, 1},
+                       r1[] = {16, 0, 104, 0, 4, 8, 0x40, 0x10, 0, 0, 0, 0, 0, 0}, bad[] = {5, 0, 9, 0x12, 0x34},
+                       rd[] = {4, 0, 0, 0, 1};
+  ck_assert_int_eq(exception(coil, sizeof coil), 1);
+  ck_assert_int_eq(exception(ovr, sizeof ovr), 1);
+  ck_assert_int_eq(exception(coils, sizeof coils), 1);
+  ck_assert_int_eq(exception(r1, sizeof r1), 1);
+  ck_assert_int_eq(exception(bad, sizeof bad), 1);   /* any write, even a malformed one */
+  ck_assert(s->vm.reg[1] == 0);
+  ck_assert_int_eq(mb_dev_key(&dev), MB_KEY_NONE);
+  ck_assert_int_eq(req(rd, sizeof rd, 1.0), 4);
+  ck_assert_uint_eq(reg(0), MB_MAP_VERSION);
+}
+END_TEST
+
 static struct sockaddr_in v4(const char *a)
 {
   struct sockaddr_in sa;
@@ -310,6 +329,48 @@ static struct sockaddr_in v4(const char *a)
   ck_assert_int_eq(inet_pton(AF_INET, a, &sa.sin_addr), 1);
   return sa;
 }
+
+static struct sockaddr_in6 v6(const char *a)
+{
+  struct sockaddr_in6 sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sin6_family = AF_INET6;
+  ck_assert_int_eq(inet_pton(AF_INET6, a, &sa.sin6_addr), 1);
+  return sa;
+}
+
+START_TEST(allow_lists)
+{
+  struct mb_net v[8];
+  char err[200];
+  int n = mb_allow_parse("192.168.10.0/24,10.0.0.7,fd00::/8,::1", v, 8, err, sizeof err);
+  ck_assert_int_eq(n, 4);
+  struct sockaddr_in a;
+  struct sockaddr_in6 b;
+  a = v4("192.168.10.77"), ck_assert(mb_allow_match(v, n, &a));
+  a = v4("192.168.11.1"), ck_assert(!mb_allow_match(v, n, &a));
+  a = v4("10.0.0.7"), ck_assert(mb_allow_match(v, n, &a));
+  a = v4("10.0.0.8"), ck_assert(!mb_allow_match(v, n, &a));
+  b = v6("fd12:3456::1"), ck_assert(mb_allow_match(v, n, &b));
+  b = v6("fe80::1"), ck_assert(!mb_allow_match(v, n, &b));
+  b = v6("::1"), ck_assert(mb_allow_match(v, n, &b));
+  b = v6("::ffff:192.168.10.5"), ck_assert(mb_allow_match(v, n, &b));   /* IPv4 on a dual-stack socket */
+  b = v6("::ffff:127.0.0.1"), ck_assert(!mb_allow_match(v, n, &b));
+  ck_assert_int_eq(mb_allow_parse("10.1.2.3/12", v, 8, err, sizeof err), 1);   /* host bits are ignored */
+  a = v4("10.15.0.1"), ck_assert(mb_allow_match(v, 1, &a));
+  a = v4("10.16.0.1"), ck_assert(!mb_allow_match(v, 1, &a));
+  ck_assert_int_eq(mb_allow_parse("0.0.0.0/0", v, 8, err, sizeof err), 1);
+  a = v4("203.0.113.9"), ck_assert(mb_allow_match(v, 1, &a));
+  static const char *const bad[] = {"", ",", "10.0.0.1,", "10.0.0.0/33", "::/129", "10.0.0.0/", "10.0.0.0/x",
+                                    "300.1.1.1", "host.example", "10.0.0.1 ,10.0.0.2", "1.2.3.4/-1"};
+  for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+    err[0] = 0;
+    ck_assert_msg(mb_allow_parse(bad[i], v, 8, err, sizeof err) < 0, "'%s' was taken", bad[i]);
+    ck_assert_msg(strstr(err, "--modbus-allow") != NULL, "'%s': %s", bad[i], err);
+  }
+  ck_assert_int_eq(mb_allow_parse("1.1.1.1,2.2.2.2,3.3.3.3", v, 2, err, sizeof err), -1);
+}
+END_TEST
 
 /* ---- the threaded server over loopback; this test is its host ---- */
 
@@ -326,6 +387,7 @@ static void srv_setup(void)
   int usage;
   srv = mb_open(&o, err, sizeof err, &usage);
   ck_assert_msg(srv != NULL, "%s", err);
+  ck_assert_str_eq(mb_warning(srv), "");
   const char *port = strrchr(mb_address(srv), ':');
   ck_assert(port != NULL);
   struct sockaddr_in sa = v4("127.0.0.1");
@@ -479,6 +541,8 @@ Suite *suite_modbus(void)
   tcase_add_test(tc, exceptions);
   tcase_add_test(tc, keys_in_order);
   tcase_add_test(tc, positions_between_blocks);
+  tcase_add_test(tc, read_only_device);
+  tcase_add_test(tc, allow_lists);
   suite_add_tcase(su, tc);
   TCase *ts = tcase_create("server");
   tcase_add_checked_fixture(ts, srv_setup, srv_teardown);
