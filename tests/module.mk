@@ -31,6 +31,7 @@ regress: $(S42)
 	  if [ $$st -gt 3 ]; then echo "FAIL regress $$f: status $$st"; exit 1; fi; n=$$((n+1)); \
 	done; echo "regress: $$n passed, 0 failed"
 	@$(MB_REPLAY) tests/fuzz/corpus/modbus/*
+	@$(MB_CONN_REPLAY) tests/fuzz/corpus/modbus_conn/*
 
 # The Modbus request handler's fuzz harness, replayed without libFuzzer on
 # its seeds and on inputs that once crashed it (tests/fuzz/corpus/modbus/).
@@ -41,6 +42,14 @@ $(MB_REPLAY): tests/fuzz/fuzz_modbus.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJ
 regress: $(MB_REPLAY)
 # built with the objects' flags (make asan builds, then tests with plain CFLAGS)
 unit-bin: $(MB_REPLAY)
+# The server's connection code through loopback sockets (fuzz_modbus_conn.c),
+# replayed the same way on tests/fuzz/corpus/modbus_conn/.
+MB_CONN_REPLAY := $(BUILD)/tests/fuzz/replay-modbus-conn
+$(MB_CONN_REPLAY): tests/fuzz/fuzz_modbus_conn.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay -Iinclude $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
+regress: $(MB_CONN_REPLAY)
+unit-bin: $(MB_CONN_REPLAY)
 
 # SIGKILL at many points of a cycle with M15, then restart; damaged states.
 restart: $(S42)
@@ -96,7 +105,7 @@ shared: $(S42)
 # that long, from the committed seeds in tests/fuzz/corpus/<harness>/ (new
 # inputs go to $(BUILD)/fuzz/corpus-<harness>/); crashes land in $(BUILD)/fuzz/.
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := compile vm operator toolmodel modbus
+FUZZ_TARGETS := compile vm operator toolmodel modbus modbus_conn
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc -Ivm -Idisplay -Iinclude -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
