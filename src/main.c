@@ -48,6 +48,10 @@ static const char usage[] =
   "  --max-blocks N     stop with E-LIMIT after N executed blocks (default 100000000)\n"
   "  --plugins DIR      where plugins are looked for (also S42_PLUGIN_PATH)\n"
   "  --modbus[=HOST:PORT] serve the machine over Modbus TCP (default 127.0.0.1:1502)\n"
+  "  --modbus-allow ADDR[/BITS],...  serve only these clients (IPv4 or IPv6)\n"
+  "  --modbus-read-only refuse every write (exception 01): clients only watch\n"
+  "  --modbus-max-clients N  connections at once (default 8; a newcomer closes the longest idle)\n"
+  "  --modbus-idle SECONDS   close a connection silent that long (default 60; 0 never)\n"
   "  --realtime         pace the simulation at machine speed\n"
   "  --lang uk|en       language of machine messages (default uk)\n"
   "\n"
@@ -58,6 +62,8 @@ struct opts {
   const char *program, *operator_file, *tool, *dump_images, *state, *plugins, *modbus, *out;
   int trace, json, dump, screen, restart, realtime, en;
   unsigned long long max_blocks;
+  struct mb_opts mb;         /* --modbus-*: mb.addr is o->modbus */
+  const char *mb_opt;        /* the first --modbus-* option given (they need --modbus) */
 };
 
 /* Limits of the files s42 reads (README "Limits"): a program of the
@@ -82,6 +88,7 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
 {
   memset(o, 0, sizeof *o);
   o->max_blocks = 100000000ULL;
+  mb_opts_init(&o->mb);
   for (; i < argc; i++) {
     const char *a = argv[i];
     const char **val = NULL;
@@ -92,6 +99,40 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     if (strcmp(a, "--screen") == 0) { o->screen = 1; continue; }
     if (strcmp(a, "--restart") == 0) { o->restart = 1; continue; }
     if (strcmp(a, "--realtime") == 0) { o->realtime = 1; continue; }
+    if (strcmp(a, "--modbus-read-only") == 0) {
+      o->mb.read_only = 1;
+      o->mb_opt = o->mb_opt ? o->mb_opt : a;
+      continue;
+    }
+    if (strcmp(a, "--modbus-allow") == 0 || strcmp(a, "--modbus-max-clients") == 0 ||
+        strcmp(a, "--modbus-idle") == 0) {
+      if (i + 1 >= argc) {
+        fprintf(stderr, "s42: %s needs a value\n", a);
+        return -1;
+      }
+      const char *v = argv[++i];
+      o->mb_opt = o->mb_opt ? o->mb_opt : a;
+      char *end;
+      errno = 0;
+      if (a[9] == 'a') {
+        o->mb.allow = v;       /* checked when the server opens */
+      } else if (a[9] == 'm') {
+        long n = strtol(v, &end, 10);
+        if (errno || *end || !*v || n < 1 || n > MB_CLIENTS_LIMIT) {
+          fprintf(stderr, "s42: --modbus-max-clients takes a whole number 1-%d, not '%s'\n", MB_CLIENTS_LIMIT, v);
+          return -1;
+        }
+        o->mb.max_clients = (int)n;
+      } else {
+        double d = strtod(v, &end);
+        if (errno || *end || !*v || !(d >= 0) || d > 1e6) {
+          fprintf(stderr, "s42: --modbus-idle takes seconds (0 for never), not '%s'\n", v);
+          return -1;
+        }
+        o->mb.idle = d;
+      }
+      continue;
+    }
     if (strncmp(a, "--modbus", 8) == 0 && (a[8] == 0 || a[8] == '=')) {
       /* --modbus=ADDR, --modbus ADDR (a word with ':' or a bare port), or alone */
       const char *v = i + 1 < argc ? argv[i + 1] : "";
@@ -158,6 +199,11 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     fprintf(stderr, "s42: --tool %s\n", err);
     return -1;
   }
+  if (o->mb_opt && !o->modbus) {
+    fprintf(stderr, "s42: %s is an option of the Modbus server: it needs --modbus\n", o->mb_opt);
+    return -1;
+  }
+  o->mb.addr = o->modbus;
   /* what plugins may ask for (host->option) */
   plug_set_option("tool", o->tool);
   plug_set_option("dump-images", o->dump_images);
@@ -383,6 +429,8 @@ struct runner {
   uint8_t *watch;
   int lenient;               /* --modbus: a wait the script cannot serve waits for a client */
   size_t unfit;              /* 1 + the action reported as not fitting a wait, 0 none */
+  struct mb_server *mb;      /* --modbus: shown running while a key may compute (mb_publish_running) */
+  struct mb_machine *mm;
 };
 
 static void warn_sink(void *ctx, const struct session *s, const char *msg)
@@ -513,6 +561,8 @@ static int serve_wait(struct runner *r)
     }
     const struct op_action *a = &r->ops.v[r->next];
     int ok = -1;
+    if (r->mb && ops_is_waiting(a))
+      mb_publish_running(r->mb, r->mm);
     if (!ops_is_waiting(a)) {
       apply_immediate(r, a);
       ok = 0;
@@ -620,10 +670,13 @@ static void modbus_key(struct runner *r, struct both_sink *bs, int k)
         mm->motion.end = mm->motion.start + len;
         mm->motion.held = 0;
       }
+      mb_publish_running(r->mb, mm);
       sess_resume(s);
     } else if (s->state == SE_END) {
       new_cycle(r, bs);
     } else if (!moving) {
+      if (s->state == SE_WAIT)
+        mb_publish_running(r->mb, mm);   /* a tooth search may go on inside the key */
       sess_key_pusk(s);          /* a Пуск that fits no wait does nothing */
     }
     break;
@@ -637,8 +690,11 @@ static void modbus_key(struct runner *r, struct both_sink *bs, int k)
     sess_key_stop(s);
     break;
   case MB_KEY_PS:
-    if (!mm->idle && !moving)
+    if (!mm->idle && !moving) {
+      if (s->state == SE_WAIT)
+        mb_publish_running(r->mb, mm);
       sess_key_ps(s);
+    }
     break;
   case MB_KEY_EXIT:
     if (!mm->idle)
@@ -667,7 +723,10 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
   r->lenient = 1;
+  r->mb = mb;
+  r->mm = mm;
   r->s.vm.start_all = 1;        /* back to the loop at every block */
+  mb_publish(mb, mm);
   fprintf(stderr, "s42: Modbus TCP on %s%s\n", mb_address(mb),
           mm->idle ? "; the cycle starts with Пуск (coil 0)" : "");
   int told = -1;                /* the session state last reported on stderr */
@@ -689,8 +748,12 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
     }
     for (int k; (k = mb_key(mb)) != MB_KEY_NONE;)
       modbus_key(r, bs, k);
-    /* run the machine for a couple of milliseconds, or up to a paced motion */
+    mb_publish(mb, mm);
+    /* run the machine for a couple of milliseconds, or up to a paced motion;
+     * the server thread answers meanwhile from what was published (a trace
+     * that blocks or a plugin that computes stops only this loop) */
     double until = mb_now() + 0.002;
+    unsigned steps = 0;
     while (!mm->idle && !mm->motion.active && !quit_signal) {
       if (r->s.state == SE_WAIT) {
         if (r->next >= r->ops.n || serve_wait(r))
@@ -706,10 +769,12 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
           return EXIT_IO;
         }
         at_boundary(r);
+        mb_publish(mb, mm);      /* the block about to run, should it take long */
       }
-      if (mb_now() >= until)
-        break;
+      if ((++steps % 32 == 0 || ev != SE_START) && mb_now() >= until)
+        break;                   /* the clock is read every 32 blocks: it costs as much as one */
     }
+    mb_publish(mb, mm);
     if (r->s.state != told && (r->s.state == SE_END || r->s.state == SE_ERROR)) {
       const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
       if (r->s.state == SE_END)
@@ -912,18 +977,21 @@ static int headless(const struct opts *opt, struct plot *plot)
   if (o.modbus && status == EXIT_END) {
     char err[300];
     int bad;
-    if (!(mb = mb_open(o.modbus, err, sizeof err, &bad))) {
+    if (!(mb = mb_open(&o.mb, err, sizeof err, &bad))) {
       ran = 0;
       fprintf(stderr, "s42: %s\n", err);
       status = bad ? EXIT_USAGE : EXIT_IO;
       st = "error";
     } else {
+      if (*mb_warning(mb))
+        fprintf(stderr, "s42: warning: %s\n", mb_warning(mb));
       mm.s = &r.s;
       mm.idle = !o.operator_file;
       bs.mm = &mm;
       bs.last_t = r.s.m.t;
       status = modbus_loop(&r, &bs, mb, state_path, prog_hash, &st);
       mb_close(mb);
+      r.mb = NULL;
     }
   }
 
@@ -1102,7 +1170,7 @@ static int cmd_tui(int argc, char **argv)
   if (o.modbus) {
     char err[300];
     int addr_bad;
-    if (tui_modbus_open(o.modbus, &mb, err, sizeof err, &addr_bad)) {
+    if (tui_modbus_open(&o.mb, &mb, err, sizeof err, &addr_bad)) {
       fprintf(stderr, "s42: %s\n", err);
       return addr_bad ? EXIT_USAGE : EXIT_IO;
     }

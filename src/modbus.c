@@ -1,9 +1,28 @@
 /* The machine as a Modbus TCP device (src/modbus.h, contracts.md sec. 6).
+ *
+ * Two threads.  The server thread owns every socket: it accepts, reads,
+ * frames, answers and writes, and it never touches the session.  It answers
+ * from a view of the map (struct mb_view) that the host's thread publishes
+ * between blocks; a paced block's positions move on the wall clock from it.
+ * So a trace into a pipe nobody reads, or a tooth search that computes for
+ * ten seconds, stops the machine but not the server: a client still gets
+ * its reply within milliseconds.  What a client changes goes the other way:
+ * key presses wait in a queue (acknowledged at once, as the coil reads 1
+ * until the machine takes the press); a write of the override or of R waits
+ * for the host's thread, which applies it with the machine's real state in
+ * hand (R only while the cycle does not run) and publishes the new view
+ * before the reply is sent -- so an acknowledged write has been applied
+ * before the cycle goes on, and a read after it sees the value.  The
+ * alternative, accepting R writes from the view and applying them later,
+ * would acknowledge a write the cycle had already outrun.  One mutex guards
+ * the view, the key queue and the waiting writes; two pipes wake each side.
+ *
  * libmodbus listens and accepts; framing, validation and replies are ours,
  * because libmodbus 3.1.6 blocks on a truncated frame and sleeps 500 ms on
- * several error paths of modbus_reply -- nothing here may block the loop. */
+ * several error paths of modbus_reply. */
 #include "modbus.h"
 #include "session.h"
+#include <arpa/inet.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -11,6 +30,8 @@
 #include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
+#include <poll.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,14 +40,15 @@
 #include <time.h>
 #include <unistd.h>
 
-#define NREG_R 114
+#define NREG_R MB_NREG
 #define R_MAX 9999999.0        /* |Rn| beyond this is E-RANGE (language.md sec. 6) */
 #define IR_R64 100
 #define IR_R32 600
 #define HEARTBEAT 0.25         /* s: an update at least this often (alive toggles) */
 #define FRAME_TIMEOUT 0.25     /* s: a frame once begun must be complete by then */
 #define SEND_TIMEOUT 2.0       /* s: a reply the client does not take */
-#define IDLE_TIMEOUT 60.0      /* s: a connection that sends nothing */
+#define MAX_ALLOW 64           /* entries of --modbus-allow */
+#define DEFER (-1)             /* write_regs: the host decides */
 
 enum { EX_FUNC = 1, EX_ADDR = 2, EX_VALUE = 3, EX_BUSY = 6, EX_GATEWAY = 0x0B };
 
@@ -94,7 +116,7 @@ double mb_get_f64(const uint16_t w[4])
   return v;
 }
 
-/* ---- the map over the machine ---- */
+/* ---- the map over the view ---- */
 
 static int32_t sat32(double v)
 {
@@ -108,16 +130,16 @@ static int32_t sat32(double v)
 }
 
 /* Part of the paced block's motion done at `now`, 1 when none is under way. */
-static double motion_frac(const struct mb_machine *m, double now)
+static double motion_frac(const struct mb_motion *mo, double now)
 {
-  if (!m->motion.active)
+  if (!mo->active)
     return 1;
-  if (m->motion.held)
-    return m->motion.held_frac;
-  double len = m->motion.end - m->motion.start;
-  if (len <= 0 || now >= m->motion.end)
+  if (mo->held)
+    return mo->held_frac;
+  double len = mo->end - mo->start;
+  if (len <= 0 || now >= mo->end)
     return 1;
-  double f = (now - m->motion.start) / len;
+  double f = (now - mo->start) / len;
   return f < 0 ? 0 : f;
 }
 
@@ -133,16 +155,15 @@ void mb_motion_start(struct mb_machine *m, double start, double dur, const int64
   m->motion.block = block;
 }
 
-int mb_run_state(const struct mb_machine *m, double now)
+static int run_state(int loaded, int idle, int state, const struct mb_motion *mo, double now)
 {
-  const struct session *s = m->s;
-  if (!s || m->idle)
+  if (!loaded || idle)
     return MB_IDLE;
-  if (s->state == SE_STOPPED || (m->motion.active && m->motion.held))
+  if (state == SE_STOPPED || (mo->active && mo->held))
     return MB_STOPPED;
-  if (motion_frac(m, now) < 1)
+  if (motion_frac(mo, now) < 1)
     return MB_RUN;
-  switch (s->state) {
+  switch (state) {
   case SE_WAIT: return MB_WAITING;
   case SE_ERROR: return MB_ERROR;
   case SE_END: return MB_END;
@@ -150,60 +171,89 @@ int mb_run_state(const struct mb_machine *m, double now)
   }
 }
 
-static void build(const struct mb_machine *m, double now, uint16_t ir[828], uint8_t di[16])
+int mb_run_state(const struct mb_machine *m, double now)
+{
+  return run_state(m->s != NULL, m->idle, m->s ? (int)m->s->state : 0, &m->motion, now);
+}
+
+/* Every field set, none cleared first: the host's thread does this at
+ * every block boundary, so it costs no more than the copy itself. */
+void mb_view_of(struct mb_view *v, const struct mb_machine *m)
+{
+  const struct session *s = m->s;
+  v->idle = m->idle;
+  v->feed = m->feed;
+  v->motion = m->motion;
+  v->override_hr = m->set_override ? m->override_pct : s ? s->m.override_pct : 100;
+  v->loaded = s != NULL;
+  if (!s)
+    return;                      /* build() shows nothing more */
+  v->state = (int)s->state;
+  v->wait_feed = s->wait == W_FEED;
+  v->err_code = (int)s->vm.err.code;
+  v->block = sess_block_number(s);
+  v->override_eff = s->m.override_allowed ? s->m.override_pct : 100;
+  v->wheel = s->m.wheel != WHEEL_OFF;
+  v->osc = s->extra[0] && sess_oscillating(s);
+  memcpy(v->pos, s->m.pos, sizeof v->pos);
+  v->t = s->m.t;
+  memcpy(v->reg, s->vm.reg, sizeof v->reg);
+}
+
+static void build(const struct mb_view *v, double now, uint16_t ir[828], uint8_t di[16])
 {
   memset(ir, 0, 828 * sizeof *ir);
   memset(di, 0, 16);
   ir[0] = MB_MAP_VERSION;
-  int st = mb_run_state(m, now);
+  int st = run_state(v->loaded, v->idle, v->state, &v->motion, now);
   ir[2] = (uint16_t)st;
-  const struct session *s = m->s;
-  if (!s)
+  if (!v->loaded)
     return;
-  double frac = motion_frac(m, now);
-  int moving = m->motion.active && frac < 1;
-  int block = st == MB_IDLE ? 0 : moving ? m->motion.block : sess_block_number(s);
+  double frac = motion_frac(&v->motion, now);
+  int moving = v->motion.active && frac < 1;
+  int block = st == MB_IDLE ? 0 : moving ? v->motion.block : v->block;
   ir[3] = (uint16_t)(block > 0 && block < 65536 ? block : 0);
-  ir[4] = (uint16_t)(s->state == SE_ERROR && st == MB_ERROR ? s->vm.err.code : 0);
-  ir[5] = (uint16_t)(s->m.override_allowed ? s->m.override_pct : 100);
+  ir[4] = (uint16_t)(v->state == SE_ERROR && st == MB_ERROR ? v->err_code : 0);
+  ir[5] = (uint16_t)v->override_eff;
   for (int a = 0; a < 4; a++) {
-    double p = (double)s->m.pos[a];
+    double p = (double)v->pos[a];
     if (moving)
-      p -= (double)m->motion.d[a] * (1 - frac);
+      p -= (double)v->motion.d[a] * (1 - frac);
     mb_put_i32(&ir[10 + 2 * a], sat32(p));
-    di[7 + a] = (uint8_t)(moving && !m->motion.held && m->motion.d[a] != 0);
+    di[7 + a] = (uint8_t)(moving && !v->motion.held && v->motion.d[a] != 0);
   }
-  double feed = st != MB_RUN ? 0 : moving ? m->motion.feed : m->feed;
+  double feed = st != MB_RUN ? 0 : moving ? v->motion.feed : v->feed;
   mb_put_i32(&ir[18], sat32(feed * 1000));
-  double t = s->m.t;
+  double t = v->t;
   if (moving)
-    t -= (m->motion.end - m->motion.start) * (1 - frac);
+    t -= (v->motion.end - v->motion.start) * (1 - frac);
   mb_put_u32(&ir[20], t > 0 ? (uint32_t)(uint64_t)llround(t * 1000) : 0);  /* wraps after 49 days */
   for (int n = 0; n < NREG_R; n++) {
-    mb_put_f64(&ir[IR_R64 + 4 * n], s->vm.reg[n]);
-    mb_put_f32(&ir[IR_R32 + 2 * n], (float)s->vm.reg[n]);
+    mb_put_f64(&ir[IR_R64 + 4 * n], v->reg[n]);
+    mb_put_f32(&ir[IR_R32 + 2 * n], (float)v->reg[n]);
   }
   di[0] = st == MB_RUN;
-  di[1] = st == MB_STOPPED || (st == MB_WAITING && s->wait == W_FEED);
+  di[1] = st == MB_STOPPED || (st == MB_WAITING && v->wait_feed);
   di[2] = st == MB_WAITING;
   di[3] = st == MB_ERROR;
   di[4] = st == MB_END;
-  di[5] = s->m.wheel != WHEEL_OFF;
-  di[6] = (uint8_t)sess_oscillating(s);
+  di[5] = (uint8_t)v->wheel;
+  di[6] = (uint8_t)v->osc;
 }
 
-void mb_dev_init(struct mb_dev *d, struct mb_machine *m)
+void mb_dev_init(struct mb_dev *d)
 {
   memset(d, 0, sizeof *d);
-  d->m = m;
-  build(m, 0, d->ir, d->di);
+  d->v.idle = 1;
+  d->v.override_hr = 100;
+  build(&d->v, 0, d->ir, d->di);
 }
 
 void mb_dev_refresh(struct mb_dev *d, double now)
 {
   uint16_t ir[828];
   uint8_t di[16];
-  build(d->m, now, ir, di);
+  build(&d->v, now, ir, di);
   ir[1] = d->counter;
   di[15] = d->di[15];
   if (memcmp(ir, d->ir, sizeof ir) || memcmp(di, d->di, sizeof di) || now - d->last_update >= HEARTBEAT ||
@@ -277,7 +327,7 @@ static const struct span *span_of(const struct span *map, unsigned a, unsigned q
 static uint16_t hr_value(const struct mb_dev *d, unsigned a)
 {
   if (a == 0)
-    return (uint16_t)(d->m->set_override ? d->m->override_pct : d->m->s ? d->m->s->m.override_pct : 100);
+    return (uint16_t)d->v.override_hr;
   if (a == 1)
     return (uint16_t)(d->nkeys ? d->keys[d->khead] : 0);
   return d->ir[a];
@@ -296,13 +346,15 @@ static double from_f32(float f)
   return (double)f;
 }
 
-/* FC 16 on holding registers: checked whole before anything is applied. */
+/* FC 6 / FC 16 on holding registers: checked whole before anything is
+ * applied.  0 done, an exception, or DEFER with the write in d->w (the
+ * override and R are the host's to apply, on its thread). */
 static int write_regs(struct mb_dev *d, unsigned a, unsigned q, const uint8_t *v, double now)
 {
   const struct span *sp = span_of(hr_map, a, q);
   if (!sp || (a - sp->lo) % sp->width || q % sp->width)
     return EX_ADDR;              /* outside the map, or part of a value */
-  struct session *s = d->m->s;
+  struct mb_write *w = &d->w;
   if (sp->width == 1) {
     int ovr = -1, cmd = -1;
     for (unsigned i = 0; i < q; i++) {
@@ -317,38 +369,51 @@ static int write_regs(struct mb_dev *d, unsigned a, unsigned q, const uint8_t *v
         cmd = (int)x;
       }
     }
-    if (ovr >= 0 && !d->m->set_override && (!s || !s->m.override_allowed))
-      return EX_BUSY;            /* M25 forbids the override */
-    if (cmd > 0 && d->nkeys >= MB_KEYQ)
-      return EX_BUSY;
-    if (ovr >= 0 && (d->m->set_override ? d->m->set_override(d->m->host, ovr) : sess_override(s, ovr)))
-      return EX_BUSY;
-    if (cmd > 0)
-      push_key(d, cmd);
-    return 0;
+    if (ovr < 0) {               /* the command word alone: a key press */
+      if (cmd > 0 && push_key(d, cmd))
+        return EX_BUSY;
+      return 0;
+    }
+    w->ovr = ovr;
+    w->cmd = cmd > 0 ? cmd : 0;
+    w->r0 = w->n = 0;
+    return DEFER;
   }
-  double val[NREG_R];
   unsigned n = q / sp->width, r0 = (a - sp->lo) / sp->width;
   for (unsigned i = 0; i < n; i++) {
-    uint16_t w[4];
+    uint16_t x[4];
     for (unsigned k = 0; k < sp->width; k++)
-      w[k] = (uint16_t)be16(v + 2 * (i * sp->width + k));
-    val[i] = sp->width == 4 ? mb_get_f64(w) : from_f32(mb_get_f32(w));
-    if (!isfinite(val[i]) || fabs(val[i]) > R_MAX)
+      x[k] = (uint16_t)be16(v + 2 * (i * sp->width + k));
+    w->val[i] = sp->width == 4 ? mb_get_f64(x) : from_f32(mb_get_f32(x));
+    if (!isfinite(w->val[i]) || fabs(w->val[i]) > R_MAX)
       return EX_VALUE;
   }
-  if (!s || mb_run_state(d->m, now) == MB_RUN)
-    return EX_BUSY;              /* R only while the cycle does not run */
-  for (unsigned i = 0; i < n; i++)
-    s->vm.reg[r0 + i] = val[i];
-  return 0;
+  /* R only while the cycle does not run: refused at once when the view
+   * says it runs (a refusal is never wrong: nothing was applied); the host
+   * decides the rest with the machine's real state */
+  if (!d->v.loaded || run_state(1, d->v.idle, d->v.state, &d->v.motion, now) == MB_RUN)
+    return EX_BUSY;
+  w->ovr = -1;
+  w->cmd = 0;
+  w->r0 = r0;
+  w->n = n;
+  return DEFER;
 }
 
-/* One request's PDU; the reply PDU goes to out.  Returns 0 or an exception. */
+static int is_write(unsigned fc)
+{
+  return fc == MODBUS_FC_WRITE_SINGLE_COIL || fc == MODBUS_FC_WRITE_SINGLE_REGISTER ||
+         fc == MODBUS_FC_WRITE_MULTIPLE_COILS || fc == MODBUS_FC_WRITE_MULTIPLE_REGISTERS;
+}
+
+/* One request's PDU; the reply PDU goes to out.  Returns 0, an exception
+ * or DEFER. */
 static int handle(struct mb_dev *d, const uint8_t *pdu, size_t pl, uint8_t *out, size_t *ol, double now)
 {
   unsigned fc = pdu[0];
   unsigned a = pl >= 5 ? be16(pdu + 1) : 0, q = pl >= 5 ? be16(pdu + 3) : 0;
+  if (d->read_only && is_write(fc))
+    return EX_FUNC;              /* --modbus-read-only: no writes at all */
   mb_dev_refresh(d, now);        /* every read of this request sees one image */
   switch (fc) {
   case MODBUS_FC_READ_COILS:
@@ -439,17 +504,14 @@ static int handle(struct mb_dev *d, const uint8_t *pdu, size_t pl, uint8_t *out,
   }
 }
 
-int mb_dev_request(struct mb_dev *d, const uint8_t *req, size_t len, uint8_t *rsp, double now)
+/* The reply frame: the request's header, then the PDU in rsp+7 (ol bytes)
+ * or the exception ex. */
+static int reply(const uint8_t *req, int ex, uint8_t *rsp, size_t ol)
 {
-  /* len >= 8 and <= MB_FRAME_MAX: mb_frame checked the length field */
-  const uint8_t *pdu = req + 7;
-  size_t pl = len - 7, ol = 0;
-  uint8_t *out = rsp + 7;
   memcpy(rsp, req, 7);           /* transaction id, protocol id, unit id */
-  int ex = req[6] == 1 || req[6] == 255 ? handle(d, pdu, pl, out, &ol, now) : EX_GATEWAY;
   if (ex) {
-    out[0] = (uint8_t)(pdu[0] | 0x80);
-    out[1] = (uint8_t)ex;
+    rsp[7] = (uint8_t)(req[7] | 0x80);
+    rsp[8] = (uint8_t)ex;
     ol = 2;
   }
   rsp[4] = (uint8_t)((ol + 1) >> 8);
@@ -457,27 +519,142 @@ int mb_dev_request(struct mb_dev *d, const uint8_t *req, size_t len, uint8_t *rs
   return (int)(7 + ol);
 }
 
-/* ---- the server ---- */
+int mb_dev_request(struct mb_dev *d, const uint8_t *req, size_t len, uint8_t *rsp, double now)
+{
+  /* len >= 8 and <= MB_FRAME_MAX: mb_frame checked the length field */
+  size_t ol = 0;
+  int ex = req[6] == 1 || req[6] == 255 ? handle(d, req + 7, len - 7, rsp + 7, &ol, now) : EX_GATEWAY;
+  if (ex == DEFER)
+    return 0;
+  return reply(req, ex, rsp, ol);
+}
 
-struct mb_client {
-  int fd;
-  size_t nin, nout;
-  double since_in;     /* when the unfinished frame in `in` began */
-  double since_out;    /* when the unsent reply in `out` was queued */
-  double last;         /* last bytes received */
-  uint8_t in[2 * MB_FRAME_MAX];
-  uint8_t out[4 * MB_FRAME_MAX];
-};
+int mb_dev_reply(const uint8_t *req, int ex, uint8_t *rsp)
+{
+  if (!ex)
+    memcpy(rsp + 7, req + 7, 5);   /* FC 6 and FC 16 echo function, address, value / quantity */
+  return reply(req, ex, rsp, 5);
+}
 
-struct mb_server {
-  modbus_t *ctx;
-  int lfd;
-  int ncl;
-  struct mb_client cl[MB_MAX_CLIENTS];
-  struct mb_dev dev;
-  struct mb_machine none;   /* served until the host's first mb_poll */
-  char addr[96];
-};
+int mb_dev_apply(struct mb_dev *d, struct mb_machine *m, const struct mb_write *w, double now)
+{
+  struct session *s = m->s;
+  if (w->cmd && d->nkeys >= MB_KEYQ)
+    return EX_BUSY;
+  if (w->n) {
+    if (!s || mb_run_state(m, now) == MB_RUN || w->r0 + w->n > NREG_R)
+      return EX_BUSY;            /* the cycle went on since the view was published */
+    memcpy(&s->vm.reg[w->r0], w->val, w->n * sizeof *w->val);
+  }
+  if (w->ovr >= 0) {
+    if (m->set_override) {
+      if (m->set_override(m->host, w->ovr))
+        return EX_BUSY;
+    } else if (!s || !s->m.override_allowed || sess_override(s, w->ovr)) {
+      return EX_BUSY;            /* M25 forbids the override (checked first: no warning printed) */
+    }
+  }
+  if (w->cmd)
+    push_key(d, w->cmd);
+  return 0;
+}
+
+/* ---- allow lists ---- */
+
+int mb_allow_parse(const char *s, struct mb_net *v, int max, char *err, size_t n)
+{
+  int nv = 0;
+  const char *p = s;
+  for (;;) {
+    size_t l = strcspn(p, ",");
+    char item[80], *slash;
+    if (!l || l >= sizeof item) {
+      snprintf(err, n, "--modbus-allow: '%.*s' in '%s' is not ADDRESS[/BITS]", (int)(l < 60 ? l : 60), p, s);
+      return -1;
+    }
+    if (nv >= max) {
+      snprintf(err, n, "--modbus-allow: more than %d entries", max);
+      return -1;
+    }
+    memcpy(item, p, l);
+    item[l] = 0;
+    struct mb_net *e = &v[nv];
+    memset(e, 0, sizeof *e);
+    int maxbits = 32;
+    if ((slash = strchr(item, '/')) != NULL)
+      *slash = 0;
+    if (inet_pton(AF_INET, item, e->a) == 1) {
+      e->family = AF_INET;
+    } else if (inet_pton(AF_INET6, item, e->a) == 1) {
+      e->family = AF_INET6;
+      maxbits = 128;
+    } else {
+      snprintf(err, n, "--modbus-allow: '%s' is not an IPv4 or IPv6 address", item);
+      return -1;
+    }
+    e->bits = maxbits;
+    if (slash) {
+      const char *b = slash + 1;
+      size_t bl = strlen(b);
+      if (!bl || bl > 3 || strspn(b, "0123456789") != bl || atoi(b) > maxbits) {
+        snprintf(err, n, "--modbus-allow: '/%s' after %s is not a prefix length 0-%d", b, item, maxbits);
+        return -1;
+      }
+      e->bits = atoi(b);
+    }
+    nv++;
+    p += l;
+    if (!*p)
+      return nv;
+    p++;
+  }
+}
+
+static int prefix_eq(const uint8_t *a, const uint8_t *b, int bits)
+{
+  int full = bits / 8, rest = bits % 8;
+  if (memcmp(a, b, (size_t)full))
+    return 0;
+  if (!rest)
+    return 1;
+  uint8_t mask = (uint8_t)(0xFF << (8 - rest));
+  return (a[full] & mask) == (b[full] & mask);
+}
+
+int mb_allow_match(const struct mb_net *v, int nv, const void *sa)
+{
+  const struct sockaddr *s = sa;
+  const uint8_t *a;
+  int fam = s->sa_family;
+  if (fam == AF_INET) {
+    a = (const uint8_t *)&((const struct sockaddr_in *)sa)->sin_addr;
+  } else if (fam == AF_INET6) {
+    const struct in6_addr *a6 = &((const struct sockaddr_in6 *)sa)->sin6_addr;
+    a = (const uint8_t *)a6;
+    if (IN6_IS_ADDR_V4MAPPED(a6)) {
+      fam = AF_INET;               /* an IPv4 client of a dual-stack socket */
+      a += 12;
+    }
+  } else {
+    return 0;
+  }
+  for (int i = 0; i < nv; i++)
+    if (v[i].family == fam && prefix_eq(a, v[i].a, v[i].bits))
+      return 1;
+  return 0;
+}
+
+/* A loopback address (127/8, ::1, ::ffff:127/104). */
+static int loopback(const struct sockaddr *s)
+{
+  if (s->sa_family == AF_INET)
+    return ((const uint8_t *)&((const struct sockaddr_in *)s)->sin_addr)[0] == 127;
+  if (s->sa_family == AF_INET6) {
+    const struct in6_addr *a6 = &((const struct sockaddr_in6 *)s)->sin6_addr;
+    return IN6_IS_ADDR_LOOPBACK(a6) || (IN6_IS_ADDR_V4MAPPED(a6) && a6->s6_addr[12] == 127);
+  }
+  return 0;
+}
 
 /* Split "HOST:PORT" / "[V6]:PORT" / ":PORT" / "PORT". */
 static int split_addr(const char *s, char *host, size_t hn, char *port, size_t pn, char *err, size_t en)
@@ -522,13 +699,135 @@ static int split_addr(const char *s, char *host, size_t hn, char *port, size_t p
   return 0;
 }
 
-struct mb_server *mb_open(const char *addr, char *err, size_t n, int *usage)
+/* ---- the server ---- */
+
+enum { P_FREE, P_QUEUED, P_DONE };
+
+/* A write waiting for the host's thread (one per connection at most: the
+ * connection reads no further request until it is answered). */
+struct mb_pend {
+  int state;
+  int ex;                /* P_DONE: its outcome */
+  struct mb_write w;
+};
+
+struct mb_client {
+  int fd;
+  size_t nin, nout;
+  double since_in;     /* when the unfinished frame in `in` began */
+  double since_out;    /* when the unsent reply in `out` was queued */
+  double last;         /* last bytes received */
+  unsigned long serial; /* accepted as the serial-th: the older, the smaller */
+  int talked;          /* has sent a whole request */
+  int eof;             /* it sent no more: answer what came, then close */
+  int pend;            /* its write in mb->pend, -1 none */
+  double pend_until;   /* answered 06 then, if the host has not taken it */
+  uint8_t head[12];    /* the waiting write's MBAP header and first PDU bytes, for its reply */
+  uint8_t in[2 * MB_FRAME_MAX];
+  uint8_t out[4 * MB_FRAME_MAX];
+};
+
+struct mb_server {
+  /* set by mb_open, then read-only */
+  modbus_t *ctx;
+  int lfd;
+  int max;
+  double idle;
+  struct mb_net allow[MAX_ALLOW];
+  int nallow;
+  double (*clock)(void);
+  char addr[96];
+  char warning[300];
+  int to_host[2];           /* server -> host: a key or a write waits */
+  int to_srv[2];            /* host -> server: a write was applied; stop */
+  pthread_t thread;
+  int threaded;
+  /* the server thread's (or mb_step's caller's) alone */
+  struct mb_client *cl;
+  int ncl;
+  unsigned long accepted;   /* connections so far */
+  struct pollfd *pfd;
+  /* under lock */
+  pthread_mutex_t lock;
+  struct mb_dev dev;
+  struct mb_pend *pend;     /* max entries */
+  int nclients;
+  int stop;
+};
+
+static void wake(int fd)
+{
+  char b = 1;
+  ssize_t r = write(fd, &b, 1);   /* full (EAGAIN): a wake-up is already there */
+  (void)r;
+}
+
+static void drain(int fd)
+{
+  char b[64];
+  while (read(fd, b, sizeof b) > 0)
+    ;
+}
+
+static int pipe_nb(int p[2])
+{
+  if (pipe(p))
+    return -1;
+  for (int i = 0; i < 2; i++) {
+    fcntl(p[i], F_SETFL, fcntl(p[i], F_GETFL) | O_NONBLOCK);
+    fcntl(p[i], F_SETFD, FD_CLOEXEC);
+  }
+  return 0;
+}
+
+void mb_opts_init(struct mb_opts *o)
+{
+  memset(o, 0, sizeof *o);
+  o->max_clients = MB_DEFAULT_CLIENTS;
+  o->idle = MB_DEFAULT_IDLE;
+}
+
+static void *server_main(void *arg);
+
+static void free_server(struct mb_server *mb)
+{
+  for (int i = 0; i < 2; i++) {
+    if (mb->to_host[i] >= 0)
+      close(mb->to_host[i]);
+    if (mb->to_srv[i] >= 0)
+      close(mb->to_srv[i]);
+  }
+  if (mb->lfd >= 0)
+    close(mb->lfd);
+  if (mb->ctx) {
+    modbus_set_socket(mb->ctx, -1);
+    modbus_free(mb->ctx);
+  }
+  pthread_mutex_destroy(&mb->lock);
+  free(mb->cl);
+  free(mb->pfd);
+  free(mb->pend);
+  free(mb);
+}
+
+struct mb_server *mb_open(const struct mb_opts *o, char *err, size_t n, int *usage)
 {
   char host[256], port[8];
+  const char *addr = o->addr && *o->addr ? o->addr : MB_DEFAULT_ADDR;
   *usage = 1;
-  if (!addr || !*addr)
-    addr = MB_DEFAULT_ADDR;
   if (split_addr(addr, host, sizeof host, port, sizeof port, err, n))
+    return NULL;
+  if (o->max_clients < 1 || o->max_clients > MB_CLIENTS_LIMIT) {
+    snprintf(err, n, "--modbus-max-clients: %d is not 1-%d", o->max_clients, MB_CLIENTS_LIMIT);
+    return NULL;
+  }
+  if (!(o->idle >= 0)) {
+    snprintf(err, n, "--modbus-idle: %g is not a number of seconds", o->idle);
+    return NULL;
+  }
+  struct mb_net allow[MAX_ALLOW];
+  int nallow = 0;
+  if (o->allow && (nallow = mb_allow_parse(o->allow, allow, MAX_ALLOW, err, n)) < 0)
     return NULL;
   struct addrinfo hints, *ai = NULL;
   memset(&hints, 0, sizeof hints);
@@ -548,11 +847,25 @@ struct mb_server *mb_open(const char *addr, char *err, size_t n, int *usage)
     snprintf(err, n, "out of memory");
     return NULL;
   }
-  mb->lfd = -1;
+  mb->lfd = mb->to_host[0] = mb->to_host[1] = mb->to_srv[0] = mb->to_srv[1] = -1;
+  pthread_mutex_init(&mb->lock, NULL);
+  mb->max = o->max_clients;
+  mb->idle = o->idle;
+  memcpy(mb->allow, allow, sizeof allow);
+  mb->nallow = nallow;
+  mb->clock = o->clock ? o->clock : mb_now;
+  mb->cl = calloc((size_t)mb->max, sizeof *mb->cl);
+  mb->pfd = calloc((size_t)mb->max + 2, sizeof *mb->pfd);
+  mb->pend = calloc((size_t)mb->max, sizeof *mb->pend);
+  if (!mb->cl || !mb->pfd || !mb->pend || pipe_nb(mb->to_host) || pipe_nb(mb->to_srv)) {
+    snprintf(err, n, "Modbus: %s", errno ? strerror(errno) : "out of memory");
+    free_server(mb);
+    return NULL;
+  }
   mb->ctx = modbus_new_tcp_pi(host, port);
   if (!mb->ctx) {
     snprintf(err, n, "Modbus on %s: %s", addr, modbus_strerror(errno));
-    free(mb);
+    free_server(mb);
     return NULL;
   }
   errno = 0;
@@ -560,8 +873,7 @@ struct mb_server *mb_open(const char *addr, char *err, size_t n, int *usage)
   if (mb->lfd < 0) {
     int e = errno ? errno : EADDRNOTAVAIL;
     snprintf(err, n, "Modbus on %s:%s: %s", host, port, e == EADDRINUSE ? "the port is in use" : strerror(e));
-    modbus_free(mb->ctx);
-    free(mb);
+    free_server(mb);
     return NULL;
   }
   fcntl(mb->lfd, F_SETFL, fcntl(mb->lfd, F_GETFL) | O_NONBLOCK);
@@ -570,31 +882,62 @@ struct mb_server *mb_open(const char *addr, char *err, size_t n, int *usage)
   socklen_t sl = sizeof ss;
   char h[80], sv[8];
   if (getsockname(mb->lfd, (struct sockaddr *)&ss, &sl) == 0 &&
-      getnameinfo((struct sockaddr *)&ss, sl, h, sizeof h, sv, sizeof sv, NI_NUMERICHOST | NI_NUMERICSERV) == 0)
+      getnameinfo((struct sockaddr *)&ss, sl, h, sizeof h, sv, sizeof sv, NI_NUMERICHOST | NI_NUMERICSERV) == 0) {
     snprintf(mb->addr, sizeof mb->addr, ss.ss_family == AF_INET6 ? "[%s]:%s" : "%s:%s", h, sv);
-  else
+    if (!nallow && !loopback((struct sockaddr *)&ss))
+      snprintf(mb->warning, sizeof mb->warning,
+               "Modbus on %s: not a loopback address, and no --modbus-allow: any host that reaches it can %s",
+               mb->addr, o->read_only ? "read the machine's state" :
+               "start and stop the cycle, set the feed override and write R0-R113");
+  } else {
     snprintf(mb->addr, sizeof mb->addr, "%s:%s", host, port);
-  mb_dev_init(&mb->dev, &mb->none);
+  }
+  mb_dev_init(&mb->dev);
+  mb->dev.read_only = o->read_only;
+  if (!o->no_thread) {
+    /* the thread takes no signals: SIGINT, SIGTERM, SIGWINCH stay the host's */
+    sigset_t all, old;
+    sigfillset(&all);
+    pthread_sigmask(SIG_SETMASK, &all, &old);
+    int e = pthread_create(&mb->thread, NULL, server_main, mb);
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    if (e) {
+      snprintf(err, n, "Modbus: cannot start the server thread: %s", strerror(e));
+      free_server(mb);
+      return NULL;
+    }
+    mb->threaded = 1;
+  }
   return mb;
 }
 
+/* Close connection i (the caller must not touch it again). */
 static void drop(struct mb_server *mb, int i)
 {
-  close(mb->cl[i].fd);
-  mb->cl[i] = mb->cl[--mb->ncl];
+  struct mb_client *c = &mb->cl[i];
+  pthread_mutex_lock(&mb->lock);
+  if (c->pend >= 0)
+    mb->pend[c->pend].state = P_FREE;   /* not yet taken: never applied; taken: never acknowledged */
+  mb->nclients = mb->ncl - 1;
+  pthread_mutex_unlock(&mb->lock);
+  close(c->fd);
+  *c = mb->cl[--mb->ncl];
 }
 
 void mb_close(struct mb_server *mb)
 {
   if (!mb)
     return;
+  if (mb->threaded) {
+    pthread_mutex_lock(&mb->lock);
+    mb->stop = 1;
+    pthread_mutex_unlock(&mb->lock);
+    wake(mb->to_srv[1]);
+    pthread_join(mb->thread, NULL);
+  }
   while (mb->ncl)
     drop(mb, mb->ncl - 1);
-  if (mb->lfd >= 0)
-    close(mb->lfd);
-  modbus_set_socket(mb->ctx, -1);
-  modbus_free(mb->ctx);
-  free(mb);
+  free_server(mb);
 }
 
 const char *mb_address(const struct mb_server *mb)
@@ -602,14 +945,17 @@ const char *mb_address(const struct mb_server *mb)
   return mb->addr;
 }
 
-int mb_clients(const struct mb_server *mb)
+const char *mb_warning(const struct mb_server *mb)
 {
-  return mb->ncl;
+  return mb->warning;
 }
 
-int mb_key(struct mb_server *mb)
+int mb_clients(struct mb_server *mb)
 {
-  return mb_dev_key(&mb->dev);
+  pthread_mutex_lock(&mb->lock);
+  int n = mb->nclients;
+  pthread_mutex_unlock(&mb->lock);
+  return n;
 }
 
 static int room(const struct mb_client *c)
@@ -617,24 +963,7 @@ static int room(const struct mb_client *c)
   return sizeof c->out - c->nout >= MB_FRAME_MAX;
 }
 
-int mb_fds(const struct mb_server *mb, struct pollfd *fds, int max)
-{
-  int n = 0;
-  if (max < 1)
-    return 0;
-  fds[n].fd = mb->lfd;
-  fds[n].events = POLLIN;
-  fds[n++].revents = 0;
-  for (int i = 0; i < mb->ncl && n < max; i++) {
-    const struct mb_client *c = &mb->cl[i];
-    fds[n].fd = c->fd;
-    fds[n].events = (short)((c->nout ? POLLOUT : 0) | (room(c) && c->nin < sizeof c->in ? POLLIN : 0));
-    fds[n++].revents = 0;
-  }
-  return n;
-}
-
-/* 0 kept, -1 dropped (the caller must not touch c again). */
+/* 0 kept, -1 dropped. */
 static int flush_out(struct mb_server *mb, int i, double now)
 {
   struct mb_client *c = &mb->cl[i];
@@ -655,26 +984,106 @@ static int flush_out(struct mb_server *mb, int i, double now)
   return 0;
 }
 
-/* Answer the complete frames in the input buffer while replies fit. */
+/* Queue a reply of n bytes already at c->out + c->nout. */
+static void queued(struct mb_client *c, int n, double now)
+{
+  if (!c->nout)
+    c->since_out = now;
+  c->nout += (size_t)n;
+}
+
+/* Answer the complete frames in the input buffer, in order, sending as it
+ * goes: a pipelined burst is answered whole, not only as far as the output
+ * buffer reaches (the rest would wait for bytes that never come).  Stops at
+ * a write that waits for the host, or when the client does not take its
+ * replies (POLLOUT brings us back).  0 kept, -1 dropped. */
 static int pump(struct mb_server *mb, int i, double now)
 {
   struct mb_client *c = &mb->cl[i];
-  for (;;) {
+  int woke = 0;
+  while (c->pend < 0) {
     long fl = mb_frame(c->in, c->nin);
     if (fl < 0) {                /* not Modbus TCP: this connection ends */
-      drop(mb, i);
+      if (!flush_out(mb, i, now))  /* after the replies to what came before, if it takes them */
+        drop(mb, i);
       return -1;
     }
-    if (fl == 0 || !room(c))
+    if (fl == 0)
       break;
-    if (!c->nout)
-      c->since_out = now;
-    c->nout += (size_t)mb_dev_request(&mb->dev, c->in, (size_t)fl, c->out + c->nout, now);
+    if (!room(c)) {
+      if (flush_out(mb, i, now))
+        return -1;
+      if (!room(c))
+        break;
+    }
+    pthread_mutex_lock(&mb->lock);
+    unsigned keys = mb->dev.nkeys;
+    int r = mb_dev_request(&mb->dev, c->in, (size_t)fl, c->out + c->nout, now);
+    if (r == 0) {                /* a write for the host: a slot of its own */
+      int k = 0;
+      while (k < mb->max && mb->pend[k].state != P_FREE)
+        k++;
+      if (k < mb->max) {         /* always: there are as many slots as connections */
+        mb->pend[k].state = P_QUEUED;
+        mb->pend[k].w = mb->dev.w;
+        c->pend = k;
+        c->pend_until = now + MB_WRITE_WAIT;
+        memcpy(c->head, c->in, sizeof c->head);
+        woke = 1;
+      } else {
+        r = mb_dev_reply(c->in, EX_BUSY, c->out + c->nout);
+      }
+    }
+    woke |= mb->dev.nkeys > keys;
+    pthread_mutex_unlock(&mb->lock);
+    if (r > 0)
+      queued(c, r, now);
+    c->talked = 1;
     c->nin -= (size_t)fl;
     memmove(c->in, c->in + fl, c->nin);
     c->since_in = now;
   }
+  if (woke)
+    wake(mb->to_host[1]);
   return flush_out(mb, i, now);
+}
+
+/* The reply of client i's waiting write once the host applied it, or 06
+ * when it has not taken it by its time.  0 kept, -1 dropped. */
+static int settle(struct mb_server *mb, int i, double now)
+{
+  struct mb_client *c = &mb->cl[i];
+  if (c->pend < 0)
+    return 0;
+  pthread_mutex_lock(&mb->lock);
+  struct mb_pend *p = &mb->pend[c->pend];
+  int ex = -1;
+  if (p->state == P_DONE)
+    ex = p->ex;
+  else if (now >= c->pend_until)
+    ex = EX_BUSY;                /* still queued: withdrawn, never applied */
+  if (ex >= 0)
+    p->state = P_FREE;
+  pthread_mutex_unlock(&mb->lock);
+  if (ex < 0)
+    return 0;
+  c->pend = -1;
+  queued(c, mb_dev_reply(c->head, ex, c->out + c->nout), now);   /* room was kept for it */
+  return pump(mb, i, now);       /* the requests behind it */
+}
+
+/* The connection to close for a newcomer when all are taken: one that has
+ * not sent a request yet (the oldest), else the longest silent. */
+static int victim(const struct mb_server *mb)
+{
+  int v = -1;
+  for (int i = 0; i < mb->ncl; i++) {
+    const struct mb_client *c = &mb->cl[i], *b = v >= 0 ? &mb->cl[v] : NULL;
+    if (!b || (!c->talked && b->talked) ||
+        (c->talked == b->talked && (c->talked && c->last != b->last ? c->last < b->last : c->serial < b->serial)))
+      v = i;
+  }
+  return v;
 }
 
 static void accept_all(struct mb_server *mb, double now)
@@ -684,32 +1093,48 @@ static void accept_all(struct mb_server *mb, double now)
     modbus_set_socket(mb->ctx, -1);   /* the connection is ours, not the context's */
     if (fd < 0)
       return;                    /* EAGAIN: none left (or it went away) */
-    if (mb->ncl >= MB_MAX_CLIENTS) {
-      close(fd);                 /* over the limit: refused at once */
-      continue;
+    if (mb->nallow) {
+      struct sockaddr_storage ss;
+      socklen_t sl = sizeof ss;
+      if (getpeername(fd, (struct sockaddr *)&ss, &sl) || !mb_allow_match(mb->allow, mb->nallow, &ss)) {
+        close(fd);               /* not on --modbus-allow */
+        continue;
+      }
     }
+    if (mb->ncl >= mb->max)
+      drop(mb, victim(mb));
     int one = 1;
     fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
     struct mb_client *c = &mb->cl[mb->ncl++];
     memset(c, 0, offsetof(struct mb_client, in));
     c->fd = fd;
+    c->pend = -1;
     c->last = c->since_in = c->since_out = now;
+    c->serial = ++mb->accepted;
+    pthread_mutex_lock(&mb->lock);
+    mb->nclients = mb->ncl;
+    pthread_mutex_unlock(&mb->lock);
   }
 }
 
 static void read_in(struct mb_server *mb, int i, double now)
 {
   struct mb_client *c = &mb->cl[i];
-  if (c->nin >= sizeof c->in || !room(c))
+  if (c->nin >= sizeof c->in)
     return;
   ssize_t r = recv(c->fd, c->in + c->nin, sizeof c->in - c->nin, MSG_DONTWAIT);
-  if (r == 0 || (r < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) {
+  if (r < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
     drop(mb, i);
     return;
   }
   if (r < 0)
     return;
+  if (r == 0) {                  /* a half close: the requests before it are still answered */
+    c->eof = 1;
+    pump(mb, i, now);
+    return;
+  }
   if (!c->nin)
     c->since_in = now;
   c->nin += (size_t)r;
@@ -725,29 +1150,48 @@ static int find(const struct mb_server *mb, int fd)
   return -1;
 }
 
-/* The earliest deadline of client c, or 0 when it has none. */
-static double deadline(const struct mb_client *c)
+/* The earliest deadline of client c. */
+static double deadline(const struct mb_server *mb, const struct mb_client *c)
 {
-  double t = c->last + IDLE_TIMEOUT;
+  double t = mb->idle > 0 ? c->last + mb->idle : 1e300;
   if (c->nin && mb_frame(c->in, c->nin) == 0 && c->since_in + FRAME_TIMEOUT < t)
     t = c->since_in + FRAME_TIMEOUT;
   if (c->nout && c->since_out + SEND_TIMEOUT < t)
     t = c->since_out + SEND_TIMEOUT;
+  if (c->pend >= 0 && c->pend_until < t)
+    t = c->pend_until;
   return t;
 }
 
-void mb_serve(struct mb_server *mb, struct mb_machine *m, const struct pollfd *fds, int n)
+void mb_step(struct mb_server *mb, int timeout_ms)
 {
-  double now = mb_now();
-  mb->dev.m = m ? m : &mb->none;
-  for (int k = 0; k < n; k++) {
+  int n = 0;
+  struct pollfd *fds = mb->pfd;
+  fds[n].fd = mb->lfd;
+  fds[n++].events = POLLIN;
+  fds[n].fd = mb->to_srv[0];
+  fds[n++].events = POLLIN;
+  double now = mb->clock();
+  for (int i = 0; i < mb->ncl; i++) {
+    const struct mb_client *c = &mb->cl[i];
+    fds[n].fd = c->fd;
+    fds[n++].events = (short)((c->nout ? POLLOUT : 0) | (c->nin < sizeof c->in && !c->eof ? POLLIN : 0));
+    double left = (deadline(mb, c) - now) * 1000;
+    int ms = left <= 0 ? 0 : left > 1e6 ? 1000000 : (int)ceil(left);
+    if (timeout_ms < 0 || ms < timeout_ms)
+      timeout_ms = ms;
+  }
+  for (int k = 0; k < n; k++)
+    fds[k].revents = 0;
+  if (poll(fds, (nfds_t)n, timeout_ms) < 0)
+    return;                      /* EINTR (no signal reaches the thread; a harness's may) */
+  now = mb->clock();
+  if (fds[1].revents)
+    drain(mb->to_srv[0]);
+  for (int k = 2; k < n; k++) {
     short re = fds[k].revents;
     if (!re)
       continue;
-    if (fds[k].fd == mb->lfd) {
-      accept_all(mb, now);
-      continue;
-    }
     int i = find(mb, fds[k].fd);
     if (i < 0)
       continue;
@@ -761,32 +1205,89 @@ void mb_serve(struct mb_server *mb, struct mb_machine *m, const struct pollfd *f
       read_in(mb, i, now);
   }
   for (int i = mb->ncl - 1; i >= 0; i--)
-    if (now >= deadline(&mb->cl[i]))
-      drop(mb, i);               /* a truncated frame, a stuck reply, silence */
+    if (mb->cl[i].pend >= 0)
+      settle(mb, i, now);        /* applied by the host, or out of time */
+  for (int i = mb->ncl - 1; i >= 0; i--) {
+    const struct mb_client *c = &mb->cl[i];
+    if (i < mb->ncl && (now >= deadline(mb, c) || (c->eof && c->pend < 0 && !c->nout && mb_frame(c->in, c->nin) <= 0)))
+      drop(mb, i);               /* a truncated frame, a stuck reply, silence; all answered after a close */
+  }
+  if (fds[0].revents)
+    accept_all(mb, now);         /* last: a newcomer may close the longest idle */
 }
 
-int mb_timeout(const struct mb_server *mb, int want_ms)
+static void *server_main(void *arg)
 {
-  double now = mb_now();
-  for (int i = 0; i < mb->ncl; i++) {
-    double left = (deadline(&mb->cl[i]) - now) * 1000;
-    int ms = left <= 0 ? 0 : left > 1e6 ? 1000000 : (int)ceil(left);
-    if (want_ms < 0 || ms < want_ms)
-      want_ms = ms;
+  struct mb_server *mb = arg;
+  for (;;) {
+    pthread_mutex_lock(&mb->lock);
+    int stop = mb->stop;
+    pthread_mutex_unlock(&mb->lock);
+    if (stop)
+      return NULL;
+    mb_step(mb, 1000);
   }
-  return want_ms;
+}
+
+/* ---- the host's side ---- */
+
+int mb_fd(const struct mb_server *mb)
+{
+  return mb->to_host[0];
+}
+
+void mb_sync(struct mb_server *mb, struct mb_machine *m)
+{
+  drain(mb->to_host[0]);
+  double now = mb->clock();
+  int any = 0;
+  pthread_mutex_lock(&mb->lock);
+  for (int k = 0; k < mb->max; k++) {
+    struct mb_pend *p = &mb->pend[k];
+    if (p->state != P_QUEUED)
+      continue;
+    p->ex = mb_dev_apply(&mb->dev, m, &p->w, now);
+    p->state = P_DONE;
+    any = 1;
+  }
+  mb_view_of(&mb->dev.v, m);     /* before the reply: a read after it sees the value */
+  pthread_mutex_unlock(&mb->lock);
+  if (any)
+    wake(mb->to_srv[1]);
+}
+
+void mb_publish(struct mb_server *mb, const struct mb_machine *m)
+{
+  pthread_mutex_lock(&mb->lock);   /* in place: the host is the session's only reader here */
+  mb_view_of(&mb->dev.v, m);
+  pthread_mutex_unlock(&mb->lock);
+}
+
+void mb_publish_running(struct mb_server *mb, const struct mb_machine *m)
+{
+  pthread_mutex_lock(&mb->lock);
+  mb_view_of(&mb->dev.v, m);
+  if (mb->dev.v.state == SE_WAIT || mb->dev.v.state == SE_STOPPED)
+    mb->dev.v.state = SE_START;
+  pthread_mutex_unlock(&mb->lock);
+}
+
+int mb_key(struct mb_server *mb)
+{
+  pthread_mutex_lock(&mb->lock);
+  int k = mb_dev_key(&mb->dev);
+  pthread_mutex_unlock(&mb->lock);
+  return k;
 }
 
 int mb_poll(struct mb_server *mb, struct mb_machine *m, int timeout_ms)
 {
-  struct pollfd fds[1 + MB_MAX_CLIENTS];
-  int n = mb_fds(mb, fds, 1 + MB_MAX_CLIENTS);
-  int r = poll(fds, (nfds_t)n, mb_timeout(mb, timeout_ms));
-  if (r < 0) {
+  struct pollfd p = {.fd = mb->to_host[0], .events = POLLIN, .revents = 0};
+  if (poll(&p, 1, timeout_ms) < 0) {
     if (errno == EINTR)
       return 0;
     return -1;
   }
-  mb_serve(mb, m, fds, n);
+  mb_sync(mb, m);
   return 0;
 }

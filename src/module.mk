@@ -29,4 +29,5 @@ LDLIBS += $(CURSES_LIBS)
 MODBUS_CFLAGS = $(call pkg,MODBUS_CFLAGS,--cflags libmodbus)
 MODBUS_LIBS   = $(call pkg,MODBUS_LIBS,--libs libmodbus,-lmodbus)
 $(BUILD)/src/modbus.o: MOD_CPPFLAGS = -Isrc -Ivm -Idisplay -Iinclude $(MODBUS_CFLAGS)
-LDLIBS += $(MODBUS_LIBS)
+# and answers from its own thread
+LDLIBS += $(MODBUS_LIBS) -pthread

@@ -519,6 +519,16 @@ static int advance(struct tui *t)
 
 /* ---- panel keys ---- */
 
+/* Before a key that may run a plugin for seconds (a tooth search goes on
+ * at Пуск): the sources (the Modbus server) show the cycle running, not
+ * the wait the key ends, while this thread computes. */
+static void sources_busy(struct tui *t)
+{
+  for (int i = 0; i < t->nsrc; i++)
+    if (t->src[i].busy)
+      t->src[i].busy(t->src[i].ctx, t);
+}
+
 static void press_pusk(struct tui *t)
 {
   if (t->run != R_RUN) {
@@ -531,6 +541,8 @@ static void press_pusk(struct tui *t)
     say(t, "Пуск: the motion goes on");
     return;
   }
+  if (t->s.state == SE_WAIT)
+    sources_busy(t);
   if (t->s.state == SE_WAIT && sess_key_pusk(&t->s) == 0) {
     resumed(t);
     return;
@@ -573,6 +585,7 @@ static void press_ps(struct tui *t)
       resumed(t);
     return;
   }
+  sources_busy(t);
   if (sess_key_ps(&t->s) == 0)
     return;
   say(t, "ПС does not fit here: %s", wait_hint(&t->s));

@@ -32,6 +32,9 @@ struct tui_source {
   void (*ready)(void *ctx, struct tui *t, const struct pollfd *pfd, int n);
   void (*update)(void *ctx, struct tui *t);                    /* may be NULL */
   int (*poll_timeout)(void *ctx, int want_ms);   /* may be NULL: a shorter poll timeout it needs */
+  /* may be NULL: a key that may compute for long (Пуск or ПС answering a
+   * plugin's wait) is about to be applied: show the cycle running meanwhile */
+  void (*busy)(void *ctx, struct tui *t);
 };
 
 /* TUI_RESET: abandon the cycle, back to idle (a Modbus client's reset) */

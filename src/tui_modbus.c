@@ -1,9 +1,12 @@
 /* s42 tui --modbus: the Modbus TCP server (src/modbus.c) as one more
- * source of the terminal's poll() loop.  A client's keys are the panel's
- * keys (tui_press), its feed override the panel's switch (tui_override), and
- * the map shows what the terminal shows, positions mid-block included. */
+ * source of the terminal's poll() loop.  The server's own thread answers
+ * the clients from the view this file publishes after every step of the
+ * terminal (so a slow terminal or a plugin computing never holds a client
+ * up); what clients change wakes the loop through mb_fd.  A client's keys
+ * are the panel's keys (tui_press), its feed override the panel's switch
+ * (tui_override), and the map shows what the terminal shows, positions
+ * mid-block included. */
 #include "tui_modbus.h"
-#include "modbus.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,20 +24,23 @@ static int set_override(void *host, int pct)
   return x->t ? tui_override(x->t, pct) : -1;
 }
 
-/* Mirror the terminal's machine into what the server reads. */
-static void update(void *ctx, struct tui *t)
+/* Mirror the terminal's machine into what the server's view is made of. */
+static void mirror(struct tui_mb *x, struct tui *t)
 {
-  struct tui_mb *x = ctx;
   x->t = t;
   if (!x->told) {
-    char m[160];
+    char m[400];
     snprintf(m, sizeof m, "Modbus TCP on %s: a client's Пуск, Стоп, ПС, cycle exit and reset are the panel's",
              mb_address(x->mb));
     tui_say(t, m);
+    if (*mb_warning(x->mb)) {
+      snprintf(m, sizeof m, "warning: %s", mb_warning(x->mb));
+      tui_say(t, m);
+    }
     x->told = 1;
   }
   const struct session *s = tui_session(t);
-  x->mm.s = (struct session *)s;   /* the server writes R0-R113 only while the cycle does not run */
+  x->mm.s = (struct session *)s;   /* mb_sync writes R0-R113 only while the cycle does not run */
   x->mm.idle = s == NULL;
   x->mm.override_pct = tui_override_pct(t);
   struct tui_motion m;
@@ -48,34 +54,51 @@ static void update(void *ctx, struct tui *t)
   x->mm.motion.held_frac = m.frac;
 }
 
-static int poll_timeout(void *ctx, int want_ms)
+static void update(void *ctx, struct tui *t)
 {
   struct tui_mb *x = ctx;
-  return mb_timeout(x->mb, want_ms);
+  mirror(x, t);
+  mb_publish(x->mb, &x->mm);
+}
+
+static void busy(void *ctx, struct tui *t)
+{
+  struct tui_mb *x = ctx;
+  mirror(x, t);
+  mb_publish_running(x->mb, &x->mm);
 }
 
 static int fds(void *ctx, struct pollfd *pfd, int max)
 {
   struct tui_mb *x = ctx;
-  return mb_fds(x->mb, pfd, max);
+  if (max < 1)
+    return 0;
+  pfd[0].fd = mb_fd(x->mb);
+  pfd[0].events = POLLIN;
+  pfd[0].revents = 0;
+  return 1;
 }
 
+/* A client pressed a key or wrote the override or R. */
 static void ready(void *ctx, struct tui *t, const struct pollfd *pfd, int n)
 {
   struct tui_mb *x = ctx;
-  update(ctx, t);
-  mb_serve(x->mb, &x->mm, pfd, n);
+  (void)pfd;
+  (void)n;
+  mirror(x, t);
+  mb_sync(x->mb, &x->mm);
   static const enum tui_key keys[] = {
     [MB_KEY_PUSK] = TUI_PUSK, [MB_KEY_STOP] = TUI_STOP, [MB_KEY_PS] = TUI_PS,
     [MB_KEY_EXIT] = TUI_EXIT, [MB_KEY_RESET] = TUI_RESET,
   };
   for (int k; (k = mb_key(x->mb)) != MB_KEY_NONE;) {
     tui_press(t, keys[k]);
-    update(ctx, t);
+    mirror(x, t);
   }
+  mb_publish(x->mb, &x->mm);
 }
 
-int tui_modbus_open(const char *addr, struct tui_source *src, char *err, size_t n, int *usage)
+int tui_modbus_open(const struct mb_opts *o, struct tui_source *src, char *err, size_t n, int *usage)
 {
   struct tui_mb *x = calloc(1, sizeof *x);
   if (!x) {
@@ -83,19 +106,23 @@ int tui_modbus_open(const char *addr, struct tui_source *src, char *err, size_t 
     *usage = 0;
     return -1;
   }
-  if (!(x->mb = mb_open(addr, err, n, usage))) {
+  if (!(x->mb = mb_open(o, err, n, usage))) {
     free(x);
     return -1;
   }
+  if (*mb_warning(x->mb))
+    fprintf(stderr, "s42: warning: %s\n", mb_warning(x->mb));
   x->mm.set_override = set_override;
   x->mm.host = x;
   x->mm.idle = 1;
+  x->mm.override_pct = 100;
+  mb_publish(x->mb, &x->mm);
   memset(src, 0, sizeof *src);
   src->ctx = x;
   src->fds = fds;
   src->ready = ready;
   src->update = update;
-  src->poll_timeout = poll_timeout;
+  src->busy = busy;
   return 0;
 }
 

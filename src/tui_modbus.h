@@ -2,12 +2,15 @@
 #ifndef S42_TUI_MODBUS_H
 #define S42_TUI_MODBUS_H
 
+#include "modbus.h"
 #include "tui.h"
 #include <stddef.h>
 
-/* Listen on addr (src/modbus.h: mb_open) and fill src for tui_main.  -1 with
- * a message in err, *usage set when the address itself is bad (exit 2). */
-int tui_modbus_open(const char *addr, struct tui_source *src, char *err, size_t n, int *usage);
+/* Listen as o says (src/modbus.h: mb_open) and fill src for tui_main.  -1
+ * with a message in err, *usage set when the address itself is bad (exit
+ * 2).  A warning about the address goes to stderr now and to the messages
+ * pane when the terminal starts. */
+int tui_modbus_open(const struct mb_opts *o, struct tui_source *src, char *err, size_t n, int *usage);
 void tui_modbus_close(struct tui_source *src);
 
 #endif

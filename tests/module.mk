@@ -32,6 +32,7 @@ regress: $(S42)
 	done; echo "regress: $$n passed, 0 failed"
 	@$(MB_REPLAY) tests/fuzz/corpus/modbus/*
 	@$(STATE_REPLAY) tests/fuzz/corpus/state/*
+	@$(MB_CONN_REPLAY) tests/fuzz/corpus/modbus_conn/*
 
 # The Modbus request handler's fuzz harness, replayed without libFuzzer on
 # its seeds and on inputs that once crashed it (tests/fuzz/corpus/modbus/).
@@ -49,6 +50,14 @@ $(STATE_REPLAY): tests/fuzz/fuzz_state.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_O
 	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay -Iinclude $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
 regress: $(STATE_REPLAY)
 unit-bin: $(STATE_REPLAY)
+# The server's connection code through loopback sockets (fuzz_modbus_conn.c),
+# replayed the same way on tests/fuzz/corpus/modbus_conn/.
+MB_CONN_REPLAY := $(BUILD)/tests/fuzz/replay-modbus-conn
+$(MB_CONN_REPLAY): tests/fuzz/fuzz_modbus_conn.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay -Iinclude $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
+regress: $(MB_CONN_REPLAY)
+unit-bin: $(MB_CONN_REPLAY)
 
 # SIGKILL at many points of a cycle with M15, then restart; damaged states,
 # and states edited by hand with a recomputed checksum (tests/restart/forge).
@@ -116,14 +125,14 @@ shared: $(S42)
 # that long, from the committed seeds in tests/fuzz/corpus/<harness>/ (new
 # inputs go to $(BUILD)/fuzz/corpus-<harness>/); crashes land in $(BUILD)/fuzz/.
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := compile vm operator toolmodel modbus state
+FUZZ_TARGETS := compile vm operator toolmodel modbus modbus_conn state
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc -Ivm -Idisplay -Iinclude -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
 FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c src/cairo_dl.c,$(SRC_SRCS))
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRCS) $(wildcard src/*.h vm/*.h display/*.h)
 	@mkdir -p $(@D)
-	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) $(MODBUS_LIBS) -lm -ldl
+	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) $(MODBUS_LIBS) -pthread -lm -ldl
 # the tool-model parser alone (plugins/toothsearch/toolmodel.c)
 $(BUILD)/fuzz/fuzz_toolmodel: tests/fuzz/fuzz_toolmodel.c $(TS_DIR)/toolmodel.c $(TS_DIR)/toolmodel.h
 	@mkdir -p $(@D)

@@ -1,7 +1,9 @@
 /* libFuzzer harness for the Modbus request handler (src/modbus.h) without
  * sockets: the input is a byte stream as a client would send it, cut into
- * frames by mb_frame and answered by mb_dev_request against a live session;
- * the keys pressed are taken and the machine steps between frames. */
+ * frames by mb_frame and answered by mb_dev_request from the view of a live
+ * session (a write it leaves to the host applied as mb_sync would); the
+ * keys pressed are taken and the machine steps between frames.  The
+ * connection code itself is fuzz_modbus_conn.c's. */
 #include "compile.h"
 #include "modbus.h"
 #include "session.h"
@@ -75,7 +77,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     m.motion.feed = 600;
     m.motion.block = 1;
   }
-  mb_dev_init(dev, &m);
+  mb_dev_init(dev);
+  dev->read_only = (data[0] >> 3) & 1;
   data++;
   size--;
   uint8_t rsp[MB_FRAME_MAX];
@@ -84,7 +87,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     long n = mb_frame(data, size);
     if (n <= 0)
       break;                   /* malformed (closed) or truncated (times out) */
+    mb_view_of(&dev->v, &m);
     int r = mb_dev_request(dev, data, (size_t)n, rsp, now);
+    if (r == 0) {              /* a write for the host: its header must be there */
+      if (n < 12)
+        abort();
+      int ex = mb_dev_apply(dev, &m, &dev->w, now);
+      if (ex != 0 && ex != 6)
+        abort();
+      r = mb_dev_reply(data, ex, rsp);
+    }
     if (r < 9 || r > MB_FRAME_MAX || memcmp(rsp, data, 4) != 0 || (rsp[4] << 8 | rsp[5]) + 6 != r)
       abort();                 /* a reply must be a well-formed frame */
     data += n;

@@ -174,7 +174,8 @@ else:
     fails.append("a client sending one byte per 100 ms was not cut off")
 s.close()
 
-# More clients than the limit: the extra ones are closed, the victim goes on.
+# More clients than the limit: each newcomer closes the oldest silent one;
+# the victim, which talks, goes on.
 many = [connect() for _ in range(12)]
 probe_for(0.1)
 refused = 0

@@ -1,8 +1,9 @@
 #!/bin/sh
 # The Modbus server (contracts.md sec. 6): a libmodbus client runs a program
 # through Modbus alone, malformed frames while another client measures its
-# round trips (raw.py), and mbpoll, a client no one here wrote, drives
-# bundled programs from Пуск to M2.  Every wait has a time limit.
+# round trips (raw.py), the server under load (robust.py), and mbpoll, a
+# client no one here wrote, drives bundled programs from Пуск to M2.  Every
+# wait has a time limit.
 #   run.sh S42 CLIENT
 s42=$1
 client=$2
@@ -88,7 +89,57 @@ if start "$dir/loop.kp" --realtime; then
   [ "$STATUS" = 3 ] && ok || fail "SIGTERM before Пуск: status $STATUS, expected 3"
 fi
 
-# 3. bad addresses and a port in use
+# 3. robustness (tests/modbus/robust.py): pipelined requests, full slots,
+# idle connections, read-only and allow-listed servers, a machine whose
+# stdout nobody reads, a tooth search that computes for seconds
+rb() { timeout 120 "$py" "$dir/robust.py" "$@"; }
+if start "$dir/loop.kp"; then
+  rb pipeline "$PORT" && ok || fail "pipelined requests"
+  stop
+fi
+if start "$dir/loop.kp"; then
+  rb slots "$PORT" 8 && ok || fail "8 slots full"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-max-clients 3; then
+  rb slots "$PORT" 3 && ok || fail "--modbus-max-clients 3"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-idle 0.6; then
+  rb idle "$PORT" 0.6 && ok || fail "--modbus-idle 0.6"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-read-only; then
+  rb readonly "$PORT" && ok || fail "--modbus-read-only"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-allow 10.1.0.0/16,::2; then
+  rb refused "$PORT" && ok || fail "--modbus-allow without loopback"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-allow 192.168.0.0/16,127.0.0.0/8; then
+  rb probe "$PORT" 0.3 >/dev/null && ok || fail "--modbus-allow 127.0.0.0/8 refused loopback"
+  grep -q "warning" "$tmp/err" && fail "a warning on a loopback address: $(cat "$tmp/err")" || ok
+  stop
+fi
+for bad in "--modbus-idle 1" "--modbus --modbus-max-clients 0" "--modbus --modbus-max-clients 257" \
+           "--modbus --modbus-idle -1" "--modbus --modbus-idle x" "--modbus-read-only" \
+           "--modbus --modbus-allow 300.1.1.1" "--modbus --modbus-allow 10.0.0.0/33" "--modbus --modbus-allow 10.0.0.1,"; do
+  # shellcheck disable=SC2086
+  timeout 10 "$s42" run "$dir/loop.kp" $bad 2>"$tmp/e" </dev/null; st=$?
+  [ $st = 2 ] && [ -s "$tmp/e" ] && ok || fail "$bad: status $st, expected 2: $(cat "$tmp/e")"
+done
+# a server on every interface without an allow list says so (read-only, briefly)
+P2=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
+timeout 1 "$s42" run "$dir/loop.kp" --modbus "0.0.0.0:$P2" --modbus-read-only 2>"$tmp/e"
+grep -q "warning: Modbus on 0.0.0.0:$P2: not a loopback address" "$tmp/e" || grep -q "in use" "$tmp/e" && ok ||
+  fail "no warning on 0.0.0.0 without --modbus-allow: $(cat "$tmp/e")"
+rb stall "$s42" "$dir/loop.kp" && ok || fail "a trace into a pipe nobody reads stalled the server"
+sed 's/^image .*/image    = 4096/' programs/endmill_search.tool >"$tmp/big.tool"
+rb search "$s42" programs/endmill_search.kp --tool "$tmp/big.tool" --operator programs/endmill_search.operator \
+  --state "$tmp/es.state" && ok || fail "a long tooth search stalled the server"
+
+# 4. bad addresses and a port in use
 "$s42" run "$dir/loop.kp" --modbus 127.0.0.1:99999 2>"$tmp/e"; st=$?
 [ $st = 2 ] && ok || fail "--modbus 127.0.0.1:99999: status $st, expected 2"
 "$s42" run "$dir/loop.kp" --modbus=no.such.host.invalid:1502 2>"$tmp/e"; st=$?
@@ -99,7 +150,7 @@ if start "$dir/loop.kp"; then
   stop
 fi
 
-# 4. mbpoll
+# 5. mbpoll
 if ! command -v mbpoll >/dev/null 2>&1; then
   echo "modbus: mbpoll is not installed (Debian package mbpoll): its tests were skipped"
 else
@@ -144,7 +195,7 @@ else
   fi
 fi
 
-# 5. s42 tui --modbus in tmux: a client's keys are the panel's keys, the map
+# 6. s42 tui --modbus in tmux: a client's keys are the panel's keys, the map
 # shows what the terminal shows
 if ! command -v mbpoll >/dev/null 2>&1 || ! command -v tmux >/dev/null 2>&1; then
   echo "modbus: mbpoll or tmux is not installed: the terminal's Modbus tests were skipped"
@@ -189,6 +240,15 @@ else
     [ "$(cat "$tmp/tui-st" 2>/dev/null)" = 0 ] && ok || fail "tui: status $(cat "$tmp/tui-st" 2>/dev/null) after q"
   else
     fail "tui --modbus did not start: $(tm capture-pane -p -t mb 2>&1 | head -5)"
+  fi
+  tm kill-server 2>/dev/null
+  # the terminal computes a long tooth search; its server still answers
+  PORT=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
+  tm new -d -s mb -x 120 -y 40 "LANG=C.UTF-8 '$s42' tui programs/endmill_search.kp --tool '$tmp/big.tool' --state '$tmp/tui.state' --modbus 127.0.0.1:$PORT; sleep 30"
+  if screen_has "Modbus TCP on 127.0.0.1:$PORT"; then
+    rb tuisearch "$PORT" && ok || fail "tui: a long tooth search stalled the server"
+  else
+    fail "tui --modbus with the search did not start: $(tm capture-pane -p -t mb 2>&1 | head -5)"
   fi
   tm kill-server 2>/dev/null
   "$s42" tui programs/drill_point.kp --modbus 127.0.0.1:99999 </dev/null >/dev/null 2>"$tmp/e"; st=$?

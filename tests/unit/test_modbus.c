@@ -1,13 +1,23 @@
 /* The Modbus device without sockets (src/modbus.h): golden words of our
  * big-endian encoders, MBAP framing, and requests against a session --
- * reads, key presses, parameter writes, the exceptions, the counter. */
+ * reads, key presses, parameter writes, the exceptions, the counter; allow
+ * lists; and the threaded server over loopback, its host played here: a
+ * write waits for the host's thread and is decided with the machine's real
+ * state, a read after it sees the value. */
 #include "suites.h"
 #include "errors.h"
 #include "modbus.h"
 #include "session.h"
+#include <arpa/inet.h>
 #include <math.h>
+#include <netinet/in.h>
+#include <poll.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+#include <time.h>
+#include <unistd.h>
 
 static struct tprog t;
 static struct session *s;
@@ -26,13 +36,27 @@ static void setup(void)
   sess_init(s, &t.p);
   memset(&mm, 0, sizeof mm);
   mm.s = s;
-  mb_dev_init(&dev, &mm);
+  mb_dev_init(&dev);
 }
 
 static void teardown(void)
 {
   tp_free(&t);
   free(s);
+}
+
+/* One frame as the server answers it: from the view of the machine now; a
+ * write the host decides is applied to it, as mb_sync does, then replied. */
+static int serve(const uint8_t *f, size_t n, double now)
+{
+  mb_view_of(&dev.v, &mm);
+  int r = mb_dev_request(&dev, f, n, rsp, now);
+  if (r == 0) {
+    int ex = mb_dev_apply(&dev, &mm, &dev.w, now);
+    mb_view_of(&dev.v, &mm);
+    r = mb_dev_reply(f, ex, rsp);
+  }
+  return r;
 }
 
 /* Send a PDU (unit 1); returns the reply's PDU length, the PDU at rsp+7. */
@@ -47,7 +71,7 @@ static int req(const uint8_t *pdu, size_t n, double now)
   f[6] = 1;
   memcpy(f + 7, pdu, n);
   ck_assert_int_eq(mb_frame(f, 7 + n), (long)(7 + n));
-  int r = mb_dev_request(&dev, f, 7 + n, rsp, now);
+  int r = serve(f, 7 + n, now);
   ck_assert_int_ge(r, 9);
   ck_assert_int_eq(rsp[0], 0x12);   /* the transaction id comes back */
   ck_assert_int_eq(rsp[1], 0x34);
@@ -221,7 +245,7 @@ START_TEST(exceptions)
   ck_assert_int_eq(exception(ovr50, sizeof ovr50), 6);
   /* another unit id: gateway target failed */
   uint8_t f[12] = {0, 1, 0, 0, 0, 6, 7, 4, 0, 0, 0, 1};
-  ck_assert_int_eq(mb_dev_request(&dev, f, sizeof f, rsp, 1.0), 9);
+  ck_assert_int_eq(serve(f, sizeof f, 1.0), 9);
   ck_assert_int_eq(rsp[8], 0x0B);
 }
 END_TEST
@@ -278,6 +302,232 @@ START_TEST(positions_between_blocks)
 }
 END_TEST
 
+START_TEST(read_only_device)
+{
+  mm.idle = 1;
+  dev.read_only = 1;
+  static const uint8_t coil[] = {5, 0, 0, 0xFF, 0}, ovr[] = {6, 0, 0, 0, 50}, coils[] = {15, 0, 0, 0, 1, 1, 1},
+                       r1[] = {16, 0, 104, 0, 4, 8, 0x40, 0x10, 0, 0, 0, 0, 0, 0}, bad[] = {5, 0, 9, 0x12, 0x34},
+                       rd[] = {4, 0, 0, 0, 1};
+  ck_assert_int_eq(exception(coil, sizeof coil), 1);
+  ck_assert_int_eq(exception(ovr, sizeof ovr), 1);
+  ck_assert_int_eq(exception(coils, sizeof coils), 1);
+  ck_assert_int_eq(exception(r1, sizeof r1), 1);
+  ck_assert_int_eq(exception(bad, sizeof bad), 1);   /* any write, even a malformed one */
+  ck_assert(s->vm.reg[1] == 0);
+  ck_assert_int_eq(mb_dev_key(&dev), MB_KEY_NONE);
+  ck_assert_int_eq(req(rd, sizeof rd, 1.0), 4);
+  ck_assert_uint_eq(reg(0), MB_MAP_VERSION);
+}
+END_TEST
+
+static struct sockaddr_in v4(const char *a)
+{
+  struct sockaddr_in sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sin_family = AF_INET;
+  ck_assert_int_eq(inet_pton(AF_INET, a, &sa.sin_addr), 1);
+  return sa;
+}
+
+static struct sockaddr_in6 v6(const char *a)
+{
+  struct sockaddr_in6 sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sin6_family = AF_INET6;
+  ck_assert_int_eq(inet_pton(AF_INET6, a, &sa.sin6_addr), 1);
+  return sa;
+}
+
+START_TEST(allow_lists)
+{
+  struct mb_net v[8];
+  char err[200];
+  int n = mb_allow_parse("192.168.10.0/24,10.0.0.7,fd00::/8,::1", v, 8, err, sizeof err);
+  ck_assert_int_eq(n, 4);
+  struct sockaddr_in a;
+  struct sockaddr_in6 b;
+  a = v4("192.168.10.77"), ck_assert(mb_allow_match(v, n, &a));
+  a = v4("192.168.11.1"), ck_assert(!mb_allow_match(v, n, &a));
+  a = v4("10.0.0.7"), ck_assert(mb_allow_match(v, n, &a));
+  a = v4("10.0.0.8"), ck_assert(!mb_allow_match(v, n, &a));
+  b = v6("fd12:3456::1"), ck_assert(mb_allow_match(v, n, &b));
+  b = v6("fe80::1"), ck_assert(!mb_allow_match(v, n, &b));
+  b = v6("::1"), ck_assert(mb_allow_match(v, n, &b));
+  b = v6("::ffff:192.168.10.5"), ck_assert(mb_allow_match(v, n, &b));   /* IPv4 on a dual-stack socket */
+  b = v6("::ffff:127.0.0.1"), ck_assert(!mb_allow_match(v, n, &b));
+  ck_assert_int_eq(mb_allow_parse("10.1.2.3/12", v, 8, err, sizeof err), 1);   /* host bits are ignored */
+  a = v4("10.15.0.1"), ck_assert(mb_allow_match(v, 1, &a));
+  a = v4("10.16.0.1"), ck_assert(!mb_allow_match(v, 1, &a));
+  ck_assert_int_eq(mb_allow_parse("0.0.0.0/0", v, 8, err, sizeof err), 1);
+  a = v4("203.0.113.9"), ck_assert(mb_allow_match(v, 1, &a));
+  static const char *const bad[] = {"", ",", "10.0.0.1,", "10.0.0.0/33", "::/129", "10.0.0.0/", "10.0.0.0/x",
+                                    "300.1.1.1", "host.example", "10.0.0.1 ,10.0.0.2", "1.2.3.4/-1"};
+  for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+    err[0] = 0;
+    ck_assert_msg(mb_allow_parse(bad[i], v, 8, err, sizeof err) < 0, "'%s' was taken", bad[i]);
+    ck_assert_msg(strstr(err, "--modbus-allow") != NULL, "'%s': %s", bad[i], err);
+  }
+  ck_assert_int_eq(mb_allow_parse("1.1.1.1,2.2.2.2,3.3.3.3", v, 2, err, sizeof err), -1);
+}
+END_TEST
+
+/* ---- the threaded server over loopback; this test is its host ---- */
+
+static struct mb_server *srv;
+static int cfd = -1;
+
+static void srv_setup(void)
+{
+  setup();
+  struct mb_opts o;
+  mb_opts_init(&o);
+  o.addr = "127.0.0.1:0";
+  char err[300];
+  int usage;
+  srv = mb_open(&o, err, sizeof err, &usage);
+  ck_assert_msg(srv != NULL, "%s", err);
+  ck_assert_str_eq(mb_warning(srv), "");
+  const char *port = strrchr(mb_address(srv), ':');
+  ck_assert(port != NULL);
+  struct sockaddr_in sa = v4("127.0.0.1");
+  sa.sin_port = htons((uint16_t)atoi(port + 1));
+  cfd = socket(AF_INET, SOCK_STREAM, 0);
+  ck_assert_int_ge(cfd, 0);
+  ck_assert_int_eq(connect(cfd, (struct sockaddr *)&sa, sizeof sa), 0);
+  mm.idle = 1;
+  mb_publish(srv, &mm);
+}
+
+static void srv_teardown(void)
+{
+  close(cfd);
+  mb_close(srv);
+  teardown();
+}
+
+static double now_s(void)
+{
+  return mb_now();
+}
+
+static void send_pdu(const uint8_t *pdu, size_t n)
+{
+  uint8_t f[MB_FRAME_MAX] = {0x55, 0x66, 0, 0, (uint8_t)((n + 1) >> 8), (uint8_t)(n + 1), 1};
+  memcpy(f + 7, pdu, n);
+  ck_assert_int_eq(send(cfd, f, 7 + n, 0), (ssize_t)(7 + n));
+}
+
+/* The reply within ms milliseconds: its length, 0 when none came. */
+static int recv_reply(int ms)
+{
+  struct timeval tv = {ms / 1000, (ms % 1000) * 1000};
+  setsockopt(cfd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  size_t have = 0;
+  while (have < 6 || have < 6u + (unsigned)(rsp[4] << 8 | rsp[5])) {
+    ssize_t r = recv(cfd, rsp + have, sizeof rsp - have, 0);
+    if (r <= 0)
+      return 0;
+    have += (size_t)r;
+  }
+  return (int)have;
+}
+
+static void sleep_ms(int ms)
+{
+  struct timespec ts = {0, ms * 1000000L};
+  nanosleep(&ts, NULL);
+}
+
+/* A write of R1 = 2.5 (FC 16, float64). */
+static const uint8_t wr_r1[] = {16, 0, 104, 0, 4, 8, 0x40, 0x04, 0, 0, 0, 0, 0, 0};
+
+START_TEST(server_write_waits_for_the_host)
+{
+  send_pdu(wr_r1, sizeof wr_r1);
+  ck_assert_int_eq(recv_reply(20), 0);       /* not before the host took it */
+  ck_assert(s->vm.reg[1] == 0);
+  /* the host comes to it (as its loop would, woken by mb_fd) */
+  struct pollfd p = {.fd = mb_fd(srv), .events = POLLIN, .revents = 0};
+  ck_assert_int_eq(poll(&p, 1, 1000), 1);
+  mb_sync(srv, &mm);
+  ck_assert(s->vm.reg[1] == 2.5);
+  ck_assert_int_eq(recv_reply(1000), 12);
+  ck_assert_int_eq(rsp[7], 16);
+  /* a read right after it sees the value */
+  static const uint8_t rd[] = {4, 0, 104, 0, 4};
+  send_pdu(rd, sizeof rd);
+  ck_assert_int_eq(recv_reply(1000), 9 + 8);
+  uint16_t w[4] = {(uint16_t)(rsp[9] << 8 | rsp[10]), (uint16_t)(rsp[11] << 8 | rsp[12]),
+                   (uint16_t)(rsp[13] << 8 | rsp[14]), (uint16_t)(rsp[15] << 8 | rsp[16])};
+  ck_assert(mb_get_f64(w) == 2.5);
+}
+END_TEST
+
+START_TEST(server_write_decided_with_the_real_state)
+{
+  /* the view says idle, but the cycle has started since: refused, not applied */
+  mm.idle = 0;
+  send_pdu(wr_r1, sizeof wr_r1);
+  sleep_ms(5);
+  mb_sync(srv, &mm);
+  ck_assert_int_eq(recv_reply(1000), 9);
+  ck_assert_int_eq(rsp[7], 0x90);
+  ck_assert_int_eq(rsp[8], 6);
+  ck_assert(s->vm.reg[1] == 0);
+  /* the view says it runs: refused at once, without the host */
+  double t0 = now_s();
+  send_pdu(wr_r1, sizeof wr_r1);
+  ck_assert_int_eq(recv_reply(1000), 9);
+  ck_assert_int_eq(rsp[8], 6);
+  ck_assert(now_s() - t0 < 0.02);
+  /* M25 at the moment the host takes the override: refused */
+  mm.idle = 1;
+  mb_publish(srv, &mm);
+  s->m.override_allowed = 0;
+  static const uint8_t ovr[] = {6, 0, 0, 0, 50};
+  send_pdu(ovr, sizeof ovr);
+  sleep_ms(5);
+  mb_sync(srv, &mm);
+  ck_assert_int_eq(recv_reply(1000), 9);
+  ck_assert_int_eq(rsp[8], 6);
+  ck_assert_int_eq(s->m.override_pct, 100);
+  s->m.override_allowed = 1;
+  send_pdu(ovr, sizeof ovr);
+  sleep_ms(5);
+  mb_sync(srv, &mm);
+  ck_assert_int_eq(recv_reply(1000), 12);
+  ck_assert_int_eq(s->m.override_pct, 50);
+}
+END_TEST
+
+START_TEST(server_busy_host)
+{
+  /* the host does not come (computing): 06 in time, and never applied */
+  double t0 = now_s();
+  send_pdu(wr_r1, sizeof wr_r1);
+  ck_assert_int_eq(recv_reply(1000), 9);
+  ck_assert_int_eq(rsp[8], 6);
+  double took = now_s() - t0;
+  ck_assert_msg(took >= MB_WRITE_WAIT - 0.005 && took < MB_WRITE_WAIT + 0.1, "%.3f s", took);
+  mb_sync(srv, &mm);
+  ck_assert(s->vm.reg[1] == 0);
+  /* a key is acknowledged at once and waits in its coil */
+  static const uint8_t stop[] = {5, 0, 1, 0xFF, 0}, coils[] = {1, 0, 0, 0, 5};
+  send_pdu(stop, sizeof stop);
+  ck_assert_int_eq(recv_reply(1000), 12);
+  send_pdu(coils, sizeof coils);
+  ck_assert_int_eq(recv_reply(1000), 10);
+  ck_assert_int_eq(rsp[9], 0x02);
+  ck_assert_int_eq(mb_key(srv), MB_KEY_STOP);
+  ck_assert_int_eq(mb_key(srv), MB_KEY_NONE);
+  send_pdu(coils, sizeof coils);
+  ck_assert_int_eq(recv_reply(1000), 10);
+  ck_assert_int_eq(rsp[9], 0);
+  ck_assert_int_eq(mb_clients(srv), 1);
+}
+END_TEST
+
 Suite *suite_modbus(void)
 {
   Suite *su = suite_create("modbus");
@@ -291,6 +541,14 @@ Suite *suite_modbus(void)
   tcase_add_test(tc, exceptions);
   tcase_add_test(tc, keys_in_order);
   tcase_add_test(tc, positions_between_blocks);
+  tcase_add_test(tc, read_only_device);
+  tcase_add_test(tc, allow_lists);
   suite_add_tcase(su, tc);
+  TCase *ts = tcase_create("server");
+  tcase_add_checked_fixture(ts, srv_setup, srv_teardown);
+  tcase_add_test(ts, server_write_waits_for_the_host);
+  tcase_add_test(ts, server_write_decided_with_the_real_state);
+  tcase_add_test(ts, server_busy_host);
+  suite_add_tcase(su, ts);
   return su;
 }
