@@ -997,7 +997,7 @@ static int headless(const struct opts *opt, struct plot *plot)
 
   while (status == EXIT_END) {
     r.s.vm.start_all = interruptible || (r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]));
-    if (quit_signal) {
+    if (interruptible && quit_signal) {
       const struct prog_block *b = &p.blocks[r.s.vm.cur];
       char qb[16];
       fprintf(stderr, "%s:%u:%u: note: %s: stopped by %s before this block\n", o.program, b->line, b->col,
