@@ -16,6 +16,7 @@ BUILD    ?= build
 PREFIX   ?= /usr/local
 BINDIR   ?= $(PREFIX)/bin
 MANDIR   ?= $(PREFIX)/share/man/man1
+BASHCOMPDIR ?= $(PREFIX)/share/bash-completion/completions
 PYTHON   ?= python3
 # The binary the tests run: ./s42 for a normal build, inside BUILD otherwise.
 S42      ?= ./s42
@@ -106,6 +107,8 @@ install: $(S42) $(PLUGIN_SOS)
 	install -m 644 $(PLUGIN_SOS) $(DESTDIR)$(PLUGINDIR)/
 	install -m 644 include/s42_plugin.h $(DESTDIR)$(INCLUDEDIR)/s42_plugin.h
 	if [ -f docs/s42.1 ]; then install -m 644 docs/s42.1 $(DESTDIR)$(MANDIR)/s42.1; fi
+	install -d $(DESTDIR)$(BASHCOMPDIR)
+	install -m 644 scripts/s42.bash $(DESTDIR)$(BASHCOMPDIR)/s42
 
 clean:
 	rm -rf build build-asan s42

@@ -26,39 +26,154 @@
 
 enum { EXIT_END = 0, EXIT_PROGRAM = 1, EXIT_USAGE = 2, EXIT_STOPPED = 3, EXIT_IO = 4 };
 
-static const char usage[] =
-  "usage: s42 run    PROGRAM.kp [options]   run headless: the batch emulator\n"
-  "       s42 tui    [PROGRAM.kp] [options] the 2С42-65 display in the terminal\n"
-  "       s42 check  PROGRAM.kp...          compile only, print diagnostics\n"
-  "       s42 disasm PROGRAM.kp             print the bytecode, block by block\n"
-  "       s42 plot   PROGRAM.kp -o FILE.png run headless and draw the tool path\n"
-  "       s42 plugins                       list the plugins found and their functions\n"
-  "       s42 --help | --version\n"
-  "\n"
-  "options of run, tui and plot:\n"
-  "  --operator FILE    operator actions for a headless run\n"
-  "  --tool FILE        tool model for tooth-step search (G10/G11)\n"
-  "  --dump-images DIR  write the probe images of each search there, plain and annotated\n"
-  "  --trace            one line per executed block on stdout\n"
-  "  --trace=json       the same as JSON Lines\n"
-  "  --dump             the final machine state as one JSON object on stdout\n"
-  "  --screen           the final 16x32 screen on stdout\n"
-  "  --state FILE       where the M15 restart state is kept\n"
-  "  --restart          start from the saved M15 restart point\n"
-  "  --max-blocks N     stop with E-LIMIT after N executed blocks (default 100000000)\n"
-  "  --plugins DIR      where plugins are looked for (also S42_PLUGIN_PATH)\n"
-  "  --modbus[=HOST:PORT] serve the machine over Modbus TCP (default 127.0.0.1:1502)\n"
-  "  --modbus-allow ADDR[/BITS],...  serve only these clients (IPv4 or IPv6)\n"
-  "  --modbus-read-only refuse every write (exception 01): clients only watch\n"
-  "  --modbus-max-clients N  connections at once (default 8; a newcomer closes the longest idle)\n"
-  "  --modbus-idle SECONDS   close a connection silent that long (default 60; 0 never)\n"
-  "  --realtime         pace the simulation at machine speed\n"
-  "  --lang uk|en       language of machine messages (default uk)\n"
-  "\n"
-  "exit status: 0 the program reached M2; 1 an error in the program; 2 bad usage;\n"
-  "3 the operator script had no fitting action, or the cycle was stopped; 4 I/O error\n";
+
+/* Every option, the commands that take it and its line of help: the
+ * per-command help (`s42 run --help`) and "did you mean" come from here. */
+enum { C_RUN = 1, C_TUI = 2, C_PLOT = 4, C_CHECK = 8, C_DISASM = 16, C_PLUGINS = 32 };
+static const struct optinfo {
+  const char *name, *arg;
+  unsigned cmds;
+  const char *help;
+} optinfo[] = {
+  {"--operator", "FILE", C_RUN | C_PLOT, "operator actions for a headless run"},
+  {"--tool", "FILE", C_RUN | C_TUI | C_PLOT, "tool model for tooth-step search (G10/G11)"},
+  {"--dump-images", "DIR", C_RUN | C_TUI | C_PLOT, "write the probe images of each search there, plain and annotated"},
+  {"--trace", NULL, C_RUN | C_PLOT, "one line per executed block on stdout"},
+  {"--trace=json", NULL, C_RUN | C_PLOT, "the same as JSON Lines (--trace=text: as --trace)"},
+  {"--dump", NULL, C_RUN | C_PLOT, "the final machine state as one JSON object on stdout"},
+  {"--screen", NULL, C_RUN | C_PLOT, "the final 16x32 screen on stdout"},
+  {"--state", "FILE", C_RUN | C_TUI | C_PLOT, "where the M15 restart state is kept (default PROGRAM.kp.state)"},
+  {"--restart", NULL, C_RUN | C_TUI | C_PLOT, "start from the saved M15 restart point"},
+  {"--max-blocks", "N", C_RUN | C_TUI | C_PLOT, "stop with E-LIMIT after N executed blocks (default 100000000)"},
+  {"--modbus", "[=HOST:PORT]", C_RUN | C_TUI, "serve the machine over Modbus TCP (default 127.0.0.1:1502)"},
+  {"--modbus-allow", "ADDR[/BITS],...", C_RUN | C_TUI, "serve only these clients (IPv4 or IPv6)"},
+  {"--modbus-read-only", NULL, C_RUN | C_TUI, "refuse every write (exception 01): clients only watch"},
+  {"--modbus-max-clients", "N", C_RUN | C_TUI, "connections at once (default 8; a newcomer closes the longest idle)"},
+  {"--modbus-idle", "SECONDS", C_RUN | C_TUI, "close a connection silent that long (default 60; 0 never)"},
+  {"--realtime", NULL, C_RUN | C_PLOT, "pace the run at machine speed (Ctrl-C stops it with the dump)"},
+  {"--lang", "uk|en", C_RUN | C_TUI | C_PLOT, "language of machine messages (default uk)"},
+  {"-o", "FILE", C_PLOT, "the picture to write: .png, .svg or .pdf"},
+  {"--json", NULL, C_CHECK | C_PLUGINS, "the output as JSON (check: one object a diagnostic, a line)"},
+  {"--plugins", "DIR", C_RUN | C_TUI | C_PLOT | C_CHECK | C_DISASM | C_PLUGINS,
+   "where plugins are looked for first (also S42_PLUGIN_PATH)"},
+};
+
+static const struct cmdinfo {
+  const char *name, *args, *what;
+  unsigned bit;
+} cmdinfo[] = {
+  {"run", "PROGRAM.kp [options]", "run headless: the batch emulator", C_RUN},
+  {"tui", "[PROGRAM.kp] [options]", "the 2С42-65 panel in the terminal", C_TUI},
+  {"check", "[--json] PROGRAM.kp...", "compile only, print diagnostics", C_CHECK},
+  {"disasm", "PROGRAM.kp", "print the bytecode, block by block", C_DISASM},
+  {"plot", "PROGRAM.kp -o FILE [options]", "run headless and draw the tool path (.png .svg .pdf)", C_PLOT},
+  {"plugins", "[--json]", "list the plugins found and their functions", C_PLUGINS},
+};
+
+/* Edit distance of a and b (each at most 63 characters) counting a swap of
+ * two neighbours as one edit (optimal string alignment), for "did you mean". */
+static int distance(const char *a, const char *b)
+{
+  size_t na = strlen(a), nb = strlen(b);
+  if (na > 63 || nb > 63)
+    return 99;
+  int d[64][64];
+  for (size_t i = 0; i <= na; i++)
+    d[i][0] = (int)i;
+  for (size_t j = 0; j <= nb; j++)
+    d[0][j] = (int)j;
+  for (size_t i = 1; i <= na; i++)
+    for (size_t j = 1; j <= nb; j++) {
+      int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+      if (d[i - 1][j] + 1 < best) best = d[i - 1][j] + 1;
+      if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
+        best = d[i - 2][j - 2] + 1;
+      d[i][j] = best;
+    }
+  return d[na][nb];
+}
+
+/* The closest of the names (within a third of its length, at least 1
+ * edit), or NULL. */
+static const char *nearest(const char *word, const char *const *names, size_t n)
+{
+  const char *best = NULL;
+  int bd = 99, lim = (int)strlen(word) / 3 > 1 ? (int)strlen(word) / 3 : 1;
+  for (size_t i = 0; i < n; i++) {
+    int d = distance(word, names[i]);
+    if (d < bd) {
+      bd = d;
+      best = names[i];
+    }
+  }
+  return bd <= lim ? best : NULL;
+}
+
+/* An option that is not one: say so, with the nearest one the command takes. */
+static void unknown_option(const char *a, unsigned cmd)
+{
+  const char *names[sizeof optinfo / sizeof optinfo[0]];
+  size_t n = 0;
+  char word[64];
+  snprintf(word, sizeof word, "%.*s", (int)strcspn(a, "="), a);   /* --modbuss=... as --modbuss */
+  for (size_t i = 0; i < sizeof optinfo / sizeof optinfo[0]; i++)
+    if (optinfo[i].cmds & cmd)
+      names[n++] = optinfo[i].name;
+  const char *m = nearest(word, names, n);
+  if (m)
+    fprintf(stderr, "s42: unknown option '%s': did you mean %s? (see s42 %s --help)\n", a, m,
+            cmd == C_TUI ? "tui" : cmd == C_PLOT ? "plot" : "run");
+  else
+    fprintf(stderr, "s42: unknown option '%s' (see s42 %s --help)\n", a,
+            cmd == C_TUI ? "tui" : cmd == C_PLOT ? "plot" : "run");
+}
+
+/* s42 --help: the commands, and the options of run, tui and plot. */
+static void usage_to(FILE *f)
+{
+  for (size_t i = 0; i < sizeof cmdinfo / sizeof cmdinfo[0]; i++) {
+    char left[64];
+    snprintf(left, sizeof left, "%s %s", cmdinfo[i].name, cmdinfo[i].args);
+    fprintf(f, "%s s42 %-36s %s\n", i ? "      " : "usage:", left, cmdinfo[i].what);
+  }
+  fprintf(f, "       s42 --help | --version | COMMAND --help\n\noptions of run, tui and plot (s42 COMMAND --help: which):\n");
+  for (size_t i = 0; i < sizeof optinfo / sizeof optinfo[0]; i++) {
+    const struct optinfo *o = &optinfo[i];
+    if (!(o->cmds & (C_RUN | C_TUI | C_PLOT)) || !o->help)
+      continue;
+    char left[64];
+    snprintf(left, sizeof left, "%s%s%s", o->name, o->arg && o->arg[0] != '[' ? " " : "", o->arg ? o->arg : "");
+    fprintf(f, "  %-31s %s\n", left, o->help);
+  }
+  fprintf(f, "\nexit status: 0 the program reached M2; 1 an error in the program; 2 bad usage;\n"
+          "3 the operator script had no fitting action, or the cycle was stopped; 4 I/O error\n");
+}
+
+/* s42 CMD --help: the command's usage and the options it takes. */
+static int cmd_help(const struct cmdinfo *c)
+{
+  printf("usage: s42 %s %s\n  %s\n", c->name, c->args, c->what);
+  int any = 0;
+  for (size_t i = 0; i < sizeof optinfo / sizeof optinfo[0]; i++) {
+    const struct optinfo *o = &optinfo[i];
+    if (!(o->cmds & c->bit) || !o->help)
+      continue;
+    if (!any++)
+      printf("\noptions:\n");
+    char left[64];
+    snprintf(left, sizeof left, "%s%s%s", o->name, o->arg && o->arg[0] != '[' ? " " : "", o->arg ? o->arg : "");
+    printf("  %-31s %s\n", left, o->help);
+  }
+  printf("\nexit status: 0 %s; 1 an error in the program; 2 bad usage;\n"
+         "3 the operator script had no fitting action, or the cycle was stopped; 4 I/O error\n"
+         "(man s42 for the whole story)\n",
+         c->bit & (C_CHECK | C_DISASM) ? "no error" : c->bit == C_PLUGINS ? "listed" : "the program reached M2");
+  return 0;
+}
 
 struct opts {
+  unsigned cmd;              /* C_RUN, C_TUI or C_PLOT: for "did you mean" */
   const char *program, *operator_file, *tool, *dump_images, *state, *plugins, *modbus, *out;
   int trace, json, dump, screen, restart, realtime, en;
   unsigned long long max_blocks;
@@ -87,6 +202,7 @@ static int read_file(const char *path, size_t max, char **buf, size_t *len)
 static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
 {
   memset(o, 0, sizeof *o);
+  o->cmd = strcmp(argv[1], "tui") == 0 ? C_TUI : strcmp(argv[1], "plot") == 0 ? C_PLOT : C_RUN;
   o->max_blocks = 100000000ULL;
   mb_opts_init(&o->mb);
   for (; i < argc; i++) {
@@ -175,7 +291,7 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
       }
       continue;
     } else if (a[0] == '-' && a[1]) {
-      fprintf(stderr, "s42: unknown option '%s' (see s42 --help)\n", a);
+      unknown_option(a, o->cmd);
       return -1;
     } else {
       if (o->program && !multi) {
@@ -304,11 +420,15 @@ static int cmd_plugins(int argc, char **argv)
 {
   if (take_plugins_opt(&argc, argv))
     return EXIT_USAGE;
-  if (argc != 2) {
-    fprintf(stderr, "usage: s42 plugins [--plugins DIR]\n");
+  int json = argc == 3 && strcmp(argv[2], "--json") == 0;
+  if (argc != 2 && !json) {
+    fprintf(stderr, "usage: s42 plugins [--json] [--plugins DIR]\n");
     return EXIT_USAGE;
   }
-  plug_list(plugins_init(NULL), stdout);
+  if (json)
+    plug_list_json(plugins_init(NULL), stdout, json_string);
+  else
+    plug_list(plugins_init(NULL), stdout);
   return 0;
 }
 
@@ -381,7 +501,8 @@ static int cmd_check(int argc, char **argv)
     free(src);
   }
   if (!any) {
-    fprintf(stderr, "s42: check needs a program file\n%s", usage);
+    fprintf(stderr, "s42: check needs a program file\n");
+    usage_to(stderr);
     return EXIT_USAGE;
   }
   return errors ? EXIT_PROGRAM : io ? EXIT_IO : 0;
@@ -1100,7 +1221,8 @@ static int cmd_run(int argc, char **argv)
     return EXIT_USAGE;
   plugins_init(o.plugins);
   if (!o.program) {
-    fprintf(stderr, "s42: run needs a program file\n%s", usage);
+    fprintf(stderr, "s42: run needs a program file\n");
+    usage_to(stderr);
     return EXIT_USAGE;
   }
   if (o.out) {
@@ -1199,12 +1321,21 @@ int main(int argc, char **argv)
 static int command(int argc, char **argv)
 {
   if (argc < 2) {
-    fputs(usage, stderr);
+    usage_to(stderr);
     return EXIT_USAGE;
   }
   const char *cmd = argv[1];
+  /* s42 CMD --help (or -h anywhere among its words), s42 help CMD */
+  for (size_t i = 0; i < sizeof cmdinfo / sizeof cmdinfo[0]; i++) {
+    int mine = strcmp(cmd, cmdinfo[i].name) == 0;
+    if (strcmp(cmd, "help") == 0 && argc == 3 && strcmp(argv[2], cmdinfo[i].name) == 0)
+      return cmd_help(&cmdinfo[i]);
+    for (int k = 2; mine && k < argc; k++)
+      if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0)
+        return cmd_help(&cmdinfo[i]);
+  }
   if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 || strcmp(cmd, "help") == 0) {
-    fputs(usage, stdout);
+    usage_to(stdout);
     return 0;
   }
   if (strcmp(cmd, "--version") == 0) {
@@ -1227,6 +1358,14 @@ static int command(int argc, char **argv)
     return cmd_plugins(argc, argv);
   if (strcmp(cmd, "tui") == 0)
     return cmd_tui(argc, argv);
-  fprintf(stderr, "s42: unknown command '%s'\n%s", cmd, usage);
+  const char *names[sizeof cmdinfo / sizeof cmdinfo[0]];
+  for (size_t i = 0; i < sizeof cmdinfo / sizeof cmdinfo[0]; i++)
+    names[i] = cmdinfo[i].name;
+  const char *m = nearest(cmd, names, sizeof names / sizeof names[0]);
+  if (m)
+    fprintf(stderr, "s42: unknown command '%s': did you mean %s?\n", cmd, m);
+  else
+    fprintf(stderr, "s42: unknown command '%s'\n", cmd);
+  usage_to(stderr);
   return EXIT_USAGE;
 }

@@ -730,3 +730,59 @@ void plug_list(struct plug_set *ps, FILE *f)
   for (size_t i = 0; i < ps->nbad; i++)
     fprintf(f, "refused: %s %s\n", ps->bad[i].path, ps->bad[i].msg);
 }
+
+void plug_list_json(struct plug_set *ps, FILE *f, void (*str)(FILE *, const char *))
+{
+  plug_open_all(ps);
+  fprintf(f, "{\"abi\":\"%d.%d\",\"searched\":[", S42_ABI_MAJOR, S42_ABI_MINOR);
+  for (size_t i = 0; i < ps->ndirs; i++) {
+    if (i)
+      fputc(',', f);
+    str(f, ps->dirs[i]);
+  }
+  fputs("],\"plugins\":[", f);
+  int first = 1;
+  for (size_t j = 0; j < ps->nfiles; j++) {
+    if (ps->files[j].state != PF_OPEN)
+      continue;
+    int i = ps->files[j].plug;
+    const struct s42_plugin *d = ps->v[i].d;
+    fputs(first ? "{\"name\":" : ",{\"name\":", f);
+    first = 0;
+    str(f, d->name);
+    fputs(",\"version\":", f);
+    str(f, d->version);
+    fprintf(f, ",\"abi\":\"%u.%u\",\"path\":", (unsigned)d->abi_major, (unsigned)d->abi_minor);
+    str(f, ps->v[i].path);
+    fputs(",\"summary\":", f);
+    str(f, d->summary ? d->summary : "");
+    fputs(",\"functions\":[", f);
+    for (uint32_t k = 0; k < d->nfunctions; k++) {
+      const struct s42_function *fn = &d->functions[k];
+      int w = core_function(fn->kind, fn->number) ? -2 : plug_find(ps, fn->kind, fn->number, NULL);
+      fprintf(f, "%s{\"function\":\"%c%02d\",\"summary\":", k ? "," : "", fn->kind, fn->number);
+      str(f, fn->summary ? fn->summary : "");
+      /* used: this plugin gives the function; otherwise the language or
+       * another plugin does */
+      fputs(",\"used\":", f);
+      fputs(w == i ? "true" : "false", f);
+      if (w >= 0 && w != i) {
+        fputs(",\"provided_by\":", f);
+        str(f, ps->v[w].d->name);
+      } else if (w == -2) {
+        fputs(",\"provided_by\":\"the language\"", f);
+      }
+      fputc('}', f);
+    }
+    fputs("]}", f);
+  }
+  fputs("],\"refused\":[", f);
+  for (size_t i = 0; i < ps->nbad; i++) {
+    fputs(i ? ",{\"path\":" : "{\"path\":", f);
+    str(f, ps->bad[i].path);
+    fputs(",\"reason\":", f);
+    str(f, ps->bad[i].msg);
+    fputc('}', f);
+  }
+  fputs("]}\n", f);
+}

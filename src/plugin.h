@@ -100,6 +100,9 @@ const char *plug_option(const char *name);
 /* The reason init() gives with host->error(NULL, ...), for plug_use. */
 void plug_init_reason(const char *msg);
 
+/* `s42 plugins --json`: the same as one JSON object (str writes a JSON
+ * string: the caller's encoder). */
+void plug_list_json(struct plug_set *ps, FILE *f, void (*str)(FILE *, const char *));
 /* `s42 plugins`: what was found, refused and where it looked (opens all). */
 void plug_list(struct plug_set *ps, FILE *f);
 

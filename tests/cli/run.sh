@@ -99,5 +99,36 @@ st=$?; if [ "$st" -eq 4 ]; then ok; else bad "check of a missing file and a good
 "$S42" check "$T/missing.kp" "$T/caret.kp" 2>/dev/null
 st=$?; if [ "$st" -eq 1 ]; then ok; else bad "check of a missing file and a bad one: status $st, expected 1"; fi
 
+# per-command help on stdout, status 0; "did you mean" for options and commands
+if "$S42" run --help >"$T/out" 2>&1 && grep -q '^usage: s42 run' "$T/out" && grep -q -- '--operator FILE' "$T/out" &&
+   ! grep -q -- '--json' "$T/out"; then ok; else bad "run --help: $(head -3 "$T/out")"; fi
+if "$S42" help check >"$T/out" 2>&1 && grep -q -- '--json' "$T/out" && ! grep -q -- '--operator' "$T/out"; then ok; else bad "help check"; fi
+"$S42" run programs/drill_point.kp --opertor x 2>"$T/err"
+st=$?; if [ "$st" -eq 2 ] && grep -q "did you mean --operator?" "$T/err"; then ok; else bad "--opertor: $st $(cat "$T/err")"; fi
+"$S42" tui --modbus-idel 3 2>"$T/err"
+st=$?; if [ "$st" -eq 2 ] && grep -q "did you mean --modbus-idle?" "$T/err"; then ok; else bad "--modbus-idel: $(cat "$T/err")"; fi
+"$S42" rnu x.kp 2>"$T/err"
+st=$?; if [ "$st" -eq 2 ] && grep -q "did you mean run?" "$T/err"; then ok; else bad "rnu: $(cat "$T/err")"; fi
+"$S42" run programs/drill_point.kp --zzzzzz 2>"$T/err"
+if grep -q "did you mean" "$T/err"; then bad "a far option got a suggestion: $(cat "$T/err")"; else ok; fi
+
+# bash completion: options from the command's --help, .kp files
+if command -v bash >/dev/null 2>&1; then
+  got=$(S42="$S42" bash -c '. scripts/s42.bash; COMP_WORDS=("$S42" run --oper); COMP_CWORD=2; _s42; echo "${COMPREPLY[*]}"')
+  if [ "$got" = "--operator" ]; then ok; else bad "completion of run --oper: '$got'"; fi
+  got=$(S42="$S42" bash -c '. scripts/s42.bash; COMP_WORDS=("$S42" plu); COMP_CWORD=1; _s42; echo "${COMPREPLY[*]}"')
+  if [ "$got" = "plugins" ]; then ok; else bad "completion of plu: '$got'"; fi
+fi
+
+# plugins --json: one object that parses, with the plugins found
+if "$S42" plugins --json >"$T/out" && python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+names = sorted(p["name"] for p in d["plugins"])
+assert d["abi"] and isinstance(d["searched"], list) and isinstance(d["refused"], list)
+assert {"helix", "oscillation"} <= set(names), names
+assert all(f["function"][0] in "GM" for p in d["plugins"] for f in p["functions"])
+' "$T/out"; then ok; else bad "plugins --json: $(head -c 300 "$T/out")"; fi
+
 echo "cli: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -27,7 +27,8 @@ make --no-print-directory install DESTDIR="$tmp/root" PREFIX="$PREFIX" BUILD="$B
 if grep -q '^cc \|^g++ \|^c++ ' "$tmp/log"; then bad "make install rebuilt something: $(grep '^cc\|^g++\|^c++' "$tmp/log" | head -2)"; else ok; fi
 root=$tmp/root$PREFIX
 for f in bin/s42 lib/s42/plugins/helix.so lib/s42/plugins/oscillation.so lib/s42/plugins/toothsearch.so \
-         lib/s42/plugins/toothsearch/toothsearch-cv.so include/s42_plugin.h share/man/man1/s42.1; do
+         lib/s42/plugins/toothsearch/toothsearch-cv.so include/s42_plugin.h share/man/man1/s42.1 \
+         share/bash-completion/completions/s42; do
   [ -f "$root/$f" ] && ok || bad "make install did not install $f"
 done
 
