@@ -1315,6 +1315,27 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   d->nsrc = n;
   p->saved_reg = REG_F;
   p->file = d->file;
+  /* a file in another encoding is one error, not one a block */
+  unsigned bl, bc, bb;
+  const char *enc;
+  if (lex_find_bad_utf8(src, n, &bl, &bc, &bb, &enc)) {
+    const char *name = d->file ? d->file : "FILE";
+    if (enc)
+      diag_add(d, DIAG_ERROR, S42_E_SYNTAX, bl, bc, -1,
+               "not UTF-8 (it reads as %s%s): convert it with `iconv -f %s -t utf-8 %s > NEW.kp`", enc,
+               strcmp(enc, "cp1251") == 0 ? ", Windows Cyrillic" : strcmp(enc, "cp866") == 0 ? ", DOS Cyrillic" : "",
+               enc, name);
+    else
+      diag_add(d, DIAG_ERROR, S42_E_SYNTAX, bl, bc, -1,
+               "not UTF-8: the byte 0x%02X here is no character; a program is UTF-8 text", bb);
+    d->src = NULL;   /* its lines cannot be shown as they are */
+    d->nsrc = 0;
+    free(c.x);
+    p->ext = NULL;
+    p->ext_free = NULL;
+    free(c.b);
+    return -1;
+  }
   struct parser ps;
   int toolong = 0;
   parse_init(&ps, src, n, d);

@@ -222,7 +222,7 @@ static void cursor_init(struct cursor *c, const struct diag_list *d)
 {
   c->s = d->src;
   c->n = d->nsrc;
-  c->pos = d->nsrc >= 3 && memcmp(d->src, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;   /* not the byte-order mark */
+  c->pos = d->src && d->nsrc >= 3 && memcmp(d->src, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;   /* not the byte-order mark */
   c->line = 1;
 }
 

@@ -241,3 +241,93 @@ void lex_reset(struct lex *l, struct lex_mark m)
   l->peeked = 0;
   lex_peek(l);   /* what lex_adv consumes must be this position's character */
 }
+
+/* ---- a file that is not UTF-8 ---- */
+
+/* The Cyrillic letter (0 = А .. 31 = Я, 32 = Ukrainian І, -1 none) that
+ * byte b stands for in an 8-bit encoding. */
+static int letter_cp1251(unsigned b)
+{
+  if (b >= 0xC0) return (int)(b & 0x1F);
+  return b == 0xB2 || b == 0xB3 ? 32 : b == 0xAA || b == 0xBA || b == 0xAF || b == 0xBF ? 33 : -1;
+}
+
+static int letter_koi8(unsigned b)
+{
+  /* KOI8's 0xC0..0xDF (small) and 0xE0..0xFF (capital) in this order */
+  static const signed char ord[32] = {30, 0, 1, 22, 4, 5, 20, 3, 21, 8, 9, 10, 11, 12, 13, 14,
+                                      15, 31, 16, 17, 18, 19, 6, 2, 28, 27, 7, 24, 29, 25, 23, 26};
+  if (b >= 0xC0) return ord[b & 0x1F];
+  return b == 0xB6 || b == 0xA6 ? 32 : b == 0xB4 || b == 0xA4 || b == 0xB7 || b == 0xA7 ? 33 : -1;
+}
+
+static int letter_cp866(unsigned b)
+{
+  if (b >= 0x80 && b <= 0xAF) return (int)((b - 0x80) & 0x1F);
+  if (b >= 0xE0 && b <= 0xEF) return (int)(b - 0xE0 + 16);
+  return b >= 0xF2 && b <= 0xF5 ? 33 : -1;
+}
+
+/* How much the high bytes read like Russian or Ukrainian text: the common
+ * letters count, bytes that are no letter count against. */
+static long score(const unsigned char *s, size_t n, int (*letter)(unsigned))
+{
+  /* О Е А И Н Т С Р В Л К М Д П У, and І */
+  static const unsigned long common = 1ul << 14 | 1ul << 5 | 1ul << 0 | 1ul << 8 | 1ul << 13 | 1ul << 18 |
+                                      1ul << 17 | 1ul << 16 | 1ul << 2 | 1ul << 11 | 1ul << 10 | 1ul << 12 |
+                                      1ul << 4 | 1ul << 15 | 1ul << 19 | 1ul << 32;
+  long sc = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (s[i] < 0x80)
+      continue;
+    int l = letter(s[i]);
+    sc += l < 0 ? -2 : (common >> l) & 1 ? 3 : 1;
+  }
+  return sc;
+}
+
+int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col, unsigned *byte, const char **enc)
+{
+  struct lex l;
+  struct diag_list none;
+  diag_init(&none, NULL);
+  lex_init(&l, text, n, &none);
+  *enc = NULL;
+  size_t bad = n, highs = 0, len;
+  for (size_t p = l.pos; p < n; p += len) {
+    int32_t c = decode(&l, p, &len);
+    if (c == 0xFFFD && len == 1) {   /* a U+FFFD written as such is a character */
+      if (bad == n)
+        bad = p;
+      highs++;
+    }
+  }
+  diag_free(&none);
+  if (bad == n)
+    return 0;
+  /* line and column of the first bad byte, as the lexer counts them */
+  unsigned ln = 1, cl = 1;
+  for (size_t p = l.pos; p < bad; p += len) {
+    int32_t c = decode(&l, p, &len);
+    if (c == '\n' || (c == '\r' && lone_cr(&l, p))) {
+      ln++;
+      cl = 1;
+    } else {
+      cl++;
+    }
+  }
+  *line = ln;
+  *col = cl;
+  *byte = (unsigned char)text[bad];
+  /* a text in an 8-bit Cyrillic encoding reads mostly as common letters in
+   * one of them (1.5 points a byte and more); a stray byte or two does not */
+  const unsigned char *u = (const unsigned char *)text;
+  size_t nhigh = 0;
+  for (size_t p = 0; p < n; p++)
+    nhigh += u[p] >= 0x80;
+  long a = score(u, n, letter_cp1251), b = score(u, n, letter_koi8), c = score(u, n, letter_cp866);
+  long best = a >= b && a >= c ? a : b >= c ? b : c;
+  if (highs >= 4 && 2 * best >= 3 * (long)nhigh)
+    *enc = a >= b && a >= c ? "cp1251" : b >= c ? "koi8-u" : "cp866";
+  return 1;
+}

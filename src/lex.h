@@ -51,6 +51,11 @@ void lex_set_number(struct lex *l, int number);
 void lex_skip_block(struct lex *l);
 struct lex_mark lex_mark(const struct lex *l);
 void lex_reset(struct lex *l, struct lex_mark m);
+/* Is the text UTF-8?  0 when it is; otherwise 1 with the line, column and
+ * value of the first byte that is not, and in *enc the 8-bit Cyrillic encoding
+ * ("cp1251", "koi8-u", "cp866") the text reads best in, or NULL for a
+ * stray byte. */
+int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col, unsigned *byte, const char **enc);
 /* Encode a code point as UTF-8 into buf (4 bytes max); returns length. */
 int lex_utf8(int32_t c, char *buf);
 

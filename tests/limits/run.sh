@@ -46,6 +46,10 @@ w("blocks.kp", "№1 M03 ^\n" + "M03 ^\n" * 2097152 + "M02 ^\n")
 w("badutf8.kp", b"\xe2\x84\x961 R1+1 \xff\xfe ^\n\xe2\x84\x962 M02 ^\n", "wb")
 w("nul.kp", b"\xe2\x84\x961 R1+\x00 ^\n\xe2\x84\x962 M02 ^\n", "wb")
 w("textbad.kp", "№1 G33 /ОК\udcff/ ^\n№2 M02 ^\n".encode("utf-8", "surrogateescape"), "wb")
+cyr = "; програма свердління\nN1 G33 /СВЕРДЛО/ ^\nN2 G27 /ДІАМЕТР/ ^\nN3 G28 /1:9/ R1 ^\nN4 M02 ^\n"
+w("cp1251.kp", cyr.encode("cp1251"), "wb")
+w("koi8.kp", cyr.encode("koi8_u"), "wb")
+w("cp866.kp", cyr.replace("і", "i").replace("І", "I").encode("cp866"), "wb")
 w("textnul.kp", "№1 G33 /ОК\0/ ^\n№2 M02 ^\n")
 # an empty file, and one with only comments and blank blocks
 w("empty.kp", "")
@@ -60,9 +64,16 @@ expect deep-functions 1 'funcs\.kp:1:[0-9]+: error: N1: .*nested too deeply \[E-
 expect deep-condition 1 'cond\.kp:1:[0-9]+: error: N1: .*nested too deeply \[E-SYNTAX\]' "$T/cond.kp"
 expect long-block 1 'longblock\.kp:1:[0-9]+: error: N1: .*\[E-BLOCKLEN\]' "$T/longblock.kp"
 expect too-many-blocks 1 'blocks\.kp:2097153:1: error: N-: more than 2097152 blocks: the program is too long \[E-LIMIT\]' "$T/blocks.kp"
-expect non-utf8 1 'badutf8\.kp:1:9: error: N1: unexpected invalid UTF-8: not a word of the 2С42 \[E-SYNTAX\]' "$T/badutf8.kp"
+expect non-utf8 1 'badutf8\.kp:1:9: error: N-: not UTF-8: the byte 0xFF here is no character; a program is UTF-8 text \[E-SYNTAX\]$' "$T/badutf8.kp"
 expect nul-byte 1 'nul\.kp:1:7: error: N1: expected a number, parameter or function, found character 0x00 \[E-SYNTAX\]' "$T/nul.kp"
-expect text-non-utf8 1 'textbad\.kp:1:11: error: N1: G33: text holds invalid UTF-8 \[E-TEXT\]' "$T/textbad.kp"
+expect text-non-utf8 1 'textbad\.kp:1:11: error: N-: not UTF-8: the byte 0xFF here is no character' "$T/textbad.kp"
+# a whole file in an 8-bit Cyrillic encoding: one error, and the iconv command
+for e in cp1251:cp1251 koi8:koi8-u cp866:cp866; do
+  expect "encoding-${e%%:*}" 1 "${e%%:*}\\.kp:1:3: error: N-: not UTF-8 \\(it reads as ${e#*:}.*\\): convert it with \`iconv -f ${e#*:} -t utf-8 .*${e%%:*}\\.kp > NEW\\.kp\`" "$T/${e%%:*}.kp"
+  if [ "$(grep -c 'error:' "$T/err")" -ne 1 ] || [ "$(wc -l <"$T/err")" -ne 1 ]; then
+    echo "FAIL limits encoding-${e%%:*}: more than one line: $(cat "$T/err")"; fail=$((fail + 1))
+  fi
+done
 expect text-nul 1 'textnul\.kp:1:11: error: N1: G33: text holds a NUL byte \[E-TEXT\]' "$T/textnul.kp"
 expect empty-file 1 'empty\.kp:1:1: error: N-: the program is empty: it needs block 1 and M2 \[E-SUB\]' "$T/empty.kp"
 expect only-comments 1 'comments\.kp:1:1: error: N-: the program is empty' "$T/comments.kp"
