@@ -118,10 +118,14 @@ def pane():
 
 
 def wait_for(text, seconds=30):
-    want = squeeze(text)
+    # spacing is insignificant, except where the README writes a run of
+    # spaces on purpose (the 7-digit field's right-aligned number): then the
+    # pane must show it exactly so
+    exact = "  " in text
+    want = text if exact else squeeze(text)
     end = time.time() + seconds
     while time.time() < end:
-        if want in squeeze(pane()):
+        if want in (pane() if exact else squeeze(pane())):
             return True
         time.sleep(0.1)
     return False
