@@ -22,6 +22,10 @@ WORK=$(mktemp -d)
 cleanup() { $T kill-server 2>/dev/null; rm -rf "$WORK"; }
 trap cleanup EXIT
 trap 'exit 1' INT TERM HUP
+# a session that lives as long as the test: killing a case's session never
+# empties the server, whose exit would race the next case's new-session
+# ("server exited unexpectedly" under load)
+$T new-session -d -s keep -x 20 -y 5 'sleep 86400'
 pass=0
 fail=0
 name=""

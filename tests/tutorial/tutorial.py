@@ -136,6 +136,10 @@ def show_pane():
 
 
 def start_tui(cmd):
+    # a session that outlives the cases: killing "tut" never empties the
+    # server, whose exit would race the new-session below under load
+    subprocess.run(TMUX + ["new-session", "-d", "-s", "keep", "-x", "20", "-y", "5", "sleep 86400"],
+                   capture_output=True, env=env)
     subprocess.run(TMUX + ["kill-session", "-t", "tut"], capture_output=True)
     for f in ("status", "stty.before", "stty.after"):
         if os.path.exists(os.path.join(tmp, f)):
