@@ -30,11 +30,27 @@ void mach_advance(struct machine *m, double dt)
     m->tick(m->tick_ctx, dt);
 }
 
-void mach_jog(struct machine *m, int axis, int64_t d, int correction)
+int64_t mach_jog(struct machine *m, int axis, int64_t d, int correction)
 {
+  const struct mach_travel *t = &m->travel;
+  if (t->has[axis]) {   /* the limit switch stops the axis */
+    if (m->pos[axis] + d > t->hi[axis])
+      d = t->hi[axis] > m->pos[axis] ? t->hi[axis] - m->pos[axis] : 0;
+    if (m->pos[axis] + d < t->lo[axis])
+      d = t->lo[axis] < m->pos[axis] ? t->lo[axis] - m->pos[axis] : 0;
+  }
   m->pos[axis] += d;
   if (correction)
     m->corr[axis] += d;
+  return d;
+}
+
+int mach_in_travel(const struct machine *m, const int64_t d[4])
+{
+  for (int a = 0; a < 4; a++)
+    if (m->travel.has[a] && (m->pos[a] + d[a] > m->travel.hi[a] || m->pos[a] + d[a] < m->travel.lo[a]))
+      return 0;
+  return 1;
 }
 
 double mach_linear_limit(const double d[4])
@@ -65,6 +81,29 @@ static int in_sweep(double t0, double dt, double t)
   return rel <= fabs(dt) + 1e-12;
 }
 
+/* The start angle t0 and the signed sweep of an arc block (its geometry
+ * checked by mach_arc). */
+static void arc_angles(const struct mach_block *b, double *t0, double *dt)
+{
+  int p, q;
+  plane_axes(b->plane, &p, &q);
+  double ep = b->w[p], eq = b->w[q];
+  double cp = b->w[SL_I + p], cq = b->w[SL_I + q];
+  double a0 = atan2(-cq, -cp), a1 = atan2(eq - cq, ep - cp);
+  int ccw = b->motion == MO_G03 || b->motion == MO_G13;
+  double sweep;
+  if (ep == 0 && eq == 0) {
+    sweep = 2 * M_PI;
+  } else {
+    sweep = ccw ? a1 - a0 : a0 - a1;
+    sweep = fmod(sweep, 2 * M_PI);
+    if (sweep <= 0)
+      sweep += 2 * M_PI;
+  }
+  *t0 = a0;
+  *dt = ccw ? sweep : -sweep;
+}
+
 int mach_arc(const struct mach_block *b, double *len_mm, double *yshare, char *msg, size_t n)
 {
   int p, q;
@@ -84,19 +123,10 @@ int mach_arc(const struct mach_block *b, double *len_mm, double *yshare, char *m
     snprintf(msg, n, "arc start radius %.0f µm and end radius %.0f µm differ by more than 2 µm", r0, r1);
     return S42_E_ARC;
   }
-  double t0 = atan2(-cq, -cp), t1 = atan2(eq - cq, ep - cp);
-  int ccw = b->motion == MO_G03 || b->motion == MO_G13;
-  double sweep;
-  if (ep == 0 && eq == 0) {
-    sweep = 2 * M_PI;
-  } else {
-    sweep = ccw ? t1 - t0 : t0 - t1;
-    sweep = fmod(sweep, 2 * M_PI);
-    if (sweep <= 0)
-      sweep += 2 * M_PI;
-  }
+  double t0, dt;
+  arc_angles(b, &t0, &dt);
+  double sweep = fabs(dt);
   *len_mm = (r0 + r1) / 2 * sweep / 1000.0;
-  double dt = ccw ? sweep : -sweep;
   /* The tangent at angle t is (-sin t, cos t): its Y share is |sin t| when Y
    * is the plane's first axis and |cos t| when it is the second. */
   double s = 0;
@@ -135,6 +165,51 @@ int mach_held(const struct machine *m, const struct mach_block *b)
   return 0;
 }
 
+/* The block's path stays in the travel (language-independent: the ends of
+ * a line; an arc's ends and the points where it turns back on an axis;
+ * a helix's arc and the end of its rise).  0, or E-TRAVEL. */
+static int travel_check(const struct machine *m, const struct mach_block *b, char *msg, size_t n)
+{
+  const struct mach_travel *t = &m->travel;
+  if (!(t->has[0] | t->has[1] | t->has[2] | t->has[3]))
+    return 0;
+  int arc = b->motion == MO_G02 || b->motion == MO_G03 || b->motion == MO_G12 || b->motion == MO_G13;
+  if (b->motion != MO_G01 && !arc)
+    return 0;
+  double lo[4], hi[4];
+  for (int a = 0; a < 4; a++) {
+    double e = (double)m->pos[a] + (BIT(b->given, a) ? b->w[a] : 0);
+    lo[a] = fmin((double)m->pos[a], e);
+    hi[a] = fmax((double)m->pos[a], e);
+  }
+  if (arc && b->plane) {
+    int p, q;
+    plane_axes(b->plane, &p, &q);
+    double cp = (double)m->pos[p] + b->w[SL_I + p], cq = (double)m->pos[q] + b->w[SL_I + q];
+    double r = hypot(b->w[SL_I + p], b->w[SL_I + q]), t0, dt;
+    arc_angles(b, &t0, &dt);
+    for (int k = 0; k < 4; k++) {
+      double th = k * M_PI / 2;
+      if (!in_sweep(t0, dt, th))
+        continue;
+      double x = cp + r * cos(th), y = cq + r * sin(th);
+      lo[p] = fmin(lo[p], x); hi[p] = fmax(hi[p], x);
+      lo[q] = fmin(lo[q], y); hi[q] = fmax(hi[q], y);
+    }
+  }
+  for (int a = 0; a < 4; a++) {
+    if (!t->has[a])
+      continue;
+    double over = hi[a] > (double)t->hi[a] + 0.5 ? hi[a] : lo[a] < (double)t->lo[a] - 0.5 ? lo[a] : NAN;
+    if (isnan(over))
+      continue;
+    snprintf(msg, n, "%c would reach %.3f %s, outside its travel %.3f .. %.3f (--machine)", "XYZA"[a], over / 1000,
+             a == 3 ? "deg" : "mm", (double)t->lo[a] / 1000, (double)t->hi[a] / 1000);
+    return S42_E_TRAVEL;
+  }
+  return 0;
+}
+
 int mach_check(const struct machine *m, const struct mach_block *b, char *msg, size_t n)
 {
   if (BIT(b->m, 3) && m->wheel == WHEEL_CCW) {
@@ -160,7 +235,7 @@ int mach_check(const struct machine *m, const struct mach_block *b, char *msg, s
       return S42_E_FEED;
     }
   }
-  return 0;
+  return travel_check(m, b, msg, n);
 }
 
 void mach_modal(struct machine *m, const struct mach_block *b)

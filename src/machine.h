@@ -34,8 +34,16 @@ struct mach_out {
   int has_v;
 };
 
+/* The travel of each axis (--machine FILE), discretes relative to the
+ * program's start position; an axis without `has` is unlimited. */
+struct mach_travel {
+  uint8_t has[4];
+  int64_t lo[4], hi[4];
+};
+
 struct machine {
   int64_t pos[4];      /* relative to the start, discretes */
+  struct mach_travel travel;   /* none by default: the seed gives none */
   double t;            /* simulated seconds */
   int wheel;
   int override_pct;    /* feed override switch, 0..150 */
@@ -67,8 +75,11 @@ double mach_linear_limit(const double d[4]);
 /* Arc of a G02/G03 block: length in mm, the largest Y share of the tangent
  * along it (0..1).  Returns 0, or an error code with a message. */
 int mach_arc(const struct mach_block *b, double *len_mm, double *yshare, char *msg, size_t n);
-/* Move an axis by hand (jog, correction); counts in the position. */
-void mach_jog(struct machine *m, int axis, int64_t d, int correction);
+/* Move an axis by hand (jog, correction); counts in the position.  The
+ * axis stops at its travel limit: returns the move made (d, or less). */
+int64_t mach_jog(struct machine *m, int axis, int64_t d, int correction);
+/* Would these moves of the axes, from where they are, stay in their travel? */
+int mach_in_travel(const struct machine *m, const int64_t d[4]);
 /* Advance simulated time by dt seconds (the tick hook runs). */
 void mach_advance(struct machine *m, double dt);
 /* The maximum speed of an axis, mm/min (deg/min). */

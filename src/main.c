@@ -3,6 +3,7 @@
 #include "compile.h"
 #include "disasm.h"
 #include "errors.h"
+#include "machfile.h"
 #include "modbus.h"
 #include "operator.h"
 #include "pace.h"
@@ -50,6 +51,7 @@ static const struct optinfo {
   {"--modbus-read-only", NULL, C_RUN | C_TUI, "refuse every write (exception 01): clients only watch"},
   {"--modbus-max-clients", "N", C_RUN | C_TUI, "connections at once (default 8; a newcomer closes the longest idle)"},
   {"--modbus-idle", "SECONDS", C_RUN | C_TUI, "close a connection silent that long (default 60; 0 never)"},
+  {"--machine", "FILE", C_RUN | C_TUI | C_PLOT, "the machine as installed: each axis's travel (README: Travel limits)"},
   {"--realtime", NULL, C_RUN | C_PLOT, "pace the run at machine speed (Ctrl-C stops it with the dump)"},
   {"--lang", "uk|en", C_RUN | C_TUI | C_PLOT, "language of machine messages (default uk)"},
   {"-o", "FILE", C_PLOT, "the picture to write: .png, .svg or .pdf"},
@@ -174,7 +176,8 @@ static int cmd_help(const struct cmdinfo *c)
 
 struct opts {
   unsigned cmd;              /* C_RUN, C_TUI or C_PLOT: for "did you mean" */
-  const char *program, *operator_file, *tool, *dump_images, *state, *plugins, *modbus, *out;
+  const char *program, *operator_file, *tool, *dump_images, *state, *plugins, *modbus, *out, *machine;
+  struct mach_travel travel; /* from --machine FILE (none without it) */
   int trace, json, dump, screen, restart, realtime, en;
   unsigned long long max_blocks;
   struct mb_opts mb;         /* --modbus-*: mb.addr is o->modbus */
@@ -264,6 +267,7 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     else if (strcmp(a, "--tool") == 0) val = &o->tool;
     else if (strcmp(a, "--dump-images") == 0) val = &o->dump_images;
     else if (strcmp(a, "--state") == 0) val = &o->state;
+    else if (strcmp(a, "--machine") == 0) val = &o->machine;
     else if (strcmp(a, "--plugins") == 0) val = &o->plugins;
     else if (strcmp(a, "-o") == 0) val = &o->out;
     else if (strcmp(a, "--lang") == 0 || strcmp(a, "--max-blocks") == 0) {
@@ -307,6 +311,16 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
       return -1;
     }
     *val = argv[++i];
+  }
+  if (o->machine) {
+    char *text;
+    size_t n;
+    if (read_file(o->machine, MAX_OPERATOR_BYTES, &text, &n))
+      return -1;
+    int bad = machfile_parse(text, n, o->machine, &o->travel, stderr);
+    free(text);
+    if (bad)
+      return -1;
   }
   /* the tooth search's plugin opens --tool itself: a FIFO or a device
    * would hang it, so it is refused here (a pipe only as standard input) */
@@ -751,7 +765,9 @@ static void new_cycle(struct runner *r, struct both_sink *bs)
   uint64_t max_blocks = s->vm.max_blocks;
   const uint8_t *watch = s->vm.watch;
   struct plug_set *pl = s->plugins;
+  struct mach_travel travel = s->m.travel;
   sess_init(s, s->p);
+  sess_set_travel(s, &travel);
   s->plugins = pl;
   s->sink = sink;
   s->en = en;
@@ -997,6 +1013,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
 
   sess_init(&r.s, &p);
+  sess_set_travel(&r.s, &o.travel);
   r.s.plugins = plugins_init(NULL);
   r.s.en = o.en;
   r.s.scr.en = o.en;
@@ -1288,6 +1305,7 @@ static int cmd_tui(int argc, char **argv)
   t.realtime = 1;          /* the operator watches: machine speed (F9 / f toggles) */
   t.en = o.en;
   t.max_blocks = o.max_blocks;
+  t.travel = o.travel;
   struct tui_source mb;
   if (o.modbus) {
     char err[300];

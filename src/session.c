@@ -693,15 +693,22 @@ static void teach_jog(struct session *s, int axis, int64_t d)
     step[s->teach.q] = r * (sin(th1) - sin(s->teach.th));
     s->teach.th = th1;
   }
+  /* the axes move together: a step that would take one past its travel
+   * is not made at all (the others would leave the programmed path) */
+  int64_t dd[4];
+  for (int a = 0; a < 4; a++)
+    dd[a] = step[a] == 0 ? 0 : (int64_t)llround(s->teach.exact[a] + step[a]) - s->teach.moved[a];
+  if (!mach_in_travel(&s->m, dd)) {
+    warn(s, "the jog would take an axis past its travel limit (--machine): not made");
+    return;
+  }
   for (int a = 0; a < 4; a++) {
     if (step[a] == 0)
       continue;
     s->teach.exact[a] += step[a];
-    int64_t want = (int64_t)llround(s->teach.exact[a]);
-    int64_t dd = want - s->teach.moved[a];
-    s->teach.moved[a] = want;
-    mach_jog(&s->m, a, dd, s->m.corr_allowed);
-    s->jogs[a] += dd;
+    s->teach.moved[a] += dd[a];
+    mach_jog(&s->m, a, dd[a], s->m.corr_allowed);
+    s->jogs[a] += dd[a];
   }
   s->has_jogs = 1;
 }
@@ -958,6 +965,22 @@ int sess_resume(struct session *s)
   return 0;
 }
 
+/* A hand move of one axis: it stops at the travel limit, and says so. */
+static int64_t stopped_jog(struct session *s, int axis, int64_t d, int correction)
+{
+  int64_t made = mach_jog(&s->m, axis, d, correction);
+  if (made != d)
+    warn(s, "%c stopped at its travel limit %.3f %s (--machine): %.3f of %.3f made", "XYZA"[axis],
+         (double)s->m.pos[axis] / 1000, axis == 3 ? "deg" : "mm", (double)made / 1000, (double)d / 1000);
+  return made;
+}
+
+void sess_set_travel(struct session *s, const struct mach_travel *t)
+{
+  if (t)
+    s->m.travel = *t;
+}
+
 int sess_jog(struct session *s, int axis, int64_t d)
 {
   if (s->state != SE_WAIT || axis < 0 || axis > 3)
@@ -968,8 +991,7 @@ int sess_jog(struct session *s, int axis, int64_t d)
   }
   if (s->wait != W_PUSK && s->wait != W_PS && s->wait != W_SECTION)
     return -1;   /* jogs belong to manual mode */
-  mach_jog(&s->m, axis, d, s->m.corr_allowed);
-  s->jogs[axis] += d;
+  s->jogs[axis] += stopped_jog(s, axis, d, s->m.corr_allowed);
   s->has_jogs = 1;
   return 0;
 }
@@ -979,8 +1001,7 @@ int sess_section(struct session *s, int axis, int64_t d)
   if (s->state != SE_WAIT || s->wait != W_SECTION || axis < 0 || axis > 3)
     return -1;
   /* the probe's placement, not a correction of the work: M16 does not see it */
-  mach_jog(&s->m, axis, d, 0);
-  s->jogs[axis] += d;
+  s->jogs[axis] += stopped_jog(s, axis, d, 0);
   s->has_jogs = 1;
   return 0;
 }
@@ -1012,7 +1033,7 @@ int sess_correct(struct session *s, int axis, int64_t d)
     scr_message(&s->scr, scr_msg_text(MSG_NOCORR, s->en));
     return -1;
   }
-  mach_jog(&s->m, axis, d, 1);
+  stopped_jog(s, axis, d, 1);
   return 0;
 }
 

@@ -117,6 +117,8 @@ void sess_key_stop(struct session *s);
  * the wait it interrupted.  0, or -1 when the cycle was not stopped. */
 int sess_resume(struct session *s);
 int sess_jog(struct session *s, int axis, int64_t d);
+/* The machine's travel (--machine FILE); NULL keeps none. */
+void sess_set_travel(struct session *s, const struct mach_travel *t);
 /* The operator script's `section`: move the table or A to the next section
  * of a tooth-step search; only while it waits for that (W_SECTION). */
 int sess_section(struct session *s, int axis, int64_t d);

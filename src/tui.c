@@ -368,6 +368,7 @@ static void start_run(struct tui *t)
   t->hash = state_hash(src, n);
   t->run_gen = t->gen;
   sess_init(&t->s, &t->prog);
+  sess_set_travel(&t->s, &t->o.travel);
   t->s.en = t->o.en;
   t->s.scr.en = t->o.en;
   t->s.scr.cyr = t->cyr;

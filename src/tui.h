@@ -17,6 +17,7 @@ struct tui_opts {
   int en;                     /* --lang en */
   unsigned long long max_blocks;
   struct plug_set *plugins;   /* src/plugin.h: the functions plugins bring (may be NULL) */
+  struct mach_travel travel;  /* --machine FILE: each axis's travel (none: has[] all 0) */
 };
 
 struct tui;

@@ -32,7 +32,8 @@
   ERR(PLUGIN,   "E-PLUGIN",   "функція недоступна",                  "function not available") \
   ERR(FEED,     "E-FEED",     "контурна швидкість дорівнює нулю",    "contour speed is zero") \
   ERR(LIMIT,    "E-LIMIT",    "вичерпано ліміт кадрів",              "block budget exhausted") \
-  ERR(STATE,    "E-STATE",    "повторний пуск неможливий",           "restart refused")
+  ERR(STATE,    "E-STATE",    "повторний пуск неможливий",           "restart refused") \
+  ERR(TRAVEL,   "E-TRAVEL",   "вихід за межу переміщення",           "travel limit")
 
 enum s42_err {
 #define ERR_ENUM(e, c, uk, en) S42_E_##e,

@@ -47,7 +47,7 @@ check_one() {
   rm -rf "$dir"
   mkdir -p "$dir/alone"
   cp "$HERE"/*.kp "$dir/"
-  cp "$HERE"/*.operator "$HERE"/*.tool "$dir/" 2>/dev/null
+  cp "$HERE"/*.operator "$HERE"/*.tool "$HERE"/*.machine "$dir/" 2>/dev/null
   cp "$S42" "$dir/alone/s42"
   plugindir=$(cd "$dir" && alone/s42 plugins 2>/dev/null | sed -n 's/.*searched: //p')
   if grep -q '^\$ alone/s42' "$HERE/$name.expect"; then

@@ -24,6 +24,7 @@ Suite *suite_plugin(void);
 Suite *suite_toolmodel(void);
 Suite *suite_tuitext(void);
 Suite *suite_modbus(void);
+Suite *suite_travel(void);
 Suite *suite_state(void);
 
 /* A program compiled from a C string, with its diagnostics. */
