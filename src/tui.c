@@ -690,7 +690,7 @@ static void edited(struct tui *t)
 static int load_file(struct tui *t, const char *path)
 {
   char err[512];
-  if (tui_text_load(&t->text, path, err, sizeof err)) {
+  if (tui_text_load(&t->text, path, NULL, err, sizeof err)) {
     say(t, "cannot open %s", err);
     return -1;
   }
@@ -714,7 +714,7 @@ static int load_file(struct tui *t, const char *path)
 static void save(struct tui *t, const char *path)
 {
   char err[512];
-  if (tui_text_save(&t->text, path, err, sizeof err)) {
+  if (tui_text_save(&t->text, path, NULL, err, sizeof err)) {
     say(t, "not saved: %s (the file on disk is as it was)", err);
     return;
   }
@@ -1596,7 +1596,7 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
   t->utf8 = cs && (strcmp(cs, "UTF-8") == 0 || strcmp(cs, "utf8") == 0);
   if (o->program) {
     char err[512];
-    if (tui_text_load(&t->text, o->program, err, sizeof err)) {
+    if (tui_text_load(&t->text, o->program, NULL, err, sizeof err)) {
       fprintf(stderr, "s42 tui: %s\n", err);
       tui_text_free(&t->text);
       return 4;
