@@ -1037,6 +1037,28 @@ int sess_correct(struct session *s, int axis, int64_t d)
   return 0;
 }
 
+int sess_set_param(struct session *s, int reg, double v, char *why, size_t n)
+{
+  if (s->state != SE_WAIT && s->state != SE_START) {
+    snprintf(why, n, "the cycle is over");
+    return -1;
+  }
+  if (reg < 0 || reg > REG_D1) {
+    snprintf(why, n, "only R0-R113 and D1 are set from the panel (TK and UG come from a tooth search, F from the program)");
+    return -1;
+  }
+  if (reg == REG_D1 && !(v >= 0 && v <= 400000)) {
+    snprintf(why, n, "D1 is 0..400000 µm, not %.10g", v);
+    return -1;
+  }
+  if (!(fabs(v) <= 9999999)) {
+    snprintf(why, n, "%.10g is beyond -9999999..9999999", v);
+    return -1;
+  }
+  vm_set_reg(&s->vm, (unsigned)reg, v);
+  return 0;
+}
+
 int sess_override(struct session *s, int pct)
 {
   if (!s->m.override_allowed) {

@@ -135,6 +135,12 @@ void sess_screen(const struct session *s, uint32_t grid[SCR_ROWS][SCR_COLS]);
  * says why). */
 int sess_correct(struct session *s, int axis, int64_t d);
 int sess_override(struct session *s, int pct);
+/* The operator sets parameter reg (R0-R113, or REG_D1) to v from the panel,
+ * between blocks or while the machine waits -- never within a block.  It
+ * goes through the VM's journal as a dialog answer does: a waiting block
+ * that fails afterwards takes it back with its own changes.  0, or -1 with
+ * why (the cycle is over, TK UG F are not the operator's, out of range). */
+int sess_set_param(struct session *s, int reg, double v, char *why, size_t n);
 /* The plugins' JSON members for the dump (",\"osc\":{...}"), into buf. */
 void sess_plugin_json(const struct session *s, int what, char *buf, size_t n);
 /* The M15 state of the k-th started plugin that keeps one: 0 with its name

@@ -2,8 +2,10 @@
  * session at machine speed, draw, then poll the keyboard and the other
  * sources with a timeout -- never a blocking wait.  The 2С42-65 screen is
  * the session's rendered grid, only copied here; everything else on the
- * terminal (listing, editor, machine state, messages) is drawn from the
- * session and the text buffer each pass. */
+ * terminal (listing, editor, parameters page, machine state, messages) is
+ * drawn from the session and the text buffer each pass.  The estimated
+ * cycle time comes from a forked copy of the session run headless, read
+ * back through a pipe in the same poll. */
 #define NCURSES_WIDECHAR 1
 #include "tui.h"
 #include "compile.h"
@@ -20,6 +22,7 @@
 #include <curses.h>
 #undef scr_init
 #include <errno.h>
+#include <fcntl.h>
 #include <langinfo.h>
 #include <locale.h>
 #include <math.h>
@@ -28,6 +31,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
@@ -40,11 +45,28 @@
 #define MAXSRC_FD 64
 #define SCR_H (SCR_ROWS + 2)   /* the framed 2С42 screen */
 #define SCR_W (SCR_COLS + 2)
-#define SIDE_MIN 24         /* narrowest side pane worth drawing */
+#define SIDE_MIN 24         /* narrowest listing worth drawing beside the machine */
+#define MACH_W 20           /* the machine pane when the terminal is narrow */
+#define NPITEM (114 + 4 + 2 * (1 + VM_ACELLS))   /* the parameters page: R0-R113, D1 TK UG F, two arrays */
+#define PCOLW 22            /* one column of the parameters page */
+#define EST_SECONDS 5       /* the estimate's computation gives up after this (a loop): "at least" */
+#define BIT(x, n) (((x) >> (n)) & 1)
 
 enum { R_IDLE, R_RUN, R_DONE };                 /* no run yet; a cycle is on; it ended */
-enum { F_PANEL, F_EDIT };                       /* where the keys go */
-enum { MB_NONE, MB_INSERT, MB_REPLACE, MB_OPEN, MB_SAVEAS, MB_QUIT, MB_OPENASK };
+enum { F_PANEL, F_EDIT, F_PARAMS };             /* where the keys go */
+enum { MB_NONE, MB_INSERT, MB_REPLACE, MB_OPEN, MB_SAVEAS, MB_QUIT, MB_OPENASK, MB_QUITRUN, MB_OVERWRITE,
+       MB_FIND, MB_GOTO, MB_PARAM };
+/* the estimate of the cycle time: none yet; the cycle's end; a lower
+ * bound (the operator must act first, or it ran too long); an error */
+enum { EST_NONE, EST_END, EST_LEAST, EST_ERROR };
+
+/* What the estimate's child process writes back through its pipe. */
+struct est_result {
+  int kind;
+  double t;                 /* simulated time where it stopped */
+  uint64_t blocks;          /* blocks done there */
+  int resumed;              /* the session's plugin resumes in that block */
+};
 
 struct tui {
   struct tui_opts o;
@@ -55,7 +77,11 @@ struct tui {
   /* the program text */
   struct tui_text text;
   char *path;
-  int dirty;
+  int dirty;                /* the text is not what was read or saved last */
+  struct tui_disk disk;     /* the file as it was read or saved (a save compares) */
+  uint64_t saved_hash;      /* the text as read or saved: an undo back to it is not a change */
+  size_t saved_len;
+  char *save_to;            /* MB_OVERWRITE: the save that waits for y */
   unsigned gen;             /* bumped by every edit */
   unsigned char *mark;      /* per line after the last check: 0, 1 warning, 2 error */
   size_t nmark, nerr, nwarn;
@@ -86,21 +112,43 @@ struct tui {
     int n;
   } cur;                    /* the last block carried out: its motion in time */
   double regs[114];
-  struct { int reg, n; double v; } chg[NCHG];
+  struct { int reg, n; double v; int how; } chg[NCHG];   /* how: 0 a block, 1 restart, 2 the panel */
   int nchg;
+  unsigned runs;            /* cycles started: the estimate knows which it is for */
+  uint64_t pp_seen;         /* operational jumps reported */
+  struct {
+    pid_t pid;              /* the child computing it, 0 none */
+    int fd;                 /* its pipe, -1 none */
+    int kind;               /* the last result, EST_* */
+    double total;
+    uint64_t at_blocks;     /* EST_LEAST: where it stopped */
+    int at_resumed;
+    unsigned run;           /* the run it belongs to */
+    int override, latch;    /* what it assumed: the feed override, cycle exit pressed */
+  } est;
   struct screen idle;       /* what the 2С42 screen shows before the first run */
   int cyr;                  /* Рус: Cyrillic keyboard mode */
   int64_t jog_step;
   /* the terminal */
   int focus;
   size_t ecur, etop, ltop;
-  int help;
+  int ecol;                 /* the editor's view: first column shown (long lines scroll) */
+  int help, help_top;
+  int page;                 /* the parameters page is shown (in the listing's place) */
+  int psel, pcol;           /* its selected item, its first column shown */
+  int prows;                /* its rows per column, as last drawn */
+  char find[MBMAX];         /* the last search */
+  long hl_line;             /* the match shown, -1 none */
+  int hl_col, hl_len;       /* its column and length in characters */
+  int hl_show;              /* bring it into view at the next draw */
   struct {
     int kind;
     uint32_t b[MBMAX];
     int n, cur;
+    int sel;                /* the pre-filled text is selected: typing replaces it */
     int before;             /* MB_INSERT: before the cursor's line */
-    char prompt[96];
+    int reg;                /* MB_PARAM: the parameter */
+    char prompt[640];
   } mb;
   char log[LOGN][LOGW];
   int nlog;
@@ -221,6 +269,24 @@ static const char *bname(int n, char buf[16])
   return buf;
 }
 
+/* A block for messages: its number, or its line when it has none. */
+static const char *blockname(int n, unsigned line, char buf[24])
+{
+  if (n > 0)
+    snprintf(buf, 24, "N%d", n);
+  else
+    snprintf(buf, 24, "line %u", line);
+  return buf;
+}
+
+/* Вихід з циклу was taken: the PP block that jumped, the block it went to. */
+static void exit_taken(struct tui *t, int from_n, unsigned from_line, int to_n, unsigned to_line)
+{
+  char a[24], b[24];
+  t->pp_seen = t->s.vm.pp_jumps;
+  say(t, "cycle exit: %s → %s", blockname(from_n, from_line, a), blockname(to_n, to_line, b));
+}
+
 /* ---- the check ---- */
 
 /* Compile the text; keep the marks; with loud, every diagnostic goes to the
@@ -269,9 +335,28 @@ static size_t check(struct tui *t, int loud)
 
 /* ---- the run ---- */
 
+/* Register reg took v (in block n; how: 0 the program, 1 the restart, 2
+ * the panel): first in the list of those that changed last. */
+static void chg_add(struct tui *t, int reg, double v, int n, int how)
+{
+  int k = 0;
+  while (k < t->nchg && t->chg[k].reg != reg)
+    k++;
+  if (k == t->nchg)
+    k = t->nchg < NCHG ? t->nchg++ : NCHG - 1;
+  memmove(&t->chg[1], &t->chg[0], (size_t)k * sizeof t->chg[0]);
+  t->chg[0].reg = reg;
+  t->chg[0].v = v;
+  t->chg[0].n = n;
+  t->chg[0].how = how;
+}
+
 static void on_row(void *ctx, const struct session *s, const struct sess_row *r)
 {
   struct tui *t = ctx;
+  /* a PP jump runs after its block's row: this row is the block it went to */
+  if (s->vm.pp_jumps != t->pp_seen && t->cur.valid)
+    exit_taken(t, t->cur.n, t->cur.line, r->n, r->line);
   t->cur.valid = 1;
   memcpy(t->cur.from, r->start, sizeof t->cur.from);
   memcpy(t->cur.to, s->m.pos, sizeof t->cur.to);
@@ -287,15 +372,7 @@ static void on_row(void *ctx, const struct session *s, const struct sess_row *r)
     if (v == t->regs[i] || (isnan(v) && isnan(t->regs[i])))
       continue;
     t->regs[i] = v;
-    int k = 0;
-    while (k < t->nchg && t->chg[k].reg != i)
-      k++;
-    if (k == t->nchg)
-      k = t->nchg < NCHG ? t->nchg++ : NCHG - 1;
-    memmove(&t->chg[1], &t->chg[0], (size_t)k * sizeof t->chg[0]);
-    t->chg[0].reg = i;
-    t->chg[0].v = v;
-    t->chg[0].n = r->n;
+    chg_add(t, i, v, r->n, 0);
   }
 }
 
@@ -312,8 +389,11 @@ static void on_log(void *ctx, const struct session *s, const char *msg)
   say(ctx, "%s", msg);
 }
 
+static void est_stop(struct tui *t);
+
 static void end_run(struct tui *t)
 {
+  est_stop(t);
   if (t->have_prog)
     prog_free(&t->prog);
   t->have_prog = 0;
@@ -335,6 +415,64 @@ static void show_error(struct tui *t)
   scr_message(&t->s.scr, m);
   say(t, "%u:%u error %s: %s [%s]", b ? b->line : 1, e->col ? e->col : b ? b->col : 1, bname(num, nb), e->msg,
       err_code(e->code));
+}
+
+/* After a restart: the dialog area as the program's dialog left it before
+ * the restart point (the G33 headings, each G27 line with the number its
+ * G28 stored, now in the restored parameters), and the parameters the
+ * state holds as "changed last".  The state keeps no screen buffer: the
+ * program text and the parameters say what it held. */
+static void restored(struct tui *t)
+{
+  struct session *s = &t->s;
+  const struct program *p = &t->prog;
+  struct screen *sc = &s->scr;
+  /* the main program's blocks before the restart block, or before the
+   * call that leads to it */
+  size_t upto = s->vm.cur;
+  if (s->vm.depth > 0)
+    upto = prog_block_at(p, s->vm.frames[0].ret);
+  int p3 = sc->p3, open = 0;
+  if (sc->nbuf)
+    upto = 0;   /* the state brought the buffer itself */
+  for (size_t b = 0; b < upto && b < p->nblocks; b++) {
+    const struct kp_attr *at = kp_attr(p, b);
+    if (p->blocks[b].unit != 0)
+      continue;
+    if (BIT(at->m, 29))
+      sc->fixed = -1;
+    if (BIT(at->m, 28))
+      sc->at_fixed = 1;
+    if (BIT(at->g, 33))
+      scr_center(sc, kp_str(p, at->g33));
+    if (BIT(at->g, 27)) {
+      sc->editing = 0;   /* a G27 without its G28: the number it took is not known */
+      scr_prompt(sc, kp_str(p, at->g27), at->g27form == '-');
+      if (BIT(at->m, 27))
+        sc->fixed = sc->last;
+      open = 1;
+    } else if (BIT(at->m, 27)) {
+      sc->fixed = sc->last >= 0 ? sc->last : sc->nbuf;
+    }
+    if (BIT(at->g, 28) && open && at->g28reg >= 0) {
+      scr_field_type(sc, llround(s->vm.reg[at->g28reg]));
+      scr_field_close(sc);
+      open = 0;
+    }
+  }
+  sc->editing = 0;
+  sc->at_fixed = 0;
+  sc->p3 = p3;
+  /* the first NCHG parameters that are not 0, R0 at the top */
+  int regs[NCHG], n = 0;
+  for (int i = 0; i < 114 && n < NCHG; i++)
+    if (s->vm.reg[i] != 0)
+      regs[n++] = i;
+  t->nchg = 0;
+  while (n > 0) {
+    n--;
+    chg_add(t, regs[n], s->vm.reg[regs[n]], sess_block_number(s), 1);
+  }
 }
 
 static void start_run(struct tui *t)
@@ -426,7 +564,10 @@ static void start_run(struct tui *t)
       return;
     }
     say(t, "restart: the cycle goes on at the M15 block %s", bname(sess_block_number(&t->s), nb));
+    restored(t);
   }
+  t->runs++;
+  t->pp_seen = t->s.vm.pp_jumps;
   if (t->override != 100 && sess_override(&t->s, t->override) == 0)
     say(t, "feed override %d %%", t->override);
   memcpy(t->regs, t->s.vm.reg, sizeof t->regs);
@@ -650,12 +791,16 @@ static void jog(struct tui *t, int axis, int sign)
 
 /* ---- the input line ---- */
 
+/* init: the text it starts with; a name (open, save as, a parameter's
+ * value) comes selected, so that typing replaces it as in a form's field */
 static void mb_open(struct tui *t, int kind, const char *prompt, const char *init)
 {
   t->mb.kind = kind;
   snprintf(t->mb.prompt, sizeof t->mb.prompt, "%s", prompt);
   t->mb.n = init ? scr_decode(init, t->mb.b, MBMAX) : 0;
   t->mb.cur = t->mb.n;
+  t->mb.sel = t->mb.n > 0 && (kind == MB_OPEN || kind == MB_SAVEAS || kind == MB_PARAM || kind == MB_FIND ||
+                              kind == MB_GOTO);
 }
 
 /* The input line as UTF-8 (malloc'd). */
@@ -679,19 +824,85 @@ static int can_edit(struct tui *t)
   return 1;
 }
 
+/* The text is what was read or saved last exactly when its bytes are. */
+static void set_saved(struct tui *t)
+{
+  size_t n;
+  char *b = tui_text_join(&t->text, &n);
+  if (!b)
+    return;
+  t->saved_hash = tui_hash(b, n);
+  t->saved_len = n;
+  free(b);
+  t->dirty = 0;
+}
+
 static void edited(struct tui *t)
 {
-  t->dirty = 1;
+  size_t n;
+  char *b = tui_text_join(&t->text, &n);
+  t->dirty = !b || n != t->saved_len || tui_hash(b, n) != t->saved_hash;
+  free(b);
   t->gen++;
+  t->hl_line = -1;
   if (t->ecur >= t->text.n && t->text.n)
     t->ecur = t->text.n - 1;
   check(t, 0);
 }
 
+/* A name that is not there yet: an empty text of that name, which the
+ * first save creates (as an editor opens a new file). */
+static int new_file(struct tui *t, const char *path)
+{
+  char *p = strdup(path);
+  if (!p) {
+    say(t, "out of memory");
+    return -1;
+  }
+  tui_text_free(&t->text);
+  free(t->path);
+  t->path = p;
+  memset(&t->disk, 0, sizeof t->disk);
+  set_saved(t);
+  t->gen++;
+  t->ecur = t->etop = t->ltop = 0;
+  t->ecol = 0;
+  t->hl_line = -1;
+  if (t->run != R_RUN)
+    end_run(t);
+  check(t, 0);
+  say(t, "%s: a new file (the first save creates it)", path);
+  return 0;
+}
+
+/* No file at path, but its directory is there: a new file can be made. */
+static int creatable(const char *path)
+{
+  struct stat st;
+  if (stat(path, &st) == 0 || errno != ENOENT || lstat(path, &st) == 0)
+    return 0;
+  char *d = strdup(path);
+  if (!d)
+    return 0;
+  char *slash = strrchr(d, '/');
+  int ok;
+  if (!slash)
+    ok = 1;
+  else {
+    slash[slash == d ? 1 : 0] = 0;
+    ok = stat(d, &st) == 0 && S_ISDIR(st.st_mode);
+  }
+  free(d);
+  return ok;
+}
+
 static int load_file(struct tui *t, const char *path)
 {
   char err[512];
-  if (tui_text_load(&t->text, path, err, sizeof err)) {
+  if (creatable(path))
+    return new_file(t, path);
+  struct tui_disk d;
+  if (tui_text_load(&t->text, path, &d, err, sizeof err)) {
     say(t, "cannot open %s", err);
     return -1;
   }
@@ -702,9 +913,12 @@ static int load_file(struct tui *t, const char *path)
   }
   free(t->path);
   t->path = p;
-  t->dirty = 0;
+  t->disk = d;
+  set_saved(t);
   t->gen++;
   t->ecur = t->etop = t->ltop = 0;
+  t->ecol = 0;
+  t->hl_line = -1;
   if (t->run != R_RUN)
     end_run(t);
   size_t e = check(t, 0);
@@ -712,10 +926,11 @@ static int load_file(struct tui *t, const char *path)
   return 0;
 }
 
-static void save(struct tui *t, const char *path)
+static void save_now(struct tui *t, const char *path)
 {
   char err[512];
-  if (tui_text_save(&t->text, path, err, sizeof err)) {
+  struct tui_disk d;
+  if (tui_text_save(&t->text, path, &d, err, sizeof err)) {
     say(t, "not saved: %s (the file on disk is as it was)", err);
     return;
   }
@@ -726,9 +941,41 @@ static void save(struct tui *t, const char *path)
       t->path = p;
     }
   }
-  t->dirty = 0;
-  say(t, "saved %s (%zu lines)", path, t->text.n);
+  t->disk = d;
+  set_saved(t);
+  say(t, "saved %s (%zu line%s)", t->path, t->text.n, t->text.n == 1 ? "" : "s");
 }
+
+/* A save never overwrites silently what it did not read: the file changed
+ * on disk since it was read (another editor, a second s42 tui), or save as
+ * names another file that is there. */
+static void save(struct tui *t, const char *path)
+{
+  int same = t->path && (path == t->path || strcmp(path, t->path) == 0);
+  char q[600];
+  struct stat st;
+  if (same && tui_disk_changed(path, &t->disk)) {
+    snprintf(q, sizeof q, "%s %s since it was read: overwrite it? (y/n) ", path,
+             t->disk.exists && stat(path, &st) != 0 ? "was removed" : "changed on disk");
+  } else if (!same && stat(path, &st) == 0) {
+    snprintf(q, sizeof q, "%s exists: replace it? (y/n) ", path);
+  } else {
+    save_now(t, path);
+    return;
+  }
+  char *p = strdup(path);
+  if (!p) {
+    say(t, "out of memory");
+    return;
+  }
+  free(t->save_to);
+  t->save_to = p;
+  mb_open(t, MB_OVERWRITE, q, NULL);
+}
+
+static void set_param(struct tui *t, int reg, const char *val);
+static void find(struct tui *t, int dir);
+static void go_to(struct tui *t, const char *s);
 
 static void mb_commit(struct tui *t)
 {
@@ -763,6 +1010,18 @@ static void mb_commit(struct tui *t)
     if (*s)
       save(t, s);
     break;
+  case MB_FIND:
+    if (*s) {
+      snprintf(t->find, sizeof t->find, "%s", s);
+      find(t, 1);
+    }
+    break;
+  case MB_GOTO:
+    go_to(t, s);
+    break;
+  case MB_PARAM:
+    set_param(t, t->mb.reg, s);
+    break;
   default:
     break;
   }
@@ -771,23 +1030,47 @@ static void mb_commit(struct tui *t)
 
 static void mb_key(struct tui *t, int fn, wint_t c)
 {
-  if (t->mb.kind == MB_QUIT || t->mb.kind == MB_OPENASK) {
+  if (t->mb.kind == MB_QUITRUN) {
+    /* q again quits (asking about unsaved changes next); any other key
+     * closes the question and the cycle goes on */
+    int again = (!fn && (c == 'q' || c == 'Q')) || (fn && c == KEY_F(10));
+    t->mb.kind = MB_NONE;
+    if (!again) {
+      say(t, "the cycle goes on");
+      return;
+    }
+    if (t->dirty)
+      mb_open(t, MB_QUIT, "the text has unsaved changes: quit anyway? (y/n) ", NULL);
+    else
+      t->quit = 1;
+    return;
+  }
+  if (t->mb.kind == MB_QUIT || t->mb.kind == MB_OPENASK || t->mb.kind == MB_OVERWRITE) {
     int yes = !fn && (c == 'y' || c == 'Y');
     int kind = t->mb.kind;
     t->mb.kind = MB_NONE;
     if (!yes) {
-      say(t, "cancelled");
+      say(t, kind == MB_OVERWRITE ? "not saved" : "cancelled");
       return;
     }
-    if (kind == MB_QUIT)
+    if (kind == MB_QUIT) {
       t->quit = 1;
-    else
+    } else if (kind == MB_OVERWRITE) {
+      char *p = t->save_to;
+      t->save_to = NULL;
+      if (p)
+        save_now(t, p);
+      free(p);
+    } else {
       mb_open(t, MB_OPEN, "open file: ", t->path);
+    }
     return;
   }
+  int sel = t->mb.sel;
+  t->mb.sel = 0;
   if (fn) {
     switch (c) {
-    case KEY_LEFT: if (t->mb.cur > 0) t->mb.cur--; return;
+    case KEY_LEFT: if (t->mb.cur > 0 && !sel) t->mb.cur--; return;
     case KEY_RIGHT: if (t->mb.cur < t->mb.n) t->mb.cur++; return;
     case KEY_HOME: t->mb.cur = 0; return;
     case KEY_END: t->mb.cur = t->mb.n; return;
@@ -795,7 +1078,9 @@ static void mb_key(struct tui *t, int fn, wint_t c)
       c = 127;
       break;
     case KEY_DC:
-      if (t->mb.cur < t->mb.n) {
+      if (sel) {
+        t->mb.n = t->mb.cur = 0;
+      } else if (t->mb.cur < t->mb.n) {
         memmove(&t->mb.b[t->mb.cur], &t->mb.b[t->mb.cur + 1], sizeof t->mb.b[0] * (size_t)(t->mb.n - t->mb.cur - 1));
         t->mb.n--;
       }
@@ -804,14 +1089,18 @@ static void mb_key(struct tui *t, int fn, wint_t c)
       mb_commit(t);
       return;
     case KEY_F(4):
+      t->mb.sel = sel;
       press_rus(t);
       return;
     default:
+      t->mb.sel = sel;
       return;
     }
   }
   if (c == 127 || c == 8) {
-    if (t->mb.cur > 0) {
+    if (sel) {
+      t->mb.n = t->mb.cur = 0;   /* a selected name goes at once */
+    } else if (t->mb.cur > 0) {
       memmove(&t->mb.b[t->mb.cur - 1], &t->mb.b[t->mb.cur], sizeof t->mb.b[0] * (size_t)(t->mb.n - t->mb.cur));
       t->mb.n--;
       t->mb.cur--;
@@ -828,6 +1117,7 @@ static void mb_key(struct tui *t, int fn, wint_t c)
     return;
   }
   if (c == 18) {             /* Ctrl-R: Рус */
+    t->mb.sel = sel;
     press_rus(t);
     return;
   }
@@ -835,16 +1125,21 @@ static void mb_key(struct tui *t, int fn, wint_t c)
     t->mb.n = t->mb.cur = 0;
     return;
   }
-  if (c < 0x20 || c == 0x7F || (c >= 0x80 && c < 0xA0))
+  if (c < 0x20 || c == 0x7F || (c >= 0x80 && c < 0xA0)) {
+    t->mb.sel = sel;
     return;
+  }
   if (c >= 0x80 && !t->utf8) {
+    t->mb.sel = sel;
     say(t, "this terminal is not UTF-8: type Cyrillic in Рус mode (F4)");
     return;
   }
   uint32_t ch = (uint32_t)c;
-  int enc = t->mb.kind == MB_INSERT || t->mb.kind == MB_REPLACE;
+  int enc = t->mb.kind == MB_INSERT || t->mb.kind == MB_REPLACE || t->mb.kind == MB_FIND;
   if (t->cyr && enc)
     ch = tui_cyr_key(ch);
+  if (sel)
+    t->mb.n = t->mb.cur = 0;   /* typing replaces the selected text */
   if (t->mb.n >= MBMAX)
     return;
   memmove(&t->mb.b[t->mb.cur + 1], &t->mb.b[t->mb.cur], sizeof t->mb.b[0] * (size_t)(t->mb.n - t->mb.cur));
@@ -856,7 +1151,9 @@ static void mb_key(struct tui *t, int fn, wint_t c)
 
 static void ask_quit(struct tui *t)
 {
-  if (t->dirty)
+  if (t->run == R_RUN)
+    mb_open(t, MB_QUITRUN, "a cycle is running: q again to quit, any other key goes on ", NULL);
+  else if (t->dirty)
     mb_open(t, MB_QUIT, "the text has unsaved changes: quit anyway? (y/n) ", NULL);
   else
     t->quit = 1;
@@ -880,6 +1177,192 @@ static void ask_save(struct tui *t, int as)
     save(t, t->path);
 }
 
+/* ---- the editor: search, go to a line, the view across long lines ---- */
+
+/* Characters (code points) in the first `bytes` bytes of a UTF-8 line. */
+static int u8cols(const char *s, size_t bytes)
+{
+  int n = 0;
+  for (size_t i = 0; i < bytes && s[i]; i++)
+    n += ((unsigned char)s[i] & 0xC0) != 0x80;
+  return n;
+}
+
+/* The next (dir 1) or previous (-1) line holding the last search, from the
+ * cursor's; the cursor goes there and the view scrolls to show it. */
+static void find(struct tui *t, int dir)
+{
+  if (!t->find[0]) {
+    say(t, "no search yet: / searches");
+    return;
+  }
+  size_t from = dir > 0 ? t->ecur + 1 : (t->ecur ? t->ecur - 1 : t->text.n);
+  if (from >= t->text.n)
+    from = dir > 0 ? 0 : (t->text.n ? t->text.n - 1 : 0);
+  size_t byte;
+  int wrapped;
+  long i = tui_text_find(&t->text, from, dir, t->find, &byte, &wrapped);
+  if (i < 0) {
+    t->hl_line = -1;
+    say(t, "not found: %s", t->find);
+    return;
+  }
+  t->ecur = (size_t)i;
+  t->hl_line = i;
+  t->hl_col = u8cols(t->text.line[i], byte);
+  t->hl_len = u8cols(t->find, strlen(t->find));
+  t->hl_show = 1;
+  t->focus = F_EDIT;
+  if (wrapped)
+    say(t, "%s: line %ld (the search went on from the %s)", t->find, i + 1, dir > 0 ? "top" : "bottom");
+  else
+    say(t, "%s: line %ld", t->find, i + 1);
+}
+
+static void go_to(struct tui *t, const char *s)
+{
+  char *end;
+  errno = 0;
+  long n = strtol(s, &end, 10);
+  while (*end == ' ')
+    end++;
+  if (!*s || *end || errno || n < 1) {
+    say(t, "go to line: '%s' is not a line number", s);
+    return;
+  }
+  if (!t->text.n) {
+    say(t, "the text is empty");
+    return;
+  }
+  if ((size_t)n > t->text.n) {
+    say(t, "the text has %zu lines: the cursor goes to the last", t->text.n);
+    n = (long)t->text.n;
+  }
+  t->ecur = (size_t)n - 1;
+  t->ecol = 0;
+}
+
+/* ---- the parameters page ---- */
+
+/* Item i of the page: R0-R113, D1, TK, UG, F, then each array's pointer
+ * and length and its 15 cells.  Its text; *reg the register it sets from
+ * the panel, or -1 when it is read-only. */
+static void pitem(const struct tui *t, int i, char *b, size_t n, int *reg)
+{
+  const struct vm *vm = t->run != R_IDLE ? &t->s.vm : NULL;
+  *reg = -1;
+  if (i < 114) {
+    *reg = i;
+    snprintf(b, n, "R%-4d%14.10g", i, vm ? vm->reg[i] : 0.0);
+    return;
+  }
+  if (i < 118) {
+    static const char *const name[4] = {"D1", "TK", "UG", "F"};
+    if (i == 114)
+      *reg = REG_D1;
+    snprintf(b, n, "%-5s%14.10g", name[i - 114], vm ? vm->reg[i] : 0.0);
+    return;
+  }
+  int k = (i - 118) / (1 + VM_ACELLS), c = (i - 118) % (1 + VM_ACELLS) - 1;
+  const struct vm_array *a = vm ? &vm->arr[k] : NULL;
+  if (c < 0)
+    snprintf(b, n, "array %d: ptr %d len %d", k + 1, a ? a->ptr : 0, a ? a->len : 0);
+  else
+    snprintf(b, n, "%c%-2d %15.10g", a && a->ptr == c ? '>' : ' ', c, a ? a->cell[c] : 0.0);
+}
+
+static void page_open(struct tui *t)
+{
+  if (t->focus == F_PARAMS) {
+    t->page = 0;
+    t->focus = F_PANEL;
+    return;
+  }
+  t->page = 1;
+  t->focus = F_PARAMS;
+  note(t, "parameters: arrows choose, = sets one (while the machine waits or in a feed hold), p closes");
+}
+
+/* The operator sets a parameter: only when no block is under way -- the
+ * machine waits, or a feed hold stopped it -- and through the session,
+ * journaled as a dialog answer is. */
+static void set_param(struct tui *t, int reg, const char *val)
+{
+  char name[8], *end;
+  snprintf(name, sizeof name, reg == REG_D1 ? "D1" : "R%d", reg);
+  errno = 0;
+  double v = strtod(val, &end);
+  while (*end == ' ')
+    end++;
+  if (!*val || *end || errno == ERANGE) {
+    say(t, "%s: '%s' is not a number: not set", name, val);
+    return;
+  }
+  if (t->run == R_IDLE) {
+    say(t, "%s: not set: no cycle is on (the parameters are 0 when Пуск starts one)", name);
+    return;
+  }
+  if (t->run == R_DONE) {
+    say(t, "%s: not set: the cycle has ended (the next Пуск starts with every parameter at 0)", name);
+    return;
+  }
+  if (!t->held && t->s.state != SE_WAIT) {
+    say(t, "%s: not set: a block is running (Стоп holds the feed, then set it)", name);
+    return;
+  }
+  char why[200], nb[16];
+  if (sess_set_param(&t->s, reg, v, why, sizeof why)) {
+    say(t, "%s: not set: %s", name, why);
+    return;
+  }
+  if (reg < 114) {
+    t->regs[reg] = v;
+    chg_add(t, reg, v, sess_block_number(&t->s), 2);
+  }
+  say(t, "%s = %.10g, set from the panel at %s", name, v, bname(sess_block_number(&t->s), nb));
+}
+
+/* Keys while the page has the focus (1 taken); the rest go to the panel,
+ * so that digits and Enter still answer a dialog. */
+static int page_key(struct tui *t, int fn, wint_t c)
+{
+  int *p = &t->psel, rows = t->prows > 0 ? t->prows : 1;
+  if (fn) {
+    switch (c) {
+    case KEY_UP: if (*p > 0) (*p)--; return 1;
+    case KEY_DOWN: if (*p + 1 < NPITEM) (*p)++; return 1;
+    case KEY_LEFT: *p = *p >= rows ? *p - rows : 0; return 1;
+    case KEY_RIGHT: *p = *p + rows < NPITEM ? *p + rows : NPITEM - 1; return 1;
+    case KEY_PPAGE: *p = *p >= rows ? *p - rows : 0; return 1;
+    case KEY_NPAGE: *p = *p + rows < NPITEM ? *p + rows : NPITEM - 1; return 1;
+    case KEY_HOME: *p = 0; return 1;
+    case KEY_END: *p = NPITEM - 1; return 1;
+    default: return 0;
+    }
+  }
+  if (c == 27 || c == 'p') {
+    page_open(t);   /* closes it */
+    return 1;
+  }
+  if (c == '=') {   /* Enter stays ПС: a dialog goes on with the page open */
+    char b[64], pr[32];
+    int reg;
+    pitem(t, *p, b, sizeof b, &reg);
+    if (reg < 0) {
+      say(t, *p >= 115 && *p <= 116 ? "TK and UG are read-only: a tooth search with M10 sets them"
+             : "read-only: the program sets it");
+      return 1;
+    }
+    snprintf(pr, sizeof pr, reg == REG_D1 ? "set D1 = " : "set R%d = ", reg);
+    char v[40];
+    snprintf(v, sizeof v, "%.10g", t->run != R_IDLE ? t->s.vm.reg[reg] : 0.0);
+    mb_open(t, MB_PARAM, pr, v);
+    t->mb.reg = reg;
+    return 1;
+  }
+  return 0;
+}
+
 static void edit_key(struct tui *t, int fn, wint_t c)
 {
   size_t n = t->text.n;
@@ -891,6 +1374,8 @@ static void edit_key(struct tui *t, int fn, wint_t c)
     case KEY_NPAGE: t->ecur = t->ecur + 10 < n ? t->ecur + 10 : (n ? n - 1 : 0); return;
     case KEY_HOME: t->ecur = 0; return;
     case KEY_END: t->ecur = n ? n - 1 : 0; return;
+    case KEY_LEFT: t->ecol = t->ecol > 8 ? t->ecol - 8 : 0; return;   /* the view across long lines */
+    case KEY_RIGHT: t->ecol += 8; return;   /* drawing stops it at the longest line */
     case KEY_IC: c = 'i'; break;
     case KEY_DC: c = 'd'; break;
     case KEY_ENTER: c = 'e'; break;
@@ -943,6 +1428,11 @@ static void edit_key(struct tui *t, int fn, wint_t c)
   case 'q': ask_quit(t); return;
   case 'k': if (t->ecur > 0) t->ecur--; return;
   case 'j': if (t->ecur + 1 < n) t->ecur++; return;
+  case '/': mb_open(t, MB_FIND, "search: ", t->find); return;
+  case 'n': find(t, 1); return;
+  case 'N': find(t, -1); return;
+  case ':': mb_open(t, MB_GOTO, "go to line: ", NULL); return;
+  case 'p': page_open(t); return;
   default: return;
   }
 }
@@ -1006,13 +1496,39 @@ static void panel_key(struct tui *t, int fn, wint_t c)
   case 'w': ask_save(t, 0); return;
   case 'o': ask_open(t); return;
   case 'c': check(t, 1); return;
+  case 'p': page_open(t); return;
   default: return;
   }
+}
+
+static int help_lines(void);
+
+/* Tab: the panel and the editor in turn (the parameters page closes) */
+static void focus_next(struct tui *t)
+{
+  t->focus = t->focus == F_EDIT ? F_PANEL : F_EDIT;
+  t->page = 0;
 }
 
 static void key(struct tui *t, int fn, wint_t c)
 {
   if (t->help) {
+    /* the arrows scroll a help taller than the terminal; any other key closes it */
+    int rows = LINES - 2, max = help_lines() - rows;
+    if (fn && (c == KEY_DOWN || c == KEY_NPAGE) && max > 0) {
+      t->help_top += c == KEY_DOWN ? 1 : rows;
+      if (t->help_top > max)
+        t->help_top = max;
+      return;
+    }
+    if (fn && (c == KEY_UP || c == KEY_PPAGE)) {
+      t->help_top -= c == KEY_UP ? 1 : rows;
+      if (t->help_top < 0)
+        t->help_top = 0;
+      return;
+    }
+    if (fn && c == KEY_RESIZE)
+      return;
     t->help = 0;
     return;
   }
@@ -1025,7 +1541,7 @@ static void key(struct tui *t, int fn, wint_t c)
   if (fn) {
     switch (c) {
     case KEY_RESIZE: return;   /* the next draw lays out anew */
-    case KEY_F(1): t->help = 1; return;
+    case KEY_F(1): t->help = 1; t->help_top = 0; return;
     case KEY_F(2): ask_save(t, 0); return;
     case KEY_F(3): ask_open(t); return;
     case KEY_F(4): press_rus(t); return;
@@ -1035,19 +1551,21 @@ static void key(struct tui *t, int fn, wint_t c)
     case KEY_F(8): check(t, 1); return;
     case KEY_F(9): panel_key(t, 0, 'f'); return;
     case KEY_F(10): ask_quit(t); return;
-    case KEY_BTAB: t->focus = !t->focus; return;
+    case KEY_BTAB: focus_next(t); return;
     default: break;
     }
   } else {
     switch (c) {
-    case '\t': t->focus = !t->focus; return;
+    case '\t': focus_next(t); return;
     case 18: press_rus(t); return;   /* Ctrl-R */
-    case '?': t->help = 1; return;
+    case '?': t->help = 1; t->help_top = 0; return;
     default: break;
     }
   }
   if (t->focus == F_EDIT)
     edit_key(t, fn, c);
+  else if (t->focus == F_PARAMS && page_key(t, fn, c))
+    return;
   else
     panel_key(t, fn, c);
 }
@@ -1102,6 +1620,12 @@ static void textf(int y, int x, int w, attr_t a, const char *fmt, ...)
   text(y, x, w, b, a, 1);
 }
 
+/* Characters (code points) of a UTF-8 string. */
+static int ulen(const char *s)
+{
+  return u8cols(s, strlen(s));
+}
+
 static void frame(int y, int x, int h, int w, const char *title, attr_t a)
 {
   if (h < 2 || w < 2)
@@ -1125,40 +1649,70 @@ static void frame(int y, int x, int h, int w, const char *title, attr_t a)
   }
 }
 
+/* A titled rule: the top of a pane too low for a whole frame. */
+static void rule(int y, int x, int w, const char *title, attr_t a)
+{
+  for (int i = 0; i < w; i++)
+    cell(y, x + i, 0x2500, a);
+  if (title && w > 6) {
+    char b[256];
+    snprintf(b, sizeof b, " %s ", title);
+    text(y, x + 1, w - 2, b, a | A_BOLD, 0);
+  }
+}
+
 struct layout {
   int ok;
   int sy, sx;              /* the framed 2С42 screen */
-  int lx, lw;              /* listing pane (lw 0: none) */
-  int rx, rw;              /* machine pane (rw 0: none) */
-  int py, ph;              /* rows of the side panes */
-  int gy, gh;              /* messages pane below the screen (gh 0: none) */
+  int lx, lw;              /* the listing, the editor or the parameters page (lw 0: none) */
+  int py, ph;              /* its rows */
+  int rx, rw;              /* the machine pane (rw 0: none) */
+  int ry, rh;
+  int gx, gw, gy, gh;      /* the messages (gh 0: none) */
+  int gframe;              /* framed; else a rule on top */
 };
 
-/* Where everything goes in a w x h terminal: the screen in the middle,
- * the listing left and the machine right when there is room. */
-static struct layout lay_out(int w, int h)
+/* Where everything goes in a w x h terminal, by what an operator needs
+ * most: the 2С42 screen; then, at the panel, the machine (positions, feeds,
+ * the block, the time), then the listing; in the editor or on the
+ * parameters page, that pane before the machine.  When the screen leaves
+ * little height for the messages, they go below the machine pane too. */
+static struct layout lay_out(const struct tui *t, int w, int h)
 {
   struct layout l;
   memset(&l, 0, sizeof l);
   if (w < SCR_W || h < SCR_H + 3)
     return l;
   l.ok = 1;
-  l.py = 1;
-  l.ph = h - 3;
-  l.sy = 1;
-  if (w >= SCR_W + 2 * SIDE_MIN) {
-    l.lw = (w - SCR_W) / 2;
-    l.rw = w - SCR_W - l.lw;
-  } else if (w >= SCR_W + SIDE_MIN) {
-    l.lw = w - SCR_W;
+  l.py = l.ry = l.sy = 1;
+  l.ph = l.rh = h - 3;
+  int side = w - SCR_W;
+  if (side >= 2 * SIDE_MIN) {
+    l.lw = side / 2;
+    l.rw = side - l.lw;
+  } else if (t->focus != F_PANEL) {
+    l.lw = side >= MACH_W ? side : 0;
+  } else if (side >= MACH_W + SIDE_MIN - 2) {
+    l.rw = MACH_W;
+    l.lw = side - MACH_W;
+  } else if (side >= MACH_W) {
+    l.rw = side;
   }
   l.lx = 0;
-  l.sx = l.lw ? l.lw : (w - SCR_W) / 2;
+  l.sx = l.lw ? l.lw : l.rw ? 0 : (w - SCR_W) / 2;
   l.rx = l.sx + SCR_W;
-  if (l.ph - SCR_H >= 3) {
-    l.gy = l.sy + SCR_H;
-    l.gh = l.ph - SCR_H;
+  l.gx = l.sx;
+  l.gw = SCR_W;
+  l.gy = l.sy + SCR_H;
+  l.gh = l.ph - SCR_H;
+  if (l.gh < 5 && l.rw) {
+    /* low: the machine pane as tall as the screen, the messages under both */
+    l.rh = SCR_H;
+    l.gw = SCR_W + l.rw;
   }
+  if (l.gh < 2)
+    l.gh = 0;
+  l.gframe = l.gh >= 5;
   return l;
 }
 
@@ -1173,22 +1727,43 @@ static long run_line(const struct tui *t)
   return (long)t->cur.line - 1;
 }
 
+/* The block the panel shows as running: its number (-1 none) and line. */
+static int shown_block(const struct tui *t, unsigned *line)
+{
+  *line = 0;
+  if (t->run == R_IDLE)
+    return -1;
+  if (t->s.state == SE_ERROR && t->s.vm.err.block < t->prog.nblocks) {
+    const struct prog_block *b = &t->prog.blocks[t->s.vm.err.block];
+    *line = b->line;
+    return b->number ? b->number : -1;
+  }
+  if (t->s.state == SE_WAIT || !t->cur.valid) {
+    const struct prog_block *b = &t->prog.blocks[t->s.vm.cur];
+    *line = b->line;
+    return b->number ? b->number : -1;
+  }
+  *line = t->cur.line;
+  return t->cur.n;
+}
+
 static void draw_listing(struct tui *t, const struct layout *l)
 {
   int h = l->ph, w = l->lw;
   char title[200];
   const char *name = t->path ? t->path : "(new program)";
   const char *base = strrchr(name, '/') ? strrchr(name, '/') + 1 : name;
-  snprintf(title, sizeof title, "%s%s%s", t->focus == F_EDIT ? "edit: " : "", base, t->dirty ? " *" : "");
-  frame(l->py, l->lx, h, w, title, t->focus == F_EDIT ? A_BOLD : A_NORMAL);
+  int edit = t->focus == F_EDIT;
+  snprintf(title, sizeof title, "%s%s%s", edit ? "edit: " : "", base, t->dirty ? " *" : "");
+  frame(l->py, l->lx, h, w, title, edit ? A_BOLD : A_NORMAL);
   int rows = h - 2, cols = w - 2;
   if (rows <= 0 || cols <= 4)
     return;
   long rl = run_line(t);
   size_t n = t->text.n;
   /* what to keep in view: the editor's cursor, or the running block */
-  long want = t->focus == F_EDIT ? (long)t->ecur : rl;
-  size_t top = t->focus == F_EDIT ? t->etop : t->ltop;
+  long want = edit ? (long)t->ecur : rl;
+  size_t top = edit ? t->etop : t->ltop;
   if (want >= 0) {
     if ((size_t)want < top)
       top = (size_t)want > (size_t)rows / 3 ? (size_t)want - (size_t)rows / 3 : 0;
@@ -1197,7 +1772,7 @@ static void draw_listing(struct tui *t, const struct layout *l)
   }
   if (top > 0 && top + (size_t)rows > n)
     top = n > (size_t)rows ? n - (size_t)rows : 0;
-  if (t->focus == F_EDIT)
+  if (edit)
     t->etop = top;
   else
     t->ltop = top;
@@ -1209,10 +1784,34 @@ static void draw_listing(struct tui *t, const struct layout *l)
     if (!t->path)
       text(l->py + 2, l->lx + 1, cols, " Tab then i writes one)", A_DIM, 1);
   }
+  /* the editor's view across long lines: the gutter stays, the text
+   * scrolls; a search's match is brought into view once */
+  int tw = cols - (digits + 3);
+  if (tw < 1)
+    tw = 1;
+  int col = edit ? t->ecol : 0;
+  if (edit) {
+    int longest = 0;
+    for (int r = 0; r < rows && top + (size_t)r < n; r++) {
+      int len = ulen(t->text.line[top + (size_t)r]);
+      longest = len > longest ? len : longest;
+    }
+    if (t->hl_line >= 0 && t->hl_show) {
+      if (t->hl_col < col || t->hl_col + t->hl_len > col + tw)
+        col = t->hl_col + t->hl_len <= tw ? 0 : t->hl_col - tw / 3;
+      t->hl_show = 0;
+    }
+    if (col > longest - tw + 1)
+      col = longest - tw + 1;
+    if (col < 0)
+      col = 0;
+    t->ecol = col;
+  }
+  uint32_t *cp = malloc(sizeof *cp * (size_t)(col + tw + 1));
   for (int r = 0; r < rows && top + (size_t)r < n; r++) {
     size_t i = top + (size_t)r;
     int y = l->py + 1 + r, x = l->lx + 1;
-    int running = (long)i == rl, cursor = t->focus == F_EDIT && i == t->ecur;
+    int running = (long)i == rl, cursor = edit && i == t->ecur;
     attr_t a = A_NORMAL;
     if (running)
       a = t->colors ? COLOR_PAIR(1) | A_BOLD : A_REVERSE;
@@ -1228,8 +1827,51 @@ static void draw_listing(struct tui *t, const struct layout *l)
       g[k++] = ' ';
     snprintf(g + k, sizeof g - (size_t)k, "%s ", num);
     int used = text(y, x, cols, g, a, 0);
-    text(y, x + used, cols - used, t->text.line[i], a, 1);
+    if (!cp)
+      continue;
+    /* one more than fits: in the editor a line cut at an edge shows … there */
+    int len = scr_decode(t->text.line[i], cp, col + tw + 1);
+    for (int c = 0; c < cols - used; c++) {
+      int at = col + c;
+      uint32_t ch = at < len ? cp[at] : ' ';
+      if (edit && ((c == 0 && col > 0 && at < len) || (c == tw - 1 && at + 1 < len)))
+        ch = 0x2026;
+      attr_t ca = a;
+      if ((long)i == t->hl_line && at >= t->hl_col && at < t->hl_col + t->hl_len)
+        ca = a | A_REVERSE;
+      cell(y, x + used + c, ch, ca);
+    }
   }
+  free(cp);
+}
+
+/* The parameters page, in the listing's place: R0-R113, D1, TK, UG, F and
+ * both arrays (pointer, length, cells; > marks the pointer's cell), in as
+ * many columns as fit; the selected one is set by Enter. */
+static void draw_page(struct tui *t, const struct layout *l)
+{
+  int focus = t->focus == F_PARAMS;
+  frame(l->py, l->lx, l->ph, l->lw, t->run == R_IDLE ? "parameters (no cycle yet)" : "parameters",
+        focus ? A_BOLD : A_NORMAL);
+  int rows = l->ph - 2, cols = l->lw - 2;
+  if (rows <= 0 || cols <= 4)
+    return;
+  int cw = cols < PCOLW ? cols : PCOLW, ncol = cols / cw;
+  t->prows = rows;
+  int sc = t->psel / rows;
+  if (sc < t->pcol)
+    t->pcol = sc;
+  if (sc >= t->pcol + ncol)
+    t->pcol = sc - ncol + 1;
+  for (int c = 0; c < ncol; c++)
+    for (int r = 0; r < rows; r++) {
+      int i = (t->pcol + c) * rows + r, reg;
+      char b[64] = "";
+      if (i < NPITEM)
+        pitem(t, i, b, sizeof b, &reg);
+      attr_t a = i == t->psel && focus ? A_REVERSE : i >= 118 && (i - 118) % (1 + VM_ACELLS) == 0 ? A_BOLD : A_NORMAL;
+      text(l->py + 1 + r, l->lx + 1 + c * cw, cw - (c + 1 < ncol ? 1 : 0), b, a, 1);
+    }
 }
 
 static void shown_pos(const struct tui *t, double pos[4], double *tm, double *feed)
@@ -1257,9 +1899,31 @@ static void shown_pos(const struct tui *t, double pos[4], double *tm, double *fe
   *feed = t->run == R_RUN ? t->cur.feed : 0;
 }
 
-static const char *state_text(const struct tui *t, char *b, size_t n)
+
+/* What the machine waits for, as the header and the message line both say
+ * it (the message line is made anew at every draw, so that a wait that
+ * follows another within one key -- a tooth search's -- is not described
+ * by the one before). */
+static const char *wait_text(const struct tui *t, char *b, size_t n)
 {
   char nb[16];
+  snprintf(b, n, "%s waits: %s", bname(sess_block_number(&t->s), nb), wait_hint(&t->s));
+  return b;
+}
+
+static const char *state_text(const struct tui *t, char *b, size_t n)
+{
+  /* why Пуск would not start: said before anything else */
+  if (t->run != R_RUN && (t->run == R_IDLE || t->gen != t->run_gen)) {
+    if (!t->path && !t->text.n)
+      return "no program: F3 opens one";
+    if (!t->text.n)
+      return "empty: Tab, then i writes a block";
+    if (t->nerr) {
+      snprintf(b, n, "%zu error%s: F8 lists %s", t->nerr, t->nerr == 1 ? "" : "s", t->nerr == 1 ? "it" : "them");
+      return b;
+    }
+  }
   if (t->run == R_IDLE)
     return "ready: Пуск starts the cycle";
   if (t->run == R_DONE) {
@@ -1271,42 +1935,132 @@ static const char *state_text(const struct tui *t, char *b, size_t n)
   }
   if (t->held)
     return "feed hold (Стоп)";
-  if (t->s.state == SE_WAIT) {
-    snprintf(b, n, "%s waits: %s", bname(sess_block_number(&t->s), nb), wait_hint(&t->s));
-    return b;
-  }
+  if (t->s.state == SE_WAIT)
+    return wait_text(t, b, n);
   return "running";
+}
+
+/* The title: the state first, then the file's name (cut from the left
+ * when long), the speed and the program's name last. */
+static void draw_title(struct tui *t, int W)
+{
+  char sb[300], name[600], b[1200];
+  const char *st = state_text(t, sb, sizeof sb);
+  const char *path = t->path ? t->path : "(new program)";
+  const char *mod = t->dirty ? " [modified]" : "";
+  const char *speed = t->fast ? "fast" : "machine speed";
+  const char *rus = t->cyr ? "  |  Рус" : "";
+  snprintf(name, sizeof name, "%s", path);
+  for (int v = 0; v < 4; v++) {
+    if (v == 0)
+      snprintf(b, sizeof b, " s42 tui  %s%s  |  %s  |  %s%s", name, mod, st, speed, rus);
+    else if (v == 1)
+      snprintf(b, sizeof b, " %s%s  |  %s  |  %s%s", name, mod, st, speed, rus);
+    else if (v == 2)
+      snprintf(b, sizeof b, " %s%s  |  %s%s", name, mod, st, rus);
+    else {
+      /* the name's end (the file, not the directories) in what is left */
+      int room = W - (ulen(mod) + ulen(st) + ulen(rus) + 6);
+      if (room >= 4) {
+        uint32_t cp[140];
+        int len = scr_decode(path, cp, 140), keep = room - 1 < len ? room - 1 : len;
+        char *q = name;
+        for (int i = len - keep; i < len; i++)
+          q += tui_utf8(cp[i], q);
+        *q = 0;
+        snprintf(b, sizeof b, " …%s%s  |  %s%s", name, mod, st, rus);
+      } else {
+        snprintf(b, sizeof b, " %s%s", st, rus);
+      }
+    }
+    if (ulen(b) <= W)
+      break;
+  }
+  textf(0, 0, W, A_REVERSE, "%s", b);
+}
+
+/* The estimated cycle time and the part done, as text; "" when none. */
+static void est_text(const struct tui *t, double tm, int wide, char *b, size_t n)
+{
+  b[0] = 0;
+  int done = t->run == R_DONE && t->s.state == SE_END;   /* the cycle's own time */
+  if (t->run == R_IDLE || (!done && t->est.run != t->runs))
+    return;
+  double total = done ? t->s.m.t : t->est.total;
+  const char *lab = wide ? "estimate" : "of";
+  if (!done && t->est.kind == EST_NONE) {
+    snprintf(b, n, "%s %s", lab, t->est.pid ? "..." : "unknown");
+    return;
+  }
+  if (!done && t->est.kind == EST_LEAST) {
+    snprintf(b, n, wide ? "%s ≥ %.2f s" : "%s ≥%.2f s", lab, total);
+    return;
+  }
+  int pct = done || total <= 0 ? 100 : (int)floor(100 * tm / total + 1e-9);
+  if (!done && pct > 99)
+    pct = 99;   /* 100 % is the end, when it comes */
+  if (pct < 0)
+    pct = 0;
+  if (wide)
+    snprintf(b, n, "%s %9.2f s %3d %%%s", lab, total, pct, !done && t->est.kind == EST_ERROR ? " error" : "");
+  else
+    snprintf(b, n, "%s %7.2f s %3d%%%s", lab, total, pct, !done && t->est.kind == EST_ERROR ? "!" : "");
 }
 
 static void draw_machine(struct tui *t, const struct layout *l)
 {
-  int x = l->rx + 1, w = l->rw - 2, y = l->py + 1, end = l->py + l->ph - 1;
-  frame(l->py, l->rx, l->ph, l->rw, "machine", A_NORMAL);
+  int x = l->rx + 1, w = l->rw - 2, y = l->ry + 1, end = l->ry + l->rh - 1;
+  frame(l->ry, l->rx, l->rh, l->rw, "machine", A_NORMAL);
   if (w <= 4)
     return;
+  int wide = w >= 28;   /* narrower: the same, in shorter forms */
   double pos[4], tm, feed;
   shown_pos(t, pos, &tm, &feed);
   static const char *const ax[4] = {"X", "Y", "Z", "A"};
   for (int a = 0; a < 4 && y < end; a++)
-    textf(y++, x, w, A_BOLD, "%s %12.3f %s", ax[a], pos[a] / 1000.0, a == 3 ? "deg" : "mm");
+    textf(y++, x, w, A_BOLD, wide ? "%s %12.3f %s" : "%s%11.3f %s", ax[a], pos[a] / 1000.0, a == 3 ? "deg" : "mm");
   const struct machine *m = t->run != R_IDLE ? &t->s.m : NULL;
   double f = t->run != R_IDLE ? t->s.vm.reg[REG_F] : 0;
-  if (y < end) textf(y++, x, w, A_NORMAL, "F    %8.0f mm/min", f);
-  if (y < end) textf(y++, x, w, A_NORMAL, "feed %10.1f mm/min", feed);
+  if (y < end) textf(y++, x, w, A_NORMAL, wide ? "F    %8.0f mm/min" : "F   %6.0f mm/min", f);
+  if (y < end) textf(y++, x, w, A_NORMAL, wide ? "feed %10.1f mm/min" : "feed %6.1f mm/min", feed);
   if (y < end)
-    textf(y++, x, w, A_NORMAL, "F%%   %8d %%%s", m ? m->override_pct : t->override,
+    textf(y++, x, w, A_NORMAL, wide ? "F%%   %8d %%%s" : "F%%  %6d %%%s", m ? m->override_pct : t->override,
           m && !m->override_allowed ? " (M25)" : "");
-  if (y < end)
-    textf(y++, x, w, A_NORMAL, "wheel %-4s osc %-3s %s", !m || m->wheel == WHEEL_OFF ? "off" : m->wheel == WHEEL_CW ? "cw" : "ccw",
-          m && t->osc ? "on" : "off", m && m->corr_allowed ? "M22" : "M23");
-  if (y < end) textf(y++, x, w, A_NORMAL, "time %10.2f s %s", tm, t->fast ? "fast" : "x1");
-  if (y < end) textf(y++, x, w, A_NORMAL, "jog step %lld", (long long)t->jog_step);
+  const char *wheel = !m || m->wheel == WHEEL_OFF ? "off" : m->wheel == WHEEL_CW ? "cw" : "ccw";
+  const char *corr = m && m->corr_allowed ? "M22" : "M23";
+  if (y < end) {
+    if (wide)
+      textf(y++, x, w, A_NORMAL, "wheel %-4s osc %-3s %s", wheel, m && t->osc ? "on" : "off", corr);
+    else
+      textf(y++, x, w, A_NORMAL, "wheel %-4s osc %s", wheel, m && t->osc ? "on" : "off");
+  }
+  unsigned line;
+  int bn = shown_block(t, &line);
+  char nb[16];
+  if (y < end) {
+    if (line)
+      textf(y++, x, w, A_BOLD, wide ? "block %s  line %u" : "%s  line %u", bname(bn, nb), line);
+    else
+      text(y++, x, w, wide ? "block -" : "N-", A_NORMAL, 1);
+  }
+  if (y < end) textf(y++, x, w, A_NORMAL, wide ? "time %10.2f s %s" : "time %7.2f s %s", tm, t->fast ? "fast" : "x1");
+  char eb[80];
+  est_text(t, tm, wide, eb, sizeof eb);
+  if (y < end) text(y++, x, w, eb, A_NORMAL, 1);
+  if (wide) {
+    if (y < end) textf(y++, x, w, A_NORMAL, "jog step %lld", (long long)t->jog_step);
+  } else if (y < end) {
+    textf(y++, x, w, A_NORMAL, "%s  jog %lld", corr, (long long)t->jog_step);
+  }
   if (y < end) textf(y++, x, w, A_NORMAL, "blocks %llu", t->run != R_IDLE ? (unsigned long long)t->s.vm.blocks : 0ULL);
-  if (y < end) text(y++, x, w, "registers changed last", A_BOLD, 1);
+  if (y < end) text(y++, x, w, wide ? "registers changed last" : "changed last", A_BOLD, 1);
   for (int k = 0; k < t->nchg && y < end; k++) {
-    char nb[16];
-    textf(y++, x, w, k == 0 ? A_BOLD : A_NORMAL, "R%-3d %14.10g  %s", t->chg[k].reg, t->chg[k].v,
-          bname(t->chg[k].n, nb));
+    const char *by = t->chg[k].how == 1 ? "restart" : t->chg[k].how == 2 ? "panel" : bname(t->chg[k].n, nb);
+    if (wide)
+      textf(y++, x, w, k == 0 ? A_BOLD : A_NORMAL, "R%-3d %14.10g  %s", t->chg[k].reg, t->chg[k].v, by);
+    else
+      textf(y++, x, w, k == 0 ? A_BOLD : A_NORMAL, "R%-3d%9.7g %s", t->chg[k].reg, t->chg[k].v,
+            t->chg[k].how == 1 ? "rst" : t->chg[k].how == 2 ? "set" : by);
   }
   while (y < end)
     text(y++, x, w, "", A_NORMAL, 1);
@@ -1325,30 +2079,88 @@ static void draw_screen(struct tui *t, const struct layout *l)
       cell(l->sy + 1 + r, l->sx + 1 + c, g[r][c], r == 0 || r == SCR_ROWS - 1 ? A_BOLD : A_NORMAL);
 }
 
-static void draw_log(struct tui *t, const struct layout *l)
+/* UTF-8 text wrapped at words into rows y0..y1 (inclusive) of width w at
+ * x, from the bottom up: the rows it took, or -1 when it did not fit. */
+static int wrapped_up(int *y, int ytop, int x, int w, const char *s, attr_t a)
+{
+  uint32_t cp[LOGW];
+  int st[LOGW], ln[LOGW];
+  int n = scr_decode(s, cp, LOGW);
+  int rows = tui_wrap(cp, n, w, st, ln, LOGW);
+  for (int r = rows - 1; r >= 0 && *y >= ytop; r--, (*y)--) {
+    for (int c = 0; c < w; c++)
+      cell(*y, x + c, c < ln[r] ? cp[st[r] + c] : ' ', a);
+  }
+  return rows;
+}
+
+static void draw_log(struct tui *t, const struct layout *l, int W)
 {
   if (!l->gh)
     return;
-  frame(l->gy, l->sx, l->gh, SCR_W, "messages", A_NORMAL);
-  /* the newest at the bottom, each wrapped over as many rows as it needs */
-  int w = SCR_W - 2, y = l->gy + l->gh - 2;
-  uint32_t cp[LOGW];
-  for (int i = t->nlog - 1; i >= 0 && y > l->gy; i--) {
-    int n = scr_decode(t->log[i], cp, LOGW);
-    int rows = n ? (n + w - 1) / w : 1;
-    for (int r = rows - 1; r >= 0 && y > l->gy; r--, y--)
-      for (int c = 0; c < w && r * w + c < n; c++)
-        cell(y, l->sx + 1 + c, cp[r * w + c], i == t->nlog - 1 ? A_BOLD : A_NORMAL);
+  int top, w, x = l->gx;
+  if (l->gframe) {
+    frame(l->gy, l->gx, l->gh, l->gw, "messages", A_NORMAL);
+    top = l->gy + 1;
+    w = l->gw - 2;
+    x++;
+  } else {
+    rule(l->gy, l->gx, l->gw, "messages", A_NORMAL);
+    top = l->gy + 1;
+    w = l->gw;
   }
+  int y = l->gframe ? l->gy + l->gh - 2 : l->gy + l->gh - 1;
+  /* the newest at the bottom, each wrapped at words; the newest is left to
+   * the message line below when it is there whole */
+  int i = t->nlog - 1;
+  if (i >= 0 && !t->mb.kind && strcmp(t->log[i], t->msg) == 0 && ulen(t->msg) <= W)
+    i--;
+  for (; i >= 0 && y >= top; i--)
+    wrapped_up(&y, top, x, w, t->log[i], i == t->nlog - 1 ? A_BOLD : A_NORMAL);
 }
 
-/* one line each, to fit 100 columns; F1 shows every key */
-static const char help_panel[] =
-  "g Пуск s Стоп e Вихід Enter ПС BS ЗБ ^R Рус xyza/XYZA jog <> F% f speed Tab editor F1 keys q quit";
-static const char help_edit[] =
-  "arrows move i insert Enter replace d delete u undo c check w save o open ^R Рус Tab panel F1 keys";
-static const char help_mb[] =
-  "type; F4/^R Рус  Left/Right Home End  BS Del  ^U clear  Enter done  Esc cancel";
+/* The key line: as many as fit, the least needed going first; "F1 keys"
+ * and "q quit" always stay. */
+struct hint {
+  const char *s;
+  int prio;                 /* 0 always, then 1 (most needed) .. */
+};
+static const struct hint help_panel[] = {
+  {"g Пуск", 1}, {"s Стоп", 1}, {"e Вихід", 2}, {"Enter ПС", 1}, {"BS ЗБ", 5}, {"^R Рус", 4},
+  {"xyza/XYZA jog", 6}, {"<> F%", 3}, {"f speed", 5}, {"p params", 3}, {"Tab editor", 2}, {"F1 keys", 0},
+  {"q quit", 0}, {NULL, 0},
+};
+static const struct hint help_edit[] = {
+  {"arrows move", 4}, {"i insert", 1}, {"Enter replace", 1}, {"d delete", 2}, {"u undo", 2}, {"/ search", 2},
+  {": line", 5}, {"c check", 3}, {"w save", 1}, {"o open", 4}, {"^R Рус", 6}, {"Tab panel", 2}, {"F1 keys", 0},
+  {"q quit", 0}, {NULL, 0},
+};
+static const struct hint help_page[] = {
+  {"arrows choose", 1}, {"= set", 1}, {"p close", 1}, {"Enter ПС", 2}, {"g Пуск", 2}, {"s Стоп", 2}, {"Tab editor", 3},
+  {"F1 keys", 0}, {"q quit", 0}, {NULL, 0},
+};
+static const struct hint help_mb[] = {
+  {"type", 3}, {"F4/^R Рус", 4}, {"Left/Right Home End", 5}, {"BS Del", 5}, {"^U clear", 4}, {"Enter done", 0},
+  {"Esc cancel", 0}, {NULL, 0},
+};
+
+static void draw_keys(int y, int W, const struct hint *h)
+{
+  char b[600];
+  int maxp = 0;
+  for (const struct hint *k = h; k->s; k++)
+    maxp = k->prio > maxp ? k->prio : maxp;
+  for (int p = maxp; p >= 0; p--) {
+    size_t n = 0;
+    b[0] = 0;
+    for (const struct hint *k = h; k->s; k++)
+      if (k->prio <= p)
+        n += (size_t)snprintf(b + n, sizeof b - n, "%s%s", n ? " " : "", k->s);
+    if (ulen(b) <= W || p == 0)
+      break;
+  }
+  text(y, 0, W, b, A_REVERSE, 1);
+}
 
 static const char *const help_full[] = {
   "s42 tui: the 2С42-65 panel",
@@ -1367,59 +2179,79 @@ static const char *const help_full[] = {
   "< >           feed override -10 % / +10 % (+ too, but on P5:)",
   "+ -           P5 search results: the next / previous 8 steps",
   "F9, f         machine speed / as fast as possible",
+  "p             parameters page: R0-R113, D1, TK, UG, the arrays;",
+  "              arrows choose, = sets one (in a wait or a feed",
+  "              hold), p or Esc closes; the panel's keys still work",
   "Tab           panel / program editor",
-  "editor        i I insert after/before, Enter e replace, d delete,",
+  "editor        Up Down PgUp PgDn Home End: the cursor's line;",
+  "              Left Right: the view across long lines",
+  "              i I insert after/before, Enter e replace, d delete,",
   "              u undo, c F8 check, w F2 save, W save as, o F3 open",
-  "F10, q        quit",
+  "              / search, n N next / previous match, : go to line",
+  "prompts       typing replaces a name given; Esc cancels",
+  "F10, q        quit (while a cycle runs: q twice)",
   "",
-  "any key closes this",
+  "any key closes this; Up Down scroll it when it is cut",
 };
+
+static int help_lines(void)
+{
+  return (int)(sizeof help_full / sizeof help_full[0]);
+}
 
 static void draw_help(struct tui *t)
 {
-  (void)t;
-  int h = (int)(sizeof help_full / sizeof help_full[0]) + 2, w = 72;
+  int n = help_lines(), h = n + 2, w = 72;
   int H = LINES, W = COLS;
   if (h > H)
     h = H;
   if (w > W)
     w = W;
   int y = (H - h) / 2, x = (W - w) / 2;
-  frame(y, x, h, w, "keys", A_BOLD);
+  int top = t->help_top > n - (h - 2) ? n - (h - 2) : t->help_top;
+  if (top < 0)
+    top = 0;
+  frame(y, x, h, w, top + h - 2 < n ? "keys (Down: more)" : "keys", A_BOLD);
   for (int i = 0; i < h - 2; i++)
-    text(y + 1 + i, x + 1, w - 2, help_full[i], A_NORMAL, 1);
+    text(y + 1 + i, x + 1, w - 2, help_full[top + i], A_NORMAL, 1);
 }
 
 static void draw(struct tui *t)
 {
   int H = LINES, W = COLS;
-  if (t->msg_wait && !(t->run == R_RUN && t->s.state == SE_WAIT)) {
-    t->msg[0] = 0;   /* the wait is over */
-    t->msg_wait = 0;
+  if (t->msg_wait) {
+    if (t->run == R_RUN && t->s.state == SE_WAIT) {
+      wait_text(t, t->msg, sizeof t->msg);   /* the wait now, which may follow another */
+    } else {
+      t->msg[0] = 0;   /* the wait is over */
+      t->msg_wait = 0;
+    }
   }
   erase();
   curs_set(0);   /* shown again only on the input line */
-  struct layout l = lay_out(W, H);
-  char sb[200];
+  struct layout l = lay_out(t, W, H);
   if (!l.ok) {
-    char m[96];
-    snprintf(m, sizeof m, "too small: %dx%d < %dx%d", W, H, SCR_W, SCR_H + 3);
-    text(H / 2, 0, W, m, A_BOLD, 0);
-    if (H > 1)
-      text(H / 2 + 1 < H ? H / 2 + 1 : 0, 0, W, "q quits", A_NORMAL, 0);
+    char m[160];
+    snprintf(m, sizeof m, "the terminal is %dx%d: s42 tui needs at least %dx%d; q quits", W, H, SCR_W, SCR_H + 3);
+    uint32_t cp[160];
+    int st[160], ln[160], n = scr_decode(m, cp, 160), rows = tui_wrap(cp, n, W, st, ln, 160);
+    for (int r = 0, y = H > rows ? (H - rows) / 2 : 0; r < rows && y + r < H; r++)
+      for (int c = 0; c < ln[r]; c++)
+        cell(y + r, c, cp[st[r] + c], A_BOLD);
     refresh();
     return;
   }
-  /* title */
-  const char *name = t->path ? t->path : "(new program)";
-  textf(0, 0, W, A_REVERSE, " s42 tui  %s%s  |  %s  |  %s%s", name, t->dirty ? " [modified]" : "",
-        state_text(t, sb, sizeof sb), t->fast ? "fast" : "machine speed", t->cyr ? "  |  Рус" : "");
-  if (l.lw)
-    draw_listing(t, &l);
+  draw_title(t, W);
+  if (l.lw) {
+    if (t->page)
+      draw_page(t, &l);
+    else
+      draw_listing(t, &l);
+  }
   if (l.rw)
     draw_machine(t, &l);
   draw_screen(t, &l);
-  draw_log(t, &l);
+  draw_log(t, &l, W);
   /* the message / input line */
   int my = H - 2;
   int cy = -1, cx = 0;
@@ -1431,14 +2263,14 @@ static void draw(struct tui *t)
     int first = t->mb.cur > avail ? t->mb.cur - avail : 0;
     for (int i = 0; pl + i < W; i++) {
       int k = first + i;
-      cell(my, pl + i, k < t->mb.n ? t->mb.b[k] : ' ', A_NORMAL);
+      cell(my, pl + i, k < t->mb.n ? t->mb.b[k] : ' ', k < t->mb.n && t->mb.sel ? A_REVERSE : A_NORMAL);
     }
     cy = my;
     cx = pl + t->mb.cur - first < W ? pl + t->mb.cur - first : W - 1;
   } else {
     text(my, 0, W, t->msg, A_NORMAL, 1);
   }
-  text(H - 1, 0, W, t->mb.kind ? help_mb : t->focus == F_EDIT ? help_edit : help_panel, A_REVERSE, 1);
+  draw_keys(H - 1, W, t->mb.kind ? help_mb : t->focus == F_EDIT ? help_edit : t->focus == F_PARAMS ? help_page : help_panel);
   if (t->help)
     draw_help(t);
   if (cy >= 0 && !t->help) {
@@ -1447,6 +2279,154 @@ static void draw(struct tui *t)
     curs_set(1);
   }
   refresh();
+}
+
+/* ---- the estimate of the cycle time ---- */
+
+/* The estimate is a headless run of the same cycle from where it is now:
+ * a child process (fork) goes on with a copy of the session as fast as it
+ * can, pressing Пуск and ПС where the machine waits for them, and writes
+ * back the simulated time where it ended.  A wait only the operator can
+ * end -- a dialog's number not given yet, teach-in, a tooth search's
+ * moves, a feed override of 0 % -- or EST_SECONDS of computing stops it
+ * there: "at least" that much.  The loop polls its pipe, so the terminal
+ * never waits for it; it is computed again whenever the operator changes
+ * what it assumed (an answer, the end of such a wait, the override, cycle
+ * exit).  A child of its own process group, so that Ctrl-C in the
+ * terminal does not reach it; it never touches the terminal. */
+
+static void est_stop(struct tui *t)
+{
+  if (t->est.pid > 0) {
+    kill(t->est.pid, SIGKILL);
+    while (waitpid(t->est.pid, NULL, 0) < 0 && errno == EINTR)
+      ;
+  }
+  if (t->est.fd >= 0)
+    close(t->est.fd);
+  t->est.pid = 0;
+  t->est.fd = -1;
+}
+
+static _Noreturn void est_child(struct tui *t, int fd)
+{
+  setpgid(0, 0);
+  for (int i = 0; i < 3; i++)
+    signal(quit_sigs[i], SIG_DFL);
+  /* nothing of it reaches the terminal (a plugin writing to stderr), and
+   * it holds none of the parent's connections (the Modbus server's) open */
+  int nul = open("/dev/null", O_RDWR);
+  if (nul >= 0) {
+    dup2(nul, 0);
+    dup2(nul, 1);
+    dup2(nul, 2);
+  }
+  long maxfd = sysconf(_SC_OPEN_MAX);
+  if (maxfd < 0 || maxfd > 65536)
+    maxfd = 65536;
+  for (int i = 3; i < maxfd; i++)
+    if (i != fd)
+      close(i);
+  if (nice(10) < 0) {
+    /* as it was: only slower for the terminal */
+  }
+  struct session *s = &t->s;
+  memset(&s->sink, 0, sizeof s->sink);
+  struct est_result r;
+  memset(&r, 0, sizeof r);
+  r.kind = EST_LEAST;
+  struct timespec t0, now;
+  clock_gettime(CLOCK_MONOTONIC, &t0);
+  for (unsigned long i = 1;; i++) {
+    if ((i & 1023) == 0) {
+      clock_gettime(CLOCK_MONOTONIC, &now);
+      if ((double)(now.tv_sec - t0.tv_sec) + (double)(now.tv_nsec - t0.tv_nsec) / 1e9 > EST_SECONDS)
+        break;
+    }
+    enum sess_ev ev = sess_run(s);
+    if (ev == SE_START)
+      continue;
+    if (ev == SE_WAIT) {
+      if (!s->plug_wait && s->wait == W_PUSK && sess_key_pusk(s) == 0)
+        continue;
+      if (!s->plug_wait && s->wait == W_PS && sess_key_ps(s) == 0)
+        continue;
+      break;   /* the operator must act: at least this much */
+    }
+    r.kind = ev == SE_END ? EST_END : ev == SE_ERROR ? EST_ERROR : EST_LEAST;
+    break;
+  }
+  r.t = s->m.t;
+  r.blocks = s->vm.blocks;
+  r.resumed = s->resumed;
+  ssize_t w = write(fd, &r, sizeof r);
+  (void)w;
+  _exit(0);
+}
+
+static void est_start(struct tui *t)
+{
+  est_stop(t);
+  if (t->est.run != t->runs)
+    t->est.kind = EST_NONE;   /* a new cycle: the last one's says nothing */
+  t->est.run = t->runs;
+  t->est.override = t->s.m.override_pct;
+  t->est.latch = t->s.vm.exit_latch;
+  int p[2];
+  if (pipe(p))
+    return;
+  pid_t pid = fork();
+  if (pid == 0) {
+    close(p[0]);
+    est_child(t, p[1]);
+  }
+  close(p[1]);
+  if (pid < 0) {
+    close(p[0]);
+    return;   /* no estimate: "unknown" */
+  }
+  fcntl(p[0], F_SETFD, FD_CLOEXEC);
+  fcntl(p[0], F_SETFL, O_NONBLOCK);
+  t->est.pid = pid;
+  t->est.fd = p[0];
+}
+
+/* The child's pipe is readable: its result, or its end without one. */
+static void est_read(struct tui *t)
+{
+  struct est_result r;
+  ssize_t n = read(t->est.fd, &r, sizeof r);
+  if (n < 0 && (errno == EAGAIN || errno == EINTR))
+    return;
+  if (n == (ssize_t)sizeof r) {
+    t->est.kind = r.kind;
+    t->est.total = r.t;
+    t->est.at_blocks = r.blocks;
+    t->est.at_resumed = r.resumed;
+  }
+  /* it ends right after writing; one that failed without a word: unknown */
+  est_stop(t);
+}
+
+/* After each pass of the loop: start or restart the estimate when what it
+ * assumed no longer holds; and a cycle exit taken into a waiting block,
+ * whose row comes only when the wait ends. */
+static void watch(struct tui *t)
+{
+  if (t->run == R_RUN && t->s.state == SE_WAIT && t->s.vm.pp_jumps != t->pp_seen && t->cur.valid)
+    exit_taken(t, t->cur.n, t->cur.line, sess_block_number(&t->s), t->prog.blocks[t->s.vm.cur].line);
+  if (t->run != R_RUN) {
+    if (t->est.pid)
+      est_stop(t);   /* the cycle is over: its own time is exact now */
+    return;
+  }
+  int want = t->est.run != t->runs || t->s.m.override_pct != t->est.override ||
+             (t->s.vm.exit_latch && !t->est.latch);
+  if (!want && !t->est.pid && t->est.kind == EST_LEAST)   /* the operator did what stopped it */
+    want = t->s.vm.blocks > t->est.at_blocks ||
+           (t->s.vm.blocks == t->est.at_blocks && t->s.resumed > t->est.at_resumed);
+  if (want)
+    est_start(t);
 }
 
 /* ---- the loop ---- */
@@ -1518,10 +2498,11 @@ const struct session *tui_session(const struct tui *t)
 
 static int loop(struct tui *t)
 {
-  struct pollfd pfd[1 + MAXSRC_FD];
+  struct pollfd pfd[2 + MAXSRC_FD];
   int first[16], count[16];
   while (!t->quit && !got_sig) {
     int timeout = advance(t);
+    watch(t);
     for (int i = 0; i < t->nsrc; i++)
       if (t->src[i].update)
         t->src[i].update(t->src[i].ctx, t);
@@ -1537,12 +2518,21 @@ static int loop(struct tui *t)
         count[i] = 0;
       n += count[i];
     }
+    int est = -1;   /* the estimate's pipe */
+    if (t->est.fd >= 0) {
+      est = n++;
+      pfd[est].fd = t->est.fd;
+      pfd[est].events = POLLIN;
+      pfd[est].revents = 0;
+    }
     if (timeout < 0)
       timeout = 500;
     for (int i = 0; i < t->nsrc; i++)
       if (t->src[i].poll_timeout)
         timeout = t->src[i].poll_timeout(t->src[i].ctx, timeout);
     int r = poll(pfd, (nfds_t)n, timeout);
+    if (est >= 0 && pfd[est].revents)
+      est_read(t);
     if (r < 0 && errno != EINTR) {
       curses_off();
       fprintf(stderr, "s42 tui: poll: %s\n", strerror(errno));
@@ -1587,6 +2577,8 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
   t->jog_step = 1000;
   t->fast = !o->realtime;
   t->restart_pending = o->restart;
+  t->est.fd = -1;
+  t->hl_line = -1;
   tui_text_init(&t->text);
   scr_init(&t->idle);
   t->idle.en = o->en;
@@ -1595,14 +2587,22 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
   setlocale(LC_CTYPE, "");
   const char *cs = nl_langinfo(CODESET);
   t->utf8 = cs && (strcmp(cs, "UTF-8") == 0 || strcmp(cs, "utf8") == 0);
-  if (o->program) {
+  if (o->program && creatable(o->program)) {
+    /* a name that is not there yet: an empty text that its first save creates */
+    t->path = strdup(o->program);
+    set_saved(t);
+    check(t, 0);
+    say(t, "%s: a new file (the first save creates it).  Tab, then i, writes a block; F1 shows the keys",
+        o->program);
+  } else if (o->program) {
     char err[512];
-    if (tui_text_load(&t->text, o->program, err, sizeof err)) {
+    if (tui_text_load(&t->text, o->program, &t->disk, err, sizeof err)) {
       fprintf(stderr, "s42 tui: %s\n", err);
       tui_text_free(&t->text);
       return 4;
     }
     t->path = strdup(o->program);
+    set_saved(t);
     check(t, 0);
     say(t, "%s: %zu lines, %zu error%s, %zu warning%s.  Пуск (F5 or g) starts the cycle; F1 shows the keys",
         o->program, t->text.n, t->nerr, t->nerr == 1 ? "" : "s", t->nwarn, t->nwarn == 1 ? "" : "s");
@@ -1642,6 +2642,7 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
     t->colors = 1;
   }
   int rc = loop(t);
+  est_stop(t);
   curses_off();
   delscreen(scr);
   signals_off();
@@ -1650,6 +2651,7 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
   tui_text_free(&t->text);
   free(t->path);
   free(t->mark);
+  free(t->save_to);
   T = NULL;
   return rc;
 }

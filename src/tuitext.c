@@ -1,4 +1,4 @@
-/* The terminal's program text, keyboard map and ASCII fallback
+/* The terminal's program text, keyboard map, ASCII fallback and word wrap
  * (src/tuitext.h).  No curses here: the unit tests drive it directly. */
 #include "tuitext.h"
 #include "atomic.h"
@@ -113,7 +113,58 @@ int tui_text_set(struct tui_text *t, const char *buf, size_t n, char *err, size_
   return 0;
 }
 
-int tui_text_load(struct tui_text *t, const char *path, char *err, size_t errn)
+uint64_t tui_hash(const void *p, size_t n)
+{
+  const unsigned char *b = p;
+  uint64_t h = 1469598103934665603ULL;
+  for (size_t i = 0; i < n; i++) {
+    h ^= b[i];
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+static long long mtime_ns(const struct stat *st)
+{
+  return (long long)st->st_mtim.tv_sec * 1000000000LL + st->st_mtim.tv_nsec;
+}
+
+void tui_disk_of(const char *path, const char *buf, size_t n, struct tui_disk *d)
+{
+  struct stat st;
+  memset(d, 0, sizeof *d);
+  if (stat(path, &st) == 0) {
+    d->exists = 1;
+    d->size = (long long)st.st_size;
+    d->mtime_ns = mtime_ns(&st);
+  }
+  d->hash = tui_hash(buf, n);
+  d->len = n;
+}
+
+int tui_disk_changed(const char *path, const struct tui_disk *d)
+{
+  struct stat st;
+  int now = stat(path, &st) == 0;
+  if (now != d->exists)
+    return 1;
+  if (!now)
+    return 0;
+  if ((long long)st.st_size != d->size)
+    return 1;
+  if (mtime_ns(&st) == d->mtime_ns)
+    return 0;
+  /* the same size at another time: only the bytes tell */
+  char *b, err[256];
+  size_t n;
+  if (file_read_all(path, FILE_REGULAR, (size_t)64 << 20, &b, &n, err, sizeof err))
+    return 1;
+  int changed = n != d->len || tui_hash(b, n) != d->hash;
+  free(b);
+  return changed;
+}
+
+int tui_text_load(struct tui_text *t, const char *path, struct tui_disk *d, char *err, size_t errn)
 {
   /* a regular file only: a FIFO or a device is refused, not waited on */
   char *b;
@@ -125,6 +176,8 @@ int tui_text_load(struct tui_text *t, const char *path, char *err, size_t errn)
     return -1;
   char why[128];
   r = tui_text_set(t, b, n, why, sizeof why);
+  if (r == 0 && d)
+    tui_disk_of(path, b, n, d);
   free(b);
   if (r)
     snprintf(err, errn, "%s: %s", path, why);
@@ -208,7 +261,28 @@ int tui_text_undo(struct tui_text *t)
   return 0;
 }
 
-int tui_text_save(const struct tui_text *t, const char *path, char *err, size_t errn)
+long tui_text_find(const struct tui_text *t, size_t from, int dir, const char *needle, size_t *byte,
+                   int *wrapped)
+{
+  *wrapped = 0;
+  if (!needle[0] || !t->n)
+    return -1;
+  if (from >= t->n)
+    from = dir > 0 ? 0 : t->n - 1;
+  size_t i = from;
+  for (size_t k = 0; k < t->n; k++) {
+    const char *m = strstr(t->line[i], needle);
+    if (m) {
+      *byte = (size_t)(m - t->line[i]);
+      *wrapped = dir > 0 ? i < from : i > from;
+      return (long)i;
+    }
+    i = dir > 0 ? (i + 1 == t->n ? 0 : i + 1) : (i == 0 ? t->n - 1 : i - 1);
+  }
+  return -1;
+}
+
+int tui_text_save(const struct tui_text *t, const char *path, struct tui_disk *d, char *err, size_t errn)
 {
   /* a symbolic link keeps pointing at the program: write its target */
   char real[PATH_MAX];
@@ -234,6 +308,8 @@ int tui_text_save(const struct tui_text *t, const char *path, char *err, size_t 
   }
   struct iovec v = {buf, n};
   int rc = atomic_write(target, path, mode, &v, 1, err, errn);
+  if (rc == 0 && d)
+    tui_disk_of(target, buf, n, d);
   free(buf);
   return rc;
 }
@@ -295,6 +371,9 @@ char tui_ascii(uint32_t c)
   case 0x2190: return '<';
   case 0x2192: return '>';
   case 0x25B6: return '>';
+  case 0x2026: return '$';                     /* … a line cut at the pane's edge */
+  case 0x2264: return '<';                     /* ≤ ≥ */
+  case 0x2265: return '>';
   default: return '?';
   }
 }
@@ -321,4 +400,43 @@ int tui_utf8(uint32_t c, char u[4])
   u[2] = (char)(0x80 | ((c >> 6) & 0x3F));
   u[3] = (char)(0x80 | (c & 0x3F));
   return 4;
+}
+
+int tui_wrap(const uint32_t *s, int n, int w, int *start, int *len, int max)
+{
+  int rows = 0, i = 0;
+  if (w < 1)
+    w = 1;
+  while (i < n && s[i] == ' ')
+    i++;
+  if (i >= n || max < 1) {
+    if (max >= 1) {
+      start[0] = 0;
+      len[0] = 0;
+    }
+    return 1;
+  }
+  while (i < n && rows < max) {
+    int end = i + w;
+    if (end >= n) {
+      end = n;
+    } else if (s[end] != ' ') {
+      /* back to the last space in the row, unless the word fills it all */
+      int b = end;
+      while (b > i && s[b - 1] != ' ')
+        b--;
+      if (b > i)
+        end = b;
+    }
+    int e = end;
+    while (e > i && s[e - 1] == ' ')
+      e--;
+    start[rows] = i;
+    len[rows] = e - i;
+    rows++;
+    i = end;
+    while (i < n && s[i] == ' ')
+      i++;
+  }
+  return rows;
 }

@@ -1,6 +1,7 @@
 #!/bin/sh
 # End-to-end tests of `s42 tui` in a real terminal: tmux runs it in a
-# detached 100x30 pane on a private socket, send-keys types, capture-pane
+# detached pane on a private socket (100x30, or TW x TH: 80x24 and 120x40
+# too), send-keys types, capture-pane
 # reads the screen.  Every wait polls the pane until the text appears, with
 # a timeout, so a slow machine only makes the tests slower.  The pane runs
 # the terminal inside a small shell script that records `stty -a` before
@@ -43,14 +44,15 @@ echo S42-TUI-ENDED
 exec sleep 600
 EOF
 
-# start NAME LOCALE ARGS...: a fresh pane running s42 tui ARGS
+# start NAME LOCALE ARGS...: a fresh pane running s42 tui ARGS, TW x TH
+# (100x30 unless they are set)
 start() {
   name=$1
   loc=$2
   shift 2
   $T kill-session -t s42 2>/dev/null
   rm -f "$WORK/status" "$WORK/pid" "$WORK/stty.before" "$WORK/stty.after"
-  $T new-session -d -s s42 -x 100 -y 30 -e LC_ALL="$loc" -e TERM=screen sh "$WORK/pane.sh" "$WORK" "$S42" tui "$@"
+  $T new-session -d -s s42 -x "${TW:-100}" -y "${TH:-30}" -e LC_ALL="$loc" -e TERM=screen sh "$WORK/pane.sh" "$WORK" "$S42" tui "$@"
 }
 pane() { $T capture-pane -p -t s42 2>/dev/null; }
 keys() { $T send-keys -t s42 "$@"; }
@@ -95,7 +97,10 @@ ended() {
     bad "s42 tui did not quit"
   fi
 }
-# layout: every framed row is exactly W columns and pure ASCII when asked
+# msgline: the message line (the last row but one of the pane)
+msgline() { pane | sed -n "$((${TH:-30} - 1))p"; }
+# layout: no row is wider than W, every row that ends in a frame is exactly
+# W columns (capture-pane drops trailing blanks), pure ASCII when asked
 layout() {
   pane | python3 -c '
 import sys
@@ -103,7 +108,7 @@ w, ascii_only = int(sys.argv[1]), sys.argv[2] == "ascii"
 rows = sys.stdin.read().split("\n")
 bad = []
 for i, r in enumerate(rows[1:-3], 2):
-    if r and len(r) != w:
+    if len(r) > w or (r and r[-1] in "│┐┘|+─-" and len(r) != w):
         bad.append("row %d is %d columns: %r" % (i, len(r), r))
     if ascii_only and any(ord(c) > 126 for c in r):
         bad.append("row %d is not ASCII: %r" % (i, r))
@@ -222,11 +227,13 @@ cp "$ROOT/programs/drill_dialog.kp" "$WORK/drill.kp"
 start resize C.UTF-8 drill.kp
 see "┌─ machine ─"
 $T resize-window -t s42 -x 70 -y 24
-gone "┌─ machine ─"
+gone "┌─ drill.kp ─"                             # narrow: the machine stays, the listing goes
+see "┌─ machine ─"
 see "┌─ 2С42-65 ─"
 layout 70 utf8
 $T resize-window -t s42 -x 30 -y 15
-see "too small: 30x15 < 34x21"
+see "the terminal is 30x15: s42 tui"            # wrapped at words in 30 columns
+see "needs at least 34x21; q quits"
 $T resize-window -t s42 -x 120 -y 40
 see "┌─ machine ─"
 layout 120 utf8
@@ -291,7 +298,7 @@ keys q
 ended 0
 start restart C.UTF-8 loop.kp --restart
 keys g
-see "restart: the cycle goes on at th"
+see "restart: the cycle goes on at"
 see_re "R1 +[0-9]+ +N1"
 keys F7
 see "end (M2)" 5
@@ -327,6 +334,7 @@ see "│РУЧНИЙ"
 keys g                                       # the probe is in the flute: Пуск
 see "упорку в переріз 2" 20
 see "to section 2"
+if msgline | grep -qF "to section 2"; then ok; else bad "the message line does not say what the header says: $(msgline)"; fi
 keys j X X X                                 # step 10000: the table +30 mm
 see_re "│X +30\.000 mm"
 keys g
@@ -380,10 +388,10 @@ see "drill.kp: 61 lines; 0 errors"
 see "; СВЕРДЛО, ДІАЛОГ: заточув"
 keys F10
 ended 0
-start missing C.UTF-8 nosuch.kp
+start missing C.UTF-8 nodir/nosuch.kp          # a new file's directory must be there
 see "S42-TUI-ENDED"
 ended 4
-if pane | grep -qF "nosuch.kp: No such file"; then ok; else bad "no message for a missing file"; fi
+if pane | grep -qF "nodir/nosuch.kp: No such file"; then ok; else bad "no message for a missing file"; fi
 name=cli
 "$S42" tui "$WORK/drill.kp" < /dev/null > "$WORK/out" 2>&1
 st=$?
@@ -391,6 +399,261 @@ if [ $st -eq 2 ] && grep -q "must be a terminal" "$WORK/out"; then ok; else bad 
 "$S42" tui "$WORK/drill.kp" --operator x.op > "$WORK/out" 2>&1
 st=$?
 if [ $st -eq 2 ] && grep -q "operator scripts are for s42 run" "$WORK/out"; then ok; else bad "--operator: status $st"; fi
+
+# ---- 10. 80x24: the machine, the block, the time, the key line's hints ----
+cp "$ROOT/programs/drill_dialog.kp" "$WORK/drill.kp"
+TW=80 TH=24 start small C.UTF-8 drill.kp
+see "┌─ machine ─"
+see "┌─ 2С42-65 ─"
+see "┌─ drill.kp ─"
+see_re "F1 keys q quit *$"
+see "0 errors, 0 warnings."                      # a message in the pane, wrapped at words
+layout 80 utf8
+keys F1                                      # the help is taller than 24 rows: it scrolls
+see "keys (Down: more)"
+keys Down Down Down Down Down Down Down Down Down Down
+see "quit (while a cycle runs: q twice)"
+see "/ search, n N next / previous match, : go to line"
+keys Escape
+gone "quit (while a cycle runs"
+keys g 3 5 0 0 0 Enter
+see_re "│R0 +35000 N3"
+keys 9 5 0 0 0 Enter 1 1 8 Enter 3 3 3 5 0 0 Enter g
+see "|  running  |"
+see_re "│X +-?[0-9]+\.[0-9]{3} mm"
+see_re "│A +-?[0-9]+\.[0-9]{3} deg"
+see_re "│F +[0-9]+ mm/min"
+see_re "│feed +[0-9.]+ mm/min"
+see_re "│F% +100 %"
+see_re "│N[0-9]+  line [0-9]+"
+see_re "│time +[0-9.]+ s x1"
+see "─ messages ─"
+see "Пуск: the cycle starts"
+if pane | grep -qF "F1 shows the keys"; then ok; else bad "the messages pane shows one message"; fi
+layout 80 utf8
+keys s s
+see "Стоп: the cycle was stopped"
+keys q
+ended 0
+# 120x40: all three panes, the wide forms
+TW=120 TH=40 start big C.UTF-8 drill.kp
+see "┌─ machine ─"
+see "┌─ messages ─"
+see_re "│block -"
+see "│jog step 1000"
+layout 120 utf8
+keys q
+ended 0
+# the messages wrap at words (100x30: 32 columns): every word in the pane
+# is a whole word of the message (one longer than the message line)
+cp "$ROOT/programs/drill_dialog.kp" "$WORK/a-program-with-a-long-name.kp"
+start wrap C.UTF-8 a-program-with-a-long-name.kp
+see "┌─ messages ─"
+pane | python3 -c '
+import sys
+msg = "a-program-with-a-long-name.kp: 61 lines, 0 errors, 0 warnings.  Пуск (F5 or g) starts the cycle; F1 shows the keys"
+rows = sys.stdin.read().split("\n")
+top = [i for i, r in enumerate(rows) if "┌─ messages" in r][0]
+x = rows[top].index("┌─ messages")
+words = []
+for r in rows[top + 1:]:
+    if r[x] == "└":
+        break
+    words += r[x + 1:x + 33].split()
+ok = words and all(w in msg.split() for w in words) and " ".join(words) in " ".join(msg.split())
+sys.exit(0 if ok else 1)' && ok || bad "a message is not wrapped at words"
+keys q
+ended 0
+# a long path does not cut the state out of the title
+deep="$WORK/a-directory-with-a-rather-long-name/and-one-more-to-make-the-path-long"
+mkdir -p "$deep"
+cp "$ROOT/programs/drill_dialog.kp" "$deep/drill.kp"
+TW=80 TH=24 start longpath C.UTF-8 "$deep/drill.kp"
+see_re "^ …[^ ]*/drill\.kp  [|]  ready: Пуск starts the cycle"
+keys q
+ended 0
+
+# ---- 11. why Пуск cannot start; cycle exit; q in a running cycle ----
+printf '№1 G99 ^\n№2 G98 ^\n№3 M02 ^\n' > "$WORK/bad.kp"
+start header C.UTF-8 bad.kp
+see "|  2 errors: F8 lists them  |"
+keys q
+ended 0
+start noprog C.UTF-8
+see "|  no program: F3 opens one  |"
+keys q
+ended 0
+printf '№1 R1+R1+1 ^\n№2 M15 G04 X+2 ^\n№3 PP5 ^\n№4 P1 ^\n№5 M02 ^\n' > "$WORK/loop.kp"
+rm -f "$WORK/loop.kp.state"
+start exitpp C.UTF-8 loop.kp
+keys g
+see "|  running  |"
+keys q
+see "a cycle is running: q again to quit, any other key goes on"
+keys x
+see "the cycle goes on"
+see "|  running  |"
+keys e
+see "cycle exit: N3 → N5" 5
+see "end (M2)" 5
+keys q
+ended 0
+start quitrun C.UTF-8 loop.kp
+keys g
+see "|  running  |"
+keys q q
+ended 0
+
+# ---- 12. the parameters page: every one; set one in a wait, not in a block ----
+printf '№1 T11+5 T11+7 D1+3000 ^\n№2 G34 ^\n№3 G04 X+30 ^\n№4 M02 ^\n' > "$WORK/arr.kp"
+start params C.UTF-8 arr.kp
+keys p
+see "┌─ parameters (no cycle yet) ─"
+see_re "│R0 +0 "
+keys g                                       # the panel's keys work on the page
+see "N2 waits: Пуск (F5 or g) continues"
+see "┌─ parameters ─"
+keys NPage NPage NPage NPage
+see_re "│R113 +0 "
+see_re "│D1 +3000 "
+see_re "│TK +0 "
+see_re "│UG +0 "
+see "│array 1: ptr 2 len 2"
+see_re "│ 0 +5 "
+see_re "│ 1 +7 "
+see_re "│>2 +0 "
+keys NPage
+see "│array 2: ptr 0 len 0"
+keys Home Down Down Down =
+see "set R3 = 0"
+keys 4 2 . 5 Enter                           # typing replaces the 0 it showed
+see "R3 = 42.5, set from the panel at N2"
+see_re "│R3 +42\.5 +panel"
+see_re "│R3 +42\.5 "
+keys End =
+see "read-only: the program sets it"
+keys Home Down Down Down g                   # Пуск: block 3 dwells 3 s
+see "|  running  |"
+keys = 1 Enter
+see "R3: not set: a block is running"
+keys p
+see "┌─ arr.kp ─"
+keys q q
+ended 0
+
+# ---- 13. progress: the estimate (at least, then exact) and the part done ----
+cp "$ROOT/docs/tutorial/cycle.kp" "$WORK/cycle.kp"
+rm -f "$WORK/cycle.kp.state"
+start estimate C.UTF-8 cycle.kp
+keys g
+see "ПРОХОДІВ................._"
+see "│estimate ≥ 0.00 s"                         # waits for the number: at least
+keys 3 Enter
+see_re "│estimate +13\.88 s +0 %"                  # the headless run with 3 passes: 13.8792 s
+keys g
+see "|  running  |"
+see_re "│estimate +13\.88 s +[1-9][0-9]? %" 10
+keys f
+see "end (M2)" 10
+see_re "│estimate +13\.88 s 100 %"
+keys q
+ended 0
+TW=80 TH=24 start estnarrow C.UTF-8 cycle.kp
+keys g 3 Enter
+see_re "│of +13\.88 s +0%"
+keys s s q
+ended 0
+
+# ---- 14. --restart: the dialog area and the parameters it holds ----
+rm -f "$WORK/cycle.kp.state"
+(cd "$WORK" && "$S42" run cycle.kp --operator "$ROOT/docs/tutorial/cycle.operator" > /dev/null)
+start restarted C.UTF-8 cycle.kp --restart
+keys g
+see "restart: the cycle goes on at"
+see "│         ПЕРЕДНЯ ГРАНЬ          │"
+see "│ПРОХОДІВ.................      3│"
+see_re "│R1 +3  restart"
+see_re "│R2 +2  restart"
+see_re "│estimate +13\.88 s"
+keys f
+see "end (M2)" 10
+keys q
+ended 0
+
+# ---- 15. the editor: a new file, a prompt's name, undo to the saved text, a change on disk ----
+rm -f "$WORK/new.kp"
+start newfile C.UTF-8 new.kp
+see "new.kp: a new file (the first save creates it)"
+see "|  empty: Tab, then i writes a block  |"
+keys Tab i "№1 G04 X+1 ^" Enter i "№2 M02 ^" Enter w
+see "saved new.kp (2 lines)"
+if [ "$(cat "$WORK/new.kp")" = "$(printf '№1 G04 X+1 ^\n№2 M02 ^')" ]; then ok; else bad "new.kp: $(cat "$WORK/new.kp")"; fi
+see "|  ready: Пуск starts the cycle  |"
+keys q
+ended 0
+printf '№1 G04 X+1 ^\n№2 M02 ^\n' > "$WORK/new.kp"     # (the same text, for a terminal that cannot make one)
+start undo C.UTF-8 new.kp
+see "|  ready: Пуск starts the cycle  |"
+keys Tab Down
+see "* 2 №2 M02 ^"
+keys d
+see "new.kp [modified]"
+keys u                                       # back to the saved text: not modified
+gone "[modified]"
+printf '; written by another editor\n' >> "$WORK/new.kp"
+keys d w
+see "new.kp changed on disk since it was read: overwrite it? (y/n)"
+keys n
+see "not saved"
+if grep -qF "another editor" "$WORK/new.kp"; then ok; else bad "the other editor's change was overwritten"; fi
+keys w y
+see "saved new.kp (1 line)"
+if [ "$(cat "$WORK/new.kp")" = "№2 M02 ^" ]; then ok; else bad "new.kp after y: $(cat "$WORK/new.kp")"; fi
+touch -d '2001-01-01' "$WORK/new.kp"         # only the time changed: no question
+keys I "№1 G04 X+1 ^" Enter w
+see "saved new.kp (2 lines)"
+keys o
+see "open file: new.kp"
+keys "drill.kp" Enter                        # typed over the name it offered
+see "drill.kp: 61 lines; 0 errors"
+keys W
+see "save as: drill.kp"
+keys "new.kp" Enter                          # another file that is there: asks
+see "new.kp exists: replace it? (y/n)"
+keys n
+see "not saved"
+keys q
+ended 0
+
+# ---- 16. the editor: search, go to a line, long lines scroll across ----
+cp "$ROOT/programs/drill_dialog.kp" "$WORK/drill.kp"
+start find C.UTF-8 drill.kp
+see "|  ready: Пуск starts the cycle  |"
+keys Tab / G28 Enter
+see "G28: line 6"
+keys n
+see "G28: line 38"
+keys N
+see "G28: line 6"
+keys N
+see "G28: line 44 (the search went on from the bottom)"
+keys : 6 0 Enter
+see "*60 №20 G01 G09 X-R51-R59 F+R…"
+keys / "№01" Enter
+see "№01: line 36 (the search went on from the top)"
+keys / zzz Enter
+see "not found: zzz"
+keys : 1 Enter
+see "* 1 ; СВЕРДЛО, ДІАЛОГ: заточу…"          # cut at the pane: … says there is more
+keys Right Right Right Right Right Right
+see "з діалогу."                               # the end of line 1, past the pane's 26 columns
+keys Home / "уставками" Enter                   # a match out of view is brought into it
+see "уставками: line 1"
+see "уставками з діал"
+keys Left Left Left Left Left Left Left Left
+see "* 1 ; СВЕРДЛО, ДІАЛОГ: заточу…"
+keys q
+ended 0
 
 echo "tui: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -26,6 +26,7 @@ Suite *suite_tuitext(void);
 Suite *suite_modbus(void);
 Suite *suite_travel(void);
 Suite *suite_state(void);
+Suite *suite_param(void);
 
 /* A program compiled from a C string, with its diagnostics. */
 struct tprog {

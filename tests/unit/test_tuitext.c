@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -121,12 +122,12 @@ START_TEST(text_save_atomic)
   struct tui_text t;
   tui_text_init(&t);
   ck_assert_int_eq(tui_text_set(&t, "№1 M02 ^\n", strlen("№1 M02 ^\n"), err, sizeof err), 0);
-  ck_assert_int_eq(tui_text_save(&t, path, err, sizeof err), 0);
+  ck_assert_int_eq(tui_text_save(&t, path, NULL, err, sizeof err), 0);
   ck_assert_str_eq(slurp(path), "№1 M02 ^\n");
   /* the old file's permissions stay */
   ck_assert_int_eq(chmod(path, 0640), 0);
   ck_assert_int_eq(tui_text_insert(&t, 0, "№2 G04 X+1 ^"), 0);
-  ck_assert_int_eq(tui_text_save(&t, path, err, sizeof err), 0);
+  ck_assert_int_eq(tui_text_save(&t, path, NULL, err, sizeof err), 0);
   struct stat st;
   ck_assert_int_eq(stat(path, &st), 0);
   ck_assert_int_eq(st.st_mode & 0777, 0640);
@@ -134,23 +135,139 @@ START_TEST(text_save_atomic)
   /* through a symbolic link: the program changes, the link stays a link */
   ck_assert_int_eq(symlink("p.kp", link), 0);
   ck_assert_int_eq(tui_text_replace(&t, 0, "№3 G04 X+2 ^"), 0);
-  ck_assert_int_eq(tui_text_save(&t, link, err, sizeof err), 0);
+  ck_assert_int_eq(tui_text_save(&t, link, NULL, err, sizeof err), 0);
   ck_assert_int_eq(lstat(link, &st), 0);
   ck_assert(S_ISLNK(st.st_mode));
   ck_assert_str_eq(slurp(path), "№3 G04 X+2 ^\n№1 M02 ^\n");
   /* a failure leaves the old file and no temporary behind */
   snprintf(bad, sizeof bad, "%s/no/such/dir.kp", dir);
-  ck_assert_int_eq(tui_text_save(&t, bad, err, sizeof err), -1);
+  ck_assert_int_eq(tui_text_save(&t, bad, NULL, err, sizeof err), -1);
   ck_assert_ptr_nonnull(strstr(err, "temporary"));
-  ck_assert_int_eq(tui_text_save(&t, dir, err, sizeof err), -1);   /* a directory */
+  ck_assert_int_eq(tui_text_save(&t, dir, NULL, err, sizeof err), -1);   /* a directory */
   ck_assert_ptr_nonnull(strstr(err, "not a regular file"));
   ck_assert_int_eq(unlink(link), 0);
   ck_assert_int_eq(unlink(path), 0);
   ck_assert_int_eq(rmdir(dir), 0);   /* empty: no temporary file was left */
   /* loading a missing file says so and keeps the text */
-  ck_assert_int_eq(tui_text_load(&t, path, err, sizeof err), -1);
+  ck_assert_int_eq(tui_text_load(&t, path, NULL, err, sizeof err), -1);
   ck_assert_ptr_nonnull(strstr(err, "No such file"));
   ck_assert_uint_eq(t.n, 2);
+  tui_text_free(&t);
+}
+END_TEST
+
+/* The rows tui_wrap makes of s in w columns, joined by '|'. */
+static const char *wrap(const char *s, int w)
+{
+  static char out[512];
+  uint32_t cp[256];
+  int st[256], ln[256];
+  int n = scr_decode(s, cp, 256), rows = tui_wrap(cp, n, w, st, ln, 256);
+  char *p = out;
+  for (int r = 0; r < rows; r++) {
+    if (r)
+      *p++ = '|';
+    for (int c = 0; c < ln[r]; c++)
+      p += tui_utf8(cp[st[r] + c], p);
+  }
+  *p = 0;
+  return out;
+}
+
+START_TEST(wrap_at_words)
+{
+  ck_assert_str_eq(wrap("drill.kp: 61 lines, 0 errors, 0 warnings", 16), "drill.kp: 61|lines, 0 errors,|0 warnings");
+  ck_assert_str_eq(wrap("fits", 10), "fits");
+  ck_assert_str_eq(wrap("", 10), "");
+  ck_assert_str_eq(wrap("ab cd", 2), "ab|cd");               /* the space at the break goes */
+  ck_assert_str_eq(wrap("abcdefgh ij", 4), "abcd|efgh|ij");    /* a word longer than a row is cut */
+  ck_assert_str_eq(wrap("Пуск: the cycle starts", 11), "Пуск: the|cycle|starts");   /* columns, not bytes */
+  ck_assert_str_eq(wrap("a  b", 1), "a|b");
+  ck_assert_str_eq(wrap("   lead", 10), "lead");
+  uint32_t cp[8];
+  int st[2], ln[2], n = scr_decode("aa bb cc dd", cp, 8);
+  ck_assert_int_eq(tui_wrap(cp, n, 2, st, ln, 2), 2);         /* at most max rows */
+}
+END_TEST
+
+START_TEST(find_in_text)
+{
+  struct tui_text t;
+  char err[64];
+  const char *src = "№1 G27 /А/ ^\n№2 G28 /1:9/ R1 ^\n№3 G04 ^\n№4 G28 /1:5/ R2 ^\n";
+  tui_text_init(&t);
+  ck_assert_int_eq(tui_text_set(&t, src, strlen(src), err, sizeof err), 0);
+  size_t b;
+  int wr;
+  ck_assert_int_eq(tui_text_find(&t, 0, 1, "G28", &b, &wr), 1);
+  ck_assert_uint_eq(b, strlen("№2 "));
+  ck_assert_int_eq(wr, 0);
+  ck_assert_int_eq(tui_text_find(&t, 2, 1, "G28", &b, &wr), 3);
+  ck_assert_int_eq(tui_text_find(&t, 0, 1, "/А/", &b, &wr), 0);   /* from the line itself */
+  ck_assert_int_eq(wr, 0);
+  ck_assert_int_eq(tui_text_find(&t, 2, 1, "G27", &b, &wr), 0);   /* on round the end */
+  ck_assert_int_eq(wr, 1);
+  ck_assert_int_eq(tui_text_find(&t, 2, -1, "G28", &b, &wr), 1);  /* backwards */
+  ck_assert_int_eq(wr, 0);
+  ck_assert_int_eq(tui_text_find(&t, 0, -1, "G28", &b, &wr), 3);  /* backwards round the top */
+  ck_assert_int_eq(wr, 1);
+  ck_assert_int_eq(tui_text_find(&t, 0, 1, "G99", &b, &wr), -1);
+  ck_assert_int_eq(tui_text_find(&t, 0, 1, "", &b, &wr), -1);
+  ck_assert_int_eq(tui_text_find(&t, 99, 1, "G04", &b, &wr), 2);  /* a cursor past the end */
+  tui_text_free(&t);
+  tui_text_init(&t);
+  ck_assert_int_eq(tui_text_find(&t, 0, 1, "G04", &b, &wr), -1);  /* an empty text */
+}
+END_TEST
+
+START_TEST(disk_change_noticed)
+{
+  char dir[] = "/tmp/s42-tuidisk-XXXXXX";
+  ck_assert_ptr_nonnull(mkdtemp(dir));
+  char path[256], err[512];
+  snprintf(path, sizeof path, "%s/p.kp", dir);
+  struct tui_text t;
+  struct tui_disk d;
+  tui_text_init(&t);
+  ck_assert_int_eq(tui_text_set(&t, "№1 M02 ^\n", strlen("№1 M02 ^\n"), err, sizeof err), 0);
+  /* a new file: not there, and still not there */
+  tui_disk_of(path, "", 0, &d);
+  ck_assert_int_eq(d.exists, 0);
+  ck_assert_int_eq(tui_disk_changed(path, &d), 0);
+  /* saved: what is on disk is what was written */
+  ck_assert_int_eq(tui_text_save(&t, path, &d, err, sizeof err), 0);
+  ck_assert_int_eq(d.exists, 1);
+  ck_assert_int_eq(d.size, (long long)strlen("№1 M02 ^\n"));
+  ck_assert_int_eq(tui_disk_changed(path, &d), 0);
+  /* read back: the same */
+  struct tui_disk r;
+  ck_assert_int_eq(tui_text_load(&t, path, &r, err, sizeof err), 0);
+  ck_assert(r.hash == d.hash && r.size == d.size && r.mtime_ns == d.mtime_ns);
+  /* another program changes it, to another size */
+  FILE *f = fopen(path, "a");
+  ck_assert_ptr_nonnull(f);
+  fputs("; more\n", f);
+  fclose(f);
+  ck_assert_int_eq(tui_disk_changed(path, &r), 1);
+  /* the same size, other bytes, another time */
+  ck_assert_int_eq(tui_text_load(&t, path, &r, err, sizeof err), 0);
+  f = fopen(path, "r+");
+  ck_assert_ptr_nonnull(f);
+  fputs("№2", f);
+  fclose(f);
+  struct timespec ts[2] = {{0, UTIME_OMIT}, {1000000000, 0}};
+  ck_assert_int_eq(utimensat(AT_FDCWD, path, ts, 0), 0);
+  ck_assert_int_eq(tui_disk_changed(path, &r), 1);
+  /* only the time changed (touch): the bytes say it is the same */
+  ck_assert_int_eq(tui_text_load(&t, path, &r, err, sizeof err), 0);
+  struct timespec tt[2] = {{0, UTIME_OMIT}, {2000000000, 0}};
+  ck_assert_int_eq(utimensat(AT_FDCWD, path, tt, 0), 0);
+  ck_assert_int_eq(tui_disk_changed(path, &r), 0);
+  /* removed */
+  ck_assert_int_eq(unlink(path), 0);
+  ck_assert_int_eq(tui_disk_changed(path, &r), 1);
+  ck_assert_int_eq(rmdir(dir), 0);
+  ck_assert(tui_hash("a", 1) != tui_hash("b", 1));
   tui_text_free(&t);
 }
 END_TEST
@@ -184,6 +301,9 @@ START_TEST(ascii_stand_ins)
   ck_assert_str_eq(out, "ZATOCKA I N1 -|+ ?");
   ck_assert_int_eq(tui_ascii(0x1F), '?');
   ck_assert_int_eq(tui_ascii('~'), '~');
+  ck_assert_int_eq(tui_ascii(0x2026), '$');   /* … where a line is cut */
+  ck_assert_int_eq(tui_ascii(0x2265), '>');   /* ≥ of an estimate */
+  ck_assert_int_eq(tui_ascii(0x2192), '>');   /* → of a cycle exit */
   char u[4];
   ck_assert_int_eq(tui_utf8(0x416, u), 2);
   ck_assert_int_eq(memcmp(u, "Ж", 2), 0);
@@ -220,6 +340,9 @@ Suite *suite_tuitext(void)
   tcase_add_test(c, text_lines_and_nul);
   tcase_add_test(c, text_edits_and_undo);
   tcase_add_test(c, text_save_atomic);
+  tcase_add_test(c, wrap_at_words);
+  tcase_add_test(c, find_in_text);
+  tcase_add_test(c, disk_change_noticed);
   tcase_add_test(c, cyr_table_3_4);
   tcase_add_test(c, ascii_stand_ins);
   tcase_add_test(c, pace_clock);
