@@ -257,18 +257,44 @@ void mach_modal(struct machine *m, const struct mach_block *b)
 
 void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o)
 {
-  double dt = 0;
+  double dt = 0, f0 = f;
   if (len > 0) {
     f = effective(m, f);
     o->feed = f < limit ? f : limit;
     if (o->feed > 0)
       dt = len / o->feed * 60.0;
   }
+  m->mv.on = dt > 0 && m->override_allowed;
+  m->mv.len = len;
+  m->mv.limit = limit;
+  m->mv.f = f0;
+  m->mv.feed = o->feed;
+  m->mv.t0 = m->t;
   mach_advance(m, dt);
+  m->mv.t1 = m->t;
   for (int a = 0; a < 4; a++) {
     o->d[a] = (int64_t)llround(d[a]);
     m->pos[a] += o->d[a];
   }
+}
+
+double mach_override_at(struct machine *m, double now)
+{
+  if (!m->mv.on || !m->override_allowed || m->override_pct <= 0 || now < m->mv.t0 || now >= m->mv.t1 ||
+      m->mv.feed <= 0)
+    return 0;
+  double f = effective(m, m->mv.f);
+  if (f > m->mv.limit)
+    f = m->mv.limit;
+  double rest = (m->mv.t1 - now) * m->mv.feed / 60.0;   /* mm still to go */
+  double d = rest / f * 60.0 - (m->mv.t1 - now);
+  m->mv.feed = f;
+  m->mv.t1 += d;
+  if (d > 0)
+    mach_advance(m, d);    /* the time the slower rest adds passes as any other (oscillation goes on) */
+  else
+    m->t += d;
+  return d;
 }
 
 void mach_motion(struct machine *m, const struct mach_block *b, struct mach_out *o)

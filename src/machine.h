@@ -50,6 +50,14 @@ struct machine {
   int override_allowed;/* M26 (default) / M25 */
   int corr_allowed;    /* M22 / M23 (default) */
   int64_t corr[4];     /* corrections since the last mark (G20, M19, dialog, PP) */
+  /* the last contour move (mach_move), for an override turned within it */
+  struct {
+    int on;            /* it took the override (M26) */
+    double len;        /* mm */
+    double limit, f;   /* its speed limit, its programmed speed, mm/min */
+    double feed;       /* the speed it goes at now, mm/min */
+    double t0, t1;     /* simulated seconds: its start, its end */
+  } mv;
   /* called whenever simulated time passes, with the seconds */
   void (*tick)(void *ctx, double dt);
   void *tick_ctx;
@@ -67,6 +75,13 @@ void mach_motion(struct machine *m, const struct mach_block *b, struct mach_out 
 /* A contour move a plugin computed: increments d (discretes), its length
  * (mm) and speed limit (mm/min); F and the override apply as for G01. */
 void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o);
+/* The override switch was turned (m->override_pct is the new position)
+ * at simulated time `now`, within the last contour move: the rest of it
+ * goes at the new speed.  The move's end and the machine's time move by
+ * the difference, which is returned (seconds; 0 when `now` is not within a
+ * move that takes the override).  At 0 % nothing changes: the host holds
+ * the move (its clock stops) and calls this again when the switch leaves 0. */
+double mach_override_at(struct machine *m, double now);
 /* Would a feed override of 0 % hold this block's contour move (the caller
  * knows whether the block is one: the core's G01-G03 or a plugin's)? */
 int mach_held(const struct machine *m, const struct mach_block *b);

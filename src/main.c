@@ -5,6 +5,7 @@
 #include "errors.h"
 #include "machfile.h"
 #include "modbus.h"
+#include "nearest.h"
 #include "operator.h"
 #include "pace.h"
 #include "plot.h"
@@ -72,46 +73,6 @@ static const struct cmdinfo {
   {"plugins", "[--json]", "list the plugins found and their functions", C_PLUGINS},
 };
 
-/* Edit distance of a and b (each at most 63 characters) counting a swap of
- * two neighbours as one edit (optimal string alignment), for "did you mean". */
-static int distance(const char *a, const char *b)
-{
-  size_t na = strlen(a), nb = strlen(b);
-  if (na > 63 || nb > 63)
-    return 99;
-  int d[64][64];
-  for (size_t i = 0; i <= na; i++)
-    d[i][0] = (int)i;
-  for (size_t j = 0; j <= nb; j++)
-    d[0][j] = (int)j;
-  for (size_t i = 1; i <= na; i++)
-    for (size_t j = 1; j <= nb; j++) {
-      int best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
-      if (d[i - 1][j] + 1 < best) best = d[i - 1][j] + 1;
-      if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] && d[i - 2][j - 2] + 1 < best)
-        best = d[i - 2][j - 2] + 1;
-      d[i][j] = best;
-    }
-  return d[na][nb];
-}
-
-/* The closest of the names (within a third of its length, at least 1
- * edit), or NULL. */
-static const char *nearest(const char *word, const char *const *names, size_t n)
-{
-  const char *best = NULL;
-  int bd = 99, lim = (int)strlen(word) / 3 > 1 ? (int)strlen(word) / 3 : 1;
-  for (size_t i = 0; i < n; i++) {
-    int d = distance(word, names[i]);
-    if (d < bd) {
-      bd = d;
-      best = names[i];
-    }
-  }
-  return bd <= lim ? best : NULL;
-}
-
 /* An option that is not one: say so, with the nearest one the command takes. */
 static void unknown_option(const char *a, unsigned cmd)
 {
@@ -122,7 +83,7 @@ static void unknown_option(const char *a, unsigned cmd)
   for (size_t i = 0; i < sizeof optinfo / sizeof optinfo[0]; i++)
     if (optinfo[i].cmds & cmd)
       names[n++] = optinfo[i].name;
-  const char *m = nearest(word, names, n);
+  const char *m = nearest_word(word, names, n);
   if (m)
     fprintf(stderr, "s42: unknown option '%s': did you mean %s? (see s42 %s --help)\n", a, m,
             cmd == C_TUI ? "tui" : cmd == C_PLOT ? "plot" : "run");
@@ -656,6 +617,12 @@ static void apply_immediate(struct runner *r, const struct op_action *a)
   case OA_OVERRIDE:
     sess_override(&r->s, (int)a->n);
     break;
+  case OA_MODE:
+    sess_set_single(&r->s, (int)a->n);
+    break;
+  case OA_BREAK:
+    sess_set_break(&r->s, (int)a->n);
+    break;
   default:
     break;
   }
@@ -766,8 +733,12 @@ static void new_cycle(struct runner *r, struct both_sink *bs)
   const uint8_t *watch = s->vm.watch;
   struct plug_set *pl = s->plugins;
   struct mach_travel travel = s->m.travel;
+  int ovr = s->m.override_pct;   /* a switch keeps its position */
   sess_init(s, s->p);
   sess_set_travel(s, &travel);
+  s->m.override_pct = ovr;
+  sess_set_single(s, bs->mm->single);
+  sess_set_break(s, bs->mm->brk);
   s->plugins = pl;
   s->sink = sink;
   s->en = en;
@@ -778,9 +749,46 @@ static void new_cycle(struct runner *r, struct both_sink *bs)
   s->vm.start_all = 1;
   memcpy(s->vm.reg, reg, sizeof reg);
   memset(&bs->mm->motion, 0, sizeof bs->mm->motion);
+  bs->mm->ovr_held = 0;
   bs->mm->feed = 0;
   bs->last_t = 0;
   memset(r->runs, 0, 1000 * sizeof *r->runs);
+}
+
+/* The override was written while a block's motion plays out on the wall
+ * clock: the rest of it goes at the new speed (the session's time follows,
+ * sess_override_at); at 0 % it stands (run state 2) until the override
+ * leaves 0. */
+static void override_in_motion(struct session *s, struct mb_machine *mm, double now)
+{
+  struct mb_motion *mo = &mm->motion;
+  double len = mo->end - mo->start;
+  if (!mo->active || len <= 0 || (!mo->held && now >= mo->end))
+    return;
+  double frac = mo->held ? mo->held_frac : (now - mo->start) / len;
+  if (frac < 0)
+    frac = 0;
+  double sim = s->m.t - (1 - frac) * len;   /* the simulated time the motion has reached */
+  if (s->m.override_pct == 0) {
+    if (!mo->held && s->m.mv.on && sim >= s->m.mv.t0 && sim < s->m.mv.t1) {
+      mo->held_frac = frac;
+      mo->held = 1;
+      mm->ovr_held = 1;
+      mo->feed = 0;
+    }
+    return;
+  }
+  double d = sess_override_at(s, sim), rest = (1 - frac) * len + d;
+  if (mm->ovr_held) {
+    mm->ovr_held = 0;
+    mo->held = s->state == SE_STOPPED;   /* a Стоп meanwhile still holds it */
+  }
+  if (d == 0 && !mo->held && rest == mo->end - now)
+    return;
+  len = frac < 1 ? rest / (1 - frac) : len;
+  mo->start = (mo->held ? now : now) - frac * len;
+  mo->end = mo->start + len;
+  mo->feed = mm->feed = s->m.mv.feed;
 }
 
 /* A block's motion is under way on the wall clock (not held). */
@@ -800,6 +808,9 @@ static void modbus_key(struct runner *r, struct both_sink *bs, int k)
   case MB_KEY_PUSK:
     if (mm->idle) {
       mm->idle = 0;
+    } else if (mm->ovr_held) {
+      if (s->state == SE_STOPPED)
+        sess_resume(s);          /* the Стоп is over; the override at 0 % still holds the move */
     } else if (s->state == SE_STOPPED || mm->motion.held) {
       if (mm->motion.held) {
         double len = mm->motion.end - mm->motion.start;
@@ -867,6 +878,7 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
   fprintf(stderr, "s42: Modbus TCP on %s%s\n", mb_address(mb),
           mm->idle ? "; the cycle starts with Пуск (coil 0)" : "");
   int told = -1;                /* the session state last reported on stderr */
+  int ovr_seen = r->s.m.override_pct;   /* a write of it acts within the motion */
   char nb[16];
   while (!quit_signal) {
     double now = mb_now();
@@ -882,6 +894,10 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
       fprintf(stderr, "s42: Modbus: poll: %s\n", strerror(errno));
       *st = "stopped";
       return EXIT_IO;
+    }
+    if (r->s.m.override_pct != ovr_seen) {
+      ovr_seen = r->s.m.override_pct;
+      override_in_motion(&r->s, mm, mb_now());
     }
     for (int k; (k = mb_key(mb)) != MB_KEY_NONE;)
       modbus_key(r, bs, k);
@@ -995,8 +1011,8 @@ static int headless(const struct opts *opt, struct plot *plot)
     return rc;
   }
 
-  /* an `at` for a block the program does not have would never fire */
-  if (r.ops.nat) {
+  /* an `at` or `break` for a block the program does not have would never fire */
+  if (r.ops.nat || r.ops.n) {
     unsigned char have[1000] = {0};
     for (size_t b = 0; b < p.nblocks; b++)
       if (p.blocks[b].number < 1000)
@@ -1134,7 +1150,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
 
   while (status == EXIT_END) {
-    r.s.vm.start_all = interruptible || (r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]));
+    r.s.vm.start_all = interruptible || r.s.single || r.s.brk || (r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]));
     if (interruptible && quit_signal) {
       const struct prog_block *b = &p.blocks[r.s.vm.cur];
       char qb[16];
@@ -1379,7 +1395,7 @@ static int command(int argc, char **argv)
   const char *names[sizeof cmdinfo / sizeof cmdinfo[0]];
   for (size_t i = 0; i < sizeof cmdinfo / sizeof cmdinfo[0]; i++)
     names[i] = cmdinfo[i].name;
-  const char *m = nearest(cmd, names, sizeof names / sizeof names[0]);
+  const char *m = nearest_word(cmd, names, sizeof names / sizeof names[0]);
   if (m)
     fprintf(stderr, "s42: unknown command '%s': did you mean %s?\n", cmd, m);
   else

@@ -185,6 +185,9 @@ void mb_view_of(struct mb_view *v, const struct mb_machine *m)
   v->feed = m->feed;
   v->motion = m->motion;
   v->override_hr = m->set_override ? m->override_pct : s ? s->m.override_pct : 100;
+  v->override_eff = v->override_hr;   /* idle: the switch as it stands */
+  v->single = m->single;
+  v->brk = m->brk;
   v->loaded = s != NULL;
   if (!s)
     return;                      /* build() shows nothing more */
@@ -207,6 +210,7 @@ static void build(const struct mb_view *v, double now, uint16_t ir[828], uint8_t
   ir[0] = MB_MAP_VERSION;
   int st = run_state(v->loaded, v->idle, v->state, &v->motion, now);
   ir[2] = (uint16_t)st;
+  ir[5] = (uint16_t)v->override_eff;
   if (!v->loaded)
     return;
   double frac = motion_frac(&v->motion, now);
@@ -214,7 +218,6 @@ static void build(const struct mb_view *v, double now, uint16_t ir[828], uint8_t
   int block = st == MB_IDLE ? 0 : moving ? v->motion.block : v->block;
   ir[3] = (uint16_t)(block > 0 && block < 65536 ? block : 0);
   ir[4] = (uint16_t)(v->state == SE_ERROR && st == MB_ERROR ? v->err_code : 0);
-  ir[5] = (uint16_t)v->override_eff;
   for (int a = 0; a < 4; a++) {
     double p = (double)v->pos[a];
     if (moving)
@@ -245,7 +248,8 @@ void mb_dev_init(struct mb_dev *d)
 {
   memset(d, 0, sizeof *d);
   d->v.idle = 1;
-  d->v.override_hr = 100;
+  d->v.override_hr = d->v.override_eff = 100;
+  d->last_update = -1;           /* no update yet */
   build(&d->v, 0, d->ir, d->di);
 }
 
@@ -256,8 +260,19 @@ void mb_dev_refresh(struct mb_dev *d, double now)
   build(&d->v, now, ir, di);
   ir[1] = d->counter;
   di[15] = d->di[15];
-  if (memcmp(ir, d->ir, sizeof ir) || memcmp(di, d->di, sizeof di) || now - d->last_update >= HEARTBEAT ||
-      now < d->last_update) {
+  if (d->last_update < 0 || now < d->last_update) {
+    d->last_update = now;        /* the clock went back (or a first read): start from here */
+    ir[1] = ++d->counter;
+    di[15] ^= 1;
+  } else if (now - d->last_update >= HEARTBEAT) {
+    /* the heartbeats no request saw went by all the same: one per 250 ms */
+    unsigned beats = (unsigned)((now - d->last_update) / HEARTBEAT);
+    d->counter = (uint16_t)(d->counter + beats);
+    if (beats & 1)
+      di[15] ^= 1;
+    d->last_update += beats * HEARTBEAT;
+    ir[1] = d->counter;
+  } else if (memcmp(ir, d->ir, sizeof ir) || memcmp(di, d->di, sizeof di)) {
     ir[1] = ++d->counter;
     di[15] ^= 1;
     d->last_update = now;
@@ -312,7 +327,7 @@ static unsigned be16(const uint8_t *p)
 /* The holding-register blocks and input-register blocks: [lo, hi) with the
  * size of the values in them (1 word, 4 = float64, 2 = float32). */
 struct span { unsigned lo, hi, width; };
-static const struct span hr_map[] = {{0, 2, 1}, {IR_R64, IR_R64 + 4 * NREG_R, 4}, {IR_R32, IR_R32 + 2 * NREG_R, 2}};
+static const struct span hr_map[] = {{0, 3, 1}, {IR_R64, IR_R64 + 4 * NREG_R, 4}, {IR_R32, IR_R32 + 2 * NREG_R, 2}};
 static const struct span ir_map[] = {{0, 22, 1}, {IR_R64, IR_R64 + 4 * NREG_R, 4}, {IR_R32, IR_R32 + 2 * NREG_R, 2}};
 
 /* The block holding all of [a, a+q), or NULL. */
@@ -330,6 +345,8 @@ static uint16_t hr_value(const struct mb_dev *d, unsigned a)
     return (uint16_t)d->v.override_hr;
   if (a == 1)
     return (uint16_t)(d->nkeys ? d->keys[d->khead] : 0);
+  if (a == 2)
+    return (uint16_t)d->v.brk;
   return d->ir[a];
 }
 
@@ -356,25 +373,29 @@ static int write_regs(struct mb_dev *d, unsigned a, unsigned q, const uint8_t *v
     return EX_ADDR;              /* outside the map, or part of a value */
   struct mb_write *w = &d->w;
   if (sp->width == 1) {
-    int ovr = -1, cmd = -1;
+    int ovr = -1, cmd = -1, brk = -1;
     for (unsigned i = 0; i < q; i++) {
       unsigned x = be16(v + 2 * i);
       if (a + i == 0) {
         if (x > 150)
           return EX_VALUE;
         ovr = (int)x;
-      } else {
+      } else if (a + i == 1) {
         if (x > MB_KEY_RESET)
           return EX_VALUE;
         cmd = (int)x;
+      } else {
+        brk = (int)x;            /* the breakpoint: a block number, 0 none */
       }
     }
-    if (ovr < 0) {               /* the command word alone: a key press */
+    if (ovr < 0 && brk < 0) {    /* the command word alone: a key press */
       if (cmd > 0 && push_key(d, cmd))
         return EX_BUSY;
       return 0;
     }
     w->ovr = ovr;
+    w->brk = brk;
+    w->single = -1;
     w->cmd = cmd > 0 ? cmd : 0;
     w->r0 = w->n = 0;
     return DEFER;
@@ -393,7 +414,7 @@ static int write_regs(struct mb_dev *d, unsigned a, unsigned q, const uint8_t *v
    * decides the rest with the machine's real state */
   if (!d->v.loaded || run_state(1, d->v.idle, d->v.state, &d->v.motion, now) == MB_RUN)
     return EX_BUSY;
-  w->ovr = -1;
+  w->ovr = w->single = w->brk = -1;
   w->cmd = 0;
   w->r0 = r0;
   w->n = n;
@@ -420,13 +441,13 @@ static int handle(struct mb_dev *d, const uint8_t *pdu, size_t pl, uint8_t *out,
   case MODBUS_FC_READ_DISCRETE_INPUTS: {
     if (pl != 5 || q < 1 || q > MODBUS_MAX_READ_BITS)
       return EX_VALUE;
-    if (a + q > (fc == MODBUS_FC_READ_COILS ? 5u : 16u))
+    if (a + q > (fc == MODBUS_FC_READ_COILS ? 6u : 16u))
       return EX_ADDR;
     out[0] = (uint8_t)fc;
     out[1] = (uint8_t)((q + 7) / 8);
     memset(out + 2, 0, out[1]);
     for (unsigned i = 0; i < q; i++) {
-      int bit = fc == MODBUS_FC_READ_COILS ? key_pending(d, (int)(a + i) + 1) : d->di[a + i];
+      int bit = fc != MODBUS_FC_READ_COILS ? d->di[a + i] : a + i == 5 ? d->v.single : key_pending(d, (int)(a + i) + 1);
       if (bit)
         out[2 + i / 8] |= (uint8_t)(1u << (i % 8));
     }
@@ -452,8 +473,15 @@ static int handle(struct mb_dev *d, const uint8_t *pdu, size_t pl, uint8_t *out,
   case MODBUS_FC_WRITE_SINGLE_COIL:
     if (pl != 5 || (q != 0xFF00 && q != 0))
       return EX_VALUE;
-    if (a >= 5)
+    if (a >= 6)
       return EX_ADDR;
+    if (a == 5) {                /* single block: a switch, the host's to set */
+      d->w.ovr = d->w.brk = -1;
+      d->w.single = q != 0;
+      d->w.cmd = 0;
+      d->w.r0 = d->w.n = 0;
+      return DEFER;
+    }
     if (q && push_key(d, (int)a + 1))
       return EX_BUSY;
     memcpy(out, pdu, 5);
@@ -462,7 +490,7 @@ static int handle(struct mb_dev *d, const uint8_t *pdu, size_t pl, uint8_t *out,
   case MODBUS_FC_WRITE_SINGLE_REGISTER: {
     if (pl != 5)
       return EX_VALUE;
-    if (a > 1)
+    if (a > 2)
       return EX_ADDR;            /* R values take 2 or 4 registers: FC 16 */
     uint8_t v[2] = {pdu[3], pdu[4]};
     int e = write_regs(d, a, 1, v, now);
@@ -475,16 +503,24 @@ static int handle(struct mb_dev *d, const uint8_t *pdu, size_t pl, uint8_t *out,
   case MODBUS_FC_WRITE_MULTIPLE_COILS: {
     if (pl < 6 || q < 1 || q > MODBUS_MAX_WRITE_BITS || pdu[5] != (q + 7) / 8 || pl != 6u + pdu[5])
       return EX_VALUE;
-    if (a + q > 5)
+    if (a + q > 6)
       return EX_ADDR;
     unsigned presses = 0;
-    for (unsigned i = 0; i < q; i++)
+    for (unsigned i = 0; i < q && a + i < 5; i++)
       presses += (pdu[6 + i / 8] >> (i % 8)) & 1;
     if (d->nkeys + presses > MB_KEYQ)
       return EX_BUSY;
-    for (unsigned i = 0; i < q; i++)
+    for (unsigned i = 0; i < q && a + i < 5; i++)
       if ((pdu[6 + i / 8] >> (i % 8)) & 1)
         push_key(d, (int)(a + i) + 1);
+    if (a + q == 6) {            /* coil 5 among them: the switch is deferred to the host */
+      unsigned i = 5 - a;
+      d->w.ovr = d->w.brk = -1;
+      d->w.single = (pdu[6 + i / 8] >> (i % 8)) & 1;
+      d->w.cmd = 0;
+      d->w.r0 = d->w.n = 0;
+      return DEFER;
+    }
     memcpy(out, pdu, 5);
     *ol = 5;
     return 0;
@@ -552,6 +588,24 @@ int mb_dev_apply(struct mb_dev *d, struct mb_machine *m, const struct mb_write *
         return EX_BUSY;
     } else if (!s || !s->m.override_allowed || sess_override(s, w->ovr)) {
       return EX_BUSY;            /* M25 forbids the override (checked first: no warning printed) */
+    }
+  }
+  if (w->single >= 0) {
+    if (m->set_single) {
+      m->set_single(m->host, w->single);
+    } else {
+      m->single = w->single;
+      if (s)
+        sess_set_single(s, w->single);
+    }
+  }
+  if (w->brk >= 0) {
+    if (m->set_break) {
+      m->set_break(m->host, w->brk);
+    } else {
+      m->brk = w->brk;
+      if (s)
+        sess_set_break(s, w->brk);
     }
   }
   if (w->cmd)

@@ -54,6 +54,16 @@ struct mb_machine {
   int (*set_override)(void *host, int pct);
   void *host;
   int override_pct;
+  /* Single block (coil 5) and the breakpoint (holding register 2): the
+   * host's switches.  A host that keeps them itself (the terminal) sets
+   * these hooks and keeps single/brk current; otherwise the server sets
+   * them here and in the session (sess_set_single, sess_set_break). */
+  void (*set_single)(void *host, int on);
+  void (*set_break)(void *host, int n);
+  int single, brk;
+  /* the override went to 0 % within a block's motion: it holds (run
+   * state 2) until the override leaves 0 (the host's, not the server's) */
+  int ovr_held;
 };
 
 /* ---- the server ----
@@ -148,6 +158,7 @@ struct mb_view {
   int block;             /* its block number */
   int override_eff;      /* the override in effect, % */
   int override_hr;       /* holding register 0 */
+  int single, brk;       /* coil 5, holding register 2 */
   int wheel, osc;
   int64_t pos[4];
   double t, feed;
@@ -158,6 +169,7 @@ struct mb_view {
 /* A write the host must decide (mb_dev_request returned 0). */
 struct mb_write {
   int ovr;               /* the override to set, -1 none */
+  int single, brk;       /* single block (coil 5) 0/1, the breakpoint (HR 2); -1 none */
   int cmd;               /* a command word pressed with it, 0 none */
   unsigned r0, n;        /* R r0 .. r0+n-1 to set (n 0: none) */
   double val[MB_NREG];

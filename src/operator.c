@@ -1,5 +1,6 @@
 /* Operator script parser (src/operator.h). */
 #include "operator.h"
+#include "nearest.h"
 #include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
@@ -7,6 +8,7 @@
 #include <string.h>
 
 static const char *const keys[] = {"PUSK", "PS", "EXIT", "STOP"};
+static const char *const actions[] = {"answer", "key", "jog", "correct", "override", "section", "mode", "break", "at"};
 
 int ops_is_waiting(const struct op_action *a)
 {
@@ -26,6 +28,13 @@ const char *ops_describe(const struct op_action *a, char *buf, size_t n)
   case OA_JOG: snprintf(buf, n, "jog %c %+lld", ax[a->axis], (long long)a->n); break;
   case OA_CORRECT: snprintf(buf, n, "correct %c %+lld", ax[a->axis], (long long)a->n); break;
   case OA_OVERRIDE: snprintf(buf, n, "override %lld", (long long)a->n); break;
+  case OA_MODE: snprintf(buf, n, "mode %s", a->n ? "single" : "auto"); break;
+  case OA_BREAK:
+    if (a->n)
+      snprintf(buf, n, "break N%lld", (long long)a->n);
+    else
+      snprintf(buf, n, "break off");
+    break;
   default:
     if (a->axis2 >= 0)
       snprintf(buf, n, "section %c %+lld %c %+lld", ax[a->axis], (long long)a->n, ax[a->axis2], (long long)a->n2);
@@ -156,7 +165,11 @@ static const char *action(struct cur *c, struct op_action *a)
       if (strcmp(w, keys[i]) == 0)
         a->key = i;
     if (a->key < 0) {
-      snprintf(msg, sizeof msg, "unknown key '%s' (PUSK, PS, EXIT, STOP)", w);
+      const char *m = nearest_word(w, keys, 4);
+      if (m)
+        snprintf(msg, sizeof msg, "unknown key '%.40s': did you mean %s? (PUSK, PS, EXIT, STOP)", w, m);
+      else
+        snprintf(msg, sizeof msg, "unknown key '%.40s' (PUSK, PS, EXIT, STOP)", w);
       return msg;
     }
   } else if (strcmp(w, "jog") == 0 || strcmp(w, "correct") == 0 || strcmp(w, "section") == 0) {
@@ -178,8 +191,27 @@ static const char *action(struct cur *c, struct op_action *a)
     a->kind = OA_OVERRIDE;
     if (!word(c, w, sizeof w) || !integer(w, 0, 150, &a->n))
       return "override takes a percentage 0..150";
+  } else if (strcmp(w, "mode") == 0) {
+    a->kind = OA_MODE;
+    if (!word(c, w, sizeof w) || (strcmp(w, "single") != 0 && strcmp(w, "auto") != 0))
+      return "mode is single (each block waits for key PUSK) or auto";
+    a->n = w[0] == 's';
+  } else if (strcmp(w, "break") == 0) {
+    a->kind = OA_BREAK;
+    if (!word(c, w, sizeof w))
+      return "break needs a block: break N54 (it waits for key PUSK before N54 starts), or break off";
+    if (strcmp(w, "off") == 0)
+      a->n = 0;
+    else if (w[0] != 'N' || w[1] == '+' || w[1] == '-' || !integer(w + 1, 1, 999, &a->n))
+      return "break needs a block: break N54 (block 1..999), or break off";
   } else {
-    snprintf(msg, sizeof msg, "unknown action '%.40s'", w);
+    const char *m = nearest_word(w, actions, sizeof actions / sizeof actions[0]);
+    if (m)
+      snprintf(msg, sizeof msg, "unknown action '%.40s': did you mean %s? (answer, key, jog, correct, override, "
+               "section, mode, break, at)", w, m);
+    else
+      snprintf(msg, sizeof msg, "unknown action '%.40s' (answer, key, jog, correct, override, section, mode, "
+               "break, at)", w);
     return msg;
   }
   skipws(c);
@@ -241,7 +273,7 @@ int ops_parse(const char *text, size_t len, const char *file, struct opscript *s
         msg = action(&c, &a);
         if (!msg && ops_is_waiting(&a)) {
           c.w = act;
-          msg = "at fires at a block's start: only key EXIT, key STOP, correct and override";
+          msg = "at fires at a block's start: only key EXIT, key STOP, correct, override, mode and break";
         }
       }
     } else {
@@ -291,6 +323,14 @@ int ops_check_at(const struct opscript *s, const unsigned char have[1000], const
       continue;
     fprintf(err, "%s:%u:%u: error: at N%d: the program has no block N%d, so this never fires\n", file, a->line,
             a->col, a->at_number, a->at_number);
+    bad = 1;
+  }
+  for (size_t i = 0; i < s->n; i++) {
+    const struct op_action *a = &s->v[i];
+    if (a->kind != OA_BREAK || a->n == 0 || have[a->n])
+      continue;
+    fprintf(err, "%s:%u:%u: error: break N%lld: the program has no block N%lld, so it never waits there\n", file,
+            a->line, a->col, (long long)a->n, (long long)a->n);
     bad = 1;
   }
   return bad ? -1 : 0;

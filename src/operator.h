@@ -9,14 +9,15 @@
 #include <stdint.h>
 #include <stdio.h>
 
-enum op_kind { OA_ANSWER, OA_KEY, OA_JOG, OA_CORRECT, OA_OVERRIDE, OA_SECTION };
+enum op_kind { OA_ANSWER, OA_KEY, OA_JOG, OA_CORRECT, OA_OVERRIDE, OA_SECTION, OA_MODE, OA_BREAK };
 enum op_key { KEY_PUSK, KEY_PS, KEY_EXIT, KEY_STOP };
 
 struct op_action {
   int kind;
   int key;                 /* OA_KEY */
   int axis, axis2;         /* OA_JOG, OA_CORRECT, OA_SECTION (axis2 -1 none) */
-  int64_t n, n2;           /* amounts; OA_ANSWER the number; OA_OVERRIDE % */
+  int64_t n, n2;           /* amounts; OA_ANSWER the number; OA_OVERRIDE %; OA_MODE 1 single, 0 auto;
+                              OA_BREAK the block number, 0 off */
   unsigned line, col;       /* where the action (or its `at`) starts */
   int at_number;           /* `at N54#3 ...`: block number, -1 not an at line */
   unsigned at_run;         /* which run of it (1 = first) */
@@ -35,8 +36,8 @@ struct opscript {
 /* Parse; on errors print FILE:LINE:COL: messages to err and return -1. */
 int ops_parse(const char *text, size_t len, const char *file, struct opscript *s, FILE *err);
 void ops_free(struct opscript *s);
-/* Before the run: every `at` names a block number the program has
- * (have[n] for n 1..999).  -1 with FILE:LINE:COL: errors when one does not. */
+/* Before the run: every `at` and `break` names a block number the program
+ * has (have[n] for n 1..999).  -1 with FILE:LINE:COL: errors when one does not. */
 int ops_check_at(const struct opscript *s, const unsigned char have[1000], const char *file, FILE *err);
 /* After the run: a warning for each ordered action from `next` on that
  * was not used (but `skip`, 1-based, already reported; 0 none), and for

@@ -24,6 +24,7 @@ void sess_init(struct session *s, const struct program *p)
   scr_init(&s->scr);
   s->state = SE_START;
   s->blk.s = s;
+  s->go = 1;             /* the cycle's start is its first block's Пуск */
 }
 
 int sess_block_number(const struct session *s)
@@ -861,11 +862,21 @@ enum sess_ev sess_run(struct session *s)
 {
   if (s->state == SE_WAIT || s->state == SE_END || s->state == SE_ERROR || s->state == SE_STOPPED)
     return (enum sess_ev)s->state;
+  if (s->gate) {         /* a block starts: after the host's actions there (`at N5 mode single`) */
+    s->gate = 0;
+    int wait = !s->go && (s->single || (s->brk && sess_block_number(s) == s->brk));
+    s->go = 0;
+    if (wait) {          /* single block or the breakpoint: Пуск first */
+      s->wait = W_BLOCK;
+      return (enum sess_ev)(s->state = SE_WAIT);
+    }
+  }
   for (;;) {
     enum vm_event ev = vm_run(&s->vm);
     int r;
     switch (ev) {
     case VM_EV_START:
+      s->gate = 1;       /* single block and the breakpoint are looked at when the host comes back */
       s->window_opened = window_block(kp_attr(s->p, s->vm.cur));
       if (s->window_opened)
         memset(s->m.corr, 0, sizeof s->m.corr);
@@ -895,6 +906,11 @@ static void resume_plugin(struct session *s)
 
 int sess_key_pusk(struct session *s)
 {
+  if (s->state == SE_WAIT && s->wait == W_BLOCK) {
+    s->wait = W_NONE;    /* the block starts; the next one waits again */
+    s->state = SE_START;
+    return 0;
+  }
   if (s->state != SE_WAIT || (s->wait != W_PUSK && s->wait != W_SECTION))
     return -1;
   s->scr.has_message = 0;
@@ -1074,6 +1090,25 @@ int sess_override(struct session *s, int pct)
   return 0;
 }
 
+double sess_override_at(struct session *s, double now)
+{
+  return mach_override_at(&s->m, now);
+}
+
+void sess_set_single(struct session *s, int on)
+{
+  s->single = on != 0;
+  if (on)
+    s->vm.start_all = 1;
+}
+
+void sess_set_break(struct session *s, int n)
+{
+  s->brk = n > 0 ? n : 0;
+  if (n > 0)
+    s->vm.start_all = 1;
+}
+
 const char *sess_wait_text(const struct session *s)
 {
   /* for stderr, which speaks English like the rest of the diagnostics */
@@ -1084,6 +1119,8 @@ const char *sess_wait_text(const struct session *s)
   case W_TEACH: return "teach-in jogs ended by ПС (jog, key PS)";
   case W_ANSWER: return "a number in the input field (answer N)";
   case W_FEED: return "a feed override above 0 % (override N)";
+  case W_BLOCK: return s->single ? "Пуск to start the block (single block; key PUSK)"
+                                 : "Пуск to start the block (breakpoint; key PUSK)";
   case W_SECTION: w = "Пуск in the next section of the tooth search (section X|A moves, then key PUSK)"; break;
   default: return "nothing";
   }

@@ -24,7 +24,8 @@ enum sess_ev { SE_START, SE_WAIT, SE_END, SE_ERROR, SE_STOPPED };
 /* W_TEACH: M19, jogs follow the programmed path until ПС, then Пуск */
 /* W_SECTION: a tooth-step search waits for Пуск while the operator moves
  * the table and A to the next section (a plugin's S42_WAIT_SECTION) */
-enum sess_wait { W_NONE, W_PUSK, W_PS, W_FEED, W_ANSWER, W_TEACH, W_SECTION };
+/* W_BLOCK: single block or a breakpoint: the block waits for Пуск before it starts */
+enum sess_wait { W_NONE, W_PUSK, W_PS, W_FEED, W_ANSWER, W_TEACH, W_SECTION, W_BLOCK };
 
 struct sess_row {
   uint64_t seq;
@@ -70,6 +71,11 @@ struct session {
   int have_answer;       /* a G27 took a number that no G28 stored yet */
   int m15_seen;          /* a restart point passed: G29 extends the display */
   int window_opened;     /* M16's window opened at this block's VM_EV_START */
+  /* single block and the breakpoint (the host's switches, sess_set_single) */
+  int single;            /* every block waits for Пуск before it starts */
+  int brk;               /* block number that waits for Пуск before it starts, 0 none */
+  int go;                /* the cycle's first block: its Пуск was the cycle's start */
+  int gate;              /* a block's start was returned: look at the switches before it runs */
   /* plugins: the host sets `plugins` before the first sess_run */
   struct plug_set *plugins;
   uint32_t every;        /* started plugins that see every block */
@@ -135,6 +141,17 @@ void sess_screen(const struct session *s, uint32_t grid[SCR_ROWS][SCR_COLS]);
  * says why). */
 int sess_correct(struct session *s, int axis, int64_t d);
 int sess_override(struct session *s, int pct);
+/* The override switch turned within a block's contour move at simulated
+ * time now (the host's clock, from s->m.mv.t0 to s->m.mv.t1): the rest of
+ * the move goes at the new speed (mach_override_at).  Returns the seconds
+ * the move's end moved by. */
+double sess_override_at(struct session *s, double now);
+/* Single block: from the next block on, each block waits for Пуск (W_BLOCK)
+ * before it starts.  A breakpoint: block number n waits for Пуск each time
+ * it is about to start (0: none).  The switches stay as set until changed;
+ * sess_init clears them.  Either makes the VM report every block's start. */
+void sess_set_single(struct session *s, int on);
+void sess_set_break(struct session *s, int n);
 /* The operator sets parameter reg (R0-R113, or REG_D1) to v from the panel,
  * between blocks or while the machine waits -- never within a block.  It
  * goes through the VM's journal as a dialog answer does: a waiting block

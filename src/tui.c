@@ -55,7 +55,7 @@
 enum { R_IDLE, R_RUN, R_DONE };                 /* no run yet; a cycle is on; it ended */
 enum { F_PANEL, F_EDIT, F_PARAMS };             /* where the keys go */
 enum { MB_NONE, MB_INSERT, MB_REPLACE, MB_OPEN, MB_SAVEAS, MB_QUIT, MB_OPENASK, MB_QUITRUN, MB_OVERWRITE,
-       MB_FIND, MB_GOTO, MB_PARAM };
+       MB_FIND, MB_GOTO, MB_PARAM, MB_BREAK };
 /* the estimate of the cycle time: none yet; the cycle's end; a lower
  * bound (the operator must act first, or it ran too long); an error */
 enum { EST_NONE, EST_END, EST_LEAST, EST_ERROR };
@@ -99,6 +99,8 @@ struct tui {
   struct session s;
   struct pace pace;
   int fast, held;
+  int ovr_held;             /* the override went to 0 % within a move: it stands until the switch leaves 0 */
+  int single, brk;          /* single block (П/АВТ), the breakpoint's block number (0 none): the panel's switches */
   int stopped_mid;          /* Стоп ended the cycle during a held move: the axes stay where they stopped */
   int osc;                  /* the oscillation plugin says it is on */
   int override;             /* the feed override switch, % */
@@ -108,6 +110,7 @@ struct tui {
     int valid;
     int64_t from[4], to[4];
     double t0, t1, feed;
+    double ts, fs;          /* the override last turned within it: then (s), the share of it made by then */
     unsigned line;
     int n;
   } cur;                    /* the last block carried out: its motion in time */
@@ -362,6 +365,8 @@ static void on_row(void *ctx, const struct session *s, const struct sess_row *r)
   memcpy(t->cur.to, s->m.pos, sizeof t->cur.to);
   t->cur.t0 = t->last_t;
   t->cur.t1 = r->t;
+  t->cur.ts = t->cur.t0;
+  t->cur.fs = 0;
   t->cur.feed = r->feed;
   t->cur.line = r->line;
   t->cur.n = r->n;
@@ -530,6 +535,9 @@ static void start_run(struct tui *t)
   t->run = R_RUN;
   t->osc = 0;
   t->held = 0;
+  t->ovr_held = 0;
+  sess_set_single(&t->s, t->single);
+  sess_set_break(&t->s, t->brk);
   t->stopped_mid = 0;
   t->cur.valid = 0;
   t->nchg = 0;
@@ -593,6 +601,7 @@ static const char *wait_hint(const struct session *s)
   case W_TEACH: return "jog the junior axis, then ПС (Enter)";
   case W_SECTION: return "jog the table (x X) and A (a A) to section 2, then Пуск (F5 or g)";
   case W_FEED: return "the feed override is at 0 %: raise it (>)";
+  case W_BLOCK: return s->single ? "single block: Пуск (F5 or g) starts it" : "breakpoint: Пуск (F5 or g) starts it";
   default: return "";
   }
 }
@@ -600,7 +609,7 @@ static const char *wait_hint(const struct session *s)
 /* Run blocks while they are due.  Returns the poll timeout, ms (-1 idle). */
 static int advance(struct tui *t)
 {
-  if (t->run != R_RUN || t->held || t->s.state == SE_WAIT)
+  if (t->run != R_RUN || t->held || t->ovr_held || t->s.state == SE_WAIT)
     return -1;
   struct timespec t0, now;
   clock_gettime(CLOCK_MONOTONIC, &t0);
@@ -678,9 +687,17 @@ static void press_pusk(struct tui *t)
     return;
   }
   if (t->held) {
-    pace_hold(&t->pace, 0);
     t->held = 0;
+    if (t->ovr_held) {
+      say(t, "Пуск: the feed override is at 0 %%: the motion goes on when it is raised (>)");
+      return;
+    }
+    pace_hold(&t->pace, 0);
     say(t, "Пуск: the motion goes on");
+    return;
+  }
+  if (t->ovr_held) {
+    say(t, "the feed override is at 0 %%: raise it (>) and the motion goes on");
     return;
   }
   if (t->s.state == SE_WAIT)
@@ -710,6 +727,7 @@ static void press_stop(struct tui *t)
   sess_key_stop(&t->s);
   t->stopped_mid = t->held;   /* the pace stays held: the readouts keep the stopping point */
   t->held = 0;
+  t->ovr_held = 0;
   t->run = R_DONE;
   say(t, "Стоп: the cycle was stopped");
 }
@@ -751,6 +769,46 @@ static void press_rus(struct tui *t)
     t->s.scr.cyr = t->cyr;
 }
 
+/* The share of the current block's motion made at simulated time now. */
+static double cur_frac(const struct tui *t, double now)
+{
+  if (now >= t->cur.t1 || t->cur.t1 <= t->cur.ts)
+    return 1;
+  if (now <= t->cur.ts)
+    return t->cur.fs;
+  return t->cur.fs + (1 - t->cur.fs) * (now - t->cur.ts) / (t->cur.t1 - t->cur.ts);
+}
+
+/* The switch turned while a block's move is under way: the rest of it goes
+ * at the new speed at once (the machine's time follows); at 0 % the move
+ * stands where it is until the switch leaves 0. */
+static void override_in_move(struct tui *t)
+{
+  if ((t->fast && !t->ovr_held) || !t->cur.valid || t->s.state == SE_WAIT)
+    return;   /* fast: the block is done before the switch can turn, unless 0 % holds it */
+  double now = pace_now(&t->pace);
+  const struct machine *m = &t->s.m;
+  if (now >= t->cur.t1 || !m->mv.on || now < m->mv.t0 || now >= m->mv.t1)
+    return;
+  if (m->override_pct == 0) {
+    t->ovr_held = 1;
+    pace_hold(&t->pace, 1);
+    return;
+  }
+  double f = cur_frac(t, now);
+  double d = sess_override_at(&t->s, now);
+  t->cur.fs = f;
+  t->cur.ts = now;
+  t->cur.t1 += d;
+  t->last_t += d;
+  t->cur.feed = m->mv.feed;
+  if (t->ovr_held) {
+    t->ovr_held = 0;
+    if (!t->held)
+      pace_hold(&t->pace, 0);
+  }
+}
+
 static void set_override(struct tui *t, int pct)
 {
   if (pct < 0)
@@ -763,9 +821,52 @@ static void set_override(struct tui *t, int pct)
       return;   /* M25: the screen says so */
     if (held && t->s.state != SE_WAIT)
       resumed(t);   /* the move held at 0 % goes */
+    else
+      override_in_move(t);
   }
   t->override = pct;
-  say(t, "feed override %d %%", pct);
+  say(t, "feed override %d %%%s", pct, t->ovr_held ? ": the move stands" : "");
+}
+
+static void set_single(struct tui *t, int on)
+{
+  t->single = on;
+  if (t->run == R_RUN)
+    sess_set_single(&t->s, on);
+  say(t, on ? "single block (П): each block waits for Пуск before it starts" : "automatic (АВТ): blocks run on");
+}
+
+/* The breakpoint: a block number, or empty / 0 for none. */
+static void set_break(struct tui *t, const char *s)
+{
+  while (*s == ' ')
+    s++;
+  if (*s == 'N' || *s == 'n')
+    s++;
+  char *end;
+  errno = 0;
+  long n = *s ? strtol(s, &end, 10) : 0;
+  if (*s) {
+    while (*end == ' ')
+      end++;
+  }
+  if (*s && (*end || errno || n < 0 || n > 999)) {
+    say(t, "the breakpoint is a block number 1..999 (empty or 0: none)");
+    return;
+  }
+  int have = 0;
+  for (size_t b = 0; n > 0 && t->have_prog && b < t->prog.nblocks; b++)
+    have |= t->prog.blocks[b].number == n;
+  t->brk = (int)n;
+  if (t->run == R_RUN)
+    sess_set_break(&t->s, t->brk);
+  char nb[16];
+  if (!n)
+    say(t, "no breakpoint");
+  else if (t->have_prog && !have)
+    say(t, "breakpoint at N%ld: warning: the program has no such block", n);
+  else
+    say(t, "breakpoint at %s: it waits for Пуск before it starts (Пуск runs to it)", bname((int)n, nb));
 }
 
 static void jog(struct tui *t, int axis, int sign)
@@ -800,7 +901,7 @@ static void mb_open(struct tui *t, int kind, const char *prompt, const char *ini
   t->mb.n = init ? scr_decode(init, t->mb.b, MBMAX) : 0;
   t->mb.cur = t->mb.n;
   t->mb.sel = t->mb.n > 0 && (kind == MB_OPEN || kind == MB_SAVEAS || kind == MB_PARAM || kind == MB_FIND ||
-                              kind == MB_GOTO);
+                              kind == MB_GOTO || kind == MB_BREAK);
 }
 
 /* The input line as UTF-8 (malloc'd). */
@@ -1021,6 +1122,9 @@ static void mb_commit(struct tui *t)
     break;
   case MB_PARAM:
     set_param(t, t->mb.reg, s);
+    break;
+  case MB_BREAK:
+    set_break(t, s);
     break;
   default:
     break;
@@ -1497,6 +1601,14 @@ static void panel_key(struct tui *t, int fn, wint_t c)
   case 'o': ask_open(t); return;
   case 'c': check(t, 1); return;
   case 'p': page_open(t); return;
+  case 'b': set_single(t, !t->single); return;
+  case 'B': {
+    char init[16] = "";
+    if (t->brk)
+      snprintf(init, sizeof init, "%d", t->brk);
+    mb_open(t, MB_BREAK, "breakpoint at block (empty: none): N", init);
+    return;
+  }
   default: return;
   }
 }
@@ -1890,13 +2002,11 @@ static void shown_pos(const struct tui *t, double pos[4], double *tm, double *fe
   double now = pace_now(&t->pace);
   if (now >= t->cur.t1 || t->cur.t1 <= t->cur.t0)
     return;
-  double f = (now - t->cur.t0) / (t->cur.t1 - t->cur.t0);
-  if (f < 0)
-    f = 0;
+  double f = cur_frac(t, now);
   for (int a = 0; a < 4; a++)
     pos[a] = (double)t->cur.from[a] + (double)(t->cur.to[a] - t->cur.from[a]) * f;
   *tm = now > t->cur.t0 ? now : t->cur.t0;
-  *feed = t->run == R_RUN ? t->cur.feed : 0;
+  *feed = t->run == R_RUN && !t->held && !t->ovr_held ? t->cur.feed : 0;   /* a feed hold shows 0 */
 }
 
 
@@ -1948,14 +2058,18 @@ static void draw_title(struct tui *t, int W)
   const char *st = state_text(t, sb, sizeof sb);
   const char *path = t->path ? t->path : "(new program)";
   const char *mod = t->dirty ? " [modified]" : "";
-  const char *speed = t->fast ? "fast" : "machine speed";
-  const char *rus = t->cyr ? "  |  Рус" : "";
+  char speed[64], nb[16];
+  snprintf(speed, sizeof speed, "%s%s%s%s", t->fast ? "fast" : "machine speed", t->single ? "  |  single block" : "",
+           t->brk ? "  |  break " : "", t->brk ? bname(t->brk, nb) : "");
+  const char *rus0 = t->cyr ? "  |  Рус" : "";
+  char rus[64];   /* where the speed is left out: single block still shown, as П */
+  snprintf(rus, sizeof rus, "%s%s", rus0, t->single ? "  |  П" : "");
   snprintf(name, sizeof name, "%s", path);
   for (int v = 0; v < 4; v++) {
     if (v == 0)
-      snprintf(b, sizeof b, " s42 tui  %s%s  |  %s  |  %s%s", name, mod, st, speed, rus);
+      snprintf(b, sizeof b, " s42 tui  %s%s  |  %s  |  %s%s", name, mod, st, speed, rus0);
     else if (v == 1)
-      snprintf(b, sizeof b, " %s%s  |  %s  |  %s%s", name, mod, st, speed, rus);
+      snprintf(b, sizeof b, " %s%s  |  %s  |  %s%s", name, mod, st, speed, rus0);
     else if (v == 2)
       snprintf(b, sizeof b, " %s%s  |  %s%s", name, mod, st, rus);
     else {
@@ -2127,7 +2241,7 @@ struct hint {
 };
 static const struct hint help_panel[] = {
   {"g Пуск", 1}, {"s Стоп", 1}, {"e Вихід", 2}, {"Enter ПС", 1}, {"BS ЗБ", 5}, {"^R Рус", 4},
-  {"xyza/XYZA jog", 6}, {"<> F%", 3}, {"f speed", 5}, {"p params", 3}, {"Tab editor", 2}, {"F1 keys", 0},
+  {"xyza/XYZA jog", 6}, {"<> F%", 3}, {"b single", 3}, {"f speed", 5}, {"p params", 3}, {"Tab editor", 2}, {"F1 keys", 0},
   {"q quit", 0}, {NULL, 0},
 };
 static const struct hint help_edit[] = {
@@ -2178,6 +2292,8 @@ static const char *const help_full[] = {
   "X Y Z A       jog plus;  j: jog step 1 10 100 1000 10000",
   "< >           feed override -10 % / +10 % (+ too, but on P5:)",
   "+ -           P5 search results: the next / previous 8 steps",
+  "b             single block (П/АВТ): each block waits for Пуск",
+  "B             breakpoint: block N waits for Пуск (run to N)",
   "F9, f         machine speed / as fast as possible",
   "p             parameters page: R0-R113, D1, TK, UG, the arrays;",
   "              arrows choose, = sets one (in a wait or a feed",
@@ -2332,6 +2448,8 @@ static _Noreturn void est_child(struct tui *t, int fd)
   }
   struct session *s = &t->s;
   memset(&s->sink, 0, sizeof s->sink);
+  s->single = 0;   /* the estimate runs on without stopping at single blocks and the breakpoint */
+  s->brk = 0;
   struct est_result r;
   memset(&r, 0, sizeof r);
   r.kind = EST_LEAST;
@@ -2347,7 +2465,7 @@ static _Noreturn void est_child(struct tui *t, int fd)
     if (ev == SE_START)
       continue;
     if (ev == SE_WAIT) {
-      if (!s->plug_wait && s->wait == W_PUSK && sess_key_pusk(s) == 0)
+      if (!s->plug_wait && (s->wait == W_PUSK || s->wait == W_BLOCK) && sess_key_pusk(s) == 0)
         continue;
       if (!s->plug_wait && s->wait == W_PS && sess_key_ps(s) == 0)
         continue;
@@ -2442,6 +2560,7 @@ void tui_press(struct tui *t, enum tui_key k)
     if (t->run == R_RUN)
       sess_key_stop(&t->s);
     t->held = 0;
+    t->ovr_held = 0;
     if (t->run != R_IDLE)
       end_run(t);
     say(t, "reset: the machine is idle; Пуск starts the cycle");
@@ -2455,13 +2574,14 @@ void tui_motion(const struct tui *t, struct tui_motion *m)
   m->block = -1;
   if (t->run == R_IDLE || !t->cur.valid)
     return;
-  m->feed = t->cur.feed;
-  m->held = t->run == R_RUN && t->held;
+  m->held = t->run == R_RUN && (t->held || t->ovr_held);
+  m->feed = m->held ? 0 : t->cur.feed;
   double now = pace_now(&t->pace), len = t->cur.t1 - t->cur.t0;
   if (t->run == R_RUN && !t->fast && len > 0 && now < t->cur.t1) {
     m->active = 1;
-    m->dur = len;
-    m->frac = now <= t->cur.t0 ? 0 : (now - t->cur.t0) / len;
+    m->frac = cur_frac(t, now);
+    /* as one even motion that has the same rest: what the map interpolates */
+    m->dur = m->frac < 1 ? (t->cur.t1 - now) / (1 - m->frac) : len;
     for (int a = 0; a < 4; a++)
       m->d[a] = t->cur.to[a] - t->cur.from[a];
     m->block = t->cur.n;
@@ -2474,6 +2594,30 @@ void tui_motion(const struct tui *t, struct tui_motion *m)
 int tui_override_pct(const struct tui *t)
 {
   return t->override;
+}
+
+void tui_set_single(struct tui *t, int on)
+{
+  if (!on != !t->single)
+    set_single(t, on != 0);
+}
+
+void tui_set_break(struct tui *t, int n)
+{
+  char b[16];
+  snprintf(b, sizeof b, "%d", n);
+  if (n != t->brk)
+    set_break(t, b);
+}
+
+int tui_single(const struct tui *t)
+{
+  return t->single;
+}
+
+int tui_break(const struct tui *t)
+{
+  return t->brk;
 }
 
 void tui_say(struct tui *t, const char *msg)

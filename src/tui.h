@@ -66,6 +66,12 @@ const struct session *tui_session(const struct tui *t);
 void tui_motion(const struct tui *t, struct tui_motion *m);
 /* The feed override switch, %. */
 int tui_override_pct(const struct tui *t);
+/* Single block and the breakpoint (0 none): set them as the panel's keys
+ * do (b, B), and read them back. */
+void tui_set_single(struct tui *t, int on);
+void tui_set_break(struct tui *t, int n);
+int tui_single(const struct tui *t);
+int tui_break(const struct tui *t);
 /* A line in the messages pane, as a source reports. */
 void tui_say(struct tui *t, const char *msg);
 

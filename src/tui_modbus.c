@@ -24,6 +24,20 @@ static int set_override(void *host, int pct)
   return x->t ? tui_override(x->t, pct) : -1;
 }
 
+static void set_single(void *host, int on)
+{
+  struct tui_mb *x = host;
+  if (x->t)
+    tui_set_single(x->t, on);
+}
+
+static void set_break(void *host, int n)
+{
+  struct tui_mb *x = host;
+  if (x->t)
+    tui_set_break(x->t, n);
+}
+
 /* Mirror the terminal's machine into what the server's view is made of. */
 static void mirror(struct tui_mb *x, struct tui *t)
 {
@@ -43,6 +57,8 @@ static void mirror(struct tui_mb *x, struct tui *t)
   x->mm.s = (struct session *)s;   /* mb_sync writes R0-R113 only while the cycle does not run */
   x->mm.idle = s == NULL;
   x->mm.override_pct = tui_override_pct(t);
+  x->mm.single = tui_single(t);
+  x->mm.brk = tui_break(t);
   struct tui_motion m;
   tui_motion(t, &m);
   x->mm.feed = m.feed;
@@ -113,6 +129,8 @@ int tui_modbus_open(const struct mb_opts *o, struct tui_source *src, char *err, 
   if (*mb_warning(x->mb))
     fprintf(stderr, "s42: warning: %s\n", mb_warning(x->mb));
   x->mm.set_override = set_override;
+  x->mm.set_single = set_single;
+  x->mm.set_break = set_break;
   x->mm.host = x;
   x->mm.idle = 1;
   x->mm.override_pct = 100;

@@ -235,7 +235,7 @@ int main(int argc, char **argv)
   errno = 0;
   check(modbus_write_registers(mb, 104, 4, w) == -1 && errno == EMBXILVAL, "R1 = 1e8: %s", modbus_strerror(errno));
   errno = 0;
-  check(modbus_write_bit(mb, 5, 1) == -1 && errno == EMBXILADD, "coil 5: %s", modbus_strerror(errno));
+  check(modbus_write_bit(mb, 6, 1) == -1 && errno == EMBXILADD, "coil 6: %s", modbus_strerror(errno));
   static const uint8_t unknown[] = {0x2B, 0x0E, 0x01, 0x00};
   check(raw_exception(unknown, sizeof unknown) == 1, "function 0x2B: expected exception 01");
   static const uint8_t qty0[] = {0x04, 0x00, 0x00, 0x00, 0x00};

@@ -135,7 +135,7 @@ cases = [
     ("input register 22", frame(struct.pack(">BHH", 4, 22, 1)), ("ex", 2)),
     ("input registers across a gap", frame(struct.pack(">BHH", 4, 20, 90)), ("ex", 2)),
     ("address 65535 quantity 125", frame(struct.pack(">BHH", 4, 65535, 125)), ("ex", 2)),
-    ("coil 5", frame(struct.pack(">BHH", 5, 5, 0xFF00)), ("ex", 2)),
+    ("coil 6", frame(struct.pack(">BHH", 5, 6, 0xFF00)), ("ex", 2)),
     ("coil value 0x1234", frame(struct.pack(">BHH", 5, 0, 0x1234)), ("ex", 3)),
     ("FC15 byte count lies", frame(struct.pack(">BHHB", 15, 0, 5, 2) + b"\x00\x00"), ("ex", 3)),
     ("FC16 byte count lies", frame(struct.pack(">BHHB", 16, 0, 1, 4) + b"\x00\x05"), ("ex", 3)),

@@ -166,6 +166,61 @@ else
     echo "$out" | grep -q "Illegal data address" && ok || fail "mbpoll: half a float64: $out"
     stop
   fi
+  # the override within a block's motion (holding register 0), 0 % holds it,
+  # reset keeps it; the snapshot counter beats with no request; single
+  # block (coil 5) and the breakpoint (holding register 2)
+  printf '%s\n' '; a 60 s stroke at F60, then short blocks' '№1 G01 X+60000 F60 ^' '№2 G01 X-1000 F600 ^' \
+    '№3 G01 X-1000 ^' '№4 G01 X-1000 ^' '№5 M02 ^' >"$tmp/long.kp"
+  feed() { mbp -B -t 3:int -r 18 127.0.0.1 | sed -n 's/^\[18\]:[[:space:]]*//p'; }
+  xpos() { mbp -B -t 3:int -r 10 127.0.0.1 | sed -n 's/^\[10\]:[[:space:]]*//p'; }
+  if start "$tmp/long.kp" --realtime; then
+    c1=$(value 1 -t 3); sleep 1.1; c2=$(value 1 -t 3)
+    [ -n "$c1" ] && [ $((c2 - c1)) -ge 4 ] && ok || fail "mbpoll: the snapshot counter went $c1 -> $c2 in 1.1 s idle"
+    [ "$(value 5 -t 3)" = 100 ] && ok || fail "mbpoll: override in effect $(value 5 -t 3) while idle, expected 100"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    wait_state 1 && ok || fail "mbpoll override: no run after Пуск"
+    [ "$(feed)" = 60000 ] && ok || fail "mbpoll override: feed $(feed), expected 60000 (0.001 mm/min)"
+    mbp -t 4 -r 0 127.0.0.1 150 >/dev/null
+    sleep 0.2
+    [ "$(feed)" = 90000 ] && ok || fail "mbpoll override: feed $(feed) after 150 % within N1, expected 90000"
+    [ "$(value 3 -t 3)" = 1 ] && ok || fail "mbpoll override: block $(value 3 -t 3), expected still N1"
+    mbp -t 4 -r 0 127.0.0.1 0 >/dev/null
+    wait_state 2 && ok || fail "mbpoll override: 0 % within a move: run state $(value 2 -t 3), expected 2"
+    [ "$(feed)" = 0 ] && ok || fail "mbpoll override: feed $(feed) at 0 %, expected 0"
+    x1=$(xpos); sleep 0.4; x2=$(xpos)
+    [ -n "$x1" ] && [ "$x1" = "$x2" ] && ok || fail "mbpoll override: X moved at 0 % ($x1, $x2)"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null     # Пуск does not move it at 0 %
+    sleep 0.3
+    [ "$(xpos)" = "$x2" ] && ok || fail "mbpoll override: Пуск moved X at 0 %"
+    mbp -t 4 -r 0 127.0.0.1 100 >/dev/null
+    wait_state 1 && ok || fail "mbpoll override: 100 % again: run state $(value 2 -t 3)"
+    sleep 0.3
+    [ "$(feed)" = 60000 ] && [ "$(xpos)" -gt "$x2" ] && ok || fail "mbpoll override: 100 %: feed $(feed), X $(xpos)"
+    mbp -t 4 -r 0 127.0.0.1 40 >/dev/null
+    mbp -t 0 -r 4 127.0.0.1 1 >/dev/null     # reset: the switch keeps its position
+    wait_state 0 && ok || fail "mbpoll: no idle after reset"
+    [ "$(value 5 -t 3)" = 40 ] && [ "$(value 0 -t 4)" = 40 ] && ok ||
+      fail "mbpoll: override after reset: in effect $(value 5 -t 3), register $(value 0 -t 4), expected 40"
+    stop
+  fi
+  if start "$tmp/long.kp"; then
+    mbp -t 0 -r 5 127.0.0.1 1 >/dev/null     # single block on
+    [ "$(value 5 -t 0)" = 1 ] && ok || fail "mbpoll: coil 5 reads $(value 5 -t 0) after single block on"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    wait_state 3 && [ "$(value 3 -t 3)" = 2 ] && ok || fail "mbpoll single: N2 does not wait (block $(value 3 -t 3))"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    sleep 0.2
+    wait_state 3 && [ "$(value 3 -t 3)" = 3 ] && ok || fail "mbpoll single: N3 does not wait (block $(value 3 -t 3))"
+    mbp -t 0 -r 5 127.0.0.1 0 >/dev/null     # automatic, a breakpoint at N5
+    mbp -t 4 -r 2 127.0.0.1 5 >/dev/null
+    [ "$(value 2 -t 4)" = 5 ] && ok || fail "mbpoll: holding register 2 reads $(value 2 -t 4), expected 5"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    sleep 0.2
+    wait_state 3 && [ "$(value 3 -t 3)" = 5 ] && ok || fail "mbpoll break: N5 does not wait (block $(value 3 -t 3))"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    wait_state 5 && ok || fail "mbpoll break: no M2 after Пуск at N5"
+    stop
+  fi
   # programs from programs/ from start to M2, driven only by mbpoll commands
   for prog in drill_point tap_chamfer; do
     start "programs/$prog.kp" --dump || continue
@@ -216,6 +271,16 @@ else
   if screen_has "Modbus TCP on 127.0.0.1:$PORT"; then
     ok
     [ "$(value 2 -t 3)" = 0 ] && ok || fail "tui: not idle before Пуск"
+    [ "$(value 5 -t 3)" = 100 ] && ok || fail "tui: override in effect $(value 5 -t 3) while idle, expected 100"
+    mbp -t 0 -r 5 127.0.0.1 1 >/dev/null
+    screen_has "single block (П)" && ok || fail "tui: coil 5 did not set single block"
+    [ "$(value 5 -t 0)" = 1 ] && ok || fail "tui: coil 5 reads $(value 5 -t 0)"
+    mbp -t 0 -r 5 127.0.0.1 0 >/dev/null
+    screen_has "automatic (АВТ)" && ok || fail "tui: coil 5 = 0 did not set automatic"
+    mbp -t 4 -r 2 127.0.0.1 7 >/dev/null
+    screen_has "breakpoint at N7" && ok || fail "tui: holding register 2 did not set the breakpoint"
+    mbp -t 4 -r 2 127.0.0.1 0 >/dev/null
+    screen_has "no breakpoint" && ok || fail "tui: holding register 2 = 0 did not clear the breakpoint"
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
     screen_has "Пуск: the cycle starts" && ok || fail "tui: a client's Пуск did not start the cycle"
     wait_state 1 && ok || fail "tui: run state not 1 after Пуск"

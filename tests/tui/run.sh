@@ -378,6 +378,46 @@ see_re "│feed +0\.0 mm/min"
 keys q
 ended 0
 
+# ---- 10. the override within a move, 0 % and Стоп hold it (feed 0); single block; a breakpoint ----
+printf '%s\n' '; a 60 s stroke, then three short ones' '№1 G01 X+60000 F60 ^' '№2 G01 X-1000 F600 ^' \
+  '№3 G01 X-1000 ^' '№4 G01 X-1000 ^' '№5 M02 ^' > "$WORK/long.kp"
+start override C.UTF-8 long.kp
+see "ready: Пуск starts the cycle"
+keys g
+see_re "│feed +60\.0 mm/min"
+keys '>' '>' '>' '>' '>'                      # 150 % while N1's 60 s stroke runs: at once
+see_re "│feed +90\.0 mm/min"
+see_re "F% +150 %"
+keys s                                       # feed hold: the feed reads 0
+see_re "│feed +0\.0 mm/min"
+keys g
+see_re "│feed +90\.0 mm/min"
+for i in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15; do keys '<'; done
+see "feed override 0 %: the move stands"
+see_re "│feed +0\.0 mm/min"
+x1=$(pane | grep -o '│X  *[-0-9.]* mm' | head -1)
+sleep 0.5
+x2=$(pane | grep -o '│X  *[-0-9.]* mm' | head -1)
+if [ -n "$x1" ] && [ "$x1" = "$x2" ]; then ok; else bad "X moved at 0 % ('$x1', '$x2')"; fi
+keys g
+see "the feed override is at 0 %: raise it (>)"
+keys b                                       # single block from the next block on
+see "single block (П): each block waits for Пуск"
+see "|  single block"
+keys f                                       # fast: N1 ends at once (at 0 % it still stands)
+keys '>' '>' '>' '>' '>' '>' '>' '>' '>' '>'
+see "N2 waits: single block: Пуск (F5 or g) starts it"
+keys g
+see "N3 waits: single block"
+keys b B 5 Enter                             # automatic again, a breakpoint at N5
+see "breakpoint at N5: it waits for Пуск before it starts"
+keys g
+see "N5 waits: breakpoint: Пуск (F5 or g) starts it"
+keys g
+see "the program ended (M2): 5 blocks"
+keys q
+ended 0
+
 # ---- 7. no program, then open one; a missing file; not a terminal ----
 start empty C.UTF-8
 see "no program: F3 (or o) opens one"

@@ -351,6 +351,53 @@ START_TEST(jog_counts_in_position)
 }
 END_TEST
 
+/* The override turned within a move: the rest of it goes at the new speed,
+ * and the simulated time is what that speed makes of the rest. */
+START_TEST(override_within_a_move)
+{
+  block(MO_G01, 0, 60, SL_X, 60000.0, -1);   /* 60 mm at 60 mm/min: 60 s */
+  mach_motion(&m, &b, &o);
+  ck_assert(fabs(m.t - 60) < 1e-9);
+  m.override_pct = 50;                       /* at 30 s: 30 mm left at 30 mm/min = 60 s */
+  ck_assert(fabs(mach_override_at(&m, 30) - 30) < 1e-9);
+  ck_assert(fabs(m.t - 90) < 1e-9);
+  ck_assert(fabs(m.mv.feed - 30) < 1e-9);
+  m.override_pct = 150;                      /* at 60 s: 15 mm left at 90 mm/min = 10 s */
+  ck_assert(fabs(mach_override_at(&m, 60) + 20) < 1e-9);
+  ck_assert(fabs(m.t - 70) < 1e-9);
+  m.override_pct = 0;                        /* 0 %: the host holds the move, nothing changes here */
+  ck_assert(mach_override_at(&m, 65) == 0);
+  ck_assert(fabs(m.t - 70) < 1e-9);
+  m.override_pct = 100;                      /* outside the move: nothing */
+  ck_assert(mach_override_at(&m, 70) == 0);
+  ck_assert(mach_override_at(&m, -1) == 0);
+  ck_assert_int_eq((int)m.pos[AX_X], 60000);
+  /* the speed limit holds: 150 % of 6000 mm/min is 6000 */
+  setup();
+  block(MO_G01, 0, 6000, SL_X, 100000.0, -1);   /* 100 mm at 6000 mm/min: 1 s */
+  mach_motion(&m, &b, &o);
+  m.override_pct = 150;
+  ck_assert(mach_override_at(&m, 0.5) == 0);
+  ck_assert(fabs(m.t - 1) < 1e-9);
+  /* under M25 the override does not act */
+  setup();
+  m.override_allowed = 0;
+  block(MO_G01, 0, 60, SL_X, 60000.0, -1);
+  mach_motion(&m, &b, &o);
+  m.override_pct = 50;
+  ck_assert(mach_override_at(&m, 30) == 0);
+  ck_assert(fabs(m.t - 60) < 1e-9);
+  /* a dwell is no move: the last move is over */
+  setup();
+  block(MO_G01, 0, 60, SL_X, 1000.0, -1);
+  mach_motion(&m, &b, &o);
+  block(MO_G04, 0, 60, SL_X, 100.0, -1);
+  mach_motion(&m, &b, &o);
+  m.override_pct = 50;
+  ck_assert(mach_override_at(&m, 5) == 0);
+}
+END_TEST
+
 Suite *suite_machine(void)
 {
   Suite *s = suite_create("machine");
@@ -389,6 +436,7 @@ Suite *suite_machine(void)
   tcase_add_test(tc, time_wheel_rundown);
   tcase_add_test(tc, time_g37_return);
   tcase_add_test(tc, jog_counts_in_position);
+  tcase_add_test(tc, override_within_a_move);
   suite_add_tcase(s, tc);
   return s;
 }

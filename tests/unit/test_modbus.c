@@ -176,6 +176,65 @@ START_TEST(counter_and_alive)
   s->vm.reg[3] = 7;                       /* a change: an update at once */
   req(rd, sizeof rd, 1.45);
   ck_assert_uint_eq(reg(0), (uint16_t)(c + 2));
+  /* no request for 1.05 s: the four heartbeats went by all the same */
+  req(rd, sizeof rd, 2.5);
+  ck_assert_uint_eq(reg(0), (uint16_t)(c + 6));
+  req(rd, sizeof rd, 2.6);
+  ck_assert_uint_eq(reg(0), (uint16_t)(c + 6));
+}
+END_TEST
+
+static int keeps_override(void *host, int pct)
+{
+  (void)host;
+  mm.override_pct = pct;
+  return 0;
+}
+
+/* Coil 5 is the single-block switch and holding register 2 the breakpoint:
+ * both go to the session (or a host that keeps them), and read back. */
+START_TEST(single_block_and_breakpoint)
+{
+  mm.idle = 1;
+  static const uint8_t on[] = {5, 0, 5, 0xFF, 0}, off[] = {5, 0, 5, 0, 0}, rdc[] = {1, 0, 0, 0, 6},
+                       brk[] = {6, 0, 2, 0, 2}, rdh[] = {3, 0, 0, 0, 3}, both[] = {15, 0, 4, 0, 2, 1, 0x02},
+                       hr3[] = {6, 0, 3, 0, 1}, coil6[] = {5, 0, 6, 0xFF, 0};
+  ck_assert_int_eq(req(on, sizeof on, 1.0), 5);
+  ck_assert_int_eq(rsp[8], 0);            /* the echo of the request */
+  ck_assert_int_eq(rsp[9], 5);
+  ck_assert_int_eq(mm.single, 1);
+  ck_assert_int_eq(s->single, 1);
+  req(rdc, sizeof rdc, 1.0);
+  ck_assert_int_eq(rsp[9], 0x20);         /* coil 5 reads the switch; no key waits */
+  ck_assert_int_eq(req(brk, sizeof brk, 1.0), 5);
+  ck_assert_int_eq(s->brk, 2);
+  req(rdh, sizeof rdh, 1.0);
+  ck_assert_uint_eq(reg(0), 100);
+  ck_assert_uint_eq(reg(2), 2);
+  ck_assert_int_eq(req(off, sizeof off, 1.0), 5);
+  ck_assert_int_eq(s->single, 0);
+  /* FC 15 over coils 4 and 5: reset pressed, single block set from the same write */
+  ck_assert_int_eq(req(both, sizeof both, 1.0), 5);
+  ck_assert_int_eq(s->single, 1);
+  ck_assert_int_eq(mb_dev_key(&dev), MB_KEY_NONE);   /* bit 0 (coil 4) was 0 */
+  ck_assert_int_eq(exception(hr3, sizeof hr3), 2);
+  ck_assert_int_eq(exception(coil6, sizeof coil6), 2);
+  /* the breakpoint waits: block 2 waits for Пуск before it starts */
+  enum sess_ev ev;
+  sess_set_single(s, 0);
+  while ((ev = sess_run(s)) == SE_START)
+    ;
+  ck_assert_int_eq(ev, SE_WAIT);
+  ck_assert_int_eq(s->wait, W_BLOCK);
+  ck_assert_int_eq(sess_block_number(s), 2);
+  /* a terminal that is idle (no session yet): the override in effect is
+   * its switch's position */
+  mm.s = NULL;
+  mm.override_pct = 70;
+  mm.set_override = keeps_override;
+  static const uint8_t rd5[] = {4, 0, 5, 0, 1};
+  req(rd5, sizeof rd5, 1.0);
+  ck_assert_uint_eq(reg(0), 70);
 }
 END_TEST
 
@@ -218,7 +277,7 @@ START_TEST(exceptions)
 {
   mm.idle = 1;
   static const uint8_t unknown[] = {0x2B, 0x0E, 1, 0}, qty0[] = {4, 0, 0, 0, 0}, qty126[] = {3, 0, 0, 0, 126},
-                       gap[] = {4, 0, 22, 0, 1}, across[] = {4, 0, 20, 0, 90}, coil5[] = {5, 0, 5, 0xFF, 0},
+                       gap[] = {4, 0, 22, 0, 1}, across[] = {4, 0, 20, 0, 90}, coil5[] = {5, 0, 6, 0xFF, 0},
                        coilval[] = {5, 0, 0, 0x12, 0x34}, single_r[] = {6, 0, 100, 0, 1},
                        ovr[] = {6, 0, 0, 0, 151}, cmd[] = {6, 0, 1, 0, 6}, shortpdu[] = {4, 0},
                        half[] = {16, 0, 100, 0, 2, 4, 0, 0, 0, 0}, odd32[] = {16, 2, 0x59, 0, 2, 4, 0, 0, 0, 0},
@@ -537,6 +596,7 @@ Suite *suite_modbus(void)
   tcase_add_test(tc, framing);
   tcase_add_test(tc, idle_image);
   tcase_add_test(tc, counter_and_alive);
+  tcase_add_test(tc, single_block_and_breakpoint);
   tcase_add_test(tc, parameters);
   tcase_add_test(tc, exceptions);
   tcase_add_test(tc, keys_in_order);

@@ -367,6 +367,58 @@ START_TEST(at_block_must_exist)
 }
 END_TEST
 
+START_TEST(mode_and_break)
+{
+  const struct op_action *a = one("mode single");
+  ck_assert_int_eq(a->kind, OA_MODE);
+  ck_assert_int_eq(a->n, 1);
+  ck_assert(!ops_is_waiting(a));
+  a = one("mode auto ; back to automatic");
+  ck_assert_int_eq(a->n, 0);
+  a = one("break N54");
+  ck_assert_int_eq(a->kind, OA_BREAK);
+  ck_assert_int_eq(a->n, 54);
+  ck_assert(!ops_is_waiting(a));
+  char d[64];
+  ck_assert_str_eq(ops_describe(a, d, sizeof d), "break N54");
+  a = one("break off");
+  ck_assert_int_eq(a->n, 0);
+  ck_assert_str_eq(ops_describe(a, d, sizeof d), "break off");
+  ck_assert_int_eq(parse("at N3#2 mode single\n"), 0);
+  ck_assert_int_eq(sc.nat, 1);
+  refused_at("mode singel", 11, 1, 6, "mode is single");
+  refused_at("break 54", 8, 1, 7, "break needs a block");
+  refused_at("break N1000", 11, 1, 7, "block 1..999");
+  refused_at("break N-3", 9, 1, 7, "block 1..999");
+  refused_at("mode", 4, 1, 5, "mode is single");
+  /* a break for a block the program lacks is refused before the run */
+  ck_assert_int_eq(parse("break N22\nkey PUSK\nbreak off\n"), 0);
+  unsigned char have[1000] = {0};
+  have[1] = 1;
+  free(errbuf);
+  errbuf = NULL;
+  FILE *f = open_memstream(&errbuf, &errlen);
+  ck_assert_int_eq(ops_check_at(&sc, have, "op.txt", f), -1);
+  fclose(f);
+  ck_assert_str_eq(errbuf, "op.txt:1:1: error: break N22: the program has no block N22, so it never waits there\n");
+  have[22] = 1;
+  ck_assert_int_eq(ops_check_at(&sc, have, "op.txt", stderr), 0);
+}
+END_TEST
+
+/* A word typed wrong says which it was meant to be, and lists the rest. */
+START_TEST(did_you_mean)
+{
+  refused_at("anser 118", 9, 1, 1,
+             "unknown action 'anser': did you mean answer? (answer, key, jog, correct, override, section, mode, "
+             "break, at)");
+  refused_at("key PUS", 7, 1, 5, "unknown key 'PUS': did you mean PUSK? (PUSK, PS, EXIT, STOP)");
+  refused_at("key STPO", 8, 1, 5, "did you mean STOP?");
+  refused_at("frobnicate 3", 12, 1, 1, "unknown action 'frobnicate' (answer, key,");
+  refused_at("key BANG", 8, 1, 5, "unknown key 'BANG' (PUSK, PS, EXIT, STOP)");
+}
+END_TEST
+
 START_TEST(unused_actions_warned)
 {
   ck_assert_int_eq(parse("key PUSK\nanswer 5\njog X +3\nat N3#2 key EXIT\n at N4 key STOP\nat N7 override 9\n"), 0);
@@ -437,6 +489,8 @@ Suite *suite_operator(void)
   tcase_add_test(tc, nul_in_a_word);
   tcase_add_test(tc, at_block_must_exist);
   tcase_add_test(tc, unused_actions_warned);
+  tcase_add_test(tc, mode_and_break);
+  tcase_add_test(tc, did_you_mean);
   suite_add_tcase(s, tc);
   return s;
 }
