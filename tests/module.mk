@@ -5,7 +5,7 @@ CHECK_LIBS   = $(call pkg,CHECK_LIBS,--libs check,-lcheck)
 TEST_SRCS    := $(wildcard tests/unit/*.c)
 TEST_OBJS    := $(TEST_SRCS:%.c=$(BUILD)/%.o)
 UNIT_BIN     := $(BUILD)/tests/unit/run-unit
-$(TEST_OBJS): MOD_CPPFLAGS = -Isrc -Ivm -Idisplay -Iinclude -I$(TS_DIR) $(CHECK_CFLAGS)
+$(TEST_OBJS): MOD_CPPFLAGS = $(ALL_INC) -I$(TS_DIR) $(CHECK_CFLAGS)
 
 .PHONY: unit-bin fixtures
 fixtures: $(FIXTURE_SOS)
@@ -39,7 +39,7 @@ regress: $(S42)
 MB_REPLAY := $(BUILD)/tests/fuzz/replay-modbus
 $(MB_REPLAY): tests/fuzz/fuzz_modbus.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 	@mkdir -p $(@D)
-	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay -Iinclude $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
+	$(CC) $(CPPFLAGS) $(ALL_INC) $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
 regress: $(MB_REPLAY)
 # built with the objects' flags (make asan builds, then tests with plain CFLAGS)
 unit-bin: $(MB_REPLAY)
@@ -47,7 +47,7 @@ unit-bin: $(MB_REPLAY)
 STATE_REPLAY := $(BUILD)/tests/fuzz/replay-state
 $(STATE_REPLAY): tests/fuzz/fuzz_state.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 	@mkdir -p $(@D)
-	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay -Iinclude $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
+	$(CC) $(CPPFLAGS) $(ALL_INC) $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
 regress: $(STATE_REPLAY)
 unit-bin: $(STATE_REPLAY)
 # The server's connection code through loopback sockets (fuzz_modbus_conn.c),
@@ -55,16 +55,16 @@ unit-bin: $(STATE_REPLAY)
 MB_CONN_REPLAY := $(BUILD)/tests/fuzz/replay-modbus-conn
 $(MB_CONN_REPLAY): tests/fuzz/fuzz_modbus_conn.c tests/fuzz/replay.c $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 	@mkdir -p $(@D)
-	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay -Iinclude $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
+	$(CC) $(CPPFLAGS) $(ALL_INC) $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
 regress: $(MB_CONN_REPLAY)
 unit-bin: $(MB_CONN_REPLAY)
 
 # SIGKILL at many points of a cycle with M15, then restart; damaged states,
 # and states edited by hand with a recomputed checksum (tests/restart/forge).
 FORGE := $(BUILD)/tests/restart/forge
-$(FORGE): tests/restart/forge.c src/state.h $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
+$(FORGE): tests/restart/forge.c src/core/state.h $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 	@mkdir -p $(@D)
-	$(CC) $(CPPFLAGS) -Isrc -Ivm -Idisplay -Iinclude $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
+	$(CC) $(CPPFLAGS) $(ALL_INC) $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
 unit-bin: $(FORGE)
 restart: $(S42) $(FORGE)
 	sh tests/restart/run.sh $(S42) $(FORGE)
@@ -126,11 +126,11 @@ shared: $(S42)
 # inputs go to $(BUILD)/fuzz/corpus-<harness>/); crashes land in $(BUILD)/fuzz/.
 FUZZ_SECONDS ?= 30
 FUZZ_TARGETS := compile vm operator toolmodel modbus modbus_conn state
-FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -Isrc -Ivm -Idisplay -Iinclude -D_GNU_SOURCE
+FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined $(ALL_INC) -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
-FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/plot.c src/cairo_dl.c,$(SRC_SRCS))
-$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRCS) $(wildcard src/*.h vm/*.h display/*.h)
+FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/host/plot.c src/host/cairo_dl.c,$(SRC_SRCS))
+$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRCS) $(wildcard src/*/*.h src/*/*/*.h vm/*.h display/*.h)
 	@mkdir -p $(@D)
 	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) $(MODBUS_LIBS) -pthread -lm -ldl
 # the tool-model parser alone (plugins/toothsearch/toolmodel.c)

@@ -1,4 +1,4 @@
-/* libFuzzer harness for the Modbus request handler (src/modbus.h) without
+/* libFuzzer harness for the Modbus request handler (src/host/modbus.h) without
  * sockets: the input is a byte stream as a client would send it, cut into
  * frames by mb_frame and answered by mb_dev_request from the view of a live
  * session (a write it leaves to the host applied as mb_sync would); the

@@ -1,4 +1,4 @@
-/* libFuzzer harness for the Modbus server's connection code (src/modbus.c:
+/* libFuzzer harness for the Modbus server's connection code (src/host/modbus.c:
  * accept, read buffering, framing, pipelining, replies that wait for the
  * host, time-outs, the slot limit, close) through real loopback sockets.
  * The input is a script of operations: connect a client, send it bytes,

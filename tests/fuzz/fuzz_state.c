@@ -1,4 +1,4 @@
-/* libFuzzer harness for the M15 restart state's loader (src/state.h): the
+/* libFuzzer harness for the M15 restart state's loader (src/core/state.h): the
  * input is a state record -- a whole state file, or the record without its
  * header -- given the right header, checksum and program hash, as a file
  * edited by hand would have them.  state_restore must refuse it or give a

@@ -39,7 +39,7 @@ import zlib
 import pdftext
 
 W, H = 1600, 1000
-# The frames of src/plot.c: (name, u axis, v axis, x).  y 96..676, w 490.
+# The frames of src/host/plot.c: (name, u axis, v axis, x).  y 96..676, w 490.
 PANELS = [("XY", 0, 1, 40), ("XZ", 0, 2, 555), ("YZ", 1, 2, 1070)]
 PY, PW_, PH_ = 96, 490, 580
 IN_L, IN_T, IN_R, IN_B = 62, 22, 18, 62      # inner area margins (left and bottom: the tick bands)

@@ -1,4 +1,4 @@
-/* The compiler (src/compile.h): exact bytecode of small programs, in the
+/* The compiler (src/dialect/2c42/compile.h): exact bytecode of small programs, in the
  * style of Lua's testes/code.lua, constant folding, and the static checks
  * with their codes and positions. */
 #include "suites.h"

@@ -1,4 +1,4 @@
-/* The lexer cursor (src/lex.h): what lex_peek sees, where it is, and what
+/* The lexer cursor (src/dialect/2c42/lex.h): what lex_peek sees, where it is, and what
  * it notes. */
 #include "suites.h"
 #include "lex.h"

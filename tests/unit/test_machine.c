@@ -1,4 +1,4 @@
-/* The simulated machine (src/machine.h): contour-speed limits, arcs,
+/* The simulated machine (src/machine/grinder/machine.h): contour-speed limits, arcs,
  * checks, simulated time and the wheel (oscillation: test_plugin.c). */
 #include "suites.h"
 #include "ast.h"

@@ -1,4 +1,4 @@
-/* The Modbus device without sockets (src/modbus.h): golden words of our
+/* The Modbus device without sockets (src/host/modbus.h): golden words of our
  * big-endian encoders, MBAP framing, and requests against a session --
  * reads, key presses, parameter writes, the exceptions, the counter; allow
  * lists; and the threaded server over loopback, its host played here: a

@@ -1,4 +1,4 @@
-/* Operator scripts (src/operator.h, contracts.md section 3): every action,
+/* Operator scripts (src/host/operator.h, contracts.md section 3): every action,
  * the refusals with their lines and columns, words never cut short, `at`
  * for a block the program lacks, and the warnings for what a run left. */
 #include "suites.h"

@@ -1,5 +1,5 @@
 /* The operator's parameter setting from the panel (sess_set_param in
- * src/session.h): between blocks and in waits, journaled as a dialog
+ * src/core/session.h): between blocks and in waits, journaled as a dialog
  * answer, refused for what is not the operator's and after the cycle. */
 #include "suites.h"
 #include "session.h"

@@ -1,4 +1,4 @@
-/* The parser (src/parse.h): blocks, words, expressions, conditions, slash
+/* The parser (src/dialect/2c42/parse.h): blocks, words, expressions, conditions, slash
  * arguments and syntax diagnostics with their positions. */
 #include "suites.h"
 #include "ast.h"

@@ -1,4 +1,4 @@
-/* Sessions (src/session.h): a program on a VM against the machine, with
+/* Sessions (src/core/session.h): a program on a VM against the machine, with
  * operator waits, keys, jogs and the rows that reach the sink. */
 #include "suites.h"
 #include "errors.h"

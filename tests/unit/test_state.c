@@ -1,9 +1,9 @@
-/* The M15 restart state (src/state.h) against hostile files: a state saved
+/* The M15 restart state (src/core/state.h) against hostile files: a state saved
  * and restored, every field edited by hand with its checksum recomputed
  * (each refused, naming the field), a loop of random edits that must be
  * refused or run safely, a --state that is not a state (never replaced),
  * the temporary file a killed save leaves (removed by the next), and the
- * careful reads of src/atomic.h (a FIFO, a device, standard input). */
+ * careful reads of src/core/atomic.h (a FIFO, a device, standard input). */
 #include "suites.h"
 #include "atomic.h"
 #include "kp.h"

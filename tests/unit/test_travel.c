@@ -1,6 +1,6 @@
 /* Travel limits (--machine FILE): the machine file's parser
- * (src/machfile.h) and the machine's checks of moves against the travel
- * (src/machine.h). */
+ * (src/machine/grinder/machfile.h) and the machine's checks of moves against the travel
+ * (src/machine/grinder/machine.h). */
 #include "suites.h"
 #include "ast.h"
 #include "errors.h"

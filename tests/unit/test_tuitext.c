@@ -1,6 +1,6 @@
-/* What the terminal edits and shows, without curses (src/tuitext.h): the
+/* What the terminal edits and shows, without curses (src/host/tuitext.h): the
  * text's lines and edits, atomic save, the Cyrillic key map of table 3.4,
- * the ASCII stand-ins; and the machine-speed clock (src/pace.h). */
+ * the ASCII stand-ins; and the machine-speed clock (src/host/pace.h). */
 #include "suites.h"
 #include "pace.h"
 #include "screen.h"

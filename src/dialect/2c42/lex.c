@@ -1,4 +1,4 @@
-/* The 2С42 lexer (src/lex.h). */
+/* The 2С42 lexer (src/dialect/2c42/lex.h). */
 #include "lex.h"
 #include "errors.h"
 #include <string.h>

@@ -1,4 +1,4 @@
-/* Atomic file writes and careful reads (src/atomic.h). */
+/* Atomic file writes and careful reads (src/core/atomic.h). */
 #include "atomic.h"
 #include <ctype.h>
 #include <dirent.h>

@@ -1,4 +1,4 @@
-/* cairo loaded on demand (src/cairo_dl.h). */
+/* cairo loaded on demand (src/host/cairo_dl.h). */
 #define S42_CAIRO_DL_IMPL
 #include "cairo_dl.h"
 #include <dlfcn.h>

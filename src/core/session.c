@@ -1,4 +1,4 @@
-/* The session (src/session.h): turns the VM's block events into machine
+/* The session (src/core/session.h): turns the VM's block events into machine
  * work, waits and trace rows. */
 #include "session.h"
 #include "errors.h"

@@ -1,4 +1,4 @@
-/* The M15 restart state file (src/state.h). */
+/* The M15 restart state file (src/core/state.h). */
 #include "state.h"
 #include "ast.h"
 #include "atomic.h"

@@ -1,4 +1,4 @@
-/* The 2С42 compiler (src/compile.h).  Blocks are parsed one at a time and
+/* The 2С42 compiler (src/dialect/2c42/compile.h).  Blocks are parsed one at a time and
  * compiled at once into bytecode (the parse arena is reset per block); the
  * static checks of a block run on its parse; program structure (units,
  * jump and call targets, running off a unit's end, reachability) is checked

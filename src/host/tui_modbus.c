@@ -1,4 +1,4 @@
-/* s42 tui --modbus: the Modbus TCP server (src/modbus.c) as one more
+/* s42 tui --modbus: the Modbus TCP server (src/host/modbus.c) as one more
  * source of the terminal's poll() loop.  The server's own thread answers
  * the clients from the view this file publishes after every step of the
  * terminal (so a slow terminal or a plugin computing never holds a client

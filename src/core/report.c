@@ -1,4 +1,4 @@
-/* Trace and dump printers (src/report.h). */
+/* Trace and dump printers (src/core/report.h). */
 #include "report.h"
 #include "errors.h"
 #include <math.h>

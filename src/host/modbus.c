@@ -1,4 +1,4 @@
-/* The machine as a Modbus TCP device (src/modbus.h, contracts.md sec. 6).
+/* The machine as a Modbus TCP device (src/host/modbus.h, contracts.md sec. 6).
  *
  * Two threads.  The server thread owns every socket: it accepts, reads,
  * frames, answers and writes, and it never touches the session.  It answers

@@ -1,4 +1,4 @@
-/* The simulated machine (src/machine.h). */
+/* The simulated machine (src/machine/grinder/machine.h). */
 #include "machine.h"
 #include "ast.h"
 #include "errors.h"

@@ -1,4 +1,4 @@
-/* "Did you mean" (src/nearest.h). */
+/* "Did you mean" (src/core/nearest.h). */
 #include "nearest.h"
 #include <string.h>
 

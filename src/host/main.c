@@ -152,7 +152,7 @@ struct opts {
 #define MAX_OPERATOR_BYTES ((size_t)1 << 20)
 
 /* Read a whole regular file of at most `max` bytes, NUL-terminated: a
- * FIFO, a device or a socket is refused at once (src/atomic.h), a pipe
+ * FIFO, a device or a socket is refused at once (src/core/atomic.h), a pipe
  * only as standard input (`s42 run /dev/stdin`). */
 static int read_file(const char *path, size_t max, char **buf, size_t *len)
 {
@@ -1296,7 +1296,7 @@ static int cmd_plot(int argc, char **argv)
   return st;
 }
 
-/* s42 tui: the terminal front end (src/tui.c), at machine speed. */
+/* s42 tui: the terminal front end (src/host/tui.c), at machine speed. */
 static int cmd_tui(int argc, char **argv)
 {
   struct opts o;

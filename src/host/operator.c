@@ -1,4 +1,4 @@
-/* Operator script parser (src/operator.h). */
+/* Operator script parser (src/host/operator.h). */
 #include "operator.h"
 #include "nearest.h"
 #include <ctype.h>

@@ -1,4 +1,4 @@
-/* Machine-speed pacing (src/pace.h): the wall clock against simulated
+/* Machine-speed pacing (src/host/pace.h): the wall clock against simulated
  * time, for --realtime runs and the terminal. */
 #include "pace.h"
 #include <errno.h>

@@ -1,4 +1,4 @@
-/* Diagnostic list (src/diag.h). */
+/* Diagnostic list (src/core/diag.h). */
 #include "diag.h"
 #include "errors.h"
 #include <stdarg.h>

@@ -17,11 +17,11 @@ enum { WHEEL_OFF, WHEEL_CW, WHEEL_CCW };
 #define MACH_WHEEL_RUNDOWN 3.0        /* s, the wheel's run-down after M5 */
 
 struct mach_block {
-  int motion;          /* enum motion (src/kp.h) */
+  int motion;          /* enum motion (src/dialect/2c42/kp.h) */
   int plane;           /* 0, 17, 18, 19 */
   uint64_t g;
   uint32_t m;
-  uint16_t given;      /* word slots given (src/ast.h SL_*) */
+  uint16_t given;      /* word slots given (src/dialect/2c42/ast.h SL_*) */
   double w[16];        /* their values, rounded as the language says */
   double f;            /* contour speed in force for this block */
   double d1;

@@ -6,7 +6,7 @@
 #include "tui.h"
 #include <stddef.h>
 
-/* Listen as o says (src/modbus.h: mb_open) and fill src for tui_main.  -1
+/* Listen as o says (src/host/modbus.h: mb_open) and fill src for tui_main.  -1
  * with a message in err, *usage set when the address itself is bad (exit
  * 2).  A warning about the address goes to stderr now and to the messages
  * pane when the terminal starts. */

@@ -1,4 +1,4 @@
-/* Finding and loading plugins (src/plugin.h).  Scanning lists files and
+/* Finding and loading plugins (src/core/plugin.h).  Scanning lists files and
  * opens none: a file is opened when a program asks for a function it may
  * provide, and only after a child process has loaded it once (plug_probe),
  * so a constructor that crashes, hangs or calls exit() costs a refusal, not

@@ -16,7 +16,7 @@ struct tui_opts {
   int realtime;               /* machine speed (the default); 0: as fast as possible */
   int en;                     /* --lang en */
   unsigned long long max_blocks;
-  struct plug_set *plugins;   /* src/plugin.h: the functions plugins bring (may be NULL) */
+  struct plug_set *plugins;   /* src/core/plugin.h: the functions plugins bring (may be NULL) */
   struct mach_travel travel;  /* --machine FILE: each axis's travel (none: has[] all 0) */
 };
 

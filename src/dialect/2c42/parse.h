@@ -14,7 +14,7 @@ struct parser {
   int paren;              /* open parentheses in the current expression */
   int nodes;              /* expression nodes in the current block, bounded */
   int slash_ends;         /* G28 /min:max/: a '/' outside parentheses closes it */
-  const struct plug_set *plugins;  /* functions plugins add (src/plugin.h), or NULL */
+  const struct plug_set *plugins;  /* functions plugins add (src/core/plugin.h), or NULL */
 };
 
 void parse_init(struct parser *p, const char *src, size_t n, struct diag_list *d);

@@ -1,4 +1,4 @@
-/* The 2С42 parser (src/parse.h): recursive descent over the lexer's cursor.
+/* The 2С42 parser (src/dialect/2c42/parse.h): recursive descent over the lexer's cursor.
  * A syntax error reports one diagnostic and abandons the rest of its block
  * (longjmp to parse_block); the next block is parsed as usual, so one run
  * reports the mistakes of every block. */

@@ -10,7 +10,7 @@
 /* Compile src (n bytes).  Diagnostics go to d.  Returns 0 when the program
  * can run (no errors), -1 otherwise (p still holds what was built). */
 int comp_program(const char *src, size_t n, struct diag_list *d, struct program *p);
-/* The same, knowing the functions of these plugins (src/plugin.h); with
+/* The same, knowing the functions of these plugins (src/core/plugin.h); with
  * NULL, every function the language leaves to a plugin is E-PLUGIN. */
 struct plug_set;
 int comp_program_with(const char *src, size_t n, struct diag_list *d, struct program *p,

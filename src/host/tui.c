@@ -1,4 +1,4 @@
-/* s42 tui (src/tui.h): the curses front end.  It owns the loop: advance the
+/* s42 tui (src/host/tui.h): the curses front end.  It owns the loop: advance the
  * session at machine speed, draw, then poll the keyboard and the other
  * sources with a timeout -- never a blocking wait.  The 2С42-65 screen is
  * the session's rendered grid, only copied here; everything else on the

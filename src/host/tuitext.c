@@ -1,5 +1,5 @@
 /* The terminal's program text, keyboard map, ASCII fallback and word wrap
- * (src/tuitext.h).  No curses here: the unit tests drive it directly. */
+ * (src/host/tuitext.h).  No curses here: the unit tests drive it directly. */
 #include "tuitext.h"
 #include "atomic.h"
 #include <errno.h>

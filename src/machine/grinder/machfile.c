@@ -1,4 +1,4 @@
-/* The machine file of --machine (src/machfile.h). */
+/* The machine file of --machine (src/machine/grinder/machfile.h). */
 #include "machfile.h"
 #include <ctype.h>
 #include <math.h>
