@@ -71,7 +71,13 @@ static void emit_row(struct session *s)
   memcpy(r.jogs, s->jogs, sizeof r.jogs);
   r.has_jogs = s->has_jogs;
   memcpy(r.start, s->start, sizeof r.start);
-  r.blk = &s->mb;
+  struct machine at_start = s->m;
+  memcpy(at_start.pos, s->start, sizeof at_start.pos);
+  struct kp_block b = s->mb;
+  r.teach = at->motion == MO_M19;
+  if (r.teach && (BIT(at->g, 2) || BIT(at->g, 3)))
+    b.motion = BIT(at->g, 2) ? MO_G02 : MO_G03;   /* teach-in along an arc */
+  r.has_path = kp_path(&at_start, &b, &r.path);
   if (s->sink.row)
     s->sink.row(s->sink.ctx, s, &r);
 }
@@ -201,7 +207,10 @@ static int h_move(struct s42_block *b, const struct s42_move *mv)
   struct mach_out o;
   memset(&o, 0, sizeof o);
   double lim = mv->limit < MACH_AXIS_MAX ? mv->limit : MACH_AXIS_MAX;
-  mach_move(&s->m, mv->d, mv->length, lim, s->mb.f, &o);
+  struct kp_block arc = s->mb;   /* a helix follows the block's arc (G12, G13): the trace says so */
+  struct mach_path pa;
+  int along = (arc.motion == MO_G12 || arc.motion == MO_G13) && kp_path(&s->m, &arc, &pa) && pa.arc;
+  mach_move_along(&s->m, along ? &pa : NULL, mv->d, mv->length, lim, s->mb.f, &o);
   for (int a = 0; a < 4; a++)
     s->mo.d[a] += o.d[a];
   s->mo.feed = o.feed;
@@ -633,11 +642,11 @@ static int teach_start(struct session *s, const struct kp_attr *at)
     return -1;
   }
   if (BIT(at->g, 2) || BIT(at->g, 3)) {
-    struct mach_block ab = s->mb;
+    struct kp_block ab = s->mb;
     char msg[200];
     double len, ys;
     ab.motion = BIT(at->g, 2) ? MO_G02 : MO_G03;
-    int e = mach_arc(&ab, &len, &ys, msg, sizeof msg);
+    int e = kp_mach_arc(&ab, &len, &ys, msg, sizeof msg);
     if (e) {
       vm_fail(&s->vm, e, "%s", msg);
       return SE_ERROR;
@@ -762,10 +771,10 @@ static int run_plugins(struct session *s)
 static int exec_block(struct session *s)
 {
   const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  mach_modal(&s->m, &s->mb);
+  kp_mach_modal(&s->m, &s->mb);
   if (plug_phase(s, at->plugins | s->every, 1))
     return SE_ERROR;
-  mach_motion(&s->m, &s->mb, &s->mo);
+  kp_mach_motion(&s->m, &s->mb, &s->mo);
   s->run_next = 0;
   s->resumed = 0;
   return run_plugins(s);
@@ -808,7 +817,7 @@ static int after_motion(struct session *s)
 /* A contour move, the core's or a plugin's, waits at a feed override of 0 %. */
 static int held(const struct session *s)
 {
-  return contour_block(s) && mach_held(&s->m, &s->mb);
+  return contour_block(s) && mach_held(&s->m, kp_mach_moves(&s->mb));
 }
 
 /* A VM_EV_BLOCK: do the block's machine work.  Returns the session event
@@ -829,7 +838,7 @@ static int do_block(struct session *s)
   if (window_block(at) && !s->window_opened)
     memset(s->m.corr, 0, sizeof s->m.corr);
   s->window_opened = 0;
-  struct mach_block *b = &s->mb;
+  struct kp_block *b = &s->mb;
   b->motion = at->motion;
   b->plane = at->plane;
   b->g = at->g;
@@ -839,7 +848,7 @@ static int do_block(struct session *s)
     b->w[i] = BIT(at->slots, i) ? s->vm.w[i] : 0.0;
   b->f = s->vm.reg[REG_F];
   b->d1 = s->vm.reg[REG_D1];
-  int e = mach_check(&s->m, b, msg, sizeof msg);
+  int e = kp_mach_check(&s->m, b, msg, sizeof msg);
   if (e) {
     vm_fail(&s->vm, e, "%s", msg);
     return SE_ERROR;
@@ -887,6 +896,7 @@ enum sess_ev sess_run(struct session *s)
         return (enum sess_ev)(s->state = r);
       break;
     case VM_EV_END:
+      mach_program_end(&s->m);
       return (enum sess_ev)(s->state = SE_END);
     default:
       return (enum sess_ev)(s->state = SE_ERROR);

@@ -6,6 +6,7 @@
 #define S42_SESSION_H
 
 #include "kp.h"
+#include "kpmach.h"
 #include "machine.h"
 #include "plugin.h"
 #include "screen.h"
@@ -41,7 +42,11 @@ struct sess_row {
   int64_t jogs[4];
   int has_jogs;
   int64_t start[4];      /* machine position when the block started */
-  const struct mach_block *blk;  /* the block's meaning (plane, centre words) */
+  /* the block's path as the machine takes it (plots draw it): a line or an
+   * arc, `to` from the start as programmed (0: the block has none); for an
+   * M19 teach-in (teach), the path the jogs followed */
+  int has_path, teach;
+  struct mach_path path;
 };
 
 struct session;
@@ -89,7 +94,7 @@ struct session {
   char extra[320];       /* the current row's plugin members */
   char gname[4];         /* "G50": the motion name of a plugin's G */
   /* the block in progress while waiting */
-  struct mach_block mb;
+  struct kp_block mb;
   struct mach_out mo;
   int64_t jogs[4];
   int has_jogs;

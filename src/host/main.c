@@ -42,6 +42,7 @@ static const struct optinfo {
   {"--dump-images", "DIR", C_RUN | C_TUI | C_PLOT, "write the probe images of each search there, plain and annotated"},
   {"--trace", NULL, C_RUN | C_PLOT, "one line per executed block on stdout"},
   {"--trace=json", NULL, C_RUN | C_PLOT, "the same as JSON Lines (--trace=text: as --trace)"},
+  {"--trace=canon", NULL, C_RUN, "each call on the machine, as LinuxCNC's canonical calls (rs274 -g)"},
   {"--dump", NULL, C_RUN | C_PLOT, "the final machine state as one JSON object on stdout"},
   {"--screen", NULL, C_RUN | C_PLOT, "the final 16x32 screen on stdout"},
   {"--state", "FILE", C_RUN | C_TUI | C_PLOT, "where the M15 restart state is kept (default PROGRAM.kp.state)"},
@@ -139,7 +140,7 @@ struct opts {
   unsigned cmd;              /* C_RUN, C_TUI or C_PLOT: for "did you mean" */
   const char *program, *operator_file, *tool, *dump_images, *state, *plugins, *modbus, *out, *machine;
   struct mach_travel travel; /* from --machine FILE (none without it) */
-  int trace, json, dump, screen, restart, realtime, en;
+  int trace, json, canon, dump, screen, restart, realtime, en;
   unsigned long long max_blocks;
   struct mb_opts mb;         /* --modbus-*: mb.addr is o->modbus */
   const char *mb_opt;        /* the first --modbus-* option given (they need --modbus) */
@@ -174,7 +175,8 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     const char **val = NULL;
     if (strcmp(a, "--trace") == 0) { o->trace = 1; continue; }
     if (strcmp(a, "--trace=json") == 0) { o->trace = 1; o->json = 1; continue; }
-    if (strcmp(a, "--trace=text") == 0) { o->trace = 1; o->json = 0; continue; }
+    if (strcmp(a, "--trace=text") == 0) { o->trace = 1; o->json = 0; o->canon = 0; continue; }
+    if (strcmp(a, "--trace=canon") == 0) { o->canon = 1; o->trace = 0; continue; }
     if (strcmp(a, "--dump") == 0) { o->dump = 1; continue; }
     if (strcmp(a, "--screen") == 0) { o->screen = 1; continue; }
     if (strcmp(a, "--restart") == 0) { o->restart = 1; continue; }
@@ -582,6 +584,12 @@ static void row_sink(void *ctx, const struct session *s, const struct sess_row *
     plot_row(b->plot, s, row);
 }
 
+/* --trace=canon: a canonical call on stdout, a line each. */
+static void canon_line(void *ctx, const char *call)
+{
+  fprintf(ctx, "%s\n", call);
+}
+
 static void sink_warn(void *ctx, const struct session *s, const char *msg)
 {
   struct both_sink *b = ctx;
@@ -734,7 +742,11 @@ static void new_cycle(struct runner *r, struct both_sink *bs)
   struct plug_set *pl = s->plugins;
   struct mach_travel travel = s->m.travel;
   int ovr = s->m.override_pct;   /* a switch keeps its position */
+  void (*canon)(void *, const char *) = s->m.canon;
+  void *canon_ctx = s->m.canon_ctx;
   sess_init(s, s->p);
+  s->m.canon = canon;
+  s->m.canon_ctx = canon_ctx;
   sess_set_travel(s, &travel);
   s->m.override_pct = ovr;
   sess_set_single(s, bs->mm->single);
@@ -1048,6 +1060,10 @@ static int headless(const struct opts *opt, struct plot *plot)
   r.s.sink.log = sink_log;
   r.s.sink.moved = sink_moved;
   r.s.vm.yield_all = o.trace;
+  if (o.canon) {
+    r.s.m.canon = canon_line;
+    r.s.m.canon_ctx = stdout;
+  }
   r.watch = calloc(p.nblocks ? p.nblocks : 1, 1);
   r.runs = calloc(1000, sizeof *r.runs);
   if (!r.watch || !r.runs) {

@@ -28,7 +28,7 @@
  * Every row that moves is kept as one struct seg (about 100 bytes), so
  * 100,000 blocks take about 10 MB. */
 #include "plot.h"
-#include "ast.h"
+#include "geom.h"
 #include "machine.h"
 #include "cairo_dl.h"
 #include <errno.h>
@@ -105,31 +105,17 @@ void plot_free(struct plot *pl)
   free(pl);
 }
 
-static void plane_axes(int plane, int *p, int *q)
-{
-  switch (plane) {
-  case 17: *p = AX_X; *q = AX_Y; break;
-  case 18: *p = AX_Y; *q = AX_Z; break;
-  default: *p = AX_X; *q = AX_Z; break;
-  }
-}
-
 static int32_t clamp32(int64_t v)
 {
   return v > INT32_MAX ? INT32_MAX : v < -INT32_MAX ? -INT32_MAX : (int32_t)v;
 }
 
 /* The sweep of an arc from the start (0,0) to (ep,eq) round the centre
- * (cp,cq), in the direction ccw: as mach_arc, end = start is a full turn. */
+ * (cp,cq), in the direction ccw: end = start is a full turn. */
 static double arc_sweep(double cp, double cq, double ep, double eq, int ccw)
 {
-  if (ep == 0 && eq == 0)
-    return 2 * M_PI;
-  double t0 = atan2(-cq, -cp), t1 = atan2(eq - cq, ep - cp);
-  double s = fmod(ccw ? t1 - t0 : t0 - t1, 2 * M_PI);
-  if (s <= 0)
-    s += 2 * M_PI;
-  return s;
+  struct geom_arc a = {ep, eq, cp, cq, ccw};
+  return geom_arc_sweep(&a);
 }
 
 void plot_sample(struct plot *pl, const struct session *s, int axis, int64_t d)
@@ -164,16 +150,15 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
   pl->rows++;
   double t0 = pl->t;
   pl->t = r->t;
-  const struct mach_block *b = r->blk;
-  const char *mo = r->motion ? r->motion : "";
-  int arc = b && (!strcmp(mo, "G02") || !strcmp(mo, "G03") || !strcmp(mo, "G12") || !strcmp(mo, "G13"));
-  int teach = b && r->has_jogs && !strcmp(mo, "M19") && (b->g & (UINT64_C(1) << 2 | UINT64_C(1) << 3));
+  const struct mach_path *pa = r->has_path ? &r->path : NULL;
+  int arc = pa && pa->arc && !r->teach;
+  int teach = pa && pa->arc && r->teach && r->has_jogs;
   int p = 0, q = 0;
   double cp = 0, cq = 0;
   if (arc || teach) {
-    plane_axes(b->plane, &p, &q);
-    cp = b->w[SL_I + p];
-    cq = b->w[SL_I + q];
+    geom_plane_axes(pa->plane, &p, &q);
+    cp = pa->cp;
+    cq = pa->cq;
     if (cp == 0 && cq == 0)
       arc = teach = 0;
   }
@@ -208,11 +193,11 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
   g->kind = K_LINE;
   if (!arc && !teach)
     return;
-  g->plane = (uint8_t)(b->plane == 17 || b->plane == 18 ? b->plane : 19);
+  g->plane = (uint8_t)pa->plane;
   g->cp = (float)cp;
   g->cq = (float)cq;
   if (arc) {
-    int ccw = !strcmp(mo, "G03") || !strcmp(mo, "G13");
+    int ccw = pa->ccw;
     double sw = arc_sweep(cp, cq, (double)r->d[p], (double)r->d[q], ccw);
     g->sweep = (float)(ccw ? sw : -sw);
     g->kind = K_ARC;
@@ -223,8 +208,8 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
       if (a != p && a != q && r->jogs[a])
         off = 1;
     if (!off && (r->jogs[p] || r->jogs[q])) {
-      int ccw = (b->g >> 3) & 1;
-      double prog = arc_sweep(cp, cq, b->w[p], b->w[q], ccw);
+      int ccw = pa->ccw;
+      double prog = arc_sweep(cp, cq, (double)(pa->to[p] - r->start[p]), (double)(pa->to[q] - r->start[q]), ccw);
       double done = arc_sweep(cp, cq, (double)r->jogs[p], (double)r->jogs[q], ccw);
       double sw = done <= prog + 1e-6 ? done : -(2 * M_PI - done);
       g->sweep = (float)(ccw ? sw : -sw);
@@ -348,7 +333,7 @@ static void seg_point(const struct seg *g, double u, int teach, double out[4])
   }
   if (teach ? (g->flags & F_TEACH_ARC) : g->kind == K_ARC) {
     int p, q;
-    plane_axes(g->plane, &p, &q);
+    geom_plane_axes(g->plane, &p, &q);
     double cp = g->cp, cq = g->cq;
     double r0 = hypot(cp, cq), r1 = hypot(d[p] - cp, d[q] - cq);
     double th = atan2(-cq, -cp) + g->sweep * u, rr = r0 + (r1 - r0) * u;
@@ -470,7 +455,7 @@ static void path_seg(cairo_t *cr, const struct panel *P, const struct seg *g, in
     cairo_move_to(cr, x0, y0);
   int p = 0, q = 0;
   if (curve)
-    plane_axes(g->plane, &p, &q);
+    geom_plane_axes(g->plane, &p, &q);
   if (curve && P->u == p && P->v == q) {
     const int32_t *d = teach ? g->jog : g->d;
     double r = hypot(g->cp, g->cq) / 1000.0 * P->s;

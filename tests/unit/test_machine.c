@@ -5,12 +5,14 @@
 #include "errors.h"
 #include "kp.h"
 #include "machine.h"
+#include "kpmach.h"
+#include "geom.h"
 #include <math.h>
 #include <stdarg.h>
 #include <string.h>
 
 static struct machine m;
-static struct mach_block b;
+static struct kp_block b;
 static struct mach_out o;
 static char msg[200];
 
@@ -40,13 +42,13 @@ static void block(int motion, int plane, double f, ...)
 
 static void with_m(int n) { b.m |= 1u << n; }
 
-static int check(void) { return mach_check(&m, &b, msg, sizeof msg); }
+static int check(void) { return kp_mach_check(&m, &b, msg, sizeof msg); }
 
 static void exec(void)
 {
   ck_assert_msg(check() == 0, "mach_check: %s", msg);
-  mach_modal(&m, &b);
-  mach_motion(&m, &b, &o);
+  kp_mach_modal(&m, &b);
+  kp_mach_motion(&m, &b, &o);
 }
 
 /* ---- linear limit ---- */
@@ -140,7 +142,7 @@ START_TEST(arc_half_circle)
   /* №01 G02 G19 G09 X-20000 Z+0 I-10000 K+0 F1000: R 10 mm in XZ */
   block(MO_G02, 19, 1000, SL_X, -20000.0, SL_Z, 0.0, SL_I, -10000.0, SL_K, 0.0, -1);
   double len, ys;
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(len, M_PI * 10, 1e-9);
   ck_near(ys, 0, 0);
   exec();
@@ -156,10 +158,10 @@ START_TEST(arc_full_circle)
   /* №07 G02 G19 G09 X+0 Z+0 I-10000 K+0 F1000 */
   block(MO_G02, 19, 1000, SL_X, 0.0, SL_Z, 0.0, SL_I, -10000.0, SL_K, 0.0, -1);
   double len, ys;
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(len, 2 * M_PI * 10, 1e-9);
   b.motion = MO_G03;
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(len, 2 * M_PI * 10, 1e-9);
 }
 END_TEST
@@ -171,10 +173,10 @@ START_TEST(arc_direction_lengths)
    * G03 three quarters */
   double len, ys;
   block(MO_G02, 17, 1000, SL_X, 10000.0, SL_Y, 10000.0, SL_I, 10000.0, SL_J, 0.0, -1);
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(len, M_PI / 2 * 10, 1e-9);
   block(MO_G03, 17, 1000, SL_X, 10000.0, SL_Y, 10000.0, SL_I, 10000.0, SL_J, 0.0, -1);
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(len, 3 * M_PI / 2 * 10, 1e-9);
 }
 END_TEST
@@ -185,10 +187,10 @@ START_TEST(arc_direction_xz)
    * end at angle 270 (Z = -R): counter-clockwise is a quarter */
   double len, ys;
   block(MO_G03, 19, 1000, SL_X, 10000.0, SL_Z, -10000.0, SL_I, 10000.0, SL_K, 0.0, -1);
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(len, M_PI / 2 * 10, 1e-9);
   b.motion = MO_G02;
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(len, 3 * M_PI / 2 * 10, 1e-9);
 }
 END_TEST
@@ -199,7 +201,7 @@ START_TEST(arc_y_share_rule_2)
    * with Y at its ends and never lies along X: Y share sin 30 = 0.5 */
   block(MO_G03, 17, 1000, SL_X, -10000.0, SL_Y, 0.0, SL_I, -5000.0, SL_J, -8660.0, -1);
   double len, ys;
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(ys, 0.5, 1e-4);
   ck_near(len, M_PI / 3 * 10, 1e-2);
   exec();
@@ -214,7 +216,7 @@ START_TEST(arc_y_share_rule_3)
    * parallel to Y: F <= 6000/36 */
   block(MO_G02, 17, 1000, SL_X, -10000.0, SL_Y, 0.0, SL_I, -5000.0, SL_J, -8660.0, -1);
   double len, ys;
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(ys, 1, 0);
   ck_near(len, 5 * M_PI / 3 * 10, 1e-2);
   exec();
@@ -229,12 +231,12 @@ START_TEST(arc_y_share_yz_plane)
    * end at 270 deg has the radius along -Z: tangent along Y, share 1 */
   block(MO_G03, 18, 1000, SL_Y, 10000.0, SL_Z, -10000.0, SL_J, 10000.0, SL_K, 0.0, -1);
   double len, ys;
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(len, M_PI / 2 * 10, 1e-9);
   ck_near(ys, 1, 1e-12);
   /* from 180 deg to 210 deg: the tangent turns from Z by 30 deg */
   block(MO_G03, 18, 1000, SL_Y, 1340.0, SL_Z, -5000.0, SL_J, 10000.0, SL_K, 0.0, -1);
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);
   ck_near(ys, 0.5, 1e-4);
   ck_near(len, M_PI / 6 * 10, 1e-2);
 }
@@ -244,15 +246,15 @@ START_TEST(arc_errors)
 {
   double len, ys;
   block(MO_G02, 19, 1000, SL_X, -20000.0, SL_Z, 0.0, SL_I, -10005.0, -1);
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);
   block(MO_G02, 19, 1000, SL_X, -20000.0, SL_Z, 0.0, SL_I, -10002.0, -1);
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);   /* radii 10002, 9998 */
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);   /* radii 10002, 9998 */
   block(MO_G02, 19, 1000, SL_X, -20000.0, SL_Z, 0.0, SL_I, -10001.0, -1);
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), 0);   /* 2 µm apart: fine */
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), 0);   /* 2 µm apart: fine */
   block(MO_G02, 17, 1000, SL_X, 100.0, -1);
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);
   block(MO_G02, 17, 1000, SL_X, 0.0, SL_I, 3000000.0, SL_J, 3000000.0, -1);
-  ck_assert_int_eq(mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);
+  ck_assert_int_eq(kp_mach_arc(&b, &len, &ys, msg, sizeof msg), S42_E_ARC);
   ck_assert_int_eq(check(), S42_E_ARC);
 }
 END_TEST
@@ -356,7 +358,7 @@ END_TEST
 START_TEST(override_within_a_move)
 {
   block(MO_G01, 0, 60, SL_X, 60000.0, -1);   /* 60 mm at 60 mm/min: 60 s */
-  mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o);
   ck_assert(fabs(m.t - 60) < 1e-9);
   m.override_pct = 50;                       /* at 30 s: 30 mm left at 30 mm/min = 60 s */
   ck_assert(fabs(mach_override_at(&m, 30) - 30) < 1e-9);
@@ -375,7 +377,7 @@ START_TEST(override_within_a_move)
   /* the speed limit holds: 150 % of 6000 mm/min is 6000 */
   setup();
   block(MO_G01, 0, 6000, SL_X, 100000.0, -1);   /* 100 mm at 6000 mm/min: 1 s */
-  mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o);
   m.override_pct = 150;
   ck_assert(mach_override_at(&m, 0.5) == 0);
   ck_assert(fabs(m.t - 1) < 1e-9);
@@ -383,18 +385,109 @@ START_TEST(override_within_a_move)
   setup();
   m.override_allowed = 0;
   block(MO_G01, 0, 60, SL_X, 60000.0, -1);
-  mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o);
   m.override_pct = 50;
   ck_assert(mach_override_at(&m, 30) == 0);
   ck_assert(fabs(m.t - 60) < 1e-9);
   /* a dwell is no move: the last move is over */
   setup();
   block(MO_G01, 0, 60, SL_X, 1000.0, -1);
-  mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o);
   block(MO_G04, 0, 60, SL_X, 100.0, -1);
-  mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o);
   m.override_pct = 50;
   ck_assert(mach_override_at(&m, 5) == 0);
+}
+END_TEST
+
+/* The one geometry (src/core/geom.h): sweeps, the box an arc stays in,
+ * points along it, and the E-ARC checks with their messages. */
+START_TEST(geometry_of_arcs)
+{
+  struct geom_arc q = {-10000, 10000, -10000, 0, 1};   /* a quarter, ccw, from (0,0) round (-10,0) */
+  ck_near(geom_arc_sweep(&q), M_PI / 2, 1e-12);
+  ck_near(geom_arc_length(&q), 10000 * M_PI / 2, 1e-6);
+  double t0, dt, lo[2], hi[2], p, qq;
+  geom_arc_angles(&q, &t0, &dt);
+  ck_near(t0, 0, 1e-12);
+  ck_near(dt, M_PI / 2, 1e-12);
+  geom_arc_box(&q, lo, hi);
+  ck_near(lo[0], -10000, 1e-9);
+  ck_near(hi[1], 10000, 1e-9);
+  geom_arc_point(&q, 0.5, &p, &qq);
+  ck_near(p, -10000 + 10000 * cos(M_PI / 4), 1e-6);
+  ck_near(qq, 10000 * sin(M_PI / 4), 1e-6);
+  struct geom_arc cw = q;
+  cw.ccw = 0;                                          /* the other way round: three quarters */
+  ck_near(geom_arc_sweep(&cw), 3 * M_PI / 2, 1e-12);
+  geom_arc_box(&cw, lo, hi);
+  ck_near(lo[1], -10000, 1e-9);                        /* it passes below the centre */
+  struct geom_arc full = {0, 0, 5000, 0, 0};
+  ck_near(geom_arc_sweep(&full), 2 * M_PI, 1e-12);
+  ck_assert(geom_in_sweep(0, M_PI / 2, M_PI / 4));
+  ck_assert(!geom_in_sweep(0, M_PI / 2, M_PI));
+  ck_assert(geom_in_sweep(0, -M_PI / 2, -M_PI / 4));
+  char m[120];
+  struct geom_arc r0 = {1000, 0, 0, 0, 1}, big = {0, 0, 4000001, 0, 1}, off = {10000, 0, 5003, 0, 1};
+  ck_assert_int_eq(geom_arc_check(&r0, MACH_ARC_RMAX, MACH_ARC_TOL, m, sizeof m), -1);
+  ck_assert_str_eq(m, "arc centre at its start point: radius 0");
+  ck_assert_int_eq(geom_arc_check(&big, MACH_ARC_RMAX, MACH_ARC_TOL, m, sizeof m), -1);
+  ck_assert_str_eq(m, "arc radius 4000.001 mm is over 4000 mm");
+  ck_assert_int_eq(geom_arc_check(&off, MACH_ARC_RMAX, MACH_ARC_TOL, m, sizeof m), -1);
+  ck_assert_str_eq(m, "arc start radius 5003 µm and end radius 4997 µm differ by more than 2 µm");
+  ck_assert_int_eq(geom_arc_check(&q, MACH_ARC_RMAX, MACH_ARC_TOL, m, sizeof m), 0);
+  int a, b;
+  geom_plane_axes(GEOM_XY, &a, &b);
+  ck_assert(a == AX_X && b == AX_Y);
+  geom_plane_axes(GEOM_YZ, &a, &b);
+  ck_assert(a == AX_Y && b == AX_Z);
+  geom_plane_axes(GEOM_XZ, &a, &b);
+  ck_assert(a == AX_X && b == AX_Z);
+  ck_assert_int_eq(kp_plane(17), GEOM_XY);
+  ck_assert_int_eq(kp_plane(18), GEOM_YZ);
+  ck_assert_int_eq(kp_plane(19), GEOM_XZ);
+}
+END_TEST
+
+static char canon_buf[4096];
+static void canon_to_buf(void *ctx, const char *call)
+{
+  (void)ctx;
+  strncat(canon_buf, call, sizeof canon_buf - strlen(canon_buf) - 2);
+  strcat(canon_buf, "\n");
+}
+
+/* The canonical calls, with the trace observer watching: each call once,
+ * as LinuxCNC prints it; SET_FEED_RATE and SELECT_PLANE only on a change. */
+START_TEST(canonical_calls_traced)
+{
+  canon_buf[0] = 0;
+  m.canon = canon_to_buf;
+  struct mach_path pa = {.to = {10000, 0, 0, 0}};
+  mach_feed(&m, &pa, 600, &o);
+  pa.to[0] = 20000;
+  mach_feed(&m, &pa, 600, &o);
+  struct mach_path arc = {.arc = 1, .to = {15000, 0, 5000, 0}, .plane = GEOM_XZ, .cp = -5000, .cq = 0, .ccw = 1};
+  mach_feed(&m, &arc, 300, &o);
+  mach_spindle(&m, 1);
+  mach_dwell(&m, 1.5);
+  mach_spindle(&m, 0);
+  mach_traverse_axis(&m, AX_Z, 0, &o);
+  mach_program_end(&m);
+  ck_assert_str_eq(canon_buf, "SET_FEED_RATE(600.0000)\n"
+                              "STRAIGHT_FEED(10.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+                              "STRAIGHT_FEED(20.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+                              "SET_FEED_RATE(300.0000)\n"
+                              "SELECT_PLANE(CANON_PLANE_XZ)\n"
+                              "ARC_FEED(5.0000, 15.0000, 0.0000, 15.0000, -1, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+                              "START_SPINDLE_CLOCKWISE(0)\n"
+                              "DWELL(1.5000)\n"
+                              "STOP_SPINDLE_TURNING(0)\n"
+                              "STRAIGHT_TRAVERSE(15.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+                              "PROGRAM_END()\n");
+  ck_assert_int_eq((int)m.pos[AX_X], 15000);   /* the arc took X back by 5 mm round (15, 0) */
+  /* the wheel ran down for 3 s after the stop; the traverse took 5 mm at 6 m/min */
+  ck_assert(m.t > 3 + 1.5);
 }
 END_TEST
 
@@ -437,6 +530,8 @@ Suite *suite_machine(void)
   tcase_add_test(tc, time_g37_return);
   tcase_add_test(tc, jog_counts_in_position);
   tcase_add_test(tc, override_within_a_move);
+  tcase_add_test(tc, geometry_of_arcs);
+  tcase_add_test(tc, canonical_calls_traced);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -7,6 +7,7 @@
 #include "kp.h"
 #include "machfile.h"
 #include "machine.h"
+#include "kpmach.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -59,7 +60,7 @@ START_TEST(file_errors_name_line_and_column)
 END_TEST
 
 static struct machine m;
-static struct mach_block b;
+static struct kp_block b;
 
 static void block(int motion, int plane, double f, int n, const int *slots, const double *v)
 {
@@ -80,28 +81,28 @@ START_TEST(moves_checked_by_their_path)
   m.travel = tr;
   /* a line: its end point */
   block(MO_G01, 0, 1000, 1, (int[]){SL_X}, (double[]){50000});
-  ck_assert_int_eq(mach_check(&m, &b, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_check(&m, &b, msg, sizeof msg), 0);
   block(MO_G01, 0, 1000, 1, (int[]){SL_X}, (double[]){50001});
-  ck_assert_int_eq(mach_check(&m, &b, msg, sizeof msg), S42_E_TRAVEL);
+  ck_assert_int_eq(kp_mach_check(&m, &b, msg, sizeof msg), S42_E_TRAVEL);
   ck_assert_msg(strstr(msg, "X would reach 50.001 mm, outside its travel -50.000 .. 50.000"), "%s", msg);
   /* a full circle in XZ ending where it starts, swinging to Z+16 */
   block(MO_G02, 19, 1000, 3, (int[]){SL_X, SL_Z, SL_K}, (double[]){0, 0, 8000});
-  ck_assert_int_eq(mach_check(&m, &b, msg, sizeof msg), S42_E_TRAVEL);
+  ck_assert_int_eq(kp_mach_check(&m, &b, msg, sizeof msg), S42_E_TRAVEL);
   ck_assert_msg(strstr(msg, "Z would reach 16.000"), "%s", msg);
   /* a quarter of it: G03 from the circle's bottom (centre Z+8) to (+8, +8)
    * never rises above Z+8 */
   block(MO_G03, 19, 1000, 3, (int[]){SL_X, SL_Z, SL_K}, (double[]){8000, 8000, 8000});
-  ck_assert_int_eq(mach_check(&m, &b, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_check(&m, &b, msg, sizeof msg), 0);
   /* the same radius the long way round: reaches Z+16 */
   block(MO_G02, 19, 1000, 3, (int[]){SL_X, SL_Z, SL_K}, (double[]){8000, 8000, 8000});
-  ck_assert_int_eq(mach_check(&m, &b, msg, sizeof msg), S42_E_TRAVEL);
+  ck_assert_int_eq(kp_mach_check(&m, &b, msg, sizeof msg), S42_E_TRAVEL);
   /* Y and A have no travel: anything goes */
   block(MO_G01, 0, 100, 2, (int[]){SL_Y, SL_A}, (double[]){999999, 9999999});
-  ck_assert_int_eq(mach_check(&m, &b, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_check(&m, &b, msg, sizeof msg), 0);
   /* no machine file: no limit */
   mach_init(&m);
   block(MO_G01, 0, 1000, 1, (int[]){SL_X}, (double[]){999999});
-  ck_assert_int_eq(mach_check(&m, &b, msg, sizeof msg), 0);
+  ck_assert_int_eq(kp_mach_check(&m, &b, msg, sizeof msg), 0);
 }
 END_TEST
 

@@ -1,19 +1,19 @@
 /* The simulated machine (src/machine/grinder/machine.h). */
 #include "machine.h"
-#include "ast.h"
 #include "errors.h"
-#include "kp.h"
+#include "geom.h"
+#include <stdarg.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-
-#define BIT(x, n) (((x) >> (n)) & 1)
 
 void mach_init(struct machine *m)
 {
   memset(m, 0, sizeof *m);
   m->override_pct = 100;
   m->override_allowed = 1;
+  m->canon_f = -1;
+  m->canon_plane = -1;
 }
 
 double mach_axis_max(int axis)
@@ -62,85 +62,88 @@ double mach_linear_limit(const double d[4])
   return MACH_AXIS_MAX * sqrt(l2 / (x * x + 36.0 * 36.0 * y * y + z * z + a * a));
 }
 
-static void plane_axes(int plane, int *p, int *q)
+/* ---- the trace observer: the calls as LinuxCNC's canonical ones ---- */
+
+static void canon(const struct machine *m, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void canon(const struct machine *m, const char *fmt, ...)
 {
-  switch (plane) {
-  case 17: *p = AX_X; *q = AX_Y; break;
-  case 18: *p = AX_Y; *q = AX_Z; break;
-  default: *p = AX_X; *q = AX_Z; break;
+  char line[256];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(line, sizeof line, fmt, ap);
+  va_end(ap);
+  m->canon(m->canon_ctx, line);
+}
+
+#define MM(v) ((double)(v) / 1000.0)
+
+static void canon_feed_rate(struct machine *m, double f)
+{
+  if (m->canon && f != m->canon_f) {
+    canon(m, "SET_FEED_RATE(%.4f)", f);
+    m->canon_f = f;
   }
 }
 
-/* Is angle t inside the sweep from t0 of signed length dt? */
-static int in_sweep(double t0, double dt, double t)
+static void canon_point(const struct machine *m, const char *call)
 {
-  double rel = dt >= 0 ? t - t0 : t0 - t;
-  rel = fmod(rel, 2 * M_PI);
-  if (rel < 0)
-    rel += 2 * M_PI;
-  return rel <= fabs(dt) + 1e-12;
+  canon(m, "%s(%.4f, %.4f, %.4f, %.4f, 0.0000, 0.0000)", call, MM(m->pos[AX_X]), MM(m->pos[AX_Y]),
+        MM(m->pos[AX_Z]), MM(m->pos[AX_A]));
 }
 
-/* The start angle t0 and the signed sweep of an arc block (its geometry
- * checked by mach_arc). */
-static void arc_angles(const struct mach_block *b, double *t0, double *dt)
+/* LinuxCNC's planes: XY (X, Y; axis Z), YZ (Y, Z; axis X), XZ (Z, X; axis Y):
+ * the first and second axes in its order, the plane's name, and whether
+ * its turning sense is the reverse of ours (our XZ turns from X to Z). */
+static void canon_arc(struct machine *m, const struct mach_path *pa, const int64_t centre[2])
+{
+  static const char *const name[] = {"CANON_PLANE_XY", "CANON_PLANE_YZ", "CANON_PLANE_XZ"};
+  static const int first[] = {AX_X, AX_Y, AX_Z}, second[] = {AX_Y, AX_Z, AX_X}, axis[] = {AX_Z, AX_X, AX_Y};
+  int pl = pa->plane >= 0 && pa->plane <= 2 ? pa->plane : GEOM_XZ;
+  if (m->canon_plane != pl) {
+    canon(m, "SELECT_PLANE(%s)", name[pl]);
+    m->canon_plane = pl;
+  }
+  int p, q;
+  geom_plane_axes(pl, &p, &q);
+  double c[4] = {0, 0, 0, 0};
+  c[p] = (double)centre[0];
+  c[q] = (double)centre[1];
+  int rot = pa->ccw ? 1 : -1;
+  if (pl == GEOM_XZ)
+    rot = -rot;
+  canon(m, "ARC_FEED(%.4f, %.4f, %.4f, %.4f, %d, %.4f, %.4f, 0.0000, 0.0000)", MM(m->pos[first[pl]]),
+        MM(m->pos[second[pl]]), MM(c[first[pl]]), MM(c[second[pl]]), rot, MM(m->pos[axis[pl]]), MM(m->pos[AX_A]));
+}
+
+/* ---- contour moves ---- */
+
+static struct geom_arc arc_of(const struct machine *m, const struct mach_path *pa)
 {
   int p, q;
-  plane_axes(b->plane, &p, &q);
-  double ep = b->w[p], eq = b->w[q];
-  double cp = b->w[SL_I + p], cq = b->w[SL_I + q];
-  double a0 = atan2(-cq, -cp), a1 = atan2(eq - cq, ep - cp);
-  int ccw = b->motion == MO_G03 || b->motion == MO_G13;
-  double sweep;
-  if (ep == 0 && eq == 0) {
-    sweep = 2 * M_PI;
-  } else {
-    sweep = ccw ? a1 - a0 : a0 - a1;
-    sweep = fmod(sweep, 2 * M_PI);
-    if (sweep <= 0)
-      sweep += 2 * M_PI;
-  }
-  *t0 = a0;
-  *dt = ccw ? sweep : -sweep;
+  geom_plane_axes(pa->plane, &p, &q);
+  struct geom_arc a = {(double)(pa->to[p] - m->pos[p]), (double)(pa->to[q] - m->pos[q]), pa->cp, pa->cq, pa->ccw};
+  return a;
 }
 
-int mach_arc(const struct mach_block *b, double *len_mm, double *yshare, char *msg, size_t n)
+void mach_arc_shape(int plane, const struct geom_arc *a, double *len_mm, double *yshare)
 {
   int p, q;
-  plane_axes(b->plane, &p, &q);
-  double ep = b->w[p], eq = b->w[q];
-  double cp = b->w[SL_I + p], cq = b->w[SL_I + q];
-  double r0 = hypot(cp, cq), r1 = hypot(ep - cp, eq - cq);
-  if (r0 == 0) {
-    snprintf(msg, n, "arc centre at its start point: radius 0");
-    return S42_E_ARC;
-  }
-  if (r0 > 4000000.0 || r1 > 4000000.0) {
-    snprintf(msg, n, "arc radius %.3f mm is over 4000 mm", fmax(r0, r1) / 1000);
-    return S42_E_ARC;
-  }
-  if (fabs(r0 - r1) > 2.0) {
-    snprintf(msg, n, "arc start radius %.0f µm and end radius %.0f µm differ by more than 2 µm", r0, r1);
-    return S42_E_ARC;
-  }
-  double t0, dt;
-  arc_angles(b, &t0, &dt);
-  double sweep = fabs(dt);
-  *len_mm = (r0 + r1) / 2 * sweep / 1000.0;
+  geom_plane_axes(plane, &p, &q);
+  *len_mm = geom_arc_length(a) / 1000.0;
   /* The tangent at angle t is (-sin t, cos t): its Y share is |sin t| when Y
    * is the plane's first axis and |cos t| when it is the second. */
-  double s = 0;
+  double s = 0, t0, dt;
+  geom_arc_angles(a, &t0, &dt);
   if (p == AX_Y || q == AX_Y) {
     double c0 = p == AX_Y ? fabs(sin(t0)) : fabs(cos(t0));
     double c1 = p == AX_Y ? fabs(sin(t0 + dt)) : fabs(cos(t0 + dt));
     s = fmax(c0, c1);
     double crit[2] = {p == AX_Y ? M_PI / 2 : 0, p == AX_Y ? -M_PI / 2 : M_PI};
     for (int i = 0; i < 2; i++)
-      if (in_sweep(t0, dt, crit[i]))
+      if (geom_in_sweep(t0, dt, crit[i]))
         s = 1;   /* rule 16.3: the arc passes where its tangent is parallel to Y */
   }
   *yshare = s;
-  return 0;
 }
 
 static double effective(const struct machine *m, double f)
@@ -150,52 +153,33 @@ static double effective(const struct machine *m, double f)
   return f;
 }
 
-static int contour(const struct mach_block *b)
+int mach_held(const struct machine *m, int moves)
 {
-  return b->motion == MO_G01 || b->motion == MO_G02 || b->motion == MO_G03;
+  return moves && m->override_allowed && m->override_pct <= 0;
 }
 
-int mach_held(const struct machine *m, const struct mach_block *b)
-{
-  if (!m->override_allowed || m->override_pct > 0)
-    return 0;
-  for (int a = 0; a < 4; a++)
-    if (BIT(b->given, a) && b->w[a] != 0)
-      return 1;
-  return 0;
-}
-
-/* The block's path stays in the travel (language-independent: the ends of
- * a line; an arc's ends and the points where it turns back on an axis;
- * a helix's arc and the end of its rise).  0, or E-TRAVEL. */
-static int travel_check(const struct machine *m, const struct mach_block *b, char *msg, size_t n)
+/* The path stays in the travel: the ends of a line; an arc's ends and the
+ * points where it turns back on an axis.  0, or E-TRAVEL. */
+int mach_check_travel(const struct machine *m, const struct mach_path *pa, char *msg, size_t n)
 {
   const struct mach_travel *t = &m->travel;
   if (!(t->has[0] | t->has[1] | t->has[2] | t->has[3]))
     return 0;
-  int arc = b->motion == MO_G02 || b->motion == MO_G03 || b->motion == MO_G12 || b->motion == MO_G13;
-  if (b->motion != MO_G01 && !arc)
-    return 0;
   double lo[4], hi[4];
   for (int a = 0; a < 4; a++) {
-    double e = (double)m->pos[a] + (BIT(b->given, a) ? b->w[a] : 0);
-    lo[a] = fmin((double)m->pos[a], e);
-    hi[a] = fmax((double)m->pos[a], e);
+    lo[a] = fmin((double)m->pos[a], (double)pa->to[a]);
+    hi[a] = fmax((double)m->pos[a], (double)pa->to[a]);
   }
-  if (arc && b->plane) {
+  if (pa->arc) {
     int p, q;
-    plane_axes(b->plane, &p, &q);
-    double cp = (double)m->pos[p] + b->w[SL_I + p], cq = (double)m->pos[q] + b->w[SL_I + q];
-    double r = hypot(b->w[SL_I + p], b->w[SL_I + q]), t0, dt;
-    arc_angles(b, &t0, &dt);
-    for (int k = 0; k < 4; k++) {
-      double th = k * M_PI / 2;
-      if (!in_sweep(t0, dt, th))
-        continue;
-      double x = cp + r * cos(th), y = cq + r * sin(th);
-      lo[p] = fmin(lo[p], x); hi[p] = fmax(hi[p], x);
-      lo[q] = fmin(lo[q], y); hi[q] = fmax(hi[q], y);
-    }
+    geom_plane_axes(pa->plane, &p, &q);
+    struct geom_arc a = arc_of(m, pa);
+    double blo[2], bhi[2];
+    geom_arc_box(&a, blo, bhi);
+    lo[p] = fmin(lo[p], (double)m->pos[p] + blo[0]);
+    hi[p] = fmax(hi[p], (double)m->pos[p] + bhi[0]);
+    lo[q] = fmin(lo[q], (double)m->pos[q] + blo[1]);
+    hi[q] = fmax(hi[q], (double)m->pos[q] + bhi[1]);
   }
   for (int a = 0; a < 4; a++) {
     if (!t->has[a])
@@ -210,52 +194,151 @@ static int travel_check(const struct machine *m, const struct mach_block *b, cha
   return 0;
 }
 
-int mach_check(const struct machine *m, const struct mach_block *b, char *msg, size_t n)
+int mach_check_path(const struct machine *m, const struct mach_path *pa, double f, char *msg, size_t n)
 {
-  if (BIT(b->m, 3) && m->wheel == WHEEL_CCW) {
-    snprintf(msg, n, "M3 while the wheel turns counter-clockwise: stop it with M5 first");
-    return S42_E_WHEEL;
+  double len = 0;
+  if (!pa->arc) {
+    for (int a = 0; a < 4; a++)
+      len += (double)(pa->to[a] - m->pos[a]) * (double)(pa->to[a] - m->pos[a]);
+  } else {
+    struct geom_arc a = arc_of(m, pa);
+    if (geom_arc_check(&a, MACH_ARC_RMAX, MACH_ARC_TOL, msg, n))
+      return S42_E_ARC;
+    len = geom_arc_length(&a);
   }
-  if (BIT(b->m, 4) && m->wheel == WHEEL_CW) {
-    snprintf(msg, n, "M4 while the wheel turns clockwise: stop it with M5 first");
-    return S42_E_WHEEL;
+  if (len > 0 && f <= 0) {
+    snprintf(msg, n, "a contour move with F = 0: give the speed with F");
+    return S42_E_FEED;
   }
-  if (contour(b)) {
-    double len = 0, ys;
-    if (b->motion == MO_G01) {
-      for (int a = 0; a < 4; a++)
-        len += b->w[a] * b->w[a];
-    } else {
-      int e = mach_arc(b, &len, &ys, msg, n);
-      if (e)
-        return e;
-    }
-    if (len > 0 && b->f <= 0) {
-      snprintf(msg, n, "a contour move with F = 0: give the speed with F");
-      return S42_E_FEED;
-    }
-  }
-  return travel_check(m, b, msg, n);
+  return mach_check_travel(m, pa, msg, n);
 }
 
-void mach_modal(struct machine *m, const struct mach_block *b)
+int mach_check_spindle(const struct machine *m, int dir, char *msg, size_t n)
 {
-  if (BIT(b->m, 5)) {
+  if ((dir > 0 && m->wheel == WHEEL_CCW) || (dir < 0 && m->wheel == WHEEL_CW)) {
+    snprintf(msg, n, "the wheel turns the other way: stop it first");
+    return S42_E_WHEEL;
+  }
+  return 0;
+}
+
+void mach_spindle(struct machine *m, int dir)
+{
+  if (dir == 0) {
+    if (m->canon)
+      canon(m, "STOP_SPINDLE_TURNING(0)");
     if (m->wheel != WHEEL_OFF)
       mach_advance(m, MACH_WHEEL_RUNDOWN);
     m->wheel = WHEEL_OFF;
+    return;
   }
-  if (BIT(b->m, 3))
-    m->wheel = WHEEL_CW;
-  if (BIT(b->m, 4))
-    m->wheel = WHEEL_CCW;
-  if (BIT(b->m, 22)) m->corr_allowed = 1;
-  if (BIT(b->m, 23)) m->corr_allowed = 0;
-  if (BIT(b->m, 25)) m->override_allowed = 0;
-  if (BIT(b->m, 26)) m->override_allowed = 1;
+  if (m->canon)
+    canon(m, dir > 0 ? "START_SPINDLE_CLOCKWISE(0)" : "START_SPINDLE_COUNTERCLOCKWISE(0)");
+  m->wheel = dir > 0 ? WHEEL_CW : WHEEL_CCW;
+}
+
+void mach_switch(struct machine *m, int sw, int on)
+{
+  if (sw == MACH_SW_CORR) {
+    m->corr_allowed = on != 0;
+    return;
+  }
+  if (m->canon && (on != 0) != (m->override_allowed != 0))
+    canon(m, on ? "ENABLE_FEED_OVERRIDE()" : "DISABLE_FEED_OVERRIDE()");
+  m->override_allowed = on != 0;
+}
+
+void mach_program_end(struct machine *m)
+{
+  if (m->canon)
+    canon(m, "PROGRAM_END()");
+}
+
+void mach_dwell(struct machine *m, double sec)
+{
+  if (m->canon)
+    canon(m, "DWELL(%.4f)", sec);
+  mach_advance(m, sec);
+}
+
+void mach_traverse_axis(struct machine *m, int axis, int64_t to, struct mach_out *o)
+{
+  int64_t d = to - m->pos[axis];
+  mach_advance(m, fabs((double)d) / 1000.0 / mach_axis_max(axis) * 60.0);
+  m->pos[axis] += d;
+  o->d[axis] += d;
+  if (m->canon)
+    canon_point(m, "STRAIGHT_TRAVERSE");
+}
+
+/* The move proper, its speed and time (no trace line). */
+static void move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o);
+
+void mach_feed(struct machine *m, const struct mach_path *pa, double f, struct mach_out *o)
+{
+  double d[4], len, lim;
+  int64_t centre[2] = {0, 0};
+  for (int a = 0; a < 4; a++)
+    d[a] = (double)(pa->to[a] - m->pos[a]);
+  if (!pa->arc) {
+    len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + d[3] * d[3]) / 1000.0;
+    lim = mach_linear_limit(d);
+  } else {
+    double ys;
+    struct geom_arc ga = arc_of(m, pa);
+    mach_arc_shape(pa->plane, &ga, &len, &ys);
+    lim = MACH_AXIS_MAX / sqrt((1 - ys * ys) + 36.0 * 36.0 * ys * ys);
+    /* only the plane's axes move along an arc */
+    int p, q;
+    geom_plane_axes(pa->plane, &p, &q);
+    for (int a = 0; a < 4; a++)
+      if (a != p && a != q)
+        d[a] = 0;
+    centre[0] = m->pos[p] + (int64_t)llround(pa->cp);
+    centre[1] = m->pos[q] + (int64_t)llround(pa->cq);
+  }
+  canon_feed_rate(m, f);
+  move(m, d, len, lim, f, o);
+  double lin2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  if (len > 0 && d[3] != 0 && lin2 > 0 && !pa->arc) {
+    double ad = d[3] * M_PI * (pa->d1 / 1000.0) / 360.0;
+    o->v = o->feed * sqrt((lin2 + ad * ad) / (lin2 + d[3] * d[3]));
+    o->has_v = 1;
+  }
+  if (m->canon) {
+    if (pa->arc)
+      canon_arc(m, pa, centre);
+    else
+      canon_point(m, "STRAIGHT_FEED");
+  }
 }
 
 void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o)
+{
+  mach_move_along(m, NULL, d, len, limit, f, o);
+}
+
+void mach_move_along(struct machine *m, const struct mach_path *along, const double d[4], double len, double limit,
+                     double f, struct mach_out *o)
+{
+  int64_t centre[2] = {0, 0};
+  if (along && along->arc) {
+    int p, q;
+    geom_plane_axes(along->plane, &p, &q);
+    centre[0] = m->pos[p] + (int64_t)llround(along->cp);
+    centre[1] = m->pos[q] + (int64_t)llround(along->cq);
+  }
+  canon_feed_rate(m, f);
+  move(m, d, len, limit, f, o);
+  if (!m->canon)
+    return;
+  if (along && along->arc)
+    canon_arc(m, along, centre);
+  else
+    canon_point(m, "STRAIGHT_FEED");
+}
+
+static void move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o)
 {
   double dt = 0, f0 = f;
   if (len > 0) {
@@ -295,45 +378,4 @@ double mach_override_at(struct machine *m, double now)
   else
     m->t += d;
   return d;
-}
-
-void mach_motion(struct machine *m, const struct mach_block *b, struct mach_out *o)
-{
-  memset(o, 0, sizeof *o);
-  if (contour(b)) {
-    double d[4] = {0, 0, 0, 0};
-    for (int a = 0; a < 4; a++)
-      if (BIT(b->given, a))
-        d[a] = b->w[a];
-    double len, lim;
-    if (b->motion == MO_G01) {
-      len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + d[3] * d[3]) / 1000.0;
-      lim = mach_linear_limit(d);
-    } else {
-      double ys;
-      char msg[8];
-      mach_arc(b, &len, &ys, msg, sizeof msg);
-      lim = MACH_AXIS_MAX / sqrt((1 - ys * ys) + 36.0 * 36.0 * ys * ys);
-      /* only the plane's axes move along an arc */
-      int p, q;
-      plane_axes(b->plane, &p, &q);
-      for (int a = 0; a < 4; a++)
-        if (a != p && a != q)
-          d[a] = 0;
-    }
-    mach_move(m, d, len, lim, b->f, o);
-    double lin2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    if (len > 0 && d[3] != 0 && lin2 > 0 && b->motion == MO_G01) {
-      double ad = d[3] * M_PI * (b->d1 / 1000.0) / 360.0;
-      o->v = o->feed * sqrt((lin2 + ad * ad) / (lin2 + d[3] * d[3]));
-      o->has_v = 1;
-    }
-  } else if (b->motion == MO_G04) {
-    mach_advance(m, b->w[SL_X] / 10.0);
-  } else if (b->motion == MO_G37) {
-    int64_t dy = -m->pos[AX_Y];
-    mach_advance(m, fabs((double)dy) / 1000.0 / MACH_Y_MAX * 60.0);
-    m->pos[AX_Y] += dy;
-    o->d[AX_Y] = dy;
-  }
 }

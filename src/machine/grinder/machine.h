@@ -1,8 +1,10 @@
 /* The simulated ВЗ-208Ф3: positions of X, Y, Z, A in discretes, simulated
- * time, the wheel, the feed override and the contour-speed limits of
- * language.md section 16.  It knows nothing of bytecode or plugins: the
- * session hands it one block's meaning (struct mach_block) at a time, and
- * hears of passing time through the tick hook (oscillation runs there). */
+ * time, the wheel, the feed override, the contour-speed limits of
+ * language.md section 16 and the travel.  It knows no language: its calls
+ * are the canonical machine's (a line, an arc, a dwell, the wheel, a
+ * traverse, the panel's switches) in machine coordinates -- the start
+ * position is 0 -- and a trace observer sees each as LinuxCNC prints it
+ * (--trace=canon).  Passing time reaches the tick hook (oscillation). */
 #ifndef S42_MACHINE_H
 #define S42_MACHINE_H
 
@@ -16,16 +18,22 @@ enum { WHEEL_OFF, WHEEL_CW, WHEEL_CCW };
 #define MACH_Y_MAX (6000.0 / 36.0)
 #define MACH_WHEEL_RUNDOWN 3.0        /* s, the wheel's run-down after M5 */
 
-struct mach_block {
-  int motion;          /* enum motion (src/dialect/2c42/kp.h) */
-  int plane;           /* 0, 17, 18, 19 */
-  uint64_t g;
-  uint32_t m;
-  uint16_t given;      /* word slots given (src/dialect/2c42/ast.h SL_*) */
-  double w[16];        /* their values, rounded as the language says */
-  double f;            /* contour speed in force for this block */
-  double d1;
+#define MACH_ARC_RMAX 4000000.0       /* discretes: the largest arc radius */
+#define MACH_ARC_TOL 2.0              /* discretes: start and end radius may differ this much */
+
+/* A contour move: a line to `to`, or an arc in a plane round a centre (the
+ * axes off the plane stay).  to: absolute, discretes. */
+struct mach_path {
+  int arc;
+  int64_t to[4];
+  int plane;           /* enum geom_plane (src/core/geom.h) */
+  double cp, cq;       /* the centre, relative to the start, in the plane's axes */
+  int ccw;
+  double d1;           /* the work's diameter, µm (D1): the surface speed with A */
 };
+
+/* The panel's switches the program sets (M22/M23, M25/M26). */
+enum { MACH_SW_CORR, MACH_SW_OVERRIDE };
 
 struct mach_out {
   int64_t d[4];        /* contour increments made */
@@ -61,20 +69,43 @@ struct machine {
   /* called whenever simulated time passes, with the seconds */
   void (*tick)(void *ctx, double dt);
   void *tick_ctx;
+  /* --trace=canon: each call, as LinuxCNC's canonical call (NULL: none) */
+  void (*canon)(void *ctx, const char *call);
+  void *canon_ctx;
+  double canon_f;      /* the last SET_FEED_RATE printed (-1 none) */
+  int canon_plane;     /* the last SELECT_PLANE printed (-1 none) */
 };
 
 void mach_init(struct machine *m);
-/* Check a block against the machine's state; nothing changes.  Returns 0 or
- * an error code (vm/errors.h) with the message in msg. */
-int mach_check(const struct machine *m, const struct mach_block *b, char *msg, size_t n);
-/* Carry the block out (it passed mach_check), in two steps: the modal
- * changes (the wheel first, M22/M23, M25/M26), then the core's motion or
- * dwell (G01 G02 G03 G04 G37). */
-void mach_modal(struct machine *m, const struct mach_block *b);
-void mach_motion(struct machine *m, const struct mach_block *b, struct mach_out *o);
+/* Check a contour move at speed f before anything moves: its geometry
+ * (E-ARC), its speed (E-FEED), its travel (E-TRAVEL).  0, or the error code
+ * (vm/errors.h) with the message in msg. */
+int mach_check_path(const struct machine *m, const struct mach_path *pa, double f, char *msg, size_t n);
+/* Only the travel (a plugin's curve through the same points: the helix). */
+int mach_check_travel(const struct machine *m, const struct mach_path *pa, char *msg, size_t n);
+/* STRAIGHT_FEED / ARC_FEED: the move at speed f (mm/min, the override
+ * applies, then the limits), in simulated time. */
+void mach_feed(struct machine *m, const struct mach_path *pa, double f, struct mach_out *o);
+/* The wheel: 1 clockwise (M3), -1 counter-clockwise (M4), 0 stop (M5: a
+ * turning wheel runs down for MACH_WHEEL_RUNDOWN s).  The check refuses a
+ * reversal without a stop first (E-WHEEL). */
+int mach_check_spindle(const struct machine *m, int dir, char *msg, size_t n);
+void mach_spindle(struct machine *m, int dir);
+/* A panel switch on or off (MACH_SW_*). */
+void mach_switch(struct machine *m, int sw, int on);
+/* PROGRAM_END: the program ended (only the trace observer sees it). */
+void mach_program_end(struct machine *m);
+/* DWELL: simulated time passes. */
+void mach_dwell(struct machine *m, double sec);
+/* STRAIGHT_TRAVERSE of one axis to `to` at its maximum speed (G37: Y home). */
+void mach_traverse_axis(struct machine *m, int axis, int64_t to, struct mach_out *o);
 /* A contour move a plugin computed: increments d (discretes), its length
- * (mm) and speed limit (mm/min); F and the override apply as for G01. */
+ * (mm) and speed limit (mm/min); F and the override apply as for G01.
+ * along: the arc it follows (a helix: the arc in its plane, the rest of d
+ * the linear axis), for the trace's ARC_FEED; NULL: a STRAIGHT_FEED. */
 void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o);
+void mach_move_along(struct machine *m, const struct mach_path *along, const double d[4], double len, double limit,
+                     double f, struct mach_out *o);
 /* The override switch was turned (m->override_pct is the new position)
  * at simulated time `now`, within the last contour move: the rest of it
  * goes at the new speed.  The move's end and the machine's time move by
@@ -82,14 +113,14 @@ void mach_move(struct machine *m, const double d[4], double len, double limit, d
  * move that takes the override).  At 0 % nothing changes: the host holds
  * the move (its clock stops) and calls this again when the switch leaves 0. */
 double mach_override_at(struct machine *m, double now);
-/* Would a feed override of 0 % hold this block's contour move (the caller
- * knows whether the block is one: the core's G01-G03 or a plugin's)? */
-int mach_held(const struct machine *m, const struct mach_block *b);
-/* Effective speed of a linear move (increments in discretes) at speed f. */
+/* Would a feed override of 0 % hold a contour move that moves an axis? */
+int mach_held(const struct machine *m, int moves);
+/* Effective speed limit of a linear move (increments in discretes). */
 double mach_linear_limit(const double d[4]);
-/* Arc of a G02/G03 block: length in mm, the largest Y share of the tangent
- * along it (0..1).  Returns 0, or an error code with a message. */
-int mach_arc(const struct mach_block *b, double *len_mm, double *yshare, char *msg, size_t n);
+/* An arc's length in mm and the largest Y share of its tangent (0..1): the
+ * speed limit of language.md sec. 16.3. */
+struct geom_arc;
+void mach_arc_shape(int plane, const struct geom_arc *a, double *len_mm, double *yshare);
 /* Move an axis by hand (jog, correction); counts in the position.  The
  * axis stops at its travel limit: returns the move made (d, or less). */
 int64_t mach_jog(struct machine *m, int axis, int64_t d, int correction);
