@@ -37,6 +37,8 @@ struct program {
   struct prog_rule *rules; size_t nrules, caprules;
   struct prog_block *blocks; size_t nblocks, capblocks;
   uint32_t entry;                     /* pc where execution starts */
+  uint32_t max_stack;                 /* the deepest stack any block needs (the front end
+                                         records it; vm_init refuses more than the VM has) */
   int saved_reg;                      /* register saved across calls, -1 none */
   const char *file;                   /* for messages (not owned) */
   void *ext;                          /* front end's per-block data */

@@ -12,7 +12,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#define STACK 512        /* a block is <= 320 characters: it cannot nest deeper */
 #define CELL_MAX 9999999.0
 #define PARAM_MAX 9999999.0   /* SETP: the range of a parameter R0..R113 */
 
@@ -22,12 +21,23 @@ const struct vm_opinfo vm_ops[OP__COUNT] = {
 #undef OP_INFO
 };
 
-void vm_init(struct vm *vm, const struct program *p)
+int vm_init(struct vm *vm, const struct program *p)
 {
   memset(vm, 0, sizeof *vm);
   vm->p = p;
   vm->pc = p->entry;
   vm->max_blocks = 100000000;
+  if (p->max_stack > VM_STACK) {
+    /* refused before anything runs: the error names the entry block */
+    vm->cur = p->nblocks && p->entry < p->ncode ? (uint32_t)prog_block_at(p, p->entry) : 0;
+    vm->err.code = S42_E_LIMIT;
+    vm->err.block = vm->cur;
+    snprintf(vm->err.msg, sizeof vm->err.msg, "the program needs a stack of %u values; this VM has %d",
+             p->max_stack, VM_STACK);
+    vm->done = 1;
+    return -1;
+  }
+  return 0;
 }
 
 static void rollback(struct vm *vm)
@@ -209,7 +219,7 @@ enum vm_event vm_run(struct vm *vm)
   const struct program *p = vm->p;
   const uint32_t *code = p->code;
   const double *k = p->k;
-  double st[STACK + 1];
+  double st[VM_STACK + 1];   /* program.max_stack <= VM_STACK (vm_init) */
   double tos = 0.0, popped, out;
   int sp = 0;
   uint32_t pc = vm->pc;

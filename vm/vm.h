@@ -11,6 +11,7 @@
 #define VM_MAXDEPTH 8     /* nested sub calls */
 #define VM_ACELLS 15      /* cells per array */
 #define VM_JOURNAL 512    /* register writes one block can make (a block is <= 320 chars) */
+#define VM_STACK 512      /* values on the evaluation stack (program.max_stack at most) */
 
 enum vm_event {
   VM_EV_BLOCK,   /* the current block's words are evaluated: do its machine work */
@@ -65,7 +66,9 @@ struct vm {
   struct vm_array arr_old[2];
 };
 
-void vm_init(struct vm *vm, const struct program *p);
+/* 0, or -1 when the program needs a deeper stack than VM_STACK: the VM is
+ * then ended with that error (E-LIMIT), which the first vm_run returns. */
+int vm_init(struct vm *vm, const struct program *p);
 enum vm_event vm_run(struct vm *vm);
 /* The host's machine work for the current block failed: roll the block back
  * and end the run with that error.  vm_run then returns VM_EV_ERROR. */

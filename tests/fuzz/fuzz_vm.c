@@ -1,11 +1,14 @@
 /* libFuzzer harness for the VM and the machine: compile any text as a 2С42
- * program and, when it compiles, run it headless with a block budget,
- * answering every wait the way an operator might (a number, ПС, Пуск, a jog),
- * with cycle exit and corrections pressed now and then.  Nothing may crash,
- * hang, leak or trip a sanitizer. */
+ * program and, when it compiles, verify it and run it headless with a
+ * block budget, answering every wait the way an operator might (a number,
+ * ПС, Пуск, a jog), with cycle exit and corrections pressed now and then.
+ * Nothing may crash, hang, leak or trip a sanitizer; a program that
+ * compiles must verify before it runs. */
 #include "compile.h"
 #include "session.h"
+#include "verify.h"
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -18,6 +21,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   prog_init(&p);
   diag_init(&d, "fuzz.kp");
   if (comp_program((const char *)data, size, &d, &p) == 0) {
+    char msg[300];
+    if (prog_verify(&p, msg, sizeof msg)) {
+      fprintf(stderr, "fuzz_vm: the program compiles but does not verify: %s\n", msg);
+      abort();
+    }
     struct session *s = malloc(sizeof *s);
     if (s) {
       sess_init(s, &p);

@@ -52,7 +52,6 @@ struct comp {
   uint16_t isconst;
   uint16_t badslot;        /* a slot whose word was refused (its checks would cascade) */
   double kval[SL__COUNT];
-  int stack, maxstack;
   const struct plug_set *plugins;
   uint32_t plugmask;       /* plugins the current block calls */
   int plug_g;              /* a group-1 G of a plugin that is not the language's, 0 none */
@@ -123,11 +122,20 @@ static long emit(struct comp *c, int op, uint32_t a, unsigned col)
   return i;
 }
 
-static void push(struct comp *c, int n)
+/* The deepest stack of the current block's code, from the stack effects of
+ * vm/opcodes.h: walked once the block is emitted, superinstructions fused,
+ * so the count is exact.  A block's code runs straight through (vm/verify.c
+ * proves the same walk safe). */
+static uint32_t block_stack(const struct comp *c)
 {
-  c->stack += n;
-  if (c->stack > c->maxstack)
-    c->maxstack = c->stack;
+  int depth = 0, max = 0;
+  for (size_t pc = c->bstart; pc < c->p->ncode; pc++) {
+    const struct vm_opinfo *o = &vm_ops[INS_OP(c->p->code[pc])];
+    depth += o->push - o->pop;
+    if (depth > max)
+      max = depth;
+  }
+  return (uint32_t)max;
 }
 
 static void emit_num(struct comp *c, double v, unsigned col)
@@ -140,7 +148,6 @@ static void emit_num(struct comp *c, double v, unsigned col)
       c->oom = 1;
     emit(c, OP_CONST, (uint32_t)(k < 0 ? 0 : k), col);
   }
-  push(c, 1);
 }
 
 /* ---- constant folding ---- */
@@ -264,17 +271,15 @@ static void gen(struct comp *c, const struct expr *e)
       c->x->tk_col = e->col;
       c->x->tk_number = c->b->number;
     }
-    push(c, 1);
     return;
   case EX_SLOT:
     if (c->given & (1u << e->idx))
-      emit(c, OP_WORD, e->idx, e->col), push(c, 1);
+      emit(c, OP_WORD, e->idx, e->col);
     else
       emit_num(c, 0, e->col);
     return;
   case EX_ARR:
     emit(c, OP_ARD, e->idx, e->col);
-    push(c, 1);
     return;
   case EX_NEG:
     gen(c, e->a);
@@ -288,7 +293,6 @@ static void gen(struct comp *c, const struct expr *e)
     gen(c, e->a);
     size_t mark = c->p->ncode;
     gen(c, e->b);
-    push(c, -1);
     /* superinstruction: an operator whose right operand is one push */
     uint32_t last = mark < c->p->ncode ? c->p->code[mark] : 0;
     int fused = fuse_operand(e->op, (int)INS_OP(last));
@@ -314,13 +318,11 @@ static void gen(struct comp *c, const struct expr *e)
     gen(c, e->a);
     gen(c, e->b);
     emit(c, OP_CMP, e->op, e->col);
-    push(c, -1);
     return;
   case EX_AND: case EX_OR:
     gen(c, e->a);
     gen(c, e->b);
     emit(c, e->kind == EX_AND ? OP_AND : OP_OR, 0, e->col);
-    push(c, -1);
     return;
   }
 }
@@ -417,7 +419,6 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
     }
   }
   gen(c, e);
-  push(c, -1);
   if (dest <= 113 && w.lo == -9999999 && w.hi == 9999999 && !w.round && !w.clamp) {
     emit(c, OP_SETP, dest, col);   /* a parameter: its rule is implied */
     return;
@@ -895,7 +896,6 @@ static void compile_block(struct comp *c)
   else if (mo == MO_NONE && (G(27) || G(28) || G(29) || G(33) || G(34)))
     mo = MO_DIALOG;
   c->given = c->isconst = c->badslot = 0;
-  c->stack = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
 
   int g07 = G(7), srch = (G(10) || G(11)) && M(12);
@@ -939,7 +939,6 @@ static void compile_block(struct comp *c)
         break;
       gen(c, w->e);
       emit(c, OP_AWR, w->idx, w->col);
-      push(c, -1);
       break;
     case WK_AOP:
       emit(c, w->op, w->idx, w->col);
@@ -966,7 +965,6 @@ static void compile_block(struct comp *c)
   const struct word *PC = find_word(b, WK_PCOND);
   if (b->cond && PC && !b->bad) {
     gen(c, b->cond);
-    push(c, -1);
     size_t last = c->p->ncode - 1;
     if (b->cond->kind == EX_CMP && c->p->ncode > 0 && INS_OP(c->p->code[last]) == OP_CMP) {
       c->p->code[last] = INS(OP_CMPC, INS_A(c->p->code[last]));   /* CMP; COND */
@@ -1022,7 +1020,10 @@ static void compile_block(struct comp *c)
     sm->flags |= SF_M2;
     emit(c, OP_END, 0, b->mcol[2]);
   }
-  if (c->maxstack > 500)
+  uint32_t need = block_stack(c);
+  if (need > c->p->max_stack)
+    c->p->max_stack = need;
+  if (need > 500)
     err(c, S42_E_SYNTAX, b->col, "expression too complex");
 
   /* keep the texts */
@@ -1348,7 +1349,6 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
       toolong = 1;   /* its structure is not checked: it cannot run */
       break;
     }
-    c.maxstack = 0;
     compile_block(&c);
   }
   /* a last instruction so that nothing runs off the code */

@@ -1,0 +1,298 @@
+/* Bytecode verification (vm/verify.h).  One linear pass: the block table
+ * first, then each block's instructions from its BLOCK with the stack
+ * effects of vm/opcodes.h.  A block's code runs straight through (its jumps
+ * and calls come last, with the stack empty), so walking it in order is
+ * exact: together with "every jump lands on a BLOCK" this proves the stack
+ * of every path the VM can take. */
+#include "verify.h"
+#include "errors.h"
+#include "opcodes.h"
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+static int bad(char *msg, size_t n, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static int bad(char *msg, size_t n, const char *fmt, ...)
+{
+  if (msg && n) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, n, fmt, ap);
+    va_end(ap);
+  }
+  return -1;
+}
+
+static const char *plural(size_t n)
+{
+  return n == 1 ? "" : "s";
+}
+
+/* Instructions that may run with values on the stack: they compute, store
+ * or test and go on to the next instruction.  Every other one must find the
+ * stack empty (after its own pops): the VM may leave vm_run there (BLOCK,
+ * MACH, SYNC, END), whose stack is a local, or go elsewhere (jumps, CALL,
+ * RET), or close the block (COMMIT).  An opcode added to vm/opcodes.h is of
+ * that strict kind until it is listed here. */
+static int may_hold(int op)
+{
+  switch (op) {
+  case OP_CONST: case OP_INT: case OP_REG: case OP_WORD:
+  case OP_NEG: case OP_ADD: case OP_SUB: case OP_MUL: case OP_DIV: case OP_POW:
+  case OP_SIN: case OP_COS: case OP_TAN: case OP_ASIN: case OP_ACOS: case OP_ATAN: case OP_LOG:
+  case OP_SET: case OP_ARD: case OP_AWR: case OP_AZERO: case OP_APTR0: case OP_APTREND:
+  case OP_CMP: case OP_AND: case OP_OR: case OP_COND: case OP_TRUNC:
+  case OP_ADDI: case OP_SUBI: case OP_MULI: case OP_DIVI:
+  case OP_ADDK: case OP_SUBK: case OP_MULK: case OP_DIVK:
+  case OP_ADDR: case OP_SUBR: case OP_MULR: case OP_DIVR:
+  case OP_SETP: case OP_CMPC: case OP_CMPCK: case OP_CMPCR:
+    return 1;
+  default:
+    return 0;
+  }
+}
+
+/* A block is a transaction: it closes once, with COMMIT or one of the two
+ * that commit and jump; control leaves it only after that (so every loop
+ * counts blocks against the budget, and nothing runs with a transaction
+ * left open across blocks), and its work -- stores, array words, the
+ * machine's turn -- comes before. */
+static int commits(int op)
+{
+  return op == OP_COMMIT || op == OP_CJMP || op == OP_CJCOND;
+}
+
+static int leaves(int op)
+{
+  return op == OP_CALL || op == OP_PPJ || op == OP_JMP || op == OP_JCOND || op == OP_RET || op == OP_END;
+}
+
+static int works(int op)
+{
+  switch (op) {
+  case OP_SET: case OP_SETP: case OP_AWR: case OP_ARD: case OP_AZERO: case OP_APTR0: case OP_APTREND:
+  case OP_TRUNC: case OP_MACH: case OP_SYNC:
+    return 1;
+  default:
+    return 0;
+  }
+}
+
+/* Instructions that never go on to the next one: the code may end with one. */
+static int stops(int op)
+{
+  return op == OP_END || op == OP_JMP || op == OP_CJMP || op == OP_RET;
+}
+
+/* pc starts a block: what a jump, a call or the entry may target (the
+ * compiler targets nothing else). */
+static int block_start(const struct program *p, uint32_t pc)
+{
+  if (pc >= p->ncode || INS_OP(p->code[pc]) != OP_BLOCK)
+    return 0;
+  uint32_t b = INS_A(p->code[pc]);
+  return b < p->nblocks && p->blocks[b].code == pc;
+}
+
+/* What stands at pc, for a message: "SET", "BLOCK 3". */
+static const char *what(const struct program *p, uint32_t pc, char *buf, size_t n)
+{
+  unsigned op = INS_OP(p->code[pc]);
+  if (op >= OP__COUNT)
+    snprintf(buf, n, "opcode %u", op);
+  else if (vm_ops[op].opd == OPD_NONE)
+    snprintf(buf, n, "%s", vm_ops[op].name);
+  else
+    snprintf(buf, n, "%s %u", vm_ops[op].name, INS_A(p->code[pc]));
+  return buf;
+}
+
+static int operand(const struct program *p, uint32_t pc, char *msg, size_t n)
+{
+  uint32_t ins = p->code[pc], a = INS_A(ins);
+  int op = (int)INS_OP(ins);
+  const char *name = vm_ops[op].name;
+  char buf[40];
+  switch (vm_ops[op].opd) {
+  case OPD_NONE:
+    if (a)
+      return bad(msg, n, "pc %u: %s takes no operand but has %u", pc, name, a);
+    return 0;
+  case OPD_K:
+    if (a >= p->nk)
+      return bad(msg, n, "pc %u: %s %u but the program has %zu constant%s", pc, name, a, p->nk, plural(p->nk));
+    return 0;
+  case OPD_I:
+    return 0;
+  case OPD_REG:
+    if (a >= VM_NREG)
+      return bad(msg, n, "pc %u: %s r%u but there are %d registers", pc, name, a, VM_NREG);
+    return 0;
+  case OPD_SLOT:
+    if (a >= VM_NSLOT)
+      return bad(msg, n, "pc %u: %s w%u but there are %d word slots", pc, name, a, VM_NSLOT);
+    return 0;
+  case OPD_SET: {
+    unsigned dest = a & 0x3ff, r = a >> 10;
+    if (dest >= VM_NREG + VM_NSLOT)
+      return bad(msg, n, "pc %u: %s into %u, neither a register (0..%d) nor a word slot (%d..%d)", pc, name, dest,
+                 VM_NREG - 1, VM_NREG, VM_NREG + VM_NSLOT - 1);
+    if (r >= p->nrules)
+      return bad(msg, n, "pc %u: %s with rule %u but the program has %zu rule%s", pc, name, r, p->nrules,
+                 plural(p->nrules));
+    return 0;
+  }
+  case OPD_ARR:
+    if ((a & 3) > 1)
+      return bad(msg, n, "pc %u: %s of array %u but there are 2 arrays", pc, name, (a & 3) + 1);
+    if ((a >> 2) < 1 || (a >> 2) > 3)
+      return bad(msg, n, "pc %u: %s in mode %u, not 1 (then advance), 2 (stay) or 3 (back first)", pc, name, a >> 2);
+    return 0;
+  case OPD_MASK:
+    if (a < 1 || a > 3)
+      return bad(msg, n, "pc %u: %s of arrays %u, not 1, 2 or 3 (both)", pc, name, a);
+    return 0;
+  case OPD_REL:
+    /* 0 is an empty relation ("never"), which the language allows */
+    if (a > 7)
+      return bad(msg, n, "pc %u: %s relation %u, not 0..7 (1 <, 2 =, 4 >)", pc, name, a);
+    return 0;
+  case OPD_RELK:
+    if ((a >> 3) >= p->nk)
+      return bad(msg, n, "pc %u: %s with constant %u but the program has %zu constant%s", pc, name, a >> 3, p->nk,
+                 plural(p->nk));
+    return 0;
+  case OPD_RELR:
+    if ((a >> 3) >= VM_NREG)
+      return bad(msg, n, "pc %u: %s with r%u but there are %d registers", pc, name, a >> 3, VM_NREG);
+    return 0;
+  case OPD_PC:
+    if (a >= p->ncode)
+      return bad(msg, n, "pc %u: %s %04u but the program has %zu instruction%s", pc, name, a, p->ncode,
+                 plural(p->ncode));
+    if (!block_start(p, a))
+      return bad(msg, n, "pc %u: %s %04u, which is %s, not the start of a block", pc, name, a,
+                 what(p, a, buf, sizeof buf));
+    return 0;
+  case OPD_BLK:
+    if (a >= p->nblocks)
+      return bad(msg, n, "pc %u: %s %u but the program has %zu block%s", pc, name, a, p->nblocks, plural(p->nblocks));
+    if (p->blocks[a].code != pc)
+      return bad(msg, n, "pc %u: %s %u but block %u starts at pc %u", pc, name, a, a, p->blocks[a].code);
+    return 0;
+  default:
+    return bad(msg, n, "pc %u: %s has operand kind %d, which the verifier does not know", pc, name,
+               vm_ops[op].opd);
+  }
+}
+
+/* The block table, the entry and what the code needs around it. */
+static int table(const struct program *p, char *msg, size_t n)
+{
+  char buf[40];
+  if (p->ncode == 0)
+    return bad(msg, n, "the program has no instructions");
+  if (!p->code || !p->cols)
+    return bad(msg, n, "the program's code or its column map is missing");
+  if (p->ncode > INS_AMAX)
+    return bad(msg, n, "the program has %zu instructions; a jump reaches only %u", p->ncode, INS_AMAX);
+  if (p->nblocks == 0 || !p->blocks)
+    return bad(msg, n, "the program has no blocks");
+  if (p->nblocks > (size_t)INS_AMAX + 1)
+    return bad(msg, n, "the program has %zu blocks; BLOCK numbers only %u", p->nblocks, INS_AMAX + 1);
+  if ((p->nk && !p->k) || (p->nrules && !p->rules))
+    return bad(msg, n, "the program's constants or rules are missing");
+  for (size_t b = 0; b < p->nblocks; b++) {
+    uint32_t c = p->blocks[b].code;
+    if (b == 0 && c != 0)
+      return bad(msg, n, "block 0 starts at pc %u: the code before it belongs to no block", c);
+    if (b > 0 && c <= p->blocks[b - 1].code)
+      return bad(msg, n, "block %zu starts at pc %u, not after block %zu (pc %u)", b, c, b - 1,
+                 p->blocks[b - 1].code);
+    if (c >= p->ncode)
+      return bad(msg, n, "block %zu starts at pc %u but the program has %zu instruction%s", b, c, p->ncode,
+                 plural(p->ncode));
+    if (p->code[c] != INS(OP_BLOCK, b))
+      return bad(msg, n, "block %zu starts at pc %u with %s, not BLOCK %zu", b, c, what(p, c, buf, sizeof buf), b);
+  }
+  if (p->entry >= p->ncode)
+    return bad(msg, n, "entry %04u but the program has %zu instruction%s", p->entry, p->ncode, plural(p->ncode));
+  if (!block_start(p, p->entry))
+    return bad(msg, n, "entry %04u is %s, not the start of a block", p->entry, what(p, p->entry, buf, sizeof buf));
+  uint32_t last = (uint32_t)p->ncode - 1;
+  unsigned op = INS_OP(p->code[last]);
+  if (op < OP__COUNT && !stops((int)op))
+    return bad(msg, n, "pc %u: the code ends with %s, which runs on past its end (the last instruction must be "
+               "END, JMP, CJMP or RET)", last, vm_ops[op].name);
+  if (p->saved_reg < -1 || p->saved_reg >= VM_NREG)
+    return bad(msg, n, "the register saved across calls is %d, not -1 (none) or 0..%d", p->saved_reg, VM_NREG - 1);
+  for (size_t r = 0; r < p->nrules; r++) {
+    const struct prog_rule *ru = &p->rules[r];
+    if (!memchr(ru->name, 0, sizeof ru->name))
+      return bad(msg, n, "rule %zu: its name is not terminated", r);
+    if (ru->err <= S42_E_NONE || ru->err >= S42_E_COUNT)
+      return bad(msg, n, "rule %zu (%s): error code %u is not one of vm/errors.h", r, ru->name, ru->err);
+  }
+  return 0;
+}
+
+int prog_verify_need(const struct program *p, uint32_t *need, char *msg, size_t n)
+{
+  uint32_t max = 0;
+  size_t deepest = 0;
+  if (need)
+    *need = 0;
+  if (table(p, msg, n))
+    return -1;
+  for (size_t b = 0; b < p->nblocks; b++) {
+    uint32_t from = p->blocks[b].code;
+    uint32_t to = b + 1 < p->nblocks ? p->blocks[b + 1].code : (uint32_t)p->ncode;
+    uint32_t depth = 0, commit = UINT32_MAX;
+    for (uint32_t pc = from; pc < to; pc++) {
+      unsigned op = INS_OP(p->code[pc]);
+      if (op >= OP__COUNT)
+        return bad(msg, n, "pc %u: opcode %u is no instruction (there are %d)", pc, op, OP__COUNT);
+      if (operand(p, pc, msg, n))
+        return -1;
+      const struct vm_opinfo *o = &vm_ops[op];
+      if (depth < (uint32_t)o->pop)
+        return bad(msg, n, "pc %u: %s pops %d value%s but the stack holds %u (block %zu)", pc, o->name, o->pop,
+                   plural((size_t)o->pop), depth, b);
+      depth -= (uint32_t)o->pop;
+      if (commits((int)op) && commit != UINT32_MAX)
+        return bad(msg, n, "pc %u: %s commits block %zu a second time (first at pc %u)", pc, o->name, b, commit);
+      if (commits((int)op))
+        commit = pc;
+      else if (leaves((int)op) && commit == UINT32_MAX)
+        return bad(msg, n, "pc %u: %s before block %zu is committed: control leaves a block only after its COMMIT",
+                   pc, o->name, b);
+      else if (works((int)op) && commit != UINT32_MAX)
+        return bad(msg, n, "pc %u: %s after block %zu is committed (pc %u): a block's work is done inside its "
+                   "transaction", pc, o->name, b, commit);
+      if (depth && !may_hold((int)op))
+        return bad(msg, n, "pc %u: %s with %u value%s left on the stack (block %zu): it needs the stack empty", pc,
+                   o->name, depth, plural(depth), b);
+      depth += (uint32_t)o->push;
+      if (depth > max) {
+        max = depth;
+        deepest = b;
+        if (need)
+          *need = max;
+      }
+    }
+    if (depth)
+      return bad(msg, n, "pc %u: block %zu ends with %u value%s left on the stack", to - 1, b, depth, plural(depth));
+    if (commit == UINT32_MAX)
+      return bad(msg, n, "pc %u: block %zu ends without COMMIT, CJMP or CJCOND: its transaction never closes",
+                 to - 1, b);
+  }
+  if (p->max_stack < max)
+    return bad(msg, n, "block %zu (pc %u) needs a stack of %u values but the program records %u", deepest,
+               p->blocks[deepest].code, max, p->max_stack);
+  return 0;
+}
+
+int prog_verify(const struct program *p, char *msg, size_t n)
+{
+  return prog_verify_need(p, NULL, msg, n);
+}
