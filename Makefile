@@ -45,7 +45,7 @@ include bench/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: canon all check test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli
+.PHONY: canon dialect all check test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -72,7 +72,7 @@ check: deps
 	@$(MAKE) --no-print-directory test
 
 # The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus errors guide tutorial cli canon
+test: unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus errors guide tutorial cli canon dialect
 
 # --trace=canon: the calls on the machine, exactly (tests/canon/)
 canon: $(S42)

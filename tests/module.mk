@@ -129,7 +129,7 @@ FUZZ_TARGETS := compile vm operator toolmodel modbus modbus_conn state
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined $(ALL_INC) -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
-FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/host/plot.c src/host/cairo_dl.c,$(SRC_SRCS))
+FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/host/plot.c src/host/cairo_dl.c,$(SRC_SRCS)) $(BUILD)/gen/dialects.c
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRCS) $(wildcard src/*/*.h src/*/*/*.h vm/*.h display/*.h)
 	@mkdir -p $(@D)
 	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) $(MODBUS_LIBS) -pthread -lm -ldl
@@ -145,3 +145,23 @@ fuzz: fuzz-bin
 	    -artifact_prefix=$(BUILD)/fuzz/$$t- -print_final_stats=1 \
 	    $(BUILD)/fuzz/corpus-$$t tests/fuzz/corpus/$$t || exit 1; \
 	done
+
+# The fixture dialect (tests/dialect/fixture): a test s42 whose registry is
+# generated with it added, as a dialect's folder adds itself; then the
+# dialect seam's tests against it and against the real s42.
+include tests/dialect/fixture/module.mk
+FIXTURE_S42 := $(BUILD)/tests/dialect/s42
+$(BUILD)/tests/dialect/gen/dialects.stamp: FORCE
+	@mkdir -p $(@D)
+	@echo '$(FIXTURE_DIALECTS)' | cmp -s - $@ || echo '$(FIXTURE_DIALECTS)' > $@
+$(BUILD)/tests/dialect/gen/dialects.c: $(BUILD)/tests/dialect/gen/dialects.stamp scripts/gen-dialects.sh
+	sh scripts/gen-dialects.sh $(FIXTURE_DIALECTS) > $@
+$(BUILD)/tests/dialect/gen/dialects.o: $(BUILD)/tests/dialect/gen/dialects.c
+	$(CC) $(CPPFLAGS) -Isrc/core -Ivm $(WARN) $(CFLAGS) -c -o $@ $<
+$(FIXTURE_S42): $(VM_OBJS) $(DISP_OBJS) $(filter-out $(BUILD)/gen/dialects.o,$(SRC_OBJS)) $(SRC_MAIN_OBJ) \
+                $(FIXTURE_DIALECT_OBJS) $(BUILD)/tests/dialect/gen/dialects.o
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+unit-bin: $(FIXTURE_S42)
+dialect: $(S42) $(FIXTURE_S42)
+	sh tests/dialect/run.sh $(S42) $(FIXTURE_S42)

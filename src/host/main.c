@@ -4,6 +4,7 @@
 #include "disasm.h"
 #include "errors.h"
 #include "machfile.h"
+#include "dialect.h"
 #include "modbus.h"
 #include "nearest.h"
 #include "operator.h"
@@ -31,7 +32,7 @@ enum { EXIT_END = 0, EXIT_PROGRAM = 1, EXIT_USAGE = 2, EXIT_STOPPED = 3, EXIT_IO
 
 /* Every option, the commands that take it and its line of help: the
  * per-command help (`s42 run --help`) and "did you mean" come from here. */
-enum { C_RUN = 1, C_TUI = 2, C_PLOT = 4, C_CHECK = 8, C_DISASM = 16, C_PLUGINS = 32 };
+enum { C_RUN = 1, C_TUI = 2, C_PLOT = 4, C_CHECK = 8, C_DISASM = 16, C_PLUGINS = 32, C_DIALECTS = 64 };
 static const struct optinfo {
   const char *name, *arg;
   unsigned cmds;
@@ -72,6 +73,7 @@ static const struct cmdinfo {
   {"disasm", "PROGRAM.kp", "print the bytecode, block by block", C_DISASM},
   {"plot", "PROGRAM.kp -o FILE [options]", "run headless and draw the tool path (.png .svg .pdf)", C_PLOT},
   {"plugins", "[--json]", "list the plugins found and their functions", C_PLUGINS},
+  {"dialects", "", "list the controllers' languages s42 reads, their files and machines", C_DIALECTS},
 };
 
 /* An option that is not one: say so, with the nearest one the command takes. */
@@ -359,6 +361,59 @@ static int load_quiet(const char *path, struct program *p, struct diag_list *d, 
   return load_as(path, p, d, src, n, 0);
 }
 
+/* --dialect NAME, any command's: the language of its files (NULL: each
+ * file's extension says). */
+static const struct dialect *cli_dialect;
+
+static const struct dialect *dialect_of(const char *path)
+{
+  return cli_dialect ? cli_dialect : dialect_by_file(path);
+}
+
+/* `--dialect NAME` (or `--dialect=NAME`) among a command's arguments:
+ * taken out of argv.  0, or -1 after saying what is wrong. */
+static int take_dialect_opt(int *argc, char **argv)
+{
+  for (int i = 2; i < *argc; i++) {
+    const char *name;
+    int words;
+    if (strcmp(argv[i], "--dialect") == 0) {
+      if (i + 1 >= *argc) {
+        fprintf(stderr, "s42: --dialect needs a name (s42 dialects lists them)\n");
+        return -1;
+      }
+      name = argv[i + 1];
+      words = 2;
+    } else if (strncmp(argv[i], "--dialect=", 10) == 0) {
+      name = argv[i] + 10;
+      words = 1;
+    } else {
+      continue;
+    }
+    const struct dialect *dl = dialect_by_name(name);
+    if (!dl) {
+      char all[400];
+      dialect_names(all, sizeof all);
+      const char *names[64];
+      size_t k = 0;
+      for (; dialect_list[k] && k < 64; k++)
+        names[k] = dialect_list[k]->name;
+      const char *m = nearest_word(name, names, k);
+      if (m)
+        fprintf(stderr, "s42: --dialect: no dialect '%s': did you mean %s? (%s)\n", name, m, all);
+      else
+        fprintf(stderr, "s42: --dialect: no dialect '%s' (%s)\n", name, all);
+      return -1;
+    }
+    cli_dialect = dl;
+    for (int k = i; k + words <= *argc; k++)
+      argv[k] = argv[k + words];
+    *argc -= words;
+    i--;
+  }
+  return 0;
+}
+
 static int load_as(const char *path, struct program *p, struct diag_list *d, char **src, size_t *n, int print)
 {
   prog_init(p);
@@ -367,7 +422,7 @@ static int load_as(const char *path, struct program *p, struct diag_list *d, cha
   if (read_file(path, MAX_PROGRAM_BYTES, src, n))
     return EXIT_IO;
   struct plug_set *ps = plugins_init(NULL);
-  int r = comp_program_with(*src, *n, d, p, ps);
+  int r = dialect_of(path)->compile(*src, *n, d, p, ps);
   refused_notes(d, ps);
   if (print)
     diag_print(stderr, d);
@@ -436,6 +491,23 @@ static void check_json(const struct diag_list *d, const char *file)
 /* s42 check FILE...: the status is 1 when any program has errors, even when
  * another file could not be read (4 then only when none has errors): the
  * programs' verdict is what a script checking them asks for. */
+/* s42 dialects: the registry, a line each. */
+static int cmd_dialects(int argc, char **argv)
+{
+  (void)argv;
+  if (argc > 2) {
+    fprintf(stderr, "usage: s42 dialects\n");
+    return EXIT_USAGE;
+  }
+  printf("%-10s %-6s %-10s %s\n", "dialect", "file", "machine", "controller");
+  for (size_t i = 0; dialect_list[i]; i++) {
+    const struct dialect *d = dialect_list[i];
+    printf("%-10s %-6s %-10s %s%s\n", d->name, d->ext, d->machine, d->controller,
+           d->session ? "" : " (blocks run on the VM alone)");
+  }
+  return 0;
+}
+
 static int cmd_check(int argc, char **argv)
 {
   int errors = 0, io = 0, any = 0, json = 0;
@@ -971,6 +1043,110 @@ static void headless_free(struct runner *r, char *state_path, struct program *p,
 }
 
 /* The headless run of `s42 run` and `s42 plot` (plot != NULL). */
+/* A dialect the session does not run: its blocks on the VM alone, against
+ * no machine (contracts.md sec. 8's trace and dump: pos is empty). */
+static int run_bare(const struct opts *o, struct program *p, struct diag_list *d, struct plot *plot)
+{
+  if (plot || o->modbus || o->operator_file || o->state || o->restart || o->tool || o->machine) {
+    fprintf(stderr, "s42: %s: the %s dialect runs its blocks on the VM alone: plot, --modbus, --operator, "
+            "--state, --restart, --tool and --machine need a machine\n", o->program, dialect_of(o->program)->name);
+    return EXIT_USAGE;
+  }
+  struct vm vm;
+  if (vm_init(&vm, p)) {
+    fprintf(stderr, "s42: %s: %s\n", o->program, vm.err.msg);
+    return EXIT_PROGRAM;
+  }
+  vm.max_blocks = o->max_blocks;
+  vm.yield_all = 1;                /* every block comes back: the trace and the blocks list */
+  size_t nrun = 0, cap = 0;
+  int *run = NULL, st;
+  uint64_t seq = 0;
+  for (;;) {
+    enum vm_event ev = vm_run(&vm);
+    if (ev == VM_EV_BLOCK || ev == VM_EV_START) {
+      if (ev == VM_EV_START)
+        continue;
+      const struct prog_block *b = &p->blocks[vm.cur];
+      if (nrun == cap) {
+        cap = cap ? cap * 2 : 256;
+        int *nr = realloc(run, cap * sizeof *nr);
+        if (!nr) {
+          free(run);
+          fprintf(stderr, "s42: out of memory\n");
+          return EXIT_IO;
+        }
+        run = nr;
+      }
+      run[nrun++] = b->number ? (int)b->number : -1;
+      if (o->trace) {
+        if (o->json) {
+          printf("{\"seq\":%llu,\"n\":", (unsigned long long)++seq);
+          if (b->number)
+            printf("%u", (unsigned)b->number);
+          else
+            fputs("null", stdout);
+          printf(",\"line\":%u,\"depth\":%d,\"motion\":\"none\",\"pos\":{},\"feed\":0,\"t\":0}\n", b->line,
+                 vm.depth);
+        } else {
+          char nb[16];
+          printf("%6llu %-5s L%-4u none  t 0.0000\n", (unsigned long long)++seq,
+                 b->number ? (snprintf(nb, sizeof nb, "N%u", (unsigned)b->number), nb) : "N-", b->line);
+        }
+      }
+      continue;
+    }
+    st = ev == VM_EV_END ? EXIT_END : EXIT_PROGRAM;
+    break;
+  }
+  const struct vm_error *e = &vm.err;
+  const struct prog_block *eb = st ? &p->blocks[e->block] : NULL;
+  if (st) {
+    struct diag g;
+    memset(&g, 0, sizeof g);
+    g.sev = DIAG_ERROR;
+    g.code = e->code;
+    g.line = eb->line;
+    g.col = e->col ? e->col : eb->col;
+    g.number = eb->number ? (int)eb->number : -1;
+    snprintf(g.msg, sizeof g.msg, "%s", e->msg);
+    diag_print_in(stderr, d, &g);
+  }
+  if (o->dump) {
+    printf("{\"status\":\"%s\",\"error\":", st ? "error" : "end");
+    if (st) {
+      printf("{\"code\":\"%s\",\"n\":", err_code(e->code));
+      if (eb->number)
+        printf("%u", (unsigned)eb->number);
+      else
+        fputs("null", stdout);
+      printf(",\"line\":%u,\"col\":%u,\"message\":", eb->line, e->col ? e->col : eb->col);
+      json_string(stdout, e->msg);
+      putchar('}');
+    } else {
+      fputs("null", stdout);
+    }
+    fputs(",\"blocks\":[", stdout);
+    for (size_t i = 0; i < nrun; i++) {
+      if (run[i] > 0)
+        printf("%s%d", i ? "," : "", run[i]);
+      else
+        printf("%snull", i ? "," : "");
+    }
+    fputs("],\"time\":0,\"pos\":{},\"r\":{", stdout);
+    int first = 1;
+    for (int k = 0; k < VM_NREG; k++)
+      if (vm.reg[k] != 0) {
+        printf("%s\"%d\":", first ? "" : ",", k);
+        json_num(stdout, vm.reg[k]);
+        first = 0;
+      }
+    fputs("}}\n", stdout);
+  }
+  free(run);
+  return st;
+}
+
 static int headless(const struct opts *opt, struct plot *plot)
 {
   struct opts o = *opt;
@@ -999,6 +1175,14 @@ static int headless(const struct opts *opt, struct plot *plot)
   char *src = NULL;
   size_t n = 0;
   int rc = load(o.program, &p, &d, &src, &n);
+  if (rc == 0 && !dialect_of(o.program)->session) {
+    rc = run_bare(&o, &p, &d, plot);
+    prog_free(&p);
+    diag_free(&d);
+    free(src);
+    ops_free(&r.ops);
+    return rc;
+  }
   if (rc == EXIT_PROGRAM && plot) {
     const struct diag *g = diag_first_error(&d);
     plot_result(plot, NULL, rc, g ? err_code(g->code) : "E-SYNTAX", g ? g->number : -1, g ? g->line : 0);
@@ -1324,6 +1508,11 @@ static int cmd_tui(int argc, char **argv)
     fprintf(stderr, "s42: tui does not take %s\n", bad);
     return EXIT_USAGE;
   }
+  const struct dialect *dl = o.program ? dialect_of(o.program) : cli_dialect;
+  if (dl && !dl->session) {
+    fprintf(stderr, "s42: tui: the %s dialect has no panel yet (s42 run and s42 check take it)\n", dl->name);
+    return EXIT_USAGE;
+  }
   if (o.restart && !o.program) {
     fprintf(stderr, "s42: --restart needs the program file\n");
     return EXIT_USAGE;
@@ -1374,6 +1563,8 @@ static int command(int argc, char **argv)
     usage_to(stderr);
     return EXIT_USAGE;
   }
+  if (take_dialect_opt(&argc, argv))
+    return EXIT_USAGE;
   const char *cmd = argv[1];
   /* s42 CMD --help (or -h anywhere among its words), s42 help CMD */
   for (size_t i = 0; i < sizeof cmdinfo / sizeof cmdinfo[0]; i++) {
@@ -1406,6 +1597,8 @@ static int command(int argc, char **argv)
     return cmd_plot(argc, argv);
   if (strcmp(cmd, "plugins") == 0)
     return cmd_plugins(argc, argv);
+  if (strcmp(cmd, "dialects") == 0)
+    return cmd_dialects(argc, argv);
   if (strcmp(cmd, "tui") == 0)
     return cmd_tui(argc, argv);
   const char *names[sizeof cmdinfo / sizeof cmdinfo[0]];
