@@ -27,6 +27,72 @@ void sess_init(struct session *s, const struct program *p)
   s->go = 1;             /* the cycle's start is its first block's Пуск */
 }
 
+void sess_configure(struct session *s, const struct sess_config *c)
+{
+  s->cfg = *c;
+  s->en = c->en;
+  s->scr.en = c->en;
+  s->vm.max_blocks = c->max_blocks;
+  s->m.travel = c->travel;
+  s->plugins = c->plugins;
+  s->sink = c->sink;
+  s->vm.yield_all = c->yield_all;
+  s->vm.start_all = c->start_all || s->single || s->brk;
+  s->vm.watch = c->watch;
+  s->m.canon = c->canon;
+  s->m.canon_ctx = c->canon_ctx;
+}
+
+void sess_set_start_all(struct session *s, int on)
+{
+  s->cfg.start_all = on;
+  s->vm.start_all = on || s->single || s->brk;
+}
+
+void sess_set_cyrillic(struct session *s, int on)
+{
+  s->scr.cyr = on != 0;
+}
+
+void sess_fail(struct session *s, int code, const char *fmt, ...)
+{
+  char msg[sizeof s->vm.err.msg];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  vm_fail(&s->vm, code, "%s", msg);
+  s->state = SE_ERROR;
+}
+
+void sess_refuse(struct session *s, int code, const char *fmt, ...)
+{
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(s->vm.err.msg, sizeof s->vm.err.msg, fmt, ap);
+  va_end(ap);
+  s->vm.err.code = code;
+  s->vm.err.block = 0;
+  s->vm.err.col = 1;
+  s->state = SE_ERROR;
+}
+
+void sess_renew(struct session *s)
+{
+  double reg[114];
+  memcpy(reg, s->vm.reg, sizeof reg);
+  struct sess_config cfg = s->cfg;
+  int ovr = s->m.override_pct, single = s->single, brk = s->brk, cyr = s->scr.cyr;
+  const struct program *p = s->p;
+  sess_init(s, p);
+  sess_configure(s, &cfg);
+  s->m.override_pct = ovr;
+  s->scr.cyr = cyr;
+  sess_set_single(s, single);
+  sess_set_break(s, brk);
+  memcpy(s->vm.reg, reg, sizeof reg);
+}
+
 int sess_block_number(const struct session *s)
 {
   int n = s->p->blocks[s->vm.cur].number;
@@ -1004,7 +1070,7 @@ static int64_t stopped_jog(struct session *s, int axis, int64_t d, int correctio
 void sess_set_travel(struct session *s, const struct mach_travel *t)
 {
   if (t)
-    s->m.travel = *t;
+    s->m.travel = s->cfg.travel = *t;
 }
 
 int sess_jog(struct session *s, int axis, int64_t d)
@@ -1108,15 +1174,13 @@ double sess_override_at(struct session *s, double now)
 void sess_set_single(struct session *s, int on)
 {
   s->single = on != 0;
-  if (on)
-    s->vm.start_all = 1;
+  s->vm.start_all = s->cfg.start_all || s->single || s->brk;
 }
 
 void sess_set_break(struct session *s, int n)
 {
   s->brk = n > 0 ? n : 0;
-  if (n > 0)
-    s->vm.start_all = 1;
+  s->vm.start_all = s->cfg.start_all || s->single || s->brk;
 }
 
 const char *sess_wait_text(const struct session *s)

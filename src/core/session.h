@@ -61,8 +61,24 @@ struct sess_sink {
   void (*moved)(void *ctx, const struct session *s, int axis, int64_t d);
 };
 
+/* How a host sets a session up (sess_configure): kept, so that a new cycle
+ * (sess_renew) starts the same way. */
+struct sess_config {
+  int en;                       /* English machine messages */
+  uint64_t max_blocks;          /* E-LIMIT after that many blocks; 0 none */
+  struct mach_travel travel;    /* --machine FILE; none by default */
+  struct plug_set *plugins;
+  struct sess_sink sink;
+  int yield_all;                /* a row for every block (the trace, the terminal's listing) */
+  int start_all;                /* every block's start comes back to the host */
+  const uint8_t *watch;         /* per block: its start comes back (`at`, M15), or NULL */
+  void (*canon)(void *ctx, const char *call);   /* --trace=canon: the machine's calls */
+  void *canon_ctx;
+};
+
 struct session {
   const struct program *p;
+  struct sess_config cfg;       /* as the host set it up */
   struct vm vm;
   struct machine m;
   struct sess_sink sink;
@@ -117,6 +133,24 @@ struct session {
 };
 
 void sess_init(struct session *s, const struct program *p);
+/* The host's settings (language, budget, travel, plugins, sinks, what comes
+ * back to it); after sess_init, before the first sess_run. */
+void sess_configure(struct session *s, const struct sess_config *c);
+/* Every block's start comes back to the host (or only the watched ones). */
+void sess_set_start_all(struct session *s, int on);
+/* The screen's Рус mode (the service line's R). */
+void sess_set_cyrillic(struct session *s, int on);
+/* The host failed the run (a restart point that cannot be saved, a restart
+ * refused): the open block is rolled back and the run ends with that error. */
+void sess_fail(struct session *s, int code, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* The run refused before its first block (a restart refused): the error is
+ * at the program's first block, column 1; nothing ran. */
+void sess_refuse(struct session *s, int code, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* A new cycle of the same program (reset; Пуск after M2): a fresh machine
+ * and VM at block 1, with R0-R113 as they were (the 2С42 keeps its
+ * parameters), the host's settings and its switches (the feed override,
+ * single block, the breakpoint) kept. */
+void sess_renew(struct session *s);
 enum sess_ev sess_run(struct session *s);
 /* Operator input.  Each returns 0 when taken, -1 when it does not fit what
  * the machine waits for (the caller decides what that means). */

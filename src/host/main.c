@@ -4,6 +4,7 @@
 #include "disasm.h"
 #include "errors.h"
 #include "machfile.h"
+#include "cycle.h"
 #include "dialect.h"
 #include "modbus.h"
 #include "nearest.h"
@@ -592,6 +593,7 @@ static const char *bname(int n, char *buf)
 
 struct runner {
   struct session s;
+  struct cycle cyc;          /* the run setup: the restart point's file, the M15 saves */
   struct opscript ops;
   size_t next;               /* next ordered action */
   const char *file;
@@ -776,19 +778,13 @@ static int serve_wait(struct runner *r)
   return 0;
 }
 
-/* A block with M15 starts: save the restart point.  A save that fails
- * (the disk, the directory, a --state that is not a state) ends the run
- * there with E-STATE: the dump names it, and the status is 4 -- the file
- * system refused, the program did nothing wrong. */
-static int save_m15(struct runner *r, const char *state_path, uint64_t prog_hash)
+/* A block with M15 starts: save the restart point (src/host/cycle.c).  A
+ * save that fails (the disk, the directory, a --state that is not a state)
+ * ends the run there with E-STATE: the dump names it, and the status is 4
+ * -- the file system refused, the program did nothing wrong. */
+static int save_m15(struct runner *r)
 {
-  char serr[512];
-  if (!state_path || !((kp_attr(r->s.p, r->s.vm.cur)->m >> 15) & 1) ||
-      state_save(&r->s, state_path, prog_hash, serr, sizeof serr) == 0)
-    return 0;
-  vm_fail(&r->s.vm, S42_E_STATE, "cannot save the M15 restart state: %s", serr);
-  r->s.state = SE_ERROR;
-  return -1;
+  return cycle_m15(&r->cyc) < 0 ? -1 : 0;
 }
 
 /* ---- the headless run served over Modbus TCP (--modbus) ---- */
@@ -805,37 +801,13 @@ static void on_quit(int sig)
 static void new_cycle(struct runner *r, struct both_sink *bs)
 {
   struct session *s = &r->s;
-  double reg[114];
-  memcpy(reg, s->vm.reg, sizeof reg);
-  struct sess_sink sink = s->sink;
-  int en = s->en, yield_all = s->vm.yield_all;
-  uint64_t max_blocks = s->vm.max_blocks;
-  const uint8_t *watch = s->vm.watch;
-  struct plug_set *pl = s->plugins;
-  struct mach_travel travel = s->m.travel;
-  int ovr = s->m.override_pct;   /* a switch keeps its position */
-  void (*canon)(void *, const char *) = s->m.canon;
-  void *canon_ctx = s->m.canon_ctx;
-  sess_init(s, s->p);
-  s->m.canon = canon;
-  s->m.canon_ctx = canon_ctx;
-  sess_set_travel(s, &travel);
-  s->m.override_pct = ovr;
-  sess_set_single(s, bs->mm->single);
-  sess_set_break(s, bs->mm->brk);
-  s->plugins = pl;
-  s->sink = sink;
-  s->en = en;
-  s->scr.en = en;
-  s->vm.max_blocks = max_blocks;
-  s->vm.watch = watch;
-  s->vm.yield_all = yield_all;
-  s->vm.start_all = 1;
-  memcpy(s->vm.reg, reg, sizeof reg);
+  s->cfg.start_all = 1;          /* back to the loop at every block */
+  sess_renew(s);                 /* R0-R113 and the switches stay */
   memset(&bs->mm->motion, 0, sizeof bs->mm->motion);
   bs->mm->ovr_held = 0;
   bs->mm->feed = 0;
   bs->last_t = 0;
+  r->cyc.saves = 0;
   memset(r->runs, 0, 1000 * sizeof *r->runs);
 }
 
@@ -944,8 +916,7 @@ static void modbus_key(struct runner *r, struct both_sink *bs, int k)
 /* Serve the machine until SIGINT or SIGTERM.  Without an operator script
  * the cycle waits for a client's Пуск; with one, a wait the script cannot
  * serve waits for a client.  Returns the exit status and sets *st. */
-static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server *mb, const char *state_path,
-                       uint64_t prog_hash, const char **st)
+static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server *mb, const char **st)
 {
   struct mb_machine *mm = bs->mm;
   struct sigaction sa;
@@ -957,7 +928,7 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
   r->lenient = 1;
   r->mb = mb;
   r->mm = mm;
-  r->s.vm.start_all = 1;        /* back to the loop at every block */
+  sess_set_start_all(&r->s, 1);  /* back to the loop at every block */
   mb_publish(mb, mm);
   fprintf(stderr, "s42: Modbus TCP on %s%s\n", mb_address(mb),
           mm->idle ? "; the cycle starts with Пуск (coil 0)" : "");
@@ -1001,7 +972,7 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
         break;
       enum sess_ev ev = sess_run(&r->s);
       if (ev == SE_START) {
-        if (save_m15(r, state_path, prog_hash)) {
+        if (save_m15(r)) {
           *st = "error";
           return EXIT_IO;
         }
@@ -1031,9 +1002,9 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
   return r->s.state == SE_END ? EXIT_END : r->s.state == SE_ERROR ? EXIT_PROGRAM : EXIT_STOPPED;
 }
 
-static void headless_free(struct runner *r, char *state_path, struct program *p, struct diag_list *d, char *src)
+static void headless_free(struct runner *r, struct program *p, struct diag_list *d, char *src)
 {
-  free(state_path);
+  cycle_free(&r->cyc);
   free(r->watch);
   free(r->runs);
   ops_free(&r->ops);
@@ -1224,12 +1195,6 @@ static int headless(const struct opts *opt, struct plot *plot)
     }
   }
 
-  sess_init(&r.s, &p);
-  sess_set_travel(&r.s, &o.travel);
-  r.s.plugins = plugins_init(NULL);
-  r.s.en = o.en;
-  r.s.scr.en = o.en;
-  r.s.vm.max_blocks = o.max_blocks;
   struct both_sink bs;
   bs.tr.out = o.trace ? stdout : NULL;
   bs.tr.json = o.json;
@@ -1238,59 +1203,55 @@ static int headless(const struct opts *opt, struct plot *plot)
   bs.realtime = o.realtime;
   bs.mm = NULL;
   bs.last_t = 0;
-  r.s.sink.ctx = &bs;
-  r.s.sink.row = row_sink;
-  r.s.sink.warn = sink_warn;
-  r.s.sink.log = sink_log;
-  r.s.sink.moved = sink_moved;
-  r.s.vm.yield_all = o.trace;
-  if (o.canon) {
-    r.s.m.canon = canon_line;
-    r.s.m.canon_ctx = stdout;
-  }
   r.watch = calloc(p.nblocks ? p.nblocks : 1, 1);
   r.runs = calloc(1000, sizeof *r.runs);
   if (!r.watch || !r.runs) {
     fprintf(stderr, "s42: out of memory\n");
-    exit(EXIT_IO);
+    headless_free(&r, &p, &d, src);
+    return EXIT_IO;
   }
   for (size_t i = 0; i < r.ops.nat; i++)
     for (size_t b = 0; b < p.nblocks; b++)
       if (p.blocks[b].number == r.ops.at[i].at_number)
         r.watch[b] = 1;
-  /* M15 blocks save the restart state when they start */
-  char *state_path = NULL;
-  uint64_t prog_hash = state_hash(src, n);
-  int has_m15 = 0;
-  for (size_t b = 0; b < p.nblocks; b++)
-    if ((kp_attr(&p, b)->m >> 15) & 1) {
+  for (size_t b = 0; b < p.nblocks; b++)   /* M15 blocks save the restart state when they start */
+    if ((kp_attr(&p, b)->m >> 15) & 1)
       r.watch[b] = 1;
-      has_m15 = 1;
-    }
-  if (has_m15 || o.restart) {
-    if (o.state) {
-      state_path = strdup(o.state);
-    } else if ((state_path = malloc(strlen(o.program) + 7)) != NULL) {
-      sprintf(state_path, "%s.state", o.program);
-    }
-    if (!state_path) {
-      fprintf(stderr, "s42: out of memory\n");
-      exit(EXIT_IO);
-    }
+  struct sess_config cfg;
+  memset(&cfg, 0, sizeof cfg);
+  cfg.en = o.en;
+  cfg.max_blocks = o.max_blocks;
+  cfg.travel = o.travel;
+  cfg.plugins = plugins_init(NULL);
+  cfg.sink.ctx = &bs;
+  cfg.sink.row = row_sink;
+  cfg.sink.warn = sink_warn;
+  cfg.sink.log = sink_log;
+  cfg.sink.moved = sink_moved;
+  cfg.yield_all = o.trace;
+  cfg.watch = r.watch;
+  if (o.canon) {
+    cfg.canon = canon_line;
+    cfg.canon_ctx = stdout;
   }
-  r.s.vm.watch = r.watch;
   /* the plugins the program uses start now: one that cannot because of
    * the command line (no --tool for G10) stops the run before it begins */
   {
     char why[300], nbuf[16];
     size_t fb = 0;
-    if (sess_start_plugins(&r.s, why, sizeof why, &fb)) {
+    int setup = cycle_setup(&r.cyc, &r.s, &p, src, n, &cfg, o.program, o.state, o.restart, why, sizeof why, &fb);
+    if (setup == CYCLE_PLUGIN) {
       const struct prog_block *b = &p.blocks[fb];
       fprintf(stderr, "s42: %s\n", why);
       fprintf(stderr, "%s:%u:%u: note: %s: the first block that needs it\n", o.program, b->line, b->col,
               bname(b->number ? b->number : -1, nbuf));
-      headless_free(&r, state_path, &p, &d, src);
+      headless_free(&r, &p, &d, src);
       return EXIT_USAGE;
+    }
+    if (setup == CYCLE_OOM) {
+      fprintf(stderr, "s42: out of memory\n");
+      headless_free(&r, &p, &d, src);
+      return EXIT_IO;
     }
   }
   int status = EXIT_END;
@@ -1298,7 +1259,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   struct dump_error de, *dep = NULL;
   char serr[512];
   int ran = 1;                       /* the cycle started (not refused before its first block) */
-  if (o.restart && state_load(&r.s, state_path, prog_hash, serr, sizeof serr)) {
+  if (o.restart && cycle_restart(&r.cyc, serr, sizeof serr)) {
     ran = 0;
     fprintf(stderr, "%s:1:1: error: N-: restart refused: %s [E-STATE]\n", o.program, serr);
     memset(&de, 0, sizeof de);
@@ -1311,7 +1272,6 @@ static int headless(const struct opts *opt, struct plot *plot)
     dep = &de;
     status = EXIT_PROGRAM;
     st = "error";
-    r.s.state = SE_ERROR;
   }
   bs.pace.stop = NULL;
   int interruptible = o.realtime && !o.modbus;
@@ -1343,14 +1303,14 @@ static int headless(const struct opts *opt, struct plot *plot)
       mm.idle = !o.operator_file;
       bs.mm = &mm;
       bs.last_t = r.s.m.t;
-      status = modbus_loop(&r, &bs, mb, state_path, prog_hash, &st);
+      status = modbus_loop(&r, &bs, mb, &st);
       mb_close(mb);
       r.mb = NULL;
     }
   }
 
   while (status == EXIT_END) {
-    r.s.vm.start_all = interruptible || r.s.single || r.s.brk || (r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next]));
+    sess_set_start_all(&r.s, interruptible || (r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next])));
     if (interruptible && quit_signal) {
       const struct prog_block *b = &p.blocks[r.s.vm.cur];
       char qb[16];
@@ -1362,7 +1322,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     }
     enum sess_ev ev = sess_run(&r.s);
     if (ev == SE_START) {
-      if (save_m15(&r, state_path, prog_hash)) {
+      if (save_m15(&r)) {
         status = EXIT_IO;
         st = "error";
         break;
@@ -1443,7 +1403,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     fprintf(stderr, "s42: error writing the output\n");
     status = EXIT_IO;
   }
-  headless_free(&r, state_path, &p, &d, src);
+  headless_free(&r, &p, &d, src);
   return status;
 }
 

@@ -8,6 +8,7 @@
  * back through a pipe in the same poll. */
 #define NCURSES_WIDECHAR 1
 #include "tui.h"
+#include "cycle.h"
 #include "compile.h"
 #include "errors.h"
 #include "kp.h"
@@ -92,10 +93,8 @@ struct tui {
   struct program prog;
   int have_prog;
   char *run_src;
-  uint64_t hash;
-  char *state_path;
+  struct cycle cyc;          /* the run's setup: the restart point's file, the M15 saves */
   int restart_pending;
-  unsigned long m15_saves;  /* restart points saved in this run */
   struct session s;
   struct pace pace;
   int fast, held;
@@ -404,8 +403,7 @@ static void end_run(struct tui *t)
   t->have_prog = 0;
   free(t->run_src);
   t->run_src = NULL;
-  free(t->state_path);
-  t->state_path = NULL;
+  cycle_free(&t->cyc);
   t->run = R_IDLE;
 }
 
@@ -508,27 +506,33 @@ static void start_run(struct tui *t)
     return;
   }
   t->run_src = src;
-  t->hash = state_hash(src, n);
   t->run_gen = t->gen;
-  sess_init(&t->s, &t->prog);
-  sess_set_travel(&t->s, &t->o.travel);
-  t->s.en = t->o.en;
-  t->s.scr.en = t->o.en;
-  t->s.scr.cyr = t->cyr;
-  t->s.vm.max_blocks = t->o.max_blocks;
-  t->s.vm.start_all = 1;   /* one block per sess_run: the loop paces them */
-  t->s.vm.yield_all = 1;   /* a row for every block, for the listing */
-  t->s.sink.ctx = t;
-  t->s.sink.row = on_row;
-  t->s.sink.warn = on_warn;
-  t->s.sink.log = on_log;
-  t->s.plugins = t->o.plugins;
+  struct sess_config cfg;
+  memset(&cfg, 0, sizeof cfg);
+  cfg.en = t->o.en;
+  cfg.max_blocks = t->o.max_blocks;
+  cfg.travel = t->o.travel;
+  cfg.plugins = t->o.plugins;
+  cfg.sink.ctx = t;
+  cfg.sink.row = on_row;
+  cfg.sink.warn = on_warn;
+  cfg.sink.log = on_log;
+  cfg.start_all = 1;   /* one block per sess_run: the loop paces them */
+  cfg.yield_all = 1;   /* a row for every block, for the listing */
   char why[300], nb[16];
   size_t fb = 0;
-  if (sess_start_plugins(&t->s, why, sizeof why, &fb)) {   /* --tool missing or bad, as s42 run says */
+  int setup = cycle_setup(&t->cyc, &t->s, &t->prog, src, n, &cfg, t->path, t->o.state, t->restart_pending, why,
+                          sizeof why, &fb);
+  sess_set_cyrillic(&t->s, t->cyr);
+  if (setup == CYCLE_PLUGIN) {   /* --tool missing or bad, as s42 run says */
     const struct prog_block *b = &t->prog.blocks[fb];
     say(t, "%s; %u:%u %s needs it: the cycle does not start", why, b->line, b->col,
         bname(b->number ? (int)b->number : -1, nb));
+    end_run(t);
+    return;
+  }
+  if (setup == CYCLE_OOM) {
+    say(t, "out of memory: the cycle does not start");
     end_run(t);
     return;
   }
@@ -541,32 +545,12 @@ static void start_run(struct tui *t)
   t->stopped_mid = 0;
   t->cur.valid = 0;
   t->nchg = 0;
-  t->m15_saves = 0;
-  int has_m15 = 0;
-  for (size_t b = 0; b < t->prog.nblocks; b++)
-    if ((kp_attr(&t->prog, b)->m >> 15) & 1)
-      has_m15 = 1;
-  if ((has_m15 || t->restart_pending) && (t->o.state || t->path)) {
-    if (t->o.state) {
-      t->state_path = strdup(t->o.state);
-    } else if ((t->state_path = malloc(strlen(t->path) + 7)) != NULL) {
-      sprintf(t->state_path, "%s.state", t->path);
-    }
-  } else if (has_m15) {
-    say(t, "M15: the text has no file name yet, so the restart point is not saved (save it first)");
-  }
+  if (setup == CYCLE_NO_NAME && t->cyc.has_m15)
+    say(t, "M15: %s", why);
   if (t->restart_pending) {
     t->restart_pending = 0;
     char err[160];
-    if (!t->state_path) {
-      snprintf(err, sizeof err, "no state file (the text has no file name)");
-    }
-    if (!t->state_path || state_load(&t->s, t->state_path, t->hash, err, sizeof err)) {
-      t->s.vm.err.code = S42_E_STATE;
-      t->s.vm.err.block = 0;
-      t->s.vm.err.col = 1;
-      snprintf(t->s.vm.err.msg, sizeof t->s.vm.err.msg, "restart refused: %s", err);
-      t->s.state = SE_ERROR;
+    if (cycle_restart(&t->cyc, err, sizeof err)) {
       t->run = R_DONE;
       show_error(t);
       return;
@@ -630,21 +614,18 @@ static int advance(struct tui *t)
     enum sess_ev ev = sess_run(&t->s);
     switch (ev) {
     case SE_START:
-      if (t->state_path && ((kp_attr(&t->prog, t->s.vm.cur)->m >> 15) & 1)) {
-        char err[512];
-        if (state_save(&t->s, t->state_path, t->hash, err, sizeof err)) {
-          /* as s42 run: the cycle ends there with E-STATE */
-          vm_fail(&t->s.vm, S42_E_STATE, "cannot save the M15 restart state: %s", err);
-          t->s.state = SE_ERROR;
+      {
+        int saved = cycle_m15(&t->cyc);
+        if (saved < 0) {   /* as s42 run: the cycle ends there with E-STATE */
           t->run = R_DONE;
           show_error(t);
           return -1;
         }
-        if (t->m15_saves++ == 0)   /* once in the log; a loop would fill it */
-          say(t, "%s: M15 restart point saved in %s", bname(sess_block_number(&t->s), nb), t->state_path);
-        else
-          note(t, "%s: M15 restart point saved in %s (%lu)", bname(sess_block_number(&t->s), nb), t->state_path,
-               t->m15_saves);
+        if (saved && t->cyc.saves == 1)   /* once in the log; a loop would fill it */
+          say(t, "%s: M15 restart point saved in %s", bname(sess_block_number(&t->s), nb), t->cyc.state_path);
+        else if (saved)
+          note(t, "%s: M15 restart point saved in %s (%lu)", bname(sess_block_number(&t->s), nb), t->cyc.state_path,
+               t->cyc.saves);
       }
       continue;
     case SE_WAIT:
@@ -766,7 +747,7 @@ static void press_rus(struct tui *t)
   t->cyr = !t->cyr;
   t->idle.cyr = t->cyr;
   if (t->run != R_IDLE)
-    t->s.scr.cyr = t->cyr;
+    sess_set_cyrillic(&t->s, t->cyr);
 }
 
 /* The share of the current block's motion made at simulated time now. */
