@@ -21,14 +21,14 @@
   MSG(HANDL,  "виміряно лівий гвинт, не G10", "measured left hand, not G10") \
   MSG(HANDR,  "виміряно правий гвинт, не G11", "measured right hand, not G11")
 
-enum scr_msg {
+enum screen_msg {
 #define MSG_ENUM(id, uk, en) MSG_##id,
   S42_MESSAGES(MSG_ENUM)
 #undef MSG_ENUM
   MSG__COUNT
 };
 
-static inline const char *scr_msg_text(int id, int en)
+static inline const char *screen_msg_text(int id, int en)
 {
   static const char *const t[][2] = {
 #define MSG_ROW(id, uk, en) {uk, en},

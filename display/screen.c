@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-void scr_init(struct screen *s)
+void screen_init(struct screen *s)
 {
   memset(s, 0, sizeof *s);
   s->block = -1;
@@ -15,7 +15,7 @@ void scr_init(struct screen *s)
   memset(s->digits, ' ', 7);
 }
 
-int scr_decode(const char *p, uint32_t *out, int n)
+int screen_decode(const char *p, uint32_t *out, int n)
 {
   int k = 0;
   const unsigned char *u = (const unsigned char *)p;
@@ -44,7 +44,7 @@ static void put(uint32_t *line, int col, const uint32_t *t, int n)
 }
 
 /* The line the next dialog output goes to (M28: the fixed one). */
-static struct scr_line *next_line(struct screen *s, int *idx)
+static struct screen_line *next_line(struct screen *s, int *idx)
 {
   if (s->at_fixed && s->fixed >= 0) {
     s->at_fixed = 0;
@@ -60,7 +60,7 @@ static struct scr_line *next_line(struct screen *s, int *idx)
       s->fixed--;
     if (s->fline >= 0)
       s->fline--;
-    scr_message(s, scr_msg_text(MSG_LIMIT, s->en));
+    screen_message(s, screen_msg_text(MSG_LIMIT, s->en));
   }
   *idx = s->nbuf++;
   memset(&s->buf[*idx], 0, sizeof s->buf[*idx]);
@@ -69,22 +69,22 @@ static struct scr_line *next_line(struct screen *s, int *idx)
   return &s->buf[*idx];
 }
 
-void scr_center(struct screen *s, const char *text)
+void screen_center(struct screen *s, const char *text)
 {
   uint32_t t[SCR_COLS];
-  int n = scr_decode(text, t, SCR_COLS), idx;
+  int n = screen_decode(text, t, SCR_COLS), idx;
   s->p3 = s->p5 = 0;
-  struct scr_line *l = next_line(s, &idx);
+  struct screen_line *l = next_line(s, &idx);
   put(l->ch, (SCR_COLS - n) / 2, t, n);
   s->last = idx;
 }
 
-void scr_prompt(struct screen *s, const char *text, int wrapped)
+void screen_prompt(struct screen *s, const char *text, int wrapped)
 {
   uint32_t t[64];
-  int n = scr_decode(text, t, 64), idx;
+  int n = screen_decode(text, t, 64), idx;
   s->p3 = s->p5 = 0;
-  struct scr_line *l = next_line(s, &idx);
+  struct screen_line *l = next_line(s, &idx);
   if (wrapped && n > 24) {
     /* the text wraps at a space onto the next line, which gets the field */
     int cut = n < SCR_COLS ? n : SCR_COLS;
@@ -114,7 +114,7 @@ void scr_prompt(struct screen *s, const char *text, int wrapped)
   s->neg = 0;
 }
 
-void scr_field_digit(struct screen *s, int d)
+void screen_field_digit(struct screen *s, int d)
 {
   if (!s->editing)
     return;
@@ -123,7 +123,7 @@ void scr_field_digit(struct screen *s, int d)
   s->has_message = 0;
 }
 
-void scr_field_backspace(struct screen *s)
+void screen_field_backspace(struct screen *s)
 {
   if (!s->editing)
     return;
@@ -133,21 +133,21 @@ void scr_field_backspace(struct screen *s)
   s->digits[s->cursor] = ' ';
 }
 
-void scr_field_move(struct screen *s, int delta)
+void screen_field_move(struct screen *s, int delta)
 {
   s->has_message = 0;   /* a message stays until the next key */
   if (s->editing)
     s->cursor = (s->cursor + delta + 7) % 7;
 }
 
-void scr_field_minus(struct screen *s)
+void screen_field_minus(struct screen *s)
 {
   s->has_message = 0;   /* a message stays until the next key */
   if (s->editing)
     s->neg = !s->neg;
 }
 
-double scr_field_value(const struct screen *s)
+double screen_field_value(const struct screen *s)
 {
   double v = 0;
   for (int i = 0; i < 7; i++)
@@ -156,13 +156,13 @@ double scr_field_value(const struct screen *s)
   return s->neg ? -v : v;
 }
 
-void scr_field_close(struct screen *s)
+void screen_field_close(struct screen *s)
 {
   if (!s->editing)
     return;
   /* leading zeros are dropped: the number is shown right-aligned */
   char shown[9];
-  double v = scr_field_value(s);
+  double v = screen_field_value(s);
   snprintf(shown, sizeof shown, "%7.0f", fabs(v));
   int sign_outside = 0;
   if (v < 0) {
@@ -183,7 +183,7 @@ void scr_field_close(struct screen *s)
   s->editing = 0;
 }
 
-void scr_field_reopen(struct screen *s)
+void screen_field_reopen(struct screen *s)
 {
   s->editing = 1;
   memset(s->digits, ' ', 7);
@@ -191,7 +191,7 @@ void scr_field_reopen(struct screen *s)
   s->neg = 0;
 }
 
-void scr_field_type(struct screen *s, long long v)
+void screen_field_type(struct screen *s, long long v)
 {
   char d[24];
   snprintf(d, sizeof d, "%lld", v < 0 ? -v : v);
@@ -199,21 +199,21 @@ void scr_field_type(struct screen *s, long long v)
   s->cursor = 0;
   s->neg = 0;
   for (const char *p = d; *p && p - d < 7; p++)
-    scr_field_digit(s, *p - '0');
+    screen_field_digit(s, *p - '0');
   if (v < 0)
-    scr_field_minus(s);
+    screen_field_minus(s);
 }
 
-void scr_p3_clear(struct screen *s)
+void screen_p3_clear(struct screen *s)
 {
   s->np3 = 0;
 }
 
-void scr_p3_add(struct screen *s, const char *text)
+void screen_p3_add(struct screen *s, const char *text)
 {
   if (s->np3 >= SCR_WORK)
     return;
-  struct scr_p3 *l = &s->p3l[s->np3++];
+  struct screen_p3 *l = &s->p3l[s->np3++];
   memset(l, 0, sizeof *l);
   l->reg = -1;
   const char *ref = strstr(text, "((");
@@ -223,7 +223,7 @@ void scr_p3_add(struct screen *s, const char *text)
     hn = sizeof head - 1;
   memcpy(head, text, hn);
   head[hn] = 0;
-  scr_decode(head, l->ch, SCR_COLS);
+  screen_decode(head, l->ch, SCR_COLS);
   if (ref) {
     const char *q = ref + 2;
     while (*q == ' ') q++;
@@ -234,14 +234,14 @@ void scr_p3_add(struct screen *s, const char *text)
   s->p5 = 0;
 }
 
-int scr_p5_set(struct screen *s, int teeth, const double *steps, int lead, double tk, double ug, int hand)
+int screen_p5_set(struct screen *s, int teeth, const double *steps, int lead, double tk, double ug, int hand)
 {
   if (teeth < 1 || teeth > SCR_P5_MAX || !steps || !isfinite(tk) || !isfinite(ug))
     return -1;
   for (int i = 0; i < teeth; i++)
     if (!isfinite(steps[i]))
       return -1;
-  struct scr_p5 *r = &s->res;
+  struct screen_p5 *r = &s->res;
   memset(r, 0, sizeof *r);
   r->teeth = teeth;
   memcpy(r->steps, steps, (size_t)teeth * sizeof *steps);
@@ -254,7 +254,7 @@ int scr_p5_set(struct screen *s, int teeth, const double *steps, int lead, doubl
   return 0;
 }
 
-int scr_p5_page(struct screen *s, int delta)
+int screen_p5_page(struct screen *s, int delta)
 {
   if (!s->p5)
     return -1;
@@ -266,24 +266,24 @@ int scr_p5_page(struct screen *s, int delta)
   return 0;
 }
 
-void scr_set_directive(struct screen *s, const char *text)
+void screen_set_directive(struct screen *s, const char *text)
 {
   snprintf(s->dirtext, sizeof s->dirtext, "%s", text);
 }
 
-void scr_clear_directive(struct screen *s)
+void screen_clear_directive(struct screen *s)
 {
   s->dirtext[0] = 0;
 }
 
-void scr_message(struct screen *s, const char *text)
+void screen_message(struct screen *s, const char *text)
 {
   memset(s->message, 0, sizeof s->message);
-  scr_decode(text, s->message, SCR_COLS);
+  screen_decode(text, s->message, SCR_COLS);
   s->has_message = 1;
 }
 
-void scr_scroll(struct screen *s, int delta)
+void screen_scroll(struct screen *s, int delta)
 {
   s->top += delta;
   if (s->top > s->nbuf - SCR_WORK)
@@ -292,7 +292,7 @@ void scr_scroll(struct screen *s, int delta)
     s->top = 0;
 }
 
-void scr_value8(double v, char out[9])
+void screen_value8(double v, char out[9])
 {
   double r = round(v);
   if (fabs(r) > 99999999.0 || (r < 0 && r < -9999999.0) || !isfinite(r)) {
@@ -312,15 +312,15 @@ static void put_ascii(uint32_t *line, int col, const char *t)
 static void p5_line(uint32_t *line, const char *label, const char *value8)
 {
   uint32_t t[SCR_COLS];
-  int n = scr_decode(label, t, SCR_COLS - 8);
+  int n = screen_decode(label, t, SCR_COLS - 8);
   put(line, 0, t, n);
   if (value8) {
-    n = scr_decode(value8, t, 8);
+    n = screen_decode(value8, t, 8);
     put(line, SCR_COLS - n, t, n);
   }
 }
 
-void scr_p5_render(const struct scr_p5 *r, int en, uint32_t g[SCR_ROWS][SCR_COLS])
+void screen_p5_render(const struct screen_p5 *r, int en, uint32_t g[SCR_ROWS][SCR_COLS])
 {
   static const char *const lab[2][9] = {
     {"ЗУБІВ", "КРОК ГВИНТА TK, мкм", "КУТ ГВИНТА UG, 0.001°", "ГВИНТ", "ПРАВИЙ", "ЛІВИЙ", "ПРЯМИЙ",
@@ -332,12 +332,12 @@ void scr_p5_render(const struct scr_p5 *r, int en, uint32_t g[SCR_ROWS][SCR_COLS
   char v[9], w[40];
   for (int row = 1; row <= SCR_WORK; row++)
     memset(g[row], 0, sizeof g[row]);
-  scr_value8(r->teeth, v);
+  screen_value8(r->teeth, v);
   p5_line(g[1], L[0], v);
   if (r->lead) {
-    scr_value8(r->tk, v);
+    screen_value8(r->tk, v);
     p5_line(g[2], L[1], v);
-    scr_value8(r->ug, v);
+    screen_value8(r->ug, v);
     p5_line(g[3], L[2], v);
     p5_line(g[4], L[3], r->hand > 0 ? L[4] : r->hand < 0 ? L[5] : L[6]);
   } else {
@@ -355,17 +355,17 @@ void scr_p5_render(const struct scr_p5 *r, int en, uint32_t g[SCR_ROWS][SCR_COLS
   for (int i = first; i < last; i++) {
     char num[16];
     snprintf(num, sizeof num, "%3d", i + 1);
-    scr_value8(r->steps[i], v);
+    screen_value8(r->steps[i], v);
     p5_line(g[7 + i - first], num, v);
   }
 }
 
-void scr_render(const struct screen *s, const double *regs, int en, uint32_t g[SCR_ROWS][SCR_COLS])
+void screen_render(const struct screen *s, const double *regs, int en, uint32_t g[SCR_ROWS][SCR_COLS])
 {
   memset(g, 0, sizeof(uint32_t) * SCR_ROWS * SCR_COLS);
   static const char *const modes[2][3] = {{"АВТОМАТ", "РУЧНИЙ", "РЕЗУЛЬТАТИ"}, {"AUTO", "MANUAL", "RESULTS"}};
   uint32_t t[SCR_COLS];
-  int n = scr_decode(modes[en ? 1 : 0][s->mode], t, SCR_COLS);
+  int n = screen_decode(modes[en ? 1 : 0][s->mode], t, SCR_COLS);
   put(g[0], 0, t, n);
   if (s->cyr)
     g[0][n + 1] = 0x0052;   /* R */
@@ -375,19 +375,19 @@ void scr_render(const struct screen *s, const double *regs, int en, uint32_t g[S
     put_ascii(g[0], SCR_COLS - (int)strlen(b), b);
   }
   if (s->p5) {
-    scr_p5_render(&s->res, en, g);
+    screen_p5_render(&s->res, en, g);
   } else if (s->p3) {
     for (int i = 0; i < s->np3 && i < SCR_WORK; i++) {
       memcpy(g[1 + i], s->p3l[i].ch, sizeof g[1 + i]);
       if (s->p3l[i].reg >= 0 && s->p3l[i].reg <= 113) {
         char v[9];
-        scr_value8(regs ? regs[s->p3l[i].reg] : 0, v);
+        screen_value8(regs ? regs[s->p3l[i].reg] : 0, v);
         put_ascii(g[1 + i], SCR_COLS - 8, v);
       }
     }
   } else {
     for (int i = 0; i < SCR_WORK && s->top + i < s->nbuf; i++) {
-      const struct scr_line *l = &s->buf[s->top + i];
+      const struct screen_line *l = &s->buf[s->top + i];
       memcpy(g[1 + i], l->ch, sizeof g[1 + i]);
       if (l->field) {
         int edit = s->editing && s->top + i == s->fline;
@@ -419,7 +419,7 @@ void scr_render(const struct screen *s, const double *regs, int en, uint32_t g[S
             int reg = atoi(r);
             while (*r >= '0' && *r <= '9') r++;
             char v[9];
-            scr_value8(regs && reg <= 113 ? regs[reg] : 0, v);
+            screen_value8(regs && reg <= 113 ? regs[reg] : 0, v);
             put_ascii(g[SCR_ROWS - 1], col, v);
             col += 8;
             q = r;
@@ -435,13 +435,13 @@ void scr_render(const struct screen *s, const double *regs, int en, uint32_t g[S
       size_t len = (size_t)(q - start) < sizeof tmp - 1 ? (size_t)(q - start) : sizeof tmp - 1;
       memcpy(tmp, start, len);
       tmp[len] = 0;
-      if (scr_decode(tmp, one, 1) == 1)
+      if (screen_decode(tmp, one, 1) == 1)
         g[SCR_ROWS - 1][col++] = one[0];
     }
   }
 }
 
-void scr_print(FILE *f, uint32_t g[SCR_ROWS][SCR_COLS])
+void screen_print(FILE *f, uint32_t g[SCR_ROWS][SCR_COLS])
 {
   for (int r = 0; r < SCR_ROWS; r++) {
     int end = SCR_COLS;

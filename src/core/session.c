@@ -21,7 +21,7 @@ void sess_init(struct session *s, const struct program *p)
   mach_init(&s->m);
   s->m.tick = tick;
   s->m.tick_ctx = s;
-  scr_init(&s->scr);
+  screen_init(&s->scr);
   s->state = SE_START;
   s->blk.s = s;
   s->go = 1;             /* the cycle's start is its first block's Пуск */
@@ -349,9 +349,9 @@ static void h_directive(struct s42_block *b, const char *text)
   struct session *s = b->s;
   s->directive = 0;
   if (text)
-    scr_set_directive(&s->scr, text);
+    screen_set_directive(&s->scr, text);
   else
-    scr_clear_directive(&s->scr);
+    screen_clear_directive(&s->scr);
 }
 
 static void h_mode(struct s42_block *b, int mode)
@@ -369,20 +369,20 @@ static const char *h_text(struct s42_block *b, int msg)
   };
   if (msg < 1 || msg >= (int)(sizeof ids / sizeof ids[0]))
     return NULL;
-  return scr_msg_text(ids[msg], b ? b->s->en : 0);
+  return screen_msg_text(ids[msg], b ? b->s->en : 0);
 }
 
 static void h_message(struct s42_block *b, const char *text)
 {
   if (text)
-    scr_message(&b->s->scr, text);
+    screen_message(&b->s->scr, text);
 }
 
 static int h_results(struct s42_block *b, const struct s42_results *r)
 {
   if (!r || r->size < sizeof *r)
     return -1;
-  return scr_p5_set(&b->s->scr, r->teeth, r->steps, r->lead, r->tk, r->ug, r->hand);
+  return screen_p5_set(&b->s->scr, r->teeth, r->steps, r->lead, r->tk, r->ug, r->hand);
 }
 
 static const struct s42_host host = {
@@ -625,8 +625,8 @@ static int g28_check(struct session *s)
   else if (v > s->vm.w[SL_MAX])
     msg = MSG_ABOVE;
   if (msg >= 0) {
-    scr_message(&s->scr, scr_msg_text(msg, s->en));
-    scr_field_reopen(&s->scr);
+    screen_message(&s->scr, screen_msg_text(msg, s->en));
+    screen_field_reopen(&s->scr);
     s->wait = W_ANSWER;
     return SE_WAIT;
   }
@@ -643,17 +643,17 @@ static int dialog(struct session *s, const struct kp_attr *at)
   if (BIT(at->m, 28))
     s->scr.at_fixed = 1;
   if (BIT(at->g, 33))
-    scr_center(&s->scr, kp_str(s->p, at->g33));
+    screen_center(&s->scr, kp_str(s->p, at->g33));
   if (BIT(at->g, 29)) {
     const struct kp_ext *x = s->p->ext;
     if (!s->m15_seen)
-      scr_p3_clear(&s->scr);
+      screen_p3_clear(&s->scr);
     for (uint32_t i = 0; i < at->ng29; i++)
-      scr_p3_add(&s->scr, kp_str(s->p, x->lines[at->g29 + i]));
+      screen_p3_add(&s->scr, kp_str(s->p, x->lines[at->g29 + i]));
     s->scr.p3 = 1;
   }
   if (BIT(at->g, 27)) {
-    scr_prompt(&s->scr, kp_str(s->p, at->g27), at->g27form == '-');
+    screen_prompt(&s->scr, kp_str(s->p, at->g27), at->g27form == '-');
     if (BIT(at->m, 27))
       s->scr.fixed = s->scr.last;
     s->wait = W_ANSWER;
@@ -669,7 +669,7 @@ static int dialog(struct session *s, const struct kp_attr *at)
     return g28_check(s);
   }
   if (BIT(at->g, 34)) {
-    scr_message(&s->scr, scr_msg_text(MSG_DONE, s->en));
+    screen_message(&s->scr, screen_msg_text(MSG_DONE, s->en));
     s->wait = W_PUSK;
     return SE_WAIT;
   }
@@ -853,11 +853,11 @@ static int after_motion(struct session *s)
     s->m15_seen = 1;
   if (BIT(at->m, 21)) {
     s->directive = 0;
-    scr_clear_directive(&s->scr);
+    screen_clear_directive(&s->scr);
   }
   if (at->m18) {
     s->directive = at->m18;
-    scr_set_directive(&s->scr, kp_str(s->p, at->m18));
+    screen_set_directive(&s->scr, kp_str(s->p, at->m18));
   }
   if (at->motion == MO_G20) {
     s->scr.mode = SCR_MANUAL;
@@ -1003,8 +1003,8 @@ int sess_answer(struct session *s, long long v)
   if (s->state != SE_WAIT || s->wait != W_ANSWER)
     return -1;
   s->scr.has_message = 0;
-  scr_field_type(&s->scr, v);
-  scr_field_close(&s->scr);
+  screen_field_type(&s->scr, v);
+  screen_field_close(&s->scr);
   s->answer = (double)v;
   s->have_answer = 1;
   const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
@@ -1019,7 +1019,7 @@ int sess_answer(struct session *s, long long v)
 
 void sess_screen(const struct session *s, uint32_t grid[SCR_ROWS][SCR_COLS])
 {
-  scr_render(&s->scr, s->vm.reg, s->en, grid);
+  screen_render(&s->scr, s->vm.reg, s->en, grid);
 }
 
 int sess_key_ps(struct session *s)
@@ -1122,7 +1122,7 @@ int sess_correct(struct session *s, int axis, int64_t d)
 {
   if (!s->m.corr_allowed) {
     warn(s, "correction refused: operational corrections are forbidden (M23)");
-    scr_message(&s->scr, scr_msg_text(MSG_NOCORR, s->en));
+    screen_message(&s->scr, screen_msg_text(MSG_NOCORR, s->en));
     return -1;
   }
   stopped_jog(s, axis, d, 1);
@@ -1155,7 +1155,7 @@ int sess_override(struct session *s, int pct)
 {
   if (!s->m.override_allowed) {
     warn(s, "feed override refused: forbidden by M25");
-    scr_message(&s->scr, scr_msg_text(MSG_NOOVR, s->en));
+    screen_message(&s->scr, screen_msg_text(MSG_NOOVR, s->en));
     return -1;
   }
   s->m.override_pct = pct;

@@ -175,7 +175,7 @@ static long block_starting(const struct program *p, uint32_t pc)
   return p->blocks[b].code == pc ? (long)b : -1;
 }
 
-/* UTF-8 that scr_set_directive may have cut at its buffer's end. */
+/* UTF-8 that screen_set_directive may have cut at its buffer's end. */
 static int utf8_ok(const char *s)
 {
   const unsigned char *u = (const unsigned char *)s;
@@ -320,7 +320,7 @@ static void check_payload(struct chk *c, const struct state_payload *pl)
   if (!memchr(pl->dirtext, 0, sizeof pl->dirtext)) {
     refuse(c, "directive text is not terminated");
   } else if (pl->directive) {
-    /* an M18 of this program, shown as scr_set_directive keeps it */
+    /* an M18 of this program, shown as screen_set_directive keeps it */
     int found = 0;
     for (size_t k = 0; k < p->nblocks && !found; k++)
       found = kp_attr(p, k)->m18 == pl->directive;
@@ -387,7 +387,7 @@ int state_restore(struct session *s, const void *data, size_t len, const char *s
   memcpy(s->scr.p3l, pl->p3l, sizeof s->scr.p3l);
   s->directive = pl->directive;
   if (pl->dirtext[0])
-    scr_set_directive(&s->scr, pl->dirtext);
+    screen_set_directive(&s->scr, pl->dirtext);
   s->m15_seen = 1;
   rc = 0;
   for (uint32_t k = 0; k < pl->nplug && rc == 0; k++)

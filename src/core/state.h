@@ -51,7 +51,7 @@ struct state_payload {
     unsigned char data[STATE_PLUG_MAX];
   } plug[STATE_PLUGS];
   int32_t p3, np3;
-  struct scr_p3 p3l[SCR_WORK];
+  struct screen_p3 p3l[SCR_WORK];
   uint32_t directive;
   char dirtext[SCR_COLS * 4 + 1];
 };

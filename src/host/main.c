@@ -688,9 +688,9 @@ static void apply_immediate(struct runner *r, const struct op_action *a)
 {
   switch (a->kind) {
   case OA_KEY:
-    if (a->key == KEY_EXIT)
+    if (a->key == OPKEY_EXIT)
       sess_key_exit(&r->s);
-    else if (a->key == KEY_STOP)
+    else if (a->key == OPKEY_STOP)
       sess_key_stop(&r->s);
     break;
   case OA_CORRECT:
@@ -750,9 +750,9 @@ static int serve_wait(struct runner *r)
     if (!ops_is_waiting(a)) {
       apply_immediate(r, a);
       ok = 0;
-    } else if (a->kind == OA_KEY && a->key == KEY_PUSK) {
+    } else if (a->kind == OA_KEY && a->key == OPKEY_PUSK) {
       ok = sess_key_pusk(&r->s);
-    } else if (a->kind == OA_KEY && a->key == KEY_PS) {
+    } else if (a->kind == OA_KEY && a->key == OPKEY_PS) {
       ok = sess_key_ps(&r->s);
     } else if (a->kind == OA_JOG) {
       ok = sess_jog(&r->s, a->axis, a->n);
@@ -1395,9 +1395,9 @@ static int headless(const struct opts *opt, struct plot *plot)
   if (o.screen) {
     uint32_t grid[SCR_ROWS][SCR_COLS];
     if (dep)
-      scr_message(&r.s.scr, dep->machine);
+      screen_message(&r.s.scr, dep->machine);
     sess_screen(&r.s, grid);
-    scr_print(stdout, grid);
+    screen_print(stdout, grid);
   }
   if (fflush(stdout) || ferror(stdout)) {
     fprintf(stderr, "s42: error writing the output\n");

@@ -14,7 +14,7 @@ int ops_is_waiting(const struct op_action *a)
 {
   switch (a->kind) {
   case OA_ANSWER: case OA_JOG: case OA_SECTION: return 1;
-  case OA_KEY: return a->key == KEY_PUSK || a->key == KEY_PS;
+  case OA_KEY: return a->key == OPKEY_PUSK || a->key == OPKEY_PS;
   default: return 0;
   }
 }

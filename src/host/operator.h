@@ -10,7 +10,7 @@
 #include <stdio.h>
 
 enum op_kind { OA_ANSWER, OA_KEY, OA_JOG, OA_CORRECT, OA_OVERRIDE, OA_SECTION, OA_MODE, OA_BREAK };
-enum op_key { KEY_PUSK, KEY_PS, KEY_EXIT, KEY_STOP };
+enum op_key { OPKEY_PUSK, OPKEY_PS, OPKEY_EXIT, OPKEY_STOP };
 
 struct op_action {
   int kind;

@@ -16,12 +16,12 @@
 #include "report.h"
 #include "state.h"
 #include "tuitext.h"
-/* curses.h declares its own scr_init (and struct screen only as the
+/* curses.h declares its own screen_init (and struct screen only as the
  * opaque SCREEN, which ncurses never lets us look into): rename its
- * scr_init away so display/screen.h's stays the one in use. */
-#define scr_init curses_scr_init_unused
+ * screen_init away so display/screen.h's stays the one in use. */
+#define screen_init curses_scr_init_unused
 #include <curses.h>
-#undef scr_init
+#undef screen_init
 #include <errno.h>
 #include <fcntl.h>
 #include <langinfo.h>
@@ -42,7 +42,7 @@
 #define LOGN 200            /* messages kept */
 #define LOGW 200            /* characters per message */
 #define NCHG 24             /* registers that changed last */
-#define MBMAX 1000          /* characters of the input line */
+#define INPUTMAX 1000          /* characters of the input line */
 #define MAXSRC_FD 64
 #define SCR_H (SCR_ROWS + 2)   /* the framed 2С42 screen */
 #define SCR_W (SCR_COLS + 2)
@@ -55,8 +55,8 @@
 
 enum { R_IDLE, R_RUN, R_DONE };                 /* no run yet; a cycle is on; it ended */
 enum { F_PANEL, F_EDIT, F_PARAMS };             /* where the keys go */
-enum { MB_NONE, MB_INSERT, MB_REPLACE, MB_OPEN, MB_SAVEAS, MB_QUIT, MB_OPENASK, MB_QUITRUN, MB_OVERWRITE,
-       MB_FIND, MB_GOTO, MB_PARAM, MB_BREAK };
+enum { IN_NONE, IN_INSERT, IN_REPLACE, IN_OPEN, IN_SAVEAS, IN_QUIT, IN_OPENASK, IN_QUITRUN, IN_OVERWRITE,
+       IN_FIND, IN_GOTO, IN_PARAM, IN_BREAK };
 /* the estimate of the cycle time: none yet; the cycle's end; a lower
  * bound (the operator must act first, or it ran too long); an error */
 enum { EST_NONE, EST_END, EST_LEAST, EST_ERROR };
@@ -82,7 +82,7 @@ struct tui {
   struct tui_disk disk;     /* the file as it was read or saved (a save compares) */
   uint64_t saved_hash;      /* the text as read or saved: an undo back to it is not a change */
   size_t saved_len;
-  char *save_to;            /* MB_OVERWRITE: the save that waits for y */
+  char *save_to;            /* IN_OVERWRITE: the save that waits for y */
   unsigned gen;             /* bumped by every edit */
   unsigned char *mark;      /* per line after the last check: 0, 1 warning, 2 error */
   size_t nmark, nerr, nwarn;
@@ -139,19 +139,19 @@ struct tui {
   int page;                 /* the parameters page is shown (in the listing's place) */
   int psel, pcol;           /* its selected item, its first column shown */
   int prows;                /* its rows per column, as last drawn */
-  char find[MBMAX];         /* the last search */
+  char find[INPUTMAX];         /* the last search */
   long hl_line;             /* the match shown, -1 none */
   int hl_col, hl_len;       /* its column and length in characters */
   int hl_show;              /* bring it into view at the next draw */
   struct {
     int kind;
-    uint32_t b[MBMAX];
+    uint32_t b[INPUTMAX];
     int n, cur;
     int sel;                /* the pre-filled text is selected: typing replaces it */
-    int before;             /* MB_INSERT: before the cursor's line */
-    int reg;                /* MB_PARAM: the parameter */
+    int before;             /* IN_INSERT: before the cursor's line */
+    int reg;                /* IN_PARAM: the parameter */
     char prompt[640];
-  } mb;
+  } input;
   char log[LOGN][LOGW];
   int nlog;
   char msg[LOGW];           /* the message line */
@@ -415,7 +415,7 @@ static void show_error(struct tui *t)
   int num = b && b->number ? b->number : -1;
   char m[200], nb[16];
   report_machine_msg(m, sizeof m, e->code, num, e->aux, t->o.en);
-  scr_message(&t->s.scr, m);
+  screen_message(&t->s.scr, m);
   say(t, "%u:%u error %s: %s [%s]", b ? b->line : 1, e->col ? e->col : b ? b->col : 1, bname(num, nb), e->msg,
       err_code(e->code));
 }
@@ -447,10 +447,10 @@ static void restored(struct tui *t)
     if (BIT(at->m, 28))
       sc->at_fixed = 1;
     if (BIT(at->g, 33))
-      scr_center(sc, kp_str(p, at->g33));
+      screen_center(sc, kp_str(p, at->g33));
     if (BIT(at->g, 27)) {
       sc->editing = 0;   /* a G27 without its G28: the number it took is not known */
-      scr_prompt(sc, kp_str(p, at->g27), at->g27form == '-');
+      screen_prompt(sc, kp_str(p, at->g27), at->g27form == '-');
       if (BIT(at->m, 27))
         sc->fixed = sc->last;
       open = 1;
@@ -458,8 +458,8 @@ static void restored(struct tui *t)
       sc->fixed = sc->last >= 0 ? sc->last : sc->nbuf;
     }
     if (BIT(at->g, 28) && open && at->g28reg >= 0) {
-      scr_field_type(sc, llround(s->vm.reg[at->g28reg]));
-      scr_field_close(sc);
+      screen_field_type(sc, llround(s->vm.reg[at->g28reg]));
+      screen_field_close(sc);
       open = 0;
     }
   }
@@ -720,7 +720,7 @@ static void press_ps(struct tui *t)
     return;
   }
   if (t->s.wait == W_ANSWER) {
-    double v = scr_field_value(&t->s.scr);
+    double v = screen_field_value(&t->s.scr);
     sess_answer(&t->s, (long long)llround(v));
     if (t->s.state != SE_WAIT)
       resumed(t);
@@ -875,24 +875,24 @@ static void jog(struct tui *t, int axis, int sign)
 
 /* init: the text it starts with; a name (open, save as, a parameter's
  * value) comes selected, so that typing replaces it as in a form's field */
-static void mb_open(struct tui *t, int kind, const char *prompt, const char *init)
+static void input_open(struct tui *t, int kind, const char *prompt, const char *init)
 {
-  t->mb.kind = kind;
-  snprintf(t->mb.prompt, sizeof t->mb.prompt, "%s", prompt);
-  t->mb.n = init ? scr_decode(init, t->mb.b, MBMAX) : 0;
-  t->mb.cur = t->mb.n;
-  t->mb.sel = t->mb.n > 0 && (kind == MB_OPEN || kind == MB_SAVEAS || kind == MB_PARAM || kind == MB_FIND ||
-                              kind == MB_GOTO || kind == MB_BREAK);
+  t->input.kind = kind;
+  snprintf(t->input.prompt, sizeof t->input.prompt, "%s", prompt);
+  t->input.n = init ? screen_decode(init, t->input.b, INPUTMAX) : 0;
+  t->input.cur = t->input.n;
+  t->input.sel = t->input.n > 0 && (kind == IN_OPEN || kind == IN_SAVEAS || kind == IN_PARAM || kind == IN_FIND ||
+                              kind == IN_GOTO || kind == IN_BREAK);
 }
 
 /* The input line as UTF-8 (malloc'd). */
-static char *mb_text(const struct tui *t)
+static char *input_text(const struct tui *t)
 {
-  char *s = malloc((size_t)t->mb.n * 4 + 1), *p = s;
+  char *s = malloc((size_t)t->input.n * 4 + 1), *p = s;
   if (!s)
     return NULL;
-  for (int i = 0; i < t->mb.n; i++)
-    p += tui_utf8(t->mb.b[i], p);
+  for (int i = 0; i < t->input.n; i++)
+    p += tui_utf8(t->input.b[i], p);
   *p = 0;
   return s;
 }
@@ -1052,25 +1052,25 @@ static void save(struct tui *t, const char *path)
   }
   free(t->save_to);
   t->save_to = p;
-  mb_open(t, MB_OVERWRITE, q, NULL);
+  input_open(t, IN_OVERWRITE, q, NULL);
 }
 
 static void set_param(struct tui *t, int reg, const char *val);
 static void find(struct tui *t, int dir);
 static void go_to(struct tui *t, const char *s);
 
-static void mb_commit(struct tui *t)
+static void input_commit(struct tui *t)
 {
-  int kind = t->mb.kind;
-  char *s = mb_text(t);
-  t->mb.kind = MB_NONE;
+  int kind = t->input.kind;
+  char *s = input_text(t);
+  t->input.kind = IN_NONE;
   if (!s) {
     say(t, "out of memory");
     return;
   }
   switch (kind) {
-  case MB_INSERT: {
-    size_t at = !t->text.n || t->mb.before ? t->ecur : t->ecur + 1;
+  case IN_INSERT: {
+    size_t at = !t->text.n || t->input.before ? t->ecur : t->ecur + 1;
     if (tui_text_insert(&t->text, at, s) == 0) {
       t->ecur = at;
       edited(t);
@@ -1078,33 +1078,33 @@ static void mb_commit(struct tui *t)
     }
     break;
   }
-  case MB_REPLACE:
+  case IN_REPLACE:
     if (tui_text_replace(&t->text, t->ecur, s) == 0) {
       edited(t);
       say(t, "line %zu replaced", t->ecur + 1);
     }
     break;
-  case MB_OPEN:
+  case IN_OPEN:
     if (*s)
       load_file(t, s);
     break;
-  case MB_SAVEAS:
+  case IN_SAVEAS:
     if (*s)
       save(t, s);
     break;
-  case MB_FIND:
+  case IN_FIND:
     if (*s) {
       snprintf(t->find, sizeof t->find, "%s", s);
       find(t, 1);
     }
     break;
-  case MB_GOTO:
+  case IN_GOTO:
     go_to(t, s);
     break;
-  case MB_PARAM:
-    set_param(t, t->mb.reg, s);
+  case IN_PARAM:
+    set_param(t, t->input.reg, s);
     break;
-  case MB_BREAK:
+  case IN_BREAK:
     set_break(t, s);
     break;
   default:
@@ -1113,123 +1113,123 @@ static void mb_commit(struct tui *t)
   free(s);
 }
 
-static void mb_key(struct tui *t, int fn, wint_t c)
+static void input_key(struct tui *t, int fn, wint_t c)
 {
-  if (t->mb.kind == MB_QUITRUN) {
+  if (t->input.kind == IN_QUITRUN) {
     /* q again quits (asking about unsaved changes next); any other key
      * closes the question and the cycle goes on */
     int again = (!fn && (c == 'q' || c == 'Q')) || (fn && c == KEY_F(10));
-    t->mb.kind = MB_NONE;
+    t->input.kind = IN_NONE;
     if (!again) {
       say(t, "the cycle goes on");
       return;
     }
     if (t->dirty)
-      mb_open(t, MB_QUIT, "the text has unsaved changes: quit anyway? (y/n) ", NULL);
+      input_open(t, IN_QUIT, "the text has unsaved changes: quit anyway? (y/n) ", NULL);
     else
       t->quit = 1;
     return;
   }
-  if (t->mb.kind == MB_QUIT || t->mb.kind == MB_OPENASK || t->mb.kind == MB_OVERWRITE) {
+  if (t->input.kind == IN_QUIT || t->input.kind == IN_OPENASK || t->input.kind == IN_OVERWRITE) {
     int yes = !fn && (c == 'y' || c == 'Y');
-    int kind = t->mb.kind;
-    t->mb.kind = MB_NONE;
+    int kind = t->input.kind;
+    t->input.kind = IN_NONE;
     if (!yes) {
-      say(t, kind == MB_OVERWRITE ? "not saved" : "cancelled");
+      say(t, kind == IN_OVERWRITE ? "not saved" : "cancelled");
       return;
     }
-    if (kind == MB_QUIT) {
+    if (kind == IN_QUIT) {
       t->quit = 1;
-    } else if (kind == MB_OVERWRITE) {
+    } else if (kind == IN_OVERWRITE) {
       char *p = t->save_to;
       t->save_to = NULL;
       if (p)
         save_now(t, p);
       free(p);
     } else {
-      mb_open(t, MB_OPEN, "open file: ", t->path);
+      input_open(t, IN_OPEN, "open file: ", t->path);
     }
     return;
   }
-  int sel = t->mb.sel;
-  t->mb.sel = 0;
+  int sel = t->input.sel;
+  t->input.sel = 0;
   if (fn) {
     switch (c) {
-    case KEY_LEFT: if (t->mb.cur > 0 && !sel) t->mb.cur--; return;
-    case KEY_RIGHT: if (t->mb.cur < t->mb.n) t->mb.cur++; return;
-    case KEY_HOME: t->mb.cur = 0; return;
-    case KEY_END: t->mb.cur = t->mb.n; return;
+    case KEY_LEFT: if (t->input.cur > 0 && !sel) t->input.cur--; return;
+    case KEY_RIGHT: if (t->input.cur < t->input.n) t->input.cur++; return;
+    case KEY_HOME: t->input.cur = 0; return;
+    case KEY_END: t->input.cur = t->input.n; return;
     case KEY_BACKSPACE:
       c = 127;
       break;
     case KEY_DC:
       if (sel) {
-        t->mb.n = t->mb.cur = 0;
-      } else if (t->mb.cur < t->mb.n) {
-        memmove(&t->mb.b[t->mb.cur], &t->mb.b[t->mb.cur + 1], sizeof t->mb.b[0] * (size_t)(t->mb.n - t->mb.cur - 1));
-        t->mb.n--;
+        t->input.n = t->input.cur = 0;
+      } else if (t->input.cur < t->input.n) {
+        memmove(&t->input.b[t->input.cur], &t->input.b[t->input.cur + 1], sizeof t->input.b[0] * (size_t)(t->input.n - t->input.cur - 1));
+        t->input.n--;
       }
       return;
     case KEY_ENTER:
-      mb_commit(t);
+      input_commit(t);
       return;
     case KEY_F(4):
-      t->mb.sel = sel;
+      t->input.sel = sel;
       press_rus(t);
       return;
     default:
-      t->mb.sel = sel;
+      t->input.sel = sel;
       return;
     }
   }
   if (c == 127 || c == 8) {
     if (sel) {
-      t->mb.n = t->mb.cur = 0;   /* a selected name goes at once */
-    } else if (t->mb.cur > 0) {
-      memmove(&t->mb.b[t->mb.cur - 1], &t->mb.b[t->mb.cur], sizeof t->mb.b[0] * (size_t)(t->mb.n - t->mb.cur));
-      t->mb.n--;
-      t->mb.cur--;
+      t->input.n = t->input.cur = 0;   /* a selected name goes at once */
+    } else if (t->input.cur > 0) {
+      memmove(&t->input.b[t->input.cur - 1], &t->input.b[t->input.cur], sizeof t->input.b[0] * (size_t)(t->input.n - t->input.cur));
+      t->input.n--;
+      t->input.cur--;
     }
     return;
   }
   if (c == '\r' || c == '\n') {
-    mb_commit(t);
+    input_commit(t);
     return;
   }
   if (c == 27 || c == 7) {   /* Esc, Ctrl-G */
-    t->mb.kind = MB_NONE;
+    t->input.kind = IN_NONE;
     say(t, "cancelled");
     return;
   }
   if (c == 18) {             /* Ctrl-R: Рус */
-    t->mb.sel = sel;
+    t->input.sel = sel;
     press_rus(t);
     return;
   }
   if (c == 21) {             /* Ctrl-U: clear */
-    t->mb.n = t->mb.cur = 0;
+    t->input.n = t->input.cur = 0;
     return;
   }
   if (c < 0x20 || c == 0x7F || (c >= 0x80 && c < 0xA0)) {
-    t->mb.sel = sel;
+    t->input.sel = sel;
     return;
   }
   if (c >= 0x80 && !t->utf8) {
-    t->mb.sel = sel;
+    t->input.sel = sel;
     say(t, "this terminal is not UTF-8: type Cyrillic in Рус mode (F4)");
     return;
   }
   uint32_t ch = (uint32_t)c;
-  int enc = t->mb.kind == MB_INSERT || t->mb.kind == MB_REPLACE || t->mb.kind == MB_FIND;
+  int enc = t->input.kind == IN_INSERT || t->input.kind == IN_REPLACE || t->input.kind == IN_FIND;
   if (t->cyr && enc)
     ch = tui_cyr_key(ch);
   if (sel)
-    t->mb.n = t->mb.cur = 0;   /* typing replaces the selected text */
-  if (t->mb.n >= MBMAX)
+    t->input.n = t->input.cur = 0;   /* typing replaces the selected text */
+  if (t->input.n >= INPUTMAX)
     return;
-  memmove(&t->mb.b[t->mb.cur + 1], &t->mb.b[t->mb.cur], sizeof t->mb.b[0] * (size_t)(t->mb.n - t->mb.cur));
-  t->mb.b[t->mb.cur++] = ch;
-  t->mb.n++;
+  memmove(&t->input.b[t->input.cur + 1], &t->input.b[t->input.cur], sizeof t->input.b[0] * (size_t)(t->input.n - t->input.cur));
+  t->input.b[t->input.cur++] = ch;
+  t->input.n++;
 }
 
 /* ---- keys ---- */
@@ -1237,9 +1237,9 @@ static void mb_key(struct tui *t, int fn, wint_t c)
 static void ask_quit(struct tui *t)
 {
   if (t->run == R_RUN)
-    mb_open(t, MB_QUITRUN, "a cycle is running: q again to quit, any other key goes on ", NULL);
+    input_open(t, IN_QUITRUN, "a cycle is running: q again to quit, any other key goes on ", NULL);
   else if (t->dirty)
-    mb_open(t, MB_QUIT, "the text has unsaved changes: quit anyway? (y/n) ", NULL);
+    input_open(t, IN_QUIT, "the text has unsaved changes: quit anyway? (y/n) ", NULL);
   else
     t->quit = 1;
 }
@@ -1249,15 +1249,15 @@ static void ask_open(struct tui *t)
   if (!can_edit(t))
     return;
   if (t->dirty)
-    mb_open(t, MB_OPENASK, "the text has unsaved changes: open another file anyway? (y/n) ", NULL);
+    input_open(t, IN_OPENASK, "the text has unsaved changes: open another file anyway? (y/n) ", NULL);
   else
-    mb_open(t, MB_OPEN, "open file: ", t->path);
+    input_open(t, IN_OPEN, "open file: ", t->path);
 }
 
 static void ask_save(struct tui *t, int as)
 {
   if (as || !t->path)
-    mb_open(t, MB_SAVEAS, "save as: ", t->path);
+    input_open(t, IN_SAVEAS, "save as: ", t->path);
   else
     save(t, t->path);
 }
@@ -1441,8 +1441,8 @@ static int page_key(struct tui *t, int fn, wint_t c)
     snprintf(pr, sizeof pr, reg == REG_D1 ? "set D1 = " : "set R%d = ", reg);
     char v[40];
     snprintf(v, sizeof v, "%.10g", t->run != R_IDLE ? t->s.vm.reg[reg] : 0.0);
-    mb_open(t, MB_PARAM, pr, v);
-    t->mb.reg = reg;
+    input_open(t, IN_PARAM, pr, v);
+    t->input.reg = reg;
     return 1;
   }
   return 0;
@@ -1473,8 +1473,8 @@ static void edit_key(struct tui *t, int fn, wint_t c)
     if (can_edit(t)) {
       char p[48];
       snprintf(p, sizeof p, "insert %s line %zu: ", c == 'I' ? "before" : "after", t->ecur + 1);
-      mb_open(t, MB_INSERT, t->text.n ? p : "new block: ", NULL);
-      t->mb.before = c == 'I';
+      input_open(t, IN_INSERT, t->text.n ? p : "new block: ", NULL);
+      t->input.before = c == 'I';
     }
     return;
   case 'e':
@@ -1487,7 +1487,7 @@ static void edit_key(struct tui *t, int fn, wint_t c)
     if (can_edit(t)) {
       char p[40];
       snprintf(p, sizeof p, "line %zu: ", t->ecur + 1);
-      mb_open(t, MB_REPLACE, p, t->text.line[t->ecur]);
+      input_open(t, IN_REPLACE, p, t->text.line[t->ecur]);
     }
     return;
   case 'd':
@@ -1513,10 +1513,10 @@ static void edit_key(struct tui *t, int fn, wint_t c)
   case 'q': ask_quit(t); return;
   case 'k': if (t->ecur > 0) t->ecur--; return;
   case 'j': if (t->ecur + 1 < n) t->ecur++; return;
-  case '/': mb_open(t, MB_FIND, "search: ", t->find); return;
+  case '/': input_open(t, IN_FIND, "search: ", t->find); return;
   case 'n': find(t, 1); return;
   case 'N': find(t, -1); return;
-  case ':': mb_open(t, MB_GOTO, "go to line: ", NULL); return;
+  case ':': input_open(t, IN_GOTO, "go to line: ", NULL); return;
   case 'p': page_open(t); return;
   default: return;
   }
@@ -1529,30 +1529,30 @@ static void panel_key(struct tui *t, int fn, wint_t c)
   if (fn) {
     switch (c) {
     case KEY_BACKSPACE: c = 127; break;
-    case KEY_LEFT: scr_field_move(sc, -1); return;
-    case KEY_RIGHT: scr_field_move(sc, 1); return;
-    case KEY_UP: scr_scroll(sc, -1); return;
-    case KEY_DOWN: scr_scroll(sc, 1); return;
+    case KEY_LEFT: screen_field_move(sc, -1); return;
+    case KEY_RIGHT: screen_field_move(sc, 1); return;
+    case KEY_UP: screen_scroll(sc, -1); return;
+    case KEY_DOWN: screen_scroll(sc, 1); return;
     case KEY_ENTER: press_ps(t); return;
     default: return;
     }
   }
   if (c >= '0' && c <= '9') {
     if (field)
-      scr_field_digit(sc, (int)(c - '0'));
+      screen_field_digit(sc, (int)(c - '0'));
     else
       say(t, "digits go into the input field of a G27 dialog");
     return;
   }
   /* the P5 results of a tooth search: + and - page through the steps */
   if (sc->p5 && !field && (c == '+' || c == '-')) {
-    if (scr_p5_page(sc, c == '+' ? 1 : -1))
+    if (screen_p5_page(sc, c == '+' ? 1 : -1))
       say(t, c == '+' ? "the last steps are shown" : "the first steps are shown");
     return;
   }
   switch (c) {
-  case 127: case 8: scr_field_backspace(sc); return;
-  case '-': scr_field_minus(sc); return;
+  case 127: case 8: screen_field_backspace(sc); return;
+  case '-': screen_field_minus(sc); return;
   case '\r': case '\n': press_ps(t); return;
   case 'g': press_pusk(t); return;
   case 's': press_stop(t); return;
@@ -1587,7 +1587,7 @@ static void panel_key(struct tui *t, int fn, wint_t c)
     char init[16] = "";
     if (t->brk)
       snprintf(init, sizeof init, "%d", t->brk);
-    mb_open(t, MB_BREAK, "breakpoint at block (empty: none): N", init);
+    input_open(t, IN_BREAK, "breakpoint at block (empty: none): N", init);
     return;
   }
   default: return;
@@ -1625,10 +1625,10 @@ static void key(struct tui *t, int fn, wint_t c)
     t->help = 0;
     return;
   }
-  if (t->mb.kind) {
+  if (t->input.kind) {
     if (fn && c == KEY_RESIZE)
       return;
-    mb_key(t, fn, c);
+    input_key(t, fn, c);
     return;
   }
   if (fn) {
@@ -1692,7 +1692,7 @@ static int text(int y, int x, int w, const char *s, attr_t a, int pad)
   if (w <= 0)
     return 0;
   uint32_t *cp = malloc(sizeof *cp * (size_t)w);
-  int n = cp ? scr_decode(s, cp, w) : 0;
+  int n = cp ? screen_decode(s, cp, w) : 0;
   for (int i = 0; i < n; i++)
     cell(y, x + i, cp[i], a);
   if (pad)
@@ -1923,7 +1923,7 @@ static void draw_listing(struct tui *t, const struct layout *l)
     if (!cp)
       continue;
     /* one more than fits: in the editor a line cut at an edge shows … there */
-    int len = scr_decode(t->text.line[i], cp, col + tw + 1);
+    int len = screen_decode(t->text.line[i], cp, col + tw + 1);
     for (int c = 0; c < cols - used; c++) {
       int at = col + c;
       uint32_t ch = at < len ? cp[at] : ' ';
@@ -2058,7 +2058,7 @@ static void draw_title(struct tui *t, int W)
       int room = W - (ulen(mod) + ulen(st) + ulen(rus) + 6);
       if (room >= 4) {
         uint32_t cp[140];
-        int len = scr_decode(path, cp, 140), keep = room - 1 < len ? room - 1 : len;
+        int len = screen_decode(path, cp, 140), keep = room - 1 < len ? room - 1 : len;
         char *q = name;
         for (int i = len - keep; i < len; i++)
           q += tui_utf8(cp[i], q);
@@ -2167,7 +2167,7 @@ static void draw_screen(struct tui *t, const struct layout *l)
   if (t->run != R_IDLE)
     sess_screen(&t->s, g);
   else
-    scr_render(&t->idle, NULL, t->o.en, g);
+    screen_render(&t->idle, NULL, t->o.en, g);
   frame(l->sy, l->sx, SCR_H, SCR_W, "2С42-65", A_NORMAL);
   for (int r = 0; r < SCR_ROWS; r++)
     for (int c = 0; c < SCR_COLS; c++)
@@ -2180,7 +2180,7 @@ static int wrapped_up(int *y, int ytop, int x, int w, const char *s, attr_t a)
 {
   uint32_t cp[LOGW];
   int st[LOGW], ln[LOGW];
-  int n = scr_decode(s, cp, LOGW);
+  int n = screen_decode(s, cp, LOGW);
   int rows = tui_wrap(cp, n, w, st, ln, LOGW);
   for (int r = rows - 1; r >= 0 && *y >= ytop; r--, (*y)--) {
     for (int c = 0; c < w; c++)
@@ -2208,7 +2208,7 @@ static void draw_log(struct tui *t, const struct layout *l, int W)
   /* the newest at the bottom, each wrapped at words; the newest is left to
    * the message line below when it is there whole */
   int i = t->nlog - 1;
-  if (i >= 0 && !t->mb.kind && strcmp(t->log[i], t->msg) == 0 && ulen(t->msg) <= W)
+  if (i >= 0 && !t->input.kind && strcmp(t->log[i], t->msg) == 0 && ulen(t->msg) <= W)
     i--;
   for (; i >= 0 && y >= top; i--)
     wrapped_up(&y, top, x, w, t->log[i], i == t->nlog - 1 ? A_BOLD : A_NORMAL);
@@ -2234,7 +2234,7 @@ static const struct hint help_page[] = {
   {"arrows choose", 1}, {"= set", 1}, {"p close", 1}, {"Enter ПС", 2}, {"g Пуск", 2}, {"s Стоп", 2}, {"Tab editor", 3},
   {"F1 keys", 0}, {"q quit", 0}, {NULL, 0},
 };
-static const struct hint help_mb[] = {
+static const struct hint help_input[] = {
   {"type", 3}, {"F4/^R Рус", 4}, {"Left/Right Home End", 5}, {"BS Del", 5}, {"^U clear", 4}, {"Enter done", 0},
   {"Esc cancel", 0}, {NULL, 0},
 };
@@ -2331,7 +2331,7 @@ static void draw(struct tui *t)
     char m[160];
     snprintf(m, sizeof m, "the terminal is %dx%d: s42 tui needs at least %dx%d; q quits", W, H, SCR_W, SCR_H + 3);
     uint32_t cp[160];
-    int st[160], ln[160], n = scr_decode(m, cp, 160), rows = tui_wrap(cp, n, W, st, ln, 160);
+    int st[160], ln[160], n = screen_decode(m, cp, 160), rows = tui_wrap(cp, n, W, st, ln, 160);
     for (int r = 0, y = H > rows ? (H - rows) / 2 : 0; r < rows && y + r < H; r++)
       for (int c = 0; c < ln[r]; c++)
         cell(y + r, c, cp[st[r] + c], A_BOLD);
@@ -2352,22 +2352,22 @@ static void draw(struct tui *t)
   /* the message / input line */
   int my = H - 2;
   int cy = -1, cx = 0;
-  if (t->mb.kind) {
-    int pl = text(my, 0, W, t->mb.prompt, A_BOLD, 0);
+  if (t->input.kind) {
+    int pl = text(my, 0, W, t->input.prompt, A_BOLD, 0);
     int avail = W - pl - 1;
     if (avail < 1)
       avail = 1;
-    int first = t->mb.cur > avail ? t->mb.cur - avail : 0;
+    int first = t->input.cur > avail ? t->input.cur - avail : 0;
     for (int i = 0; pl + i < W; i++) {
       int k = first + i;
-      cell(my, pl + i, k < t->mb.n ? t->mb.b[k] : ' ', k < t->mb.n && t->mb.sel ? A_REVERSE : A_NORMAL);
+      cell(my, pl + i, k < t->input.n ? t->input.b[k] : ' ', k < t->input.n && t->input.sel ? A_REVERSE : A_NORMAL);
     }
     cy = my;
-    cx = pl + t->mb.cur - first < W ? pl + t->mb.cur - first : W - 1;
+    cx = pl + t->input.cur - first < W ? pl + t->input.cur - first : W - 1;
   } else {
     text(my, 0, W, t->msg, A_NORMAL, 1);
   }
-  draw_keys(H - 1, W, t->mb.kind ? help_mb : t->focus == F_EDIT ? help_edit : t->focus == F_PARAMS ? help_page : help_panel);
+  draw_keys(H - 1, W, t->input.kind ? help_input : t->focus == F_EDIT ? help_edit : t->focus == F_PARAMS ? help_page : help_panel);
   if (t->help)
     draw_help(t);
   if (cy >= 0 && !t->help) {
@@ -2705,7 +2705,7 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
   t->est.fd = -1;
   t->hl_line = -1;
   tui_text_init(&t->text);
-  scr_init(&t->idle);
+  screen_init(&t->idle);
   t->idle.en = o->en;
   T = t;
   /* only LC_CTYPE: numbers keep their '.' */

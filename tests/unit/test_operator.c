@@ -85,7 +85,7 @@ END_TEST
 START_TEST(keys)
 {
   static const struct { const char *t; int key, waiting; } k[] = {
-    {"key PUSK", KEY_PUSK, 1}, {"key PS", KEY_PS, 1}, {"key EXIT", KEY_EXIT, 0}, {"key STOP", KEY_STOP, 0},
+    {"key PUSK", OPKEY_PUSK, 1}, {"key PS", OPKEY_PS, 1}, {"key EXIT", OPKEY_EXIT, 0}, {"key STOP", OPKEY_STOP, 0},
   };
   for (size_t i = 0; i < 4; i++) {
     const struct op_action *a = one(k[i].t);
@@ -104,7 +104,7 @@ START_TEST(at_block)
   ck_assert_int_eq(sc.at[0].at_number, 54);
   ck_assert_uint_eq(sc.at[0].at_run, 1);
   ck_assert_int_eq(sc.at[0].kind, OA_KEY);
-  ck_assert_int_eq(sc.at[0].key, KEY_EXIT);
+  ck_assert_int_eq(sc.at[0].key, OPKEY_EXIT);
   ck_assert_uint_eq(sc.at[0].line, 1);
 }
 END_TEST
@@ -119,7 +119,7 @@ START_TEST(at_block_run)
   ck_assert_uint_eq(sc.at[0].line, 2);
   ck_assert_int_eq(sc.at[1].kind, OA_OVERRIDE);
   ck_assert_int_eq(sc.at[2].kind, OA_CORRECT);
-  ck_assert_int_eq(sc.v[1].key, KEY_PS);
+  ck_assert_int_eq(sc.v[1].key, OPKEY_PS);
   ck_assert_uint_eq(sc.v[1].line, 5);
 }
 END_TEST
@@ -329,7 +329,7 @@ START_TEST(long_words_not_cut)
   t[150] = 0;
   char line[200];
   snprintf(line, sizeof line, "key PS ; %s", t);
-  ck_assert_int_eq(one(line)->key, KEY_PS);
+  ck_assert_int_eq(one(line)->key, OPKEY_PS);
   /* a word of any length is refused, not read in pieces */
   static char huge[100000];
   memcpy(huge, "override ", 9);

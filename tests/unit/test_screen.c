@@ -2,7 +2,7 @@
  * sec. 13): a screen is built with the screen API, or by running a program
  * through a session, rendered into the 16x32 grid, printed as text and
  * compared with the exact 16 lines expected.  Lines are written as
- * scr_print gives them: trailing blanks dropped. */
+ * screen_print gives them: trailing blanks dropped. */
 #include "suites.h"
 #include "messages.h"
 #include "screen.h"
@@ -20,7 +20,7 @@ static char *grid_text(uint32_t g[SCR_ROWS][SCR_COLS])
   size_t n = 0;
   FILE *f = open_memstream(&buf, &n);
   ck_assert_ptr_nonnull(f);
-  scr_print(f, g);
+  screen_print(f, g);
   fclose(f);
   return buf;
 }
@@ -90,16 +90,16 @@ static struct screen S;
 static double R[114];
 static uint32_t G[SCR_ROWS][SCR_COLS];
 
-static void scr_setup(void)
+static void screen_setup(void)
 {
-  scr_init(&S);
+  screen_init(&S);
   memset(R, 0, sizeof R);
   memset(G, 0, sizeof G);
 }
 
 static void render(void)
 {
-  scr_render(&S, R, S.en, G);
+  screen_render(&S, R, S.en, G);
 }
 
 START_TEST(empty_screen)
@@ -147,13 +147,13 @@ END_TEST
 
 START_TEST(g33_centred_even_odd_full)
 {
-  scr_center(&S, "ABCD");                          /* (32-4)/2 = 14 */
-  scr_center(&S, "ABC");                           /* floor(29/2) = 14 */
-  scr_center(&S, "СВЕРДЛО");                       /* 7 letters: 12 */
-  scr_center(&S, "КІНЕЦЬ ВВОДУ");                  /* 12: 10 */
-  scr_center(&S, "ABCDEFGHIJKLMNOPQRSTUVWXYZ01234");  /* 31: 0 */
-  scr_center(&S, "ЗАТОЧУВАННЯ СВЕРДЛА ДІАМЕТРОМ 35");  /* 32: 0 */
-  scr_center(&S, "X");                             /* 1: 15 */
+  screen_center(&S, "ABCD");                          /* (32-4)/2 = 14 */
+  screen_center(&S, "ABC");                           /* floor(29/2) = 14 */
+  screen_center(&S, "СВЕРДЛО");                       /* 7 letters: 12 */
+  screen_center(&S, "КІНЕЦЬ ВВОДУ");                  /* 12: 10 */
+  screen_center(&S, "ABCDEFGHIJKLMNOPQRSTUVWXYZ01234");  /* 31: 0 */
+  screen_center(&S, "ЗАТОЧУВАННЯ СВЕРДЛА ДІАМЕТРОМ 35");  /* 32: 0 */
+  screen_center(&S, "X");                             /* 1: 15 */
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "              ABCD",
@@ -168,14 +168,14 @@ END_TEST
 
 START_TEST(g27_colon_format)
 {
-  scr_prompt(&S, "ДІАМЕТР, МКМ", 0);
+  screen_prompt(&S, "ДІАМЕТР, МКМ", 0);
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "ДІАМЕТР, МКМ............._");
-  scr_field_type(&S, 35000);
-  scr_field_close(&S);
-  scr_prompt(&S, "КРОК ГВИНТ. КАНАВКИ, МКМ", 0);   /* 24 characters: one dot */
-  scr_prompt(&S, "", 0);                           /* no text: dots only */
+  screen_field_type(&S, 35000);
+  screen_field_close(&S);
+  screen_prompt(&S, "КРОК ГВИНТ. КАНАВКИ, МКМ", 0);   /* 24 characters: one dot */
+  screen_prompt(&S, "", 0);                           /* no text: dots only */
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "ДІАМЕТР, МКМ.............  35000",
@@ -187,10 +187,10 @@ END_TEST
 START_TEST(g27_wrapped_format)
 {
   /* the line breaks at the last space that leaves <= 24 characters */
-  scr_prompt(&S, "КРОК ГВИНТОВОЇ КАНАВКИ СВЕРДЛА, МКМ", 1);
-  scr_field_type(&S, 3335);
-  scr_field_close(&S);
-  scr_prompt(&S, "ДІАМЕТР ЗАГОТОВКИ ПІД ЗАТОЧУВАННЯ, МКМ", 1);
+  screen_prompt(&S, "КРОК ГВИНТОВОЇ КАНАВКИ СВЕРДЛА, МКМ", 1);
+  screen_field_type(&S, 3335);
+  screen_field_close(&S);
+  screen_prompt(&S, "ДІАМЕТР ЗАГОТОВКИ ПІД ЗАТОЧУВАННЯ, МКМ", 1);
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "КРОК ГВИНТОВОЇ КАНАВКИ СВЕРДЛА,",
@@ -203,15 +203,15 @@ END_TEST
 START_TEST(g27_wrapped_56_characters)
 {
   /* 32 + 24 = 56 characters, the most the '-' format takes */
-  scr_prompt(&S, "AAAAAAAAAA BBBBBBBBBB CCCCCCCCC DDDDDDDDDD EEEEEEEEEEEEE", 1);
+  screen_prompt(&S, "AAAAAAAAAA BBBBBBBBBB CCCCCCCCC DDDDDDDDDD EEEEEEEEEEEEE", 1);
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "AAAAAAAAAA BBBBBBBBBB CCCCCCCCC",
             "DDDDDDDDDD EEEEEEEEEEEEE._");
   /* a short text in the '-' format stays on one line */
-  scr_field_type(&S, 1);
-  scr_field_close(&S);
-  scr_prompt(&S, "ЗУБЦІВ", 1);
+  screen_field_type(&S, 1);
+  screen_field_close(&S);
+  screen_prompt(&S, "ЗУБЦІВ", 1);
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "AAAAAAAAAA BBBBBBBBBB CCCCCCCCC",
@@ -222,21 +222,21 @@ END_TEST
 
 START_TEST(field_digits_move_the_cursor)
 {
-  scr_prompt(&S, "ДОВЖИНА, МКМ", 0);
-  scr_field_digit(&S, 9);
+  screen_prompt(&S, "ДОВЖИНА, МКМ", 0);
+  screen_field_digit(&S, 9);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ДОВЖИНА, МКМ.............9_");
-  scr_field_digit(&S, 5);
-  scr_field_digit(&S, 0);
+  screen_field_digit(&S, 5);
+  screen_field_digit(&S, 0);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ДОВЖИНА, МКМ.............950_");
-  scr_field_digit(&S, 0);
-  scr_field_digit(&S, 0);
-  scr_field_digit(&S, 0);
+  screen_field_digit(&S, 0);
+  screen_field_digit(&S, 0);
+  screen_field_digit(&S, 0);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ДОВЖИНА, МКМ.............950000_");
-  ck_assert_double_eq(scr_field_value(&S), 950000);
-  scr_field_close(&S);                           /* ПС: right-aligned, no cursor */
+  ck_assert_double_eq(screen_field_value(&S), 950000);
+  screen_field_close(&S);                           /* ПС: right-aligned, no cursor */
   render();
   CK_SCREEN(G, "АВТОМАТ", "ДОВЖИНА, МКМ............. 950000");
 }
@@ -244,26 +244,26 @@ END_TEST
 
 START_TEST(field_backspace)
 {
-  scr_prompt(&S, "КУТ, ГРАД", 0);
-  scr_field_digit(&S, 1);
-  scr_field_digit(&S, 2);
-  scr_field_digit(&S, 7);
-  scr_field_backspace(&S);                       /* ЗБ erases the 7 */
+  screen_prompt(&S, "КУТ, ГРАД", 0);
+  screen_field_digit(&S, 1);
+  screen_field_digit(&S, 2);
+  screen_field_digit(&S, 7);
+  screen_field_backspace(&S);                       /* ЗБ erases the 7 */
   render();
   CK_SCREEN(G, "АВТОМАТ", "КУТ, ГРАД................12_");
-  scr_field_digit(&S, 0);
+  screen_field_digit(&S, 0);
   render();
   CK_SCREEN(G, "АВТОМАТ", "КУТ, ГРАД................120_");
-  scr_field_backspace(&S);
-  scr_field_backspace(&S);
-  scr_field_backspace(&S);
-  scr_field_backspace(&S);                       /* one more at the first digit: nothing left */
+  screen_field_backspace(&S);
+  screen_field_backspace(&S);
+  screen_field_backspace(&S);
+  screen_field_backspace(&S);                       /* one more at the first digit: nothing left */
   render();
   CK_SCREEN(G, "АВТОМАТ", "КУТ, ГРАД................_");
-  ck_assert_double_eq(scr_field_value(&S), 0);
-  scr_field_digit(&S, 9);
-  scr_field_digit(&S, 0);
-  scr_field_close(&S);
+  ck_assert_double_eq(screen_field_value(&S), 0);
+  screen_field_digit(&S, 9);
+  screen_field_digit(&S, 0);
+  screen_field_close(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ", "КУТ, ГРАД................     90");
 }
@@ -271,28 +271,28 @@ END_TEST
 
 START_TEST(field_arrows)
 {
-  scr_prompt(&S, "ПОДАЧА", 0);
-  scr_field_digit(&S, 1);
-  scr_field_digit(&S, 2);
-  scr_field_digit(&S, 3);
-  scr_field_move(&S, -2);                        /* <- <-: back onto the 2 */
-  scr_field_digit(&S, 9);                        /* overwrite it */
-  ck_assert_double_eq(scr_field_value(&S), 193);
-  scr_field_move(&S, +1);                        /* ->: past the 3, an empty cell */
+  screen_prompt(&S, "ПОДАЧА", 0);
+  screen_field_digit(&S, 1);
+  screen_field_digit(&S, 2);
+  screen_field_digit(&S, 3);
+  screen_field_move(&S, -2);                        /* <- <-: back onto the 2 */
+  screen_field_digit(&S, 9);                        /* overwrite it */
+  ck_assert_double_eq(screen_field_value(&S), 193);
+  screen_field_move(&S, +1);                        /* ->: past the 3, an empty cell */
   render();
   CK_SCREEN(G, "АВТОМАТ", "ПОДАЧА...................193_");
-  scr_field_move(&S, -3);                        /* to the first digit */
-  scr_field_digit(&S, 5);
+  screen_field_move(&S, -3);                        /* to the first digit */
+  screen_field_digit(&S, 5);
   ck_assert_int_eq(S.cursor, 1);
   render();                                      /* the cursor on a digit: no '_' over it */
   CK_SCREEN(G, "АВТОМАТ", "ПОДАЧА...................593");
-  scr_field_move(&S, -2);                        /* <- from the first cell: to the seventh */
+  screen_field_move(&S, -2);                        /* <- from the first cell: to the seventh */
   ck_assert_int_eq(S.cursor, 6);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ПОДАЧА...................593   _");
-  scr_field_move(&S, +1);                        /* -> from the seventh: to the first */
+  screen_field_move(&S, +1);                        /* -> from the seventh: to the first */
   ck_assert_int_eq(S.cursor, 0);
-  scr_field_close(&S);
+  screen_field_close(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ПОДАЧА...................    593");
 }
@@ -300,18 +300,18 @@ END_TEST
 
 START_TEST(field_wraps_after_seventh_digit)
 {
-  scr_prompt(&S, "ЧИСЛО", 0);
+  screen_prompt(&S, "ЧИСЛО", 0);
   for (int d = 1; d <= 7; d++)
-    scr_field_digit(&S, d);
+    screen_field_digit(&S, d);
   render();                                      /* the cursor is back on the first digit */
   CK_SCREEN(G, "АВТОМАТ", "ЧИСЛО....................1234567");
   ck_assert_int_eq(S.cursor, 0);
-  scr_field_digit(&S, 9);                        /* an eighth digit overwrites the first */
-  scr_field_digit(&S, 8);
+  screen_field_digit(&S, 9);                        /* an eighth digit overwrites the first */
+  screen_field_digit(&S, 8);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ЧИСЛО....................9834567");
-  ck_assert_double_eq(scr_field_value(&S), 9834567);
-  scr_field_close(&S);
+  ck_assert_double_eq(screen_field_value(&S), 9834567);
+  screen_field_close(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ЧИСЛО....................9834567");
 }
@@ -319,21 +319,21 @@ END_TEST
 
 START_TEST(field_leading_zeros_dropped)
 {
-  scr_prompt(&S, "ЗАЗОР", 0);
-  scr_field_digit(&S, 0);
-  scr_field_digit(&S, 0);
-  scr_field_digit(&S, 4);
-  scr_field_digit(&S, 0);
+  screen_prompt(&S, "ЗАЗОР", 0);
+  screen_field_digit(&S, 0);
+  screen_field_digit(&S, 0);
+  screen_field_digit(&S, 4);
+  screen_field_digit(&S, 0);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ЗАЗОР....................0040_");
-  scr_field_close(&S);
+  screen_field_close(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ЗАЗОР....................     40");
-  ck_assert_double_eq(scr_field_value(&S), 40);
-  scr_prompt(&S, "НУЛЬ", 0);
-  scr_field_digit(&S, 0);
-  scr_field_digit(&S, 0);
-  scr_field_close(&S);
+  ck_assert_double_eq(screen_field_value(&S), 40);
+  screen_prompt(&S, "НУЛЬ", 0);
+  screen_field_digit(&S, 0);
+  screen_field_digit(&S, 0);
+  screen_field_close(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ЗАЗОР....................     40", "НУЛЬ.....................      0");
 }
@@ -341,24 +341,24 @@ END_TEST
 
 START_TEST(field_negative)
 {
-  scr_prompt(&S, "КОРЕКЦІЯ, МКМ", 0);
-  scr_field_minus(&S);
-  scr_field_digit(&S, 1);
-  scr_field_digit(&S, 2);
-  scr_field_digit(&S, 0);
+  screen_prompt(&S, "КОРЕКЦІЯ, МКМ", 0);
+  screen_field_minus(&S);
+  screen_field_digit(&S, 1);
+  screen_field_digit(&S, 2);
+  screen_field_digit(&S, 0);
   render();                                      /* the sign left of the field */
   CK_SCREEN(G, "АВТОМАТ", "КОРЕКЦІЯ, МКМ...........-120_");
-  ck_assert_double_eq(scr_field_value(&S), -120);
-  scr_field_close(&S);
+  ck_assert_double_eq(screen_field_value(&S), -120);
+  screen_field_close(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ", "КОРЕКЦІЯ, МКМ............   -120");
-  scr_prompt(&S, "ЗНОВУ", 0);
-  scr_field_minus(&S);
-  scr_field_minus(&S);                           /* the key again: positive */
-  scr_field_digit(&S, 5);
-  ck_assert_double_eq(scr_field_value(&S), 5);
-  scr_field_type(&S, -999999);                   /* the script's answer: six digits and the sign */
-  scr_field_close(&S);
+  screen_prompt(&S, "ЗНОВУ", 0);
+  screen_field_minus(&S);
+  screen_field_minus(&S);                           /* the key again: positive */
+  screen_field_digit(&S, 5);
+  ck_assert_double_eq(screen_field_value(&S), 5);
+  screen_field_type(&S, -999999);                   /* the script's answer: six digits and the sign */
+  screen_field_close(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ", "КОРЕКЦІЯ, МКМ............   -120", "ЗНОВУ....................-999999");
 }
@@ -368,10 +368,10 @@ END_TEST
  * digit when ПС closes the field ("-234567" for -1234567). */
 START_TEST(field_negative_seven_digits)
 {
-  scr_prompt(&S, "ЧИСЛО", 0);
-  scr_field_type(&S, -1234567);
-  ck_assert_double_eq(scr_field_value(&S), -1234567);
-  scr_field_close(&S);
+  screen_prompt(&S, "ЧИСЛО", 0);
+  screen_field_type(&S, -1234567);
+  ck_assert_double_eq(screen_field_value(&S), -1234567);
+  screen_field_close(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ЧИСЛО...................-1234567");
 }
@@ -379,12 +379,12 @@ END_TEST
 
 START_TEST(field_type_answer)
 {
-  scr_prompt(&S, "ДІАМЕТР, МКМ", 0);
-  scr_field_digit(&S, 7);                        /* typed digits are replaced */
-  scr_field_type(&S, 35000);
+  screen_prompt(&S, "ДІАМЕТР, МКМ", 0);
+  screen_field_digit(&S, 7);                        /* typed digits are replaced */
+  screen_field_type(&S, 35000);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ДІАМЕТР, МКМ.............35000_");
-  scr_field_close(&S);
+  screen_field_close(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ", "ДІАМЕТР, МКМ.............  35000");
 }
@@ -393,30 +393,30 @@ END_TEST
 START_TEST(g28_refusal_and_reentry)
 {
   S.block = 3;
-  scr_prompt(&S, "ДІАМЕТР, МКМ", 0);
-  scr_field_type(&S, 100);
-  scr_field_close(&S);
+  screen_prompt(&S, "ДІАМЕТР, МКМ", 0);
+  screen_field_type(&S, 100);
+  screen_field_close(&S);
   /* G28 /30000:40000/: too small -- the message and the field again */
-  scr_message(&S, scr_msg_text(MSG_BELOW, S.en));
-  scr_field_reopen(&S);
+  screen_message(&S, screen_msg_text(MSG_BELOW, S.en));
+  screen_field_reopen(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ                       N3",
             "ДІАМЕТР, МКМ............._",
             [15] = "знач. менше допустимого");
-  scr_field_digit(&S, 5);                        /* the next key takes the message away */
+  screen_field_digit(&S, 5);                        /* the next key takes the message away */
   render();
   CK_SCREEN(G, "АВТОМАТ                       N3", "ДІАМЕТР, МКМ.............5_");
-  scr_field_type(&S, 50000);
-  scr_field_close(&S);
-  scr_message(&S, scr_msg_text(MSG_ABOVE, S.en));
-  scr_field_reopen(&S);
+  screen_field_type(&S, 50000);
+  screen_field_close(&S);
+  screen_message(&S, screen_msg_text(MSG_ABOVE, S.en));
+  screen_field_reopen(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ                       N3",
             "ДІАМЕТР, МКМ............._",
             [15] = "знач. більше допустимого");
   S.has_message = 0;
-  scr_field_type(&S, 35000);
-  scr_field_close(&S);
+  screen_field_type(&S, 35000);
+  screen_field_close(&S);
   render();
   CK_SCREEN(G, "АВТОМАТ                       N3", "ДІАМЕТР, МКМ.............  35000");
 }
@@ -430,15 +430,15 @@ START_TEST(messages_both_languages)
                                    "Input buffer full"};
   static const int ids[] = {MSG_BELOW, MSG_ABOVE, MSG_DONE, MSG_LIMIT};
   for (int i = 0; i < 4; i++) {
-    ck_assert_str_eq(scr_msg_text(ids[i], 0), uk[i]);
-    ck_assert_str_eq(scr_msg_text(ids[i], 1), en[i]);
-    scr_init(&S);
-    scr_message(&S, scr_msg_text(ids[i], 0));
+    ck_assert_str_eq(screen_msg_text(ids[i], 0), uk[i]);
+    ck_assert_str_eq(screen_msg_text(ids[i], 1), en[i]);
+    screen_init(&S);
+    screen_message(&S, screen_msg_text(ids[i], 0));
     render();
     CK_SCREEN(G, "АВТОМАТ", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
               uk[i]);
     S.en = 1;
-    scr_message(&S, scr_msg_text(ids[i], S.en));
+    screen_message(&S, screen_msg_text(ids[i], S.en));
     render();
     CK_SCREEN(G, "AUTO", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, en[i]);
   }
@@ -447,16 +447,16 @@ END_TEST
 
 START_TEST(message_pushes_directive_aside)
 {
-  scr_set_directive(&S, "ВСТАНОВИТИ КРУГ, ПУСК");
+  screen_set_directive(&S, "ВСТАНОВИТИ КРУГ, ПУСК");
   render();
   CK_SCREEN(G, "АВТОМАТ", [15] = "ВСТАНОВИТИ КРУГ, ПУСК");
-  scr_message(&S, scr_msg_text(MSG_DONE, 0));
+  screen_message(&S, screen_msg_text(MSG_DONE, 0));
   render();
   CK_SCREEN(G, "АВТОМАТ", [15] = "Введення завершено");
   S.has_message = 0;                             /* the next key */
   render();
   CK_SCREEN(G, "АВТОМАТ", [15] = "ВСТАНОВИТИ КРУГ, ПУСК");
-  scr_clear_directive(&S);                       /* M21 */
+  screen_clear_directive(&S);                       /* M21 */
   render();
   CK_SCREEN(G, "АВТОМАТ");
 }
@@ -466,18 +466,18 @@ END_TEST
  * minus key; only a digit takes it away. */
 START_TEST(message_goes_on_next_key)
 {
-  scr_set_directive(&S, "ВВЕДІТЬ ЗАНОВО");
-  scr_prompt(&S, "ДІАМЕТР, МКМ", 0);
-  scr_message(&S, scr_msg_text(MSG_BELOW, 0));
-  scr_field_backspace(&S);                       /* ЗБ is a key */
+  screen_set_directive(&S, "ВВЕДІТЬ ЗАНОВО");
+  screen_prompt(&S, "ДІАМЕТР, МКМ", 0);
+  screen_message(&S, screen_msg_text(MSG_BELOW, 0));
+  screen_field_backspace(&S);                       /* ЗБ is a key */
   render();
   CK_SCREEN(G, "АВТОМАТ", "ДІАМЕТР, МКМ............._", [15] = "ВВЕДІТЬ ЗАНОВО");
-  scr_message(&S, scr_msg_text(MSG_BELOW, 0));
-  scr_field_move(&S, 1);                         /* so is an arrow (the cursor moves on) */
+  screen_message(&S, screen_msg_text(MSG_BELOW, 0));
+  screen_field_move(&S, 1);                         /* so is an arrow (the cursor moves on) */
   render();
   CK_SCREEN(G, "АВТОМАТ", "ДІАМЕТР, МКМ............. _", [15] = "ВВЕДІТЬ ЗАНОВО");
-  scr_message(&S, scr_msg_text(MSG_BELOW, 0));
-  scr_field_minus(&S);                           /* and the minus */
+  screen_message(&S, screen_msg_text(MSG_BELOW, 0));
+  screen_field_minus(&S);                           /* and the minus */
   render();
   CK_SCREEN(G, "АВТОМАТ", "ДІАМЕТР, МКМ............- _", [15] = "ВВЕДІТЬ ЗАНОВО");
 }
@@ -486,7 +486,7 @@ END_TEST
 START_TEST(directive_with_live_value)
 {
   R[5] = 3;
-  scr_set_directive(&S, "ЗАЛИШИЛОСЬ ЗУБІВ ((R5");
+  screen_set_directive(&S, "ЗАЛИШИЛОСЬ ЗУБІВ ((R5");
   render();
   CK_SCREEN(G, "АВТОМАТ", [15] = "ЗАЛИШИЛОСЬ ЗУБІВ        3");
   R[5] = -12.6;                                  /* live: rounded, with the sign */
@@ -495,7 +495,7 @@ START_TEST(directive_with_live_value)
   R[5] = 123456789;                              /* does not fit 8 */
   render();
   CK_SCREEN(G, "АВТОМАТ", [15] = "ЗАЛИШИЛОСЬ ЗУБІВ ********");
-  scr_set_directive(&S, "((R5");              /* the value alone */
+  screen_set_directive(&S, "((R5");              /* the value alone */
   R[5] = 42;
   render();
   CK_SCREEN(G, "АВТОМАТ", [15] = "      42");
@@ -507,7 +507,7 @@ END_TEST
 START_TEST(directive_value_mid_text)
 {
   R[5] = 3;
-  scr_set_directive(&S, "ЗУБ ((R5 ПС, ПУСК");
+  screen_set_directive(&S, "ЗУБ ((R5 ПС, ПУСК");
   render();
   CK_SCREEN(G, "АВТОМАТ", [15] = "ЗУБ        3 ПС, ПУСК");
 }
@@ -519,7 +519,7 @@ START_TEST(directive_cyrillic_r)
 {
   R[0] = 9;
   R[5] = 3;
-  scr_set_directive(&S, "ЗУБ ((Р5");
+  screen_set_directive(&S, "ЗУБ ((Р5");
   render();
   CK_SCREEN(G, "АВТОМАТ", [15] = "ЗУБ        3");
 }
@@ -529,8 +529,8 @@ START_TEST(p3_cyrillic_r)
 {
   R[0] = 9;
   R[105] = 4;
-  scr_p3_clear(&S);
-  scr_p3_add(&S, "ЗУБ ((Р105");                  /* the Cyrillic Р names the parameter too */
+  screen_p3_clear(&S);
+  screen_p3_add(&S, "ЗУБ ((Р105");                  /* the Cyrillic Р names the parameter too */
   render();
   CK_SCREEN(G, "АВТОМАТ", "ЗУБ                            4");
 }
@@ -546,7 +546,7 @@ START_TEST(value8_formats)
   };
   for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
     char out[9];
-    scr_value8(t[i].v, out);
+    screen_value8(t[i].v, out);
     ck_assert_msg(strcmp(out, t[i].s) == 0, "%.10g shows \"%s\", want \"%s\"", t[i].v, out, t[i].s);
   }
 }
@@ -554,11 +554,11 @@ END_TEST
 
 START_TEST(p3_live_values)
 {
-  scr_p3_clear(&S);
-  scr_p3_add(&S, "ЗАТОЧУВАННЯ МІТЧИКА");
-  scr_p3_add(&S, "ПРИПУСК ((R100");
-  scr_p3_add(&S, "КІЛЬКІСТЬ ЗУБЦІВ ((R101");
-  scr_p3_add(&S, "ПОДАЧА ((R 102");
+  screen_p3_clear(&S);
+  screen_p3_add(&S, "ЗАТОЧУВАННЯ МІТЧИКА");
+  screen_p3_add(&S, "ПРИПУСК ((R100");
+  screen_p3_add(&S, "КІЛЬКІСТЬ ЗУБЦІВ ((R101");
+  screen_p3_add(&S, "ПОДАЧА ((R 102");
   R[100] = 1000;
   R[101] = 6;
   R[102] = 10;
@@ -591,11 +591,11 @@ END_TEST
 
 START_TEST(p3_full_lines)
 {
-  scr_p3_clear(&S);
-  scr_p3_add(&S, "ЗАТОЧУВАННЯ СВЕРДЛА ДІАМЕТРОМ 35");   /* 32 without a value */
-  scr_p3_add(&S, "ЗАЛИШОК ПРИПУСКУ НА ЗУБІ((R113");     /* 24 beside a value */
-  scr_p3_add(&S, "");
-  scr_p3_add(&S, "((R100");
+  screen_p3_clear(&S);
+  screen_p3_add(&S, "ЗАТОЧУВАННЯ СВЕРДЛА ДІАМЕТРОМ 35");   /* 32 without a value */
+  screen_p3_add(&S, "ЗАЛИШОК ПРИПУСКУ НА ЗУБІ((R113");     /* 24 beside a value */
+  screen_p3_add(&S, "");
+  screen_p3_add(&S, "((R100");
   R[113] = 15;
   R[100] = -7;
   render();
@@ -609,16 +609,16 @@ END_TEST
 
 START_TEST(p3_and_dialog_switch)
 {
-  scr_center(&S, "СВЕРДЛО");
-  scr_prompt(&S, "ДІАМЕТР, МКМ", 0);
-  scr_field_type(&S, 35000);
-  scr_field_close(&S);
-  scr_p3_clear(&S);
-  scr_p3_add(&S, "ДІАМЕТР((R100");
+  screen_center(&S, "СВЕРДЛО");
+  screen_prompt(&S, "ДІАМЕТР, МКМ", 0);
+  screen_field_type(&S, 35000);
+  screen_field_close(&S);
+  screen_p3_clear(&S);
+  screen_p3_add(&S, "ДІАМЕТР((R100");
   R[100] = 35000;
   render();                                      /* G29: the P3 display */
   CK_SCREEN(G, "АВТОМАТ", "ДІАМЕТР                    35000");
-  scr_center(&S, "ЩЕ");                          /* the next G33: back to the dialog lines */
+  screen_center(&S, "ЩЕ");                          /* the next G33: back to the dialog lines */
   render();
   CK_SCREEN(G, "АВТОМАТ", "            СВЕРДЛО", "ДІАМЕТР, МКМ.............  35000", "               ЩЕ");
 }
@@ -629,7 +629,7 @@ START_TEST(buffer_of_four_screens)
   char t[32];
   for (int i = 1; i <= SCR_BUF; i++) {
     snprintf(t, sizeof t, "L%02d", i);
-    scr_center(&S, t);
+    screen_center(&S, t);
   }
   ck_assert_int_eq(S.nbuf, 56);
   ck_assert_int_eq(S.has_message, 0);            /* four screens exactly: no message yet */
@@ -639,7 +639,7 @@ START_TEST(buffer_of_four_screens)
             "              L47", "              L48", "              L49", "              L50",
             "              L51", "              L52", "              L53", "              L54",
             "              L55", "              L56");
-  scr_center(&S, "L57");                         /* past four screens */
+  screen_center(&S, "L57");                         /* past four screens */
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "              L44", "              L45", "              L46", "              L47",
@@ -648,28 +648,28 @@ START_TEST(buffer_of_four_screens)
             "              L56", "              L57",
             "Обмеження введення");
   S.has_message = 0;
-  scr_scroll(&S, -100);                          /* ↑ to the top: L1 has gone */
+  screen_scroll(&S, -100);                          /* ↑ to the top: L1 has gone */
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "              L02", "              L03", "              L04", "              L05",
             "              L06", "              L07", "              L08", "              L09",
             "              L10", "              L11", "              L12", "              L13",
             "              L14", "              L15");
-  scr_scroll(&S, 14);                            /* ↓ one screen */
+  screen_scroll(&S, 14);                            /* ↓ one screen */
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "              L16", "              L17", "              L18", "              L19",
             "              L20", "              L21", "              L22", "              L23",
             "              L24", "              L25", "              L26", "              L27",
             "              L28", "              L29");
-  scr_scroll(&S, 1);                             /* ↓ one line */
+  screen_scroll(&S, 1);                             /* ↓ one line */
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "              L17", "              L18", "              L19", "              L20",
             "              L21", "              L22", "              L23", "              L24",
             "              L25", "              L26", "              L27", "              L28",
             "              L29", "              L30");
-  scr_scroll(&S, 1000);                          /* no further than the last line */
+  screen_scroll(&S, 1000);                          /* no further than the last line */
   ck_assert_int_eq(S.top, SCR_BUF - SCR_WORK);
   render();
   CK_SCREEN(G, "АВТОМАТ",
@@ -684,7 +684,7 @@ START_TEST(buffer_full_english)
 {
   S.en = 1;
   for (int i = 0; i <= SCR_BUF; i++)
-    scr_center(&S, "X");
+    screen_center(&S, "X");
   render();
   CK_SCREEN(G, "AUTO",
             "               X", "               X", "               X", "               X", "               X",
@@ -696,16 +696,16 @@ END_TEST
 
 START_TEST(scroll_short_buffer)
 {
-  scr_center(&S, "A");
-  scr_center(&S, "B");
-  scr_scroll(&S, 5);                             /* less than a screen: nothing to scroll */
+  screen_center(&S, "A");
+  screen_center(&S, "B");
+  screen_scroll(&S, 5);                             /* less than a screen: nothing to scroll */
   ck_assert_int_eq(S.top, 0);
-  scr_scroll(&S, -5);
+  screen_scroll(&S, -5);
   ck_assert_int_eq(S.top, 0);
   for (int i = 0; i < 14; i++)                   /* 16 lines: the first screen scrolled by 2 */
-    scr_center(&S, "C");
+    screen_center(&S, "C");
   ck_assert_int_eq(S.top, 2);
-  scr_scroll(&S, -1);
+  screen_scroll(&S, -1);
   render();
   CK_SCREEN(G, "АВТОМАТ",
             "               B", "               C", "               C", "               C", "               C",
@@ -716,20 +716,20 @@ END_TEST
 
 START_TEST(fixed_line_m27_m28)
 {
-  scr_center(&S, "ЗУБЦІ");
-  scr_prompt(&S, "ЗУБ", 0);
+  screen_center(&S, "ЗУБЦІ");
+  screen_prompt(&S, "ЗУБ", 0);
   S.fixed = S.last;                              /* M27 */
-  scr_field_type(&S, 1);
-  scr_field_close(&S);
+  screen_field_type(&S, 1);
+  screen_field_close(&S);
   S.at_fixed = 1;                                /* M28 */
-  scr_prompt(&S, "ЗУБ", 0);                      /* on the same line again */
+  screen_prompt(&S, "ЗУБ", 0);                      /* on the same line again */
   render();
   CK_SCREEN(G, "АВТОМАТ", "             ЗУБЦІ", "ЗУБ......................_");
-  scr_field_type(&S, 2);
-  scr_field_close(&S);
+  screen_field_type(&S, 2);
+  screen_field_close(&S);
   ck_assert_int_eq(S.at_fixed, 0);
   S.fixed = -1;                                  /* M29 */
-  scr_prompt(&S, "КІНЕЦЬ", 0);                   /* a new line */
+  screen_prompt(&S, "КІНЕЦЬ", 0);                   /* a new line */
   render();
   CK_SCREEN(G, "АВТОМАТ", "             ЗУБЦІ", "ЗУБ......................      2", "КІНЕЦЬ..................._");
 }
@@ -1179,7 +1179,7 @@ START_TEST(sess_buffer_scroll_in_dialog)
             "           ЗАГОЛОВОК", "           ЗАГОЛОВОК", "           ЗАГОЛОВОК", "           ЗАГОЛОВОК",
             "           ЗАГОЛОВОК", "           ЗАГОЛОВОК", "           ЗАГОЛОВОК", "           ЗАГОЛОВОК",
             "           ЗАГОЛОВОК", "ОСТАННІЙ................._");
-  scr_scroll(&s->scr, -1);                       /* ↑ */
+  screen_scroll(&s->scr, -1);                       /* ↑ */
   shot();
   CK_SCREEN(G, "АВТОМАТ                       N4",
             "           ЗАГОЛОВОК", "           ЗАГОЛОВОК", "           ЗАГОЛОВОК", "           ЗАГОЛОВОК",
@@ -1251,8 +1251,8 @@ static const double steps12[12] = {30000, 29995, 30010, 29990, 30005, 30000,
 START_TEST(p5_with_lead_and_paging)
 {
   S.block = 10;
-  ck_assert_int_eq(scr_p5_set(&S, 12, steps12, 1, 249998.6, 37012.4, 1), 0);
-  scr_set_directive(&S, "відвести упорку");
+  ck_assert_int_eq(screen_p5_set(&S, 12, steps12, 1, 249998.6, 37012.4, 1), 0);
+  screen_set_directive(&S, "відвести упорку");
   render();
   CK_SCREEN(G, "РЕЗУЛЬТАТИ                   N10",
             "ЗУБІВ                         12",
@@ -1270,8 +1270,8 @@ START_TEST(p5_with_lead_and_paging)
             "  7                        29998",
             "  8                        30002",
             "відвести упорку");
-  ck_assert_int_eq(scr_p5_page(&S, -1), -1);   /* no page before the first */
-  ck_assert_int_eq(scr_p5_page(&S, 1), 0);
+  ck_assert_int_eq(screen_p5_page(&S, -1), -1);   /* no page before the first */
+  ck_assert_int_eq(screen_p5_page(&S, 1), 0);
   render();
   CK_SCREEN(G, "РЕЗУЛЬТАТИ                   N10",
             "ЗУБІВ                         12",
@@ -1286,8 +1286,8 @@ START_TEST(p5_with_lead_and_paging)
             " 12                        29996",
             NULL, NULL, NULL, NULL,
             "відвести упорку");
-  ck_assert_int_eq(scr_p5_page(&S, 1), -1);    /* none after the last */
-  ck_assert_int_eq(scr_p5_page(&S, -1), 0);
+  ck_assert_int_eq(screen_p5_page(&S, 1), -1);    /* none after the last */
+  ck_assert_int_eq(screen_p5_page(&S, -1), 0);
   ck_assert_int_eq(S.res.page, 0);
 }
 END_TEST
@@ -1296,7 +1296,7 @@ START_TEST(p5_without_lead_english)
 {
   S.en = 1;
   const double st[4] = {90002, 79997, 110003, 79998};
-  ck_assert_int_eq(scr_p5_set(&S, 4, st, 0, 0, 0, 0), 0);
+  ck_assert_int_eq(screen_p5_set(&S, 4, st, 0, 0, 0, 0), 0);
   render();
   CK_SCREEN(G, "RESULTS",
             "TEETH                          4",
@@ -1309,27 +1309,27 @@ START_TEST(p5_without_lead_english)
             "  2                        79997",
             "  3                       110003",
             "  4                        79998");
-  ck_assert_int_eq(scr_p5_page(&S, 1), -1);
+  ck_assert_int_eq(screen_p5_page(&S, 1), -1);
 }
 END_TEST
 
 START_TEST(p5_left_hand_and_refusals)
 {
   const double st[2] = {180000, 180000};
-  ck_assert_int_eq(scr_p5_set(&S, 0, st, 1, 0, 0, 0), -1);
-  ck_assert_int_eq(scr_p5_set(&S, 151, st, 1, 0, 0, 0), -1);
-  ck_assert_int_eq(scr_p5_set(&S, 2, NULL, 1, 0, 0, 0), -1);
-  ck_assert_int_eq(scr_p5_set(&S, 2, st, 1, NAN, 0, 0), -1);
+  ck_assert_int_eq(screen_p5_set(&S, 0, st, 1, 0, 0, 0), -1);
+  ck_assert_int_eq(screen_p5_set(&S, 151, st, 1, 0, 0, 0), -1);
+  ck_assert_int_eq(screen_p5_set(&S, 2, NULL, 1, 0, 0, 0), -1);
+  ck_assert_int_eq(screen_p5_set(&S, 2, st, 1, NAN, 0, 0), -1);
   ck_assert_int_eq(S.p5, 0);
-  ck_assert_int_eq(scr_p5_page(&S, 1), -1);
-  ck_assert_int_eq(scr_p5_set(&S, 2, st, 1, 120000, 27000, -1), 0);
+  ck_assert_int_eq(screen_p5_page(&S, 1), -1);
+  ck_assert_int_eq(screen_p5_set(&S, 2, st, 1, 120000, 27000, -1), 0);
   render();
   ck_assert_int_eq(G[4][27], 0x041B);   /* ЛІВИЙ in columns 28..32 */
   /* a dialog line or a G29 display takes the work area back */
-  scr_center(&S, "КІНЕЦЬ");
+  screen_center(&S, "КІНЕЦЬ");
   ck_assert_int_eq(S.p5, 0);
-  ck_assert_int_eq(scr_p5_set(&S, 2, st, 1, 120000, 27000, -1), 0);
-  scr_p3_add(&S, "ДАНІ");
+  ck_assert_int_eq(screen_p5_set(&S, 2, st, 1, 120000, 27000, -1), 0);
+  screen_p3_add(&S, "ДАНІ");
   ck_assert_int_eq(S.p5, 0);
   ck_assert_int_eq(S.p3, 1);
 }
@@ -1339,7 +1339,7 @@ Suite *suite_screen(void)
 {
   Suite *su = suite_create("screen");
   TCase *tc = tcase_create("model");
-  tcase_add_checked_fixture(tc, scr_setup, NULL);
+  tcase_add_checked_fixture(tc, screen_setup, NULL);
   tcase_add_test(tc, empty_screen);
   tcase_add_test(tc, service_line_modes_and_block);
   tcase_add_test(tc, service_line_english);

@@ -162,7 +162,7 @@ static const char *wrap(const char *s, int w)
   static char out[512];
   uint32_t cp[256];
   int st[256], ln[256];
-  int n = scr_decode(s, cp, 256), rows = tui_wrap(cp, n, w, st, ln, 256);
+  int n = screen_decode(s, cp, 256), rows = tui_wrap(cp, n, w, st, ln, 256);
   char *p = out;
   for (int r = 0; r < rows; r++) {
     if (r)
@@ -185,7 +185,7 @@ START_TEST(wrap_at_words)
   ck_assert_str_eq(wrap("a  b", 1), "a|b");
   ck_assert_str_eq(wrap("   lead", 10), "lead");
   uint32_t cp[8];
-  int st[2], ln[2], n = scr_decode("aa bb cc dd", cp, 8);
+  int st[2], ln[2], n = screen_decode("aa bb cc dd", cp, 8);
   ck_assert_int_eq(tui_wrap(cp, n, 2, st, ln, 2), 2);         /* at most max rows */
 }
 END_TEST
@@ -293,7 +293,7 @@ END_TEST
 START_TEST(ascii_stand_ins)
 {
   uint32_t cp[32];
-  int n = scr_decode("ЗАТОЧКА Ї №1 ─│┌ 中", cp, 32);
+  int n = screen_decode("ЗАТОЧКА Ї №1 ─│┌ 中", cp, 32);
   char out[33];
   for (int i = 0; i < n; i++)
     out[i] = tui_ascii(cp[i]);
