@@ -381,7 +381,7 @@ ended 0
 # ---- 10. the override within a move, 0 % and Стоп hold it (feed 0); single block; a breakpoint ----
 printf '%s\n' '; a 60 s stroke, then three short ones' '№1 G01 X+60000 F60 ^' '№2 G01 X-1000 F600 ^' \
   '№3 G01 X-1000 ^' '№4 G01 X-1000 ^' '№5 M02 ^' > "$WORK/long.kp"
-start override C.UTF-8 long.kp
+TW=80 TH=24 start override C.UTF-8 long.kp
 see "ready: Пуск starts the cycle"
 keys g
 see_re "│feed +60\.0 mm/min"
