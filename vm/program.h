@@ -42,6 +42,7 @@ struct program {
   int saved_reg;                      /* register saved across calls, -1 none */
   const char *file;                   /* for messages (not owned) */
   void *ext;                          /* front end's per-block data */
+  const void *runtime;                /* the front end's runtime for the session (src/core/sess_rt.h) */
   void (*ext_free)(void *);
 };
 

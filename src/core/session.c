@@ -1,6 +1,7 @@
 /* The session (src/core/session.h): turns the VM's block events into machine
  * work, waits and trace rows. */
 #include "session.h"
+#include "sess_rt.h"
 #include "errors.h"
 #include "messages.h"
 #include <math.h>
@@ -25,6 +26,7 @@ void sess_init(struct session *s, const struct program *p)
   s->state = SE_START;
   s->blk.s = s;
   s->go = 1;             /* the cycle's start is its first block's Пуск */
+  s->rt = p->runtime;
 }
 
 void sess_configure(struct session *s, const struct sess_config *c)
@@ -99,8 +101,7 @@ int sess_block_number(const struct session *s)
   return n ? n : -1;
 }
 
-static void warn(struct session *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void warn(struct session *s, const char *fmt, ...)
+void sess_warn(struct session *s, const char *fmt, ...)
 {
   char msg[240];
   va_list ap;
@@ -111,7 +112,7 @@ static void warn(struct session *s, const char *fmt, ...)
     s->sink.warn(s->sink.ctx, s, msg);
 }
 
-static void emit_row(struct session *s)
+void sess_emit_row(struct session *s)
 {
   const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
   struct sess_row r;
@@ -230,7 +231,7 @@ static double h_time(struct s42_block *b) { return b->s->m.t; }
 static double h_axis_speed(int axis) { return mach_axis_max(axis); }
 
 /* Is the block's motion a contour move (the core's or a plugin's)? */
-static int contour_block(const struct session *s)
+int sess_contour_block(const struct session *s)
 {
   const struct kp_attr *at = cur_attr(s);
   switch (at->motion) {
@@ -250,7 +251,7 @@ static int contour_block(const struct session *s)
 static int h_moves_axis(struct s42_block *b, int axis)
 {
   const struct session *s = b->s;
-  if (axis < 0 || axis >= 4 || !contour_block(s))
+  if (axis < 0 || axis >= 4 || !sess_contour_block(s))
     return 0;
   const struct kp_attr *at = cur_attr(s);
   int arc = at->motion == MO_G02 || at->motion == MO_G03 || at->motion == MO_G12 || at->motion == MO_G13;
@@ -326,7 +327,7 @@ static void h_warn(struct s42_block *b, const char *fmt, ...)
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt ? fmt : "", ap);
   va_end(ap);
-  warn(b->s, "%s", msg);
+  sess_warn(b->s, "%s", msg);
 }
 
 static void h_log(struct s42_block *b, const char *fmt, ...)
@@ -420,7 +421,7 @@ static const struct s42_host host = {
 };
 
 /* The plugin that owns the block's group-1 G (G12, a plugin's own G), -1. */
-static int motion_plugin(const struct session *s)
+int sess_motion_plugin(const struct session *s)
 {
   const struct kp_attr *at = cur_attr(s);
   if (!at->plugins)
@@ -436,7 +437,7 @@ static int motion_plugin(const struct session *s)
 }
 
 /* A callback's status: 0 to go on, or SE_ERROR with the VM failed. */
-static int plug_status(struct session *s, int i, int r, const char *phase)
+int sess_plug_status(struct session *s, int i, int r, const char *phase)
 {
   if (r == S42_OK || (r > 0 && strcmp(phase, "run") == 0))
     return 0;
@@ -453,7 +454,7 @@ static int plug_status(struct session *s, int i, int r, const char *phase)
 }
 
 /* Call one phase of the block's plugins; 0, or SE_ERROR. */
-static int plug_phase(struct session *s, uint32_t mask, int which)
+int sess_plug_phase(struct session *s, uint32_t mask, int which)
 {
   static const char *const names[] = {"check", "start", "finish"};
   EACH_PLUGIN(mask, i) {
@@ -466,7 +467,7 @@ static int plug_phase(struct session *s, uint32_t mask, int which)
       continue;
     s->blk.plug = i;
     s->perr = 0;
-    int e = plug_status(s, i, cb(pl->self, &s->blk), names[which]);
+    int e = sess_plug_status(s, i, cb(pl->self, &s->blk), names[which]);
     if (e)
       return e;
   }
@@ -487,7 +488,7 @@ static void mark_started(struct session *s, int i)
 }
 
 /* Start the plugins the block uses (init on first use); 0 or SE_ERROR. */
-static int plug_start_block(struct session *s, uint32_t mask)
+int sess_plug_start_block(struct session *s, uint32_t mask)
 {
   if (mask && !s->plugins) {
     vm_fail(&s->vm, S42_E_PLUGIN, "this block needs plugins and none are loaded");
@@ -587,231 +588,16 @@ void sess_plugin_json(const struct session *s, int what, char *buf, size_t n)
   }
 }
 
-/* The blocks that open M16's correction window when they start: G20, M19
- * and the dialog (language.md sec. 14). */
-static int window_block(const struct kp_attr *at)
-{
-  return at->motion == MO_G20 || at->motion == MO_M19 || at->motion == MO_DIALOG || BIT(at->m, 27) ||
-         BIT(at->m, 28) || BIT(at->m, 29);
-}
-
-/* The rest of a block after its machine work and waits: M16, the row. */
-static void finish_block(struct session *s)
-{
-  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  const struct kp_ext *x = s->p->ext;
-  for (uint32_t i = 0; i < at->nm16; i++) {
-    const struct m16_item *it = &x->m16[at->m16 + i];
-    int axis = it->axis == 'X' ? 0 : it->axis == 'Y' ? 1 : it->axis == 'Z' ? 2 : 3;
-    vm_set_reg(&s->vm, it->reg, (double)(it->sign * s->m.corr[axis]));
-  }
-  if (at->nm16)
-    memset(s->m.corr, 0, sizeof s->m.corr);   /* a correction is recorded once: a new window */
-  emit_row(s);
-  s->wait = W_NONE;
-  s->state = SE_START;
-  s->scr.mode = SCR_AUTO;
-}
-
-/* G28: check the number the G27 took against |min|..|max| and store it, or
- * show why not and ask again.  Returns the session event or -1. */
-static int g28_check(struct session *s)
-{
-  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  double v = fabs(s->answer);
-  int msg = -1;
-  if (v < s->vm.w[SL_MIN])
-    msg = MSG_BELOW;
-  else if (v > s->vm.w[SL_MAX])
-    msg = MSG_ABOVE;
-  if (msg >= 0) {
-    screen_message(&s->scr, screen_msg_text(msg, s->en));
-    screen_field_reopen(&s->scr);
-    s->wait = W_ANSWER;
-    return SE_WAIT;
-  }
-  vm_set_reg(&s->vm, (unsigned)at->g28reg, s->answer);
-  s->have_answer = 0;
-  return -1;
-}
-
-/* The dialog and display functions of the block (language.md sec. 13). */
-static int dialog(struct session *s, const struct kp_attr *at)
-{
-  if (BIT(at->m, 29))
-    s->scr.fixed = -1;
-  if (BIT(at->m, 28))
-    s->scr.at_fixed = 1;
-  if (BIT(at->g, 33))
-    screen_center(&s->scr, kp_str(s->p, at->g33));
-  if (BIT(at->g, 29)) {
-    const struct kp_ext *x = s->p->ext;
-    if (!s->m15_seen)
-      screen_p3_clear(&s->scr);
-    for (uint32_t i = 0; i < at->ng29; i++)
-      screen_p3_add(&s->scr, kp_str(s->p, x->lines[at->g29 + i]));
-    s->scr.p3 = 1;
-  }
-  if (BIT(at->g, 27)) {
-    screen_prompt(&s->scr, kp_str(s->p, at->g27), at->g27form == '-');
-    if (BIT(at->m, 27))
-      s->scr.fixed = s->scr.last;
-    s->wait = W_ANSWER;
-    return SE_WAIT;
-  }
-  if (BIT(at->m, 27))
-    s->scr.fixed = s->scr.last >= 0 ? s->scr.last : s->scr.nbuf;
-  if (BIT(at->g, 28)) {
-    if (!s->have_answer) {
-      vm_fail(&s->vm, S42_E_ORDER, "G28: no number was taken by a G27 before it");
-      return SE_ERROR;
-    }
-    return g28_check(s);
-  }
-  if (BIT(at->g, 34)) {
-    screen_message(&s->scr, screen_msg_text(MSG_DONE, s->en));
-    s->wait = W_PUSK;
-    return SE_WAIT;
-  }
-  return -1;
-}
-
-/* M19: set up the teach-in of the block's line or arc.  Returns -1, or
- * SE_ERROR when the arc is impossible. */
-static int teach_start(struct session *s, const struct kp_attr *at)
-{
-  memset(&s->teach, 0, sizeof s->teach);
-  s->teach.junior = -1;
-  for (int a = 0; a < 4; a++) {
-    s->teach.given[a] = BIT(at->slots, a);
-    s->teach.inc[a] = s->teach.given[a] ? s->mb.w[a] : 0;
-    if (s->teach.junior < 0 && s->teach.inc[a] != 0)
-      s->teach.junior = a;
-  }
-  int mp = motion_plugin(s);
-  if (mp >= 0 && s->plugins->v[mp].state == PLUG_READY && s->plugins->v[mp].d->path) {
-    /* a plugin's curve (a helix): follow its path, measured along it */
-    const struct plug *pl = &s->plugins->v[mp];
-    double prev[4] = {0, 0, 0, 0}, pt[4];
-    s->blk.plug = mp;
-    s->perr = 0;
-    for (int k = 1; k <= 4096; k++) {
-      if (pl->d->path(pl->self, &s->blk, k / 4096.0, pt) != S42_OK)
-        return plug_status(s, mp, S42_FAIL, "path");
-      s->teach.len += sqrt((pt[0] - prev[0]) * (pt[0] - prev[0]) + (pt[1] - prev[1]) * (pt[1] - prev[1]) +
-                           (pt[2] - prev[2]) * (pt[2] - prev[2]) + (pt[3] - prev[3]) * (pt[3] - prev[3]));
-      memcpy(prev, pt, sizeof prev);
-    }
-    s->teach.plug = mp + 1;
-    if (s->teach.junior < 0)   /* a closed path: the plane's first axis drives it */
-      s->teach.junior = at->plane == 18 ? AX_Y : AX_X;
-    return -1;
-  }
-  if (BIT(at->g, 2) || BIT(at->g, 3)) {
-    struct kp_block ab = s->mb;
-    char msg[200];
-    double len, ys;
-    ab.motion = BIT(at->g, 2) ? MO_G02 : MO_G03;
-    int e = kp_mach_arc(&ab, &len, &ys, msg, sizeof msg);
-    if (e) {
-      vm_fail(&s->vm, e, "%s", msg);
-      return SE_ERROR;
-    }
-    int p = at->plane == 18 ? AX_Y : AX_X, q = at->plane == 17 ? AX_Y : AX_Z;
-    s->teach.arc = 1;
-    s->teach.p = p;
-    s->teach.q = q;
-    s->teach.cp = s->mb.w[SL_I + p];
-    s->teach.cq = s->mb.w[SL_I + q];
-    s->teach.r = hypot(s->teach.cp, s->teach.cq);
-    s->teach.th0 = s->teach.th = atan2(-s->teach.cq, -s->teach.cp);
-    s->teach.ccw = BIT(at->g, 3);
-    if (s->teach.junior < 0)   /* a full circle: the plane's first axis drives it */
-      s->teach.junior = s->teach.given[p] ? p : q;
-  }
-  return -1;
-}
-
-/* M19: a jog of `axis` by d.  The junior axis drives the programmed move
- * (in its direction when the signs agree, backwards otherwise); another axis
- * of the block moves nothing; an axis not in the block moves alone. */
-static void teach_jog(struct session *s, int axis, int64_t d)
-{
-  double step[4] = {0, 0, 0, 0};
-  if (!s->teach.given[axis] || s->teach.junior < 0) {
-    step[axis] = (double)d;
-  } else if (axis != s->teach.junior) {
-    return;
-  } else if (s->teach.plug && s->teach.len > 0) {
-    /* the jog is the path length along the plugin's curve */
-    const struct plug *pl = &s->plugins->v[s->teach.plug - 1];
-    double inc = s->teach.inc[axis], from[4], to[4];
-    int forward = inc == 0 || (d > 0) == (inc > 0);
-    double u1 = s->teach.u + fabs((double)d) / s->teach.len * (forward ? 1 : -1);
-    s->blk.plug = s->teach.plug - 1;
-    if (pl->d->path(pl->self, &s->blk, s->teach.u, from) != S42_OK ||
-        pl->d->path(pl->self, &s->blk, u1, to) != S42_OK)
-      return;
-    s->teach.u = u1;
-    for (int a = 0; a < 4; a++)
-      step[a] = to[a] - from[a];
-  } else if (!s->teach.arc) {
-    for (int a = 0; a < 4; a++)
-      step[a] = s->teach.inc[a] * (double)d / s->teach.inc[axis];
-  } else {
-    /* the jog is the path length along the arc */
-    double inc = s->teach.inc[axis];
-    int forward = inc == 0 || (d > 0) == (inc > 0);
-    double dth = fabs((double)d) / s->teach.r * (forward ? 1 : -1) * (s->teach.ccw ? 1 : -1);
-    double th1 = s->teach.th + dth;
-    double r = s->teach.r;
-    step[s->teach.p] = r * (cos(th1) - cos(s->teach.th));
-    step[s->teach.q] = r * (sin(th1) - sin(s->teach.th));
-    s->teach.th = th1;
-  }
-  /* the axes move together: a step that would take one past its travel
-   * is not made at all (the others would leave the programmed path) */
-  int64_t dd[4];
-  for (int a = 0; a < 4; a++)
-    dd[a] = step[a] == 0 ? 0 : (int64_t)llround(s->teach.exact[a] + step[a]) - s->teach.moved[a];
-  if (!mach_in_travel(&s->m, dd)) {
-    warn(s, "the jog would take an axis past its travel limit (--machine): not made");
-    return;
-  }
-  for (int a = 0; a < 4; a++) {
-    if (step[a] == 0)
-      continue;
-    s->teach.exact[a] += step[a];
-    s->teach.moved[a] += dd[a];
-    mach_jog(&s->m, a, dd[a], s->m.corr_allowed);
-    s->jogs[a] += dd[a];
-  }
-  s->has_jogs = 1;
-}
-
-/* M19 ended with ПС: the bare-parameter axis words take the moves made. */
-static void teach_end(struct session *s)
-{
-  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  for (int a = 0; a < 4; a++)
-    if (at->bare[a]) {
-      int reg = abs(at->bare[a]) - 1;
-      vm_set_reg(&s->vm, (unsigned)reg, at->bare[a] > 0 ? (double)s->teach.moved[a] : -(double)s->teach.moved[a]);
-    }
-}
-
-static int after_motion(struct session *s);
-
 /* The block's plugins' run() from the one that waited (or the first), then
  * finish(); returns the session event or -1. */
-static int run_plugins(struct session *s)
+int sess_run_plugins(struct session *s)
 {
   const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
   for (int i = s->run_next; i < PLUG_MAX; i++) {
     if (!((at->plugins >> i) & 1))
       continue;
     struct plug *pl = &s->plugins->v[i];
-    if (!pl->d->run || (at->motion == MO_M19 && i == motion_plugin(s)))
+    if (!pl->d->run || (at->motion == MO_M19 && i == sess_motion_plugin(s)))
       continue;   /* under M19 the operator's jogs make the move */
     s->blk.plug = i;
     s->perr = 0;
@@ -822,121 +608,25 @@ static int run_plugins(struct session *s)
       s->wait = r == S42_WAIT_PUSK ? W_PUSK : r == S42_WAIT_PS ? W_PS : W_SECTION;
       return SE_WAIT;
     }
-    if (plug_status(s, i, r, "run"))
+    if (sess_plug_status(s, i, r, "run"))
       return SE_ERROR;
     s->resumed = 0;
   }
   s->plug_wait = 0;
   s->run_next = 0;
-  if (plug_phase(s, at->plugins | s->every, 2))
+  if (sess_plug_phase(s, at->plugins | s->every, 2))
     return SE_ERROR;
-  return after_motion(s);
-}
-
-/* The block's machine work proper, once nothing holds it. */
-static int exec_block(struct session *s)
-{
-  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  kp_mach_modal(&s->m, &s->mb);
-  if (plug_phase(s, at->plugins | s->every, 1))
-    return SE_ERROR;
-  kp_mach_motion(&s->m, &s->mb, &s->mo);
-  s->run_next = 0;
-  s->resumed = 0;
-  return run_plugins(s);
-}
-
-static int after_motion(struct session *s)
-{
-  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  if (BIT(at->m, 15))
-    s->m15_seen = 1;
-  if (BIT(at->m, 21)) {
-    s->directive = 0;
-    screen_clear_directive(&s->scr);
-  }
-  if (at->m18) {
-    s->directive = at->m18;
-    screen_set_directive(&s->scr, kp_str(s->p, at->m18));
-  }
-  if (at->motion == MO_G20) {
-    s->scr.mode = SCR_MANUAL;
-    s->wait = at->m18 ? W_PS : W_PUSK;
-    return SE_WAIT;
-  }
-  if (at->motion == MO_M19) {
-    if (teach_start(s, at) == SE_ERROR)
-      return SE_ERROR;
-    s->scr.mode = SCR_MANUAL;
-    s->wait = W_TEACH;
-    return SE_WAIT;
-  }
-  if (window_block(at)) {
-    int r = dialog(s, at);
-    if (r >= 0)
-      return r;
-  }
-  finish_block(s);
-  return -1;
-}
-
-/* A contour move, the core's or a plugin's, waits at a feed override of 0 %. */
-static int held(const struct session *s)
-{
-  return contour_block(s) && mach_held(&s->m, kp_mach_moves(&s->mb));
-}
-
-/* A VM_EV_BLOCK: do the block's machine work.  Returns the session event
- * when the host must act, or -1 to keep running. */
-static int do_block(struct session *s)
-{
-  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  char msg[200];
-  s->scr.block = sess_block_number(s);
-  if (s->vm.clamped) {
-    const struct prog_rule *ru = &s->p->rules[s->vm.clamped - 1];
-    warn(s, "%s%.10g is over %.0f: clamped to %.0f", ru->name, s->vm.clamped_from, ru->hi, ru->hi);
-    s->vm.clamped = 0;
-  }
-  /* a G20, M19 or dialog block opens M16's correction window as it starts:
-   * at its VM_EV_START when the host acted there (an `at` correction is
-   * in the window), else here; a PP jump opens none (language.md sec. 14) */
-  if (window_block(at) && !s->window_opened)
-    memset(s->m.corr, 0, sizeof s->m.corr);
-  s->window_opened = 0;
-  struct kp_block *b = &s->mb;
-  b->motion = at->motion;
-  b->plane = at->plane;
-  b->g = at->g;
-  b->m = at->m;
-  b->given = at->slots;
-  for (int i = 0; i < SL__COUNT; i++)
-    b->w[i] = BIT(at->slots, i) ? s->vm.w[i] : 0.0;
-  b->f = s->vm.reg[REG_F];
-  b->d1 = s->vm.reg[REG_D1];
-  int e = kp_mach_check(&s->m, b, msg, sizeof msg);
-  if (e) {
-    vm_fail(&s->vm, e, "%s", msg);
-    return SE_ERROR;
-  }
-  if (at->plugins | s->every) {
-    if (plug_start_block(s, at->plugins) || plug_phase(s, at->plugins | s->every, 0))
-      return SE_ERROR;
-  }
-  memset(s->jogs, 0, sizeof s->jogs);
-  s->has_jogs = 0;
-  memcpy(s->start, s->m.pos, sizeof s->start);
-  if (held(s)) {           /* feed override at 0 %: the move waits */
-    s->wait = W_FEED;
-    return SE_WAIT;
-  }
-  return exec_block(s);
+  return s->rt->after(s);
 }
 
 enum sess_ev sess_run(struct session *s)
 {
   if (s->state == SE_WAIT || s->state == SE_END || s->state == SE_ERROR || s->state == SE_STOPPED)
     return (enum sess_ev)s->state;
+  if (!s->rt) {          /* a front end that has no runtime on the session */
+    sess_refuse(s, S42_E_SUB, "this program's dialect has no runtime on the session");
+    return SE_ERROR;
+  }
   if (s->gate) {         /* a block starts: after the host's actions there (`at N5 mode single`) */
     s->gate = 0;
     int wait = !s->go && (s->single || (s->brk && sess_block_number(s) == s->brk));
@@ -952,12 +642,10 @@ enum sess_ev sess_run(struct session *s)
     switch (ev) {
     case VM_EV_START:
       s->gate = 1;       /* single block and the breakpoint are looked at when the host comes back */
-      s->window_opened = window_block(kp_attr(s->p, s->vm.cur));
-      if (s->window_opened)
-        memset(s->m.corr, 0, sizeof s->m.corr);
+      s->rt->start(s);
       return (enum sess_ev)(s->state = SE_START);
     case VM_EV_BLOCK:
-      r = do_block(s);
+      r = s->rt->block(s);
       if (r >= 0)
         return (enum sess_ev)(s->state = r);
       break;
@@ -975,7 +663,7 @@ static void resume_plugin(struct session *s)
 {
   s->resumed++;
   s->wait = W_NONE;
-  int r = run_plugins(s);
+  int r = sess_run_plugins(s);
   if (r >= 0)
     s->state = r;
 }
@@ -994,7 +682,7 @@ int sess_key_pusk(struct session *s)
     resume_plugin(s);
     return 0;
   }
-  finish_block(s);
+  s->rt->finish(s);
   return 0;
 }
 
@@ -1007,13 +695,9 @@ int sess_answer(struct session *s, long long v)
   screen_field_close(&s->scr);
   s->answer = (double)v;
   s->have_answer = 1;
-  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  if (BIT(at->g, 28)) {
-    int r = g28_check(s);
-    if (r >= 0)
-      return 0;   /* refused: it waits for the number again */
-  }
-  finish_block(s);
+  if (s->rt->answer(s))
+    return 0;   /* refused: it waits for the number again */
+  s->rt->finish(s);
   return 0;
 }
 
@@ -1027,7 +711,7 @@ int sess_key_ps(struct session *s)
   if (s->state != SE_WAIT || (s->wait != W_PS && s->wait != W_TEACH))
     return -1;
   if (s->wait == W_TEACH)
-    teach_end(s);
+    s->rt->teach_end(s);
   s->scr.has_message = 0;   /* a message stays until the next key */
   if (s->plug_wait && s->wait == W_PS) {
     resume_plugin(s);
@@ -1062,7 +746,7 @@ static int64_t stopped_jog(struct session *s, int axis, int64_t d, int correctio
 {
   int64_t made = mach_jog(&s->m, axis, d, correction);
   if (made != d)
-    warn(s, "%c stopped at its travel limit %.3f %s (--machine): %.3f of %.3f made", "XYZA"[axis],
+    sess_warn(s, "%c stopped at its travel limit %.3f %s (--machine): %.3f of %.3f made", "XYZA"[axis],
          (double)s->m.pos[axis] / 1000, axis == 3 ? "deg" : "mm", (double)made / 1000, (double)d / 1000);
   return made;
 }
@@ -1078,7 +762,7 @@ int sess_jog(struct session *s, int axis, int64_t d)
   if (s->state != SE_WAIT || axis < 0 || axis > 3)
     return -1;
   if (s->wait == W_TEACH) {
-    teach_jog(s, axis, d);
+    s->rt->teach_jog(s, axis, d);
     return 0;
   }
   if (s->wait != W_PUSK && s->wait != W_PS && s->wait != W_SECTION)
@@ -1121,7 +805,7 @@ int sess_start_plugins(struct session *s, char *msg, size_t n, size_t *block)
 int sess_correct(struct session *s, int axis, int64_t d)
 {
   if (!s->m.corr_allowed) {
-    warn(s, "correction refused: operational corrections are forbidden (M23)");
+    sess_warn(s, "correction refused: operational corrections are forbidden (M23)");
     screen_message(&s->scr, screen_msg_text(MSG_NOCORR, s->en));
     return -1;
   }
@@ -1154,14 +838,15 @@ int sess_set_param(struct session *s, int reg, double v, char *why, size_t n)
 int sess_override(struct session *s, int pct)
 {
   if (!s->m.override_allowed) {
-    warn(s, "feed override refused: forbidden by M25");
+    sess_warn(s, "feed override refused: forbidden by M25");
     screen_message(&s->scr, screen_msg_text(MSG_NOOVR, s->en));
     return -1;
   }
   s->m.override_pct = pct;
-  if (s->state == SE_WAIT && s->wait == W_FEED && !held(s)) {
-    int r = exec_block(s);
-    s->state = r >= 0 ? r : SE_START;
+  if (s->state == SE_WAIT && s->wait == W_FEED) {
+    int r = s->rt->released(s);
+    if (r != -2)
+      s->state = r >= 0 ? r : SE_START;
   }
   return 0;
 }

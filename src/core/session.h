@@ -76,8 +76,10 @@ struct sess_config {
   void *canon_ctx;
 };
 
+struct sess_runtime;
 struct session {
   const struct program *p;
+  const struct sess_runtime *rt;  /* the dialect's runtime (src/core/sess_rt.h), from the program */
   struct sess_config cfg;       /* as the host set it up */
   struct vm vm;
   struct machine m;

@@ -1312,6 +1312,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   }
   p->ext = c.x;
   p->ext_free = ext_free;
+  p->runtime = &kp_runtime;   /* the session runs a 2С42 block through src/dialect/2c42/runtime.c */
   d->src = src;   /* the source lines under the diagnostics */
   d->nsrc = n;
   p->saved_reg = REG_F;

@@ -56,4 +56,8 @@ static inline const char *kp_str(const struct program *p, uint32_t off)
   return off ? ((const struct kp_ext *)p->ext)->str + off - 1 : NULL;
 }
 
+/* The 2С42 runtime on the session (runtime.c). */
+struct sess_runtime;
+extern const struct sess_runtime kp_runtime;
+
 #endif
