@@ -746,8 +746,8 @@ static int64_t stopped_jog(struct session *s, int axis, int64_t d, int correctio
 {
   int64_t made = mach_jog(&s->m, axis, d, correction);
   if (made != d)
-    sess_warn(s, "%c stopped at its travel limit %.3f %s (--machine): %.3f of %.3f made", "XYZA"[axis],
-         (double)s->m.pos[axis] / 1000, axis == 3 ? "deg" : "mm", (double)made / 1000, (double)d / 1000);
+    sess_warn(s, "%c stopped at its travel limit %.3f %s (--machine): %.3f of %.3f made", mach_axes[axis].name,
+         (double)s->m.pos[axis] / 1000, mach_axes[axis].unit, (double)made / 1000, (double)d / 1000);
   return made;
 }
 

@@ -16,9 +16,16 @@ void mach_init(struct machine *m)
   m->canon_plane = -1;
 }
 
+const struct mach_axis mach_axes[MACH_NAXES] = {
+  {'X', "mm", 0, MACH_AXIS_MAX},
+  {'Y', "mm", 0, MACH_Y_MAX},
+  {'Z', "mm", 0, MACH_AXIS_MAX},
+  {'A', "deg", 1, MACH_AXIS_MAX},
+};
+
 double mach_axis_max(int axis)
 {
-  return axis == AX_Y ? MACH_Y_MAX : MACH_AXIS_MAX;
+  return axis >= 0 && axis < MACH_NAXES ? mach_axes[axis].max_speed : 0;
 }
 
 void mach_advance(struct machine *m, double dt)
@@ -187,8 +194,8 @@ int mach_check_travel(const struct machine *m, const struct mach_path *pa, char 
     double over = hi[a] > (double)t->hi[a] + 0.5 ? hi[a] : lo[a] < (double)t->lo[a] - 0.5 ? lo[a] : NAN;
     if (isnan(over))
       continue;
-    snprintf(msg, n, "%c would reach %.3f %s, outside its travel %.3f .. %.3f (--machine)", "XYZA"[a], over / 1000,
-             a == 3 ? "deg" : "mm", (double)t->lo[a] / 1000, (double)t->hi[a] / 1000);
+    snprintf(msg, n, "%c would reach %.3f %s, outside its travel %.3f .. %.3f (--machine)", mach_axes[a].name,
+             over / 1000, mach_axes[a].unit, (double)t->lo[a] / 1000, (double)t->hi[a] / 1000);
     return S42_E_TRAVEL;
   }
   return 0;

@@ -76,6 +76,17 @@ struct machine {
   int canon_plane;     /* the last SELECT_PLANE printed (-1 none) */
 };
 
+/* The machine's axes as the canonical interface describes them: name,
+ * unit, rotary or not, the fastest it moves. */
+struct mach_axis {
+  char name;           /* 'X' */
+  const char *unit;    /* "mm", "deg" */
+  int rotary;
+  double max_speed;    /* mm/min or deg/min */
+};
+#define MACH_NAXES 4
+extern const struct mach_axis mach_axes[MACH_NAXES];
+
 void mach_init(struct machine *m);
 /* Check a contour move at speed f before anything moves: its geometry
  * (E-ARC), its speed (E-FEED), its travel (E-TRAVEL).  0, or the error code
