@@ -6,7 +6,7 @@
  * missing entry symbol, another ABI version, an init that fails -- is caught
  * here too, reported with the file and the reason, and the handle closed. */
 #include "plugin.h"
-#include "parse.h"
+#include "words.h"   /* the dialect's G/M table: which functions are a plugin's */
 #include <dirent.h>
 #include <dlfcn.h>
 #include <errno.h>
@@ -26,32 +26,16 @@
 #define S42_PLUGINDIR "/usr/local/lib/s42/plugins"
 #endif
 
-/* The functions the language names whose work lives in plugins. */
-static const struct owner {
-  char kind;
-  int number;
-  const char *plugin, *what;
-} owners[] = {
-  {'G', 7, "oscillation", "oscillation parameters"},
-  {'M', 13, "oscillation", "oscillation on"},
-  {'M', 14, "oscillation", "oscillation off"},
-  {'G', 10, "toothsearch", "tooth-step search"},
-  {'G', 11, "toothsearch", "tooth-step search"},
-  {'M', 10, "toothsearch", "lead and helix angle"},
-  {'M', 12, "toothsearch", "search speed from F"},
-  {'G', 12, "helix", "helical interpolation"},
-  {'G', 13, "helix", "helical interpolation"},
-};
-
-const char *plug_owner(char kind, int number, const char **what)
+/* The functions the language names whose work lives in plugins: the
+ * owner column of the dialect's word table (words.h). */
+static const char *plug_owner(char kind, int number, const char **what)
 {
-  for (size_t i = 0; i < sizeof owners / sizeof owners[0]; i++)
-    if (owners[i].kind == kind && owners[i].number == number) {
-      if (what)
-        *what = owners[i].what;
-      return owners[i].plugin;
-    }
-  return NULL;
+  const struct kp_word *w = kp_word(kind, number);
+  if (!w || !w->owner)
+    return NULL;
+  if (what)
+    *what = w->name;
+  return w->owner;
 }
 
 static char *dupstr(const char *s)
@@ -564,9 +548,8 @@ void plug_free(struct plug_set *ps)
 /* Is kind/number a function of the language that is no plugin's (G01)? */
 static int core_function(char kind, int number)
 {
-  if (plug_owner(kind, number, NULL))
-    return 0;
-  return kind == 'G' ? kp_valid_g(number) : kp_valid_m(number);
+  const struct kp_word *w = kp_word(kind, number);
+  return w && !w->owner;
 }
 
 static const struct s42_function *provides(const struct plug *p, char kind, int number)

@@ -83,10 +83,6 @@ int plug_by_name(struct plug_set *ps, const char *name);
 /* Open every file (for `s42 plugins`). */
 void plug_open_all(struct plug_set *ps);
 
-/* The plugin a language function belongs to ("helix" for G12), or NULL
- * when the language leaves it to the core. */
-const char *plug_owner(char kind, int number, const char **what);
-
 /* Why a function is unavailable: fills msg (for E-PLUGIN). */
 void plug_why_missing(const struct plug_set *ps, char kind, int number, char *msg, size_t n);
 

@@ -27,6 +27,7 @@ Suite *suite_modbus(void);
 Suite *suite_travel(void);
 Suite *suite_state(void);
 Suite *suite_param(void);
+Suite *suite_words(void);
 
 /* A program compiled from a C string, with its diagnostics. */
 struct tprog {
