@@ -50,8 +50,14 @@
  * wins; for one the language leaves to a plugin, the files named after
  * that plugin (oscillation.so, toothsearch.so, helix.so) come first.
  *
- * One instance per process: init() runs once, reset() starts every run,
- * fini() ends it.  s42 runs one program at a time with a loaded plugin.
+ * One instance per plugin set: init() runs once, reset() starts every run,
+ * fini() ends it.  s42 has one set, so one instance per process; a program
+ * that embeds two s42 sessions with a set each (two --tool values) starts
+ * a plugin once in each set, in the same shared object.  So keep what a
+ * run needs in *self, not in statics the two would share; a static host
+ * pointer is fine for the services that take a block, but option()
+ * answers for the set whose table it is: read options in init(), or
+ * through the table init() got.
  *
  * A minimal plugin is docs/plugin-example/hello.c in the s42 sources:
  * descriptor, init and run, built with `cc -shared -fPIC -o hello.so
@@ -242,7 +248,8 @@ struct s42_host {
   /* ---- 1.1 (check host->size before use; see the top of this file) ---- */
 
   /* The value of a command-line option meant for plugins, or NULL when it
-   * was not given; valid for the whole run, callable from init() on.
+   * was not given; valid for the whole run, callable from init() on, and
+   * the options of the plugin set whose init() received this table.
    * Names: "tool" (--tool FILE, the tool model of a tooth-step search),
    * "dump-images" (--dump-images DIR: write the images a search took
    * there), "lang" ("uk" or "en", never NULL). */
