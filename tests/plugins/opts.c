@@ -17,15 +17,17 @@ struct opts {
 static int init(const struct s42_host *h, const char *dir, void **self)
 {
   (void)dir;
-  const char *tool = h->option("tool");
+  const struct s42_host *host;
+  S42_PLUGIN_INIT(h, host);
+  const char *tool = host->option("tool");
   if (tool && strcmp(tool, "fail") == 0) {
-    h->error(NULL, NULL, "the tool is %s", tool);
+    host->error(NULL, NULL, "the tool is %s", tool);
     return S42_FAIL_USAGE;
   }
-  struct opts *o = h->alloc(sizeof *o);
+  struct opts *o = host->alloc(sizeof *o);
   if (!o)
     return S42_FAIL;
-  o->host = h;
+  o->host = host;
   snprintf(o->init, sizeof o->init, "%s", tool ? tool : "");
   *self = o;
   return S42_OK;
@@ -55,15 +57,8 @@ static size_t describe(void *self, int what, char *buf, size_t cap)
 }
 
 static const struct s42_function fns[] = {
-  {sizeof(struct s42_function), 'M', 1, 0, NULL, 0, "R1 = length of the tool option (fixture)"},
+  S42_M_FUNCTION(1, NULL, 0, "R1 = length of the tool option (fixture)"),
 };
 
-static const struct s42_plugin desc = {
-  .size = sizeof desc, .abi_major = S42_ABI_MAJOR, .abi_minor = S42_ABI_MINOR,
-  .fingerprint = S42_ABI_FINGERPRINT, .name = "opts", .version = "0.1", .summary = "fixture: reads its options",
-  .functions = fns, .nfunctions = 1, .init = init, .fini = fini, .run = run, .describe = describe,
-  .trace_key = "opts",
-};
-
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void) { return &desc; }
+S42_PLUGIN_DECLARE("opts", "0.1", "fixture: reads its options", fns, .init = init, .fini = fini, .run = run,
+                   .describe = describe, .trace_key = "opts");
