@@ -50,8 +50,14 @@
  * wins; for one the language leaves to a plugin, the files named after
  * that plugin (oscillation.so, toothsearch.so, helix.so) come first.
  *
- * One instance per process: init() runs once, reset() starts every run,
- * fini() ends it.  s42 runs one program at a time with a loaded plugin.
+ * One instance per plugin set: init() runs once, reset() starts every run,
+ * fini() ends it.  s42 has one set, so one instance per process; a program
+ * that embeds two s42 sessions with a set each (two --tool values) starts
+ * a plugin once in each set, in the same shared object.  So keep what a
+ * run needs in *self, not in statics the two would share; a static host
+ * pointer is fine for the services that take a block, but option()
+ * answers for the set whose table it is: read options in init(), or
+ * through the table init() got.
  *
  * A minimal plugin is docs/plugin-example/hello.c in the s42 sources:
  * descriptor, init and run, built with `cc -shared -fPIC -o hello.so
@@ -77,6 +83,11 @@ extern "C" {
 #define S42_EXPORT __attribute__((visibility("default")))
 #else
 #define S42_EXPORT
+#endif
+#ifdef __cplusplus
+#define S42_EXTERN_C extern "C"
+#else
+#define S42_EXTERN_C
 #endif
 
 /* What callbacks return. */
@@ -242,7 +253,8 @@ struct s42_host {
   /* ---- 1.1 (check host->size before use; see the top of this file) ---- */
 
   /* The value of a command-line option meant for plugins, or NULL when it
-   * was not given; valid for the whole run, callable from init() on.
+   * was not given; valid for the whole run, callable from init() on, and
+   * the options of the plugin set whose init() received this table.
    * Names: "tool" (--tool FILE, the tool model of a tooth-step search),
    * "dump-images" (--dump-images DIR: write the images a search took
    * there), "lang" ("uk" or "en", never NULL). */
@@ -314,6 +326,64 @@ enum { S42_PL_EVERY_BLOCK = 1 };
 enum { S42_DESCRIBE_TRACE = 1, S42_DESCRIBE_DUMP = 2 };
 
 typedef const struct s42_plugin *(*s42_plugin_entry_fn)(void);
+
+/* ---- declaring a plugin (as SQLite's sqlite3ext.h, Redis modules) ----
+ *
+ * These fill in what every plugin repeats -- the sizes, the ABI version
+ * and fingerprint, the function count, the entry function -- so that a
+ * plugin writes only what is its own.  What they build is the descriptor
+ * above, byte for byte as a plugin filling it by hand gets (a plugin may
+ * still do that: one that declares an older minor version must).
+ *
+ *   static const struct s42_function functions[] = {
+ *     S42_G_FUNCTION(12, 1, "XYZAIJKF", S42_FN_PLANE | S42_FN_MOTION, "helix, clockwise"),
+ *     S42_M_FUNCTION(30, NULL, 0, "count in R1"),
+ *   };
+ *
+ *   static int init(const struct s42_host *h, const char *dir, void **self)
+ *   {
+ *     S42_PLUGIN_INIT(h, host);   (host: the plugin's const struct s42_host *)
+ *     ...
+ *   }
+ *
+ *   S42_PLUGIN_DECLARE("helix", "1.0", "helical interpolation (G12 G13)", functions,
+ *                      .init = init, .check = check, .run = run, .path = path);
+ *
+ * S42_G_FUNCTION(number, group, operands, flags, summary) and
+ * S42_M_FUNCTION(number, operands, flags, summary): one struct
+ * s42_function each (an M has group 0).
+ *
+ * S42_PLUGIN_DECLARE(name, version, summary, functions, ...): the
+ * descriptor, for this header's ABI, with `functions` (an array, counted
+ * with sizeof) and the members that follow as designated initializers --
+ * the callbacks, .init among them, .flags, .trace_key -- and the exported
+ * s42_plugin_entry() returning it.  Once per plugin, at file scope, after
+ * the callbacks.  (C++20: name the members in their order here.)
+ *
+ * S42_PLUGIN_INIT(h, var): the first statement of init(): returns S42_FAIL
+ * when h is the table of another major version or shorter than this
+ * header's -- the loader never lets that happen, but it is the rule for a
+ * plugin before it calls the services of its version -- and keeps h in var. */
+#define S42_G_FUNCTION(number, group, operands, flags, summary) \
+  {sizeof(struct s42_function), 'G', (number), (group), (operands), (flags), (summary)}
+#define S42_M_FUNCTION(number, operands, flags, summary) \
+  {sizeof(struct s42_function), 'M', (number), 0, (operands), (flags), (summary)}
+
+#define S42_PLUGIN_DECLARE(name_, version_, summary_, functions_, ...)                                  \
+  static const struct s42_plugin s42_plugin_descriptor = {                                             \
+    .size = sizeof(struct s42_plugin), .abi_major = S42_ABI_MAJOR, .abi_minor = S42_ABI_MINOR,         \
+    .fingerprint = S42_ABI_FINGERPRINT, .name = (name_), .version = (version_), .summary = (summary_), \
+    .functions = (functions_), .nfunctions = (uint32_t)(sizeof(functions_) / sizeof((functions_)[0])), \
+    __VA_ARGS__};                                                                                      \
+  S42_EXTERN_C S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);                             \
+  S42_EXTERN_C S42_EXPORT const struct s42_plugin *s42_plugin_entry(void) { return &s42_plugin_descriptor; }
+
+#define S42_PLUGIN_INIT(h, var)                                                       \
+  do {                                                                                \
+    if ((h)->abi_major != S42_ABI_MAJOR || (h)->size < sizeof(struct s42_host))       \
+      return S42_FAIL;                                                                \
+    (var) = (h);                                                                      \
+  } while (0)
 
 #ifdef __cplusplus
 }

@@ -9,7 +9,7 @@ static const struct s42_host *host;
 static int init(const struct s42_host *h, const char *dir, void **self)
 {
   (void)dir;
-  host = h;
+  S42_PLUGIN_INIT(h, host);
   *self = NULL;
   return S42_OK;
 }
@@ -23,25 +23,9 @@ static int run(void *self, struct s42_block *b)
 }
 
 static const struct s42_function functions[] = {
-  {sizeof(struct s42_function), 'M', 11, 0, "", 0, "R0 = this block's number"},
+  S42_M_FUNCTION(11, "", 0, "R0 = this block's number"),
 };
 
-static const struct s42_plugin descriptor = {
-  .size = sizeof descriptor,
-  .abi_major = S42_ABI_MAJOR,
-  .abi_minor = S42_ABI_MINOR,
-  .fingerprint = S42_ABI_FINGERPRINT,
-  .name = "hello",
-  .version = "1.0",
-  .summary = "M11 says hello",
-  .functions = functions,
-  .nfunctions = 1,
-  .init = init,
-  .run = run,
-};
-
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void)
-{
-  return &descriptor;
-}
+/* the descriptor and s42_plugin_entry(): the ABI version, sizes and
+ * fingerprint come from the header */
+S42_PLUGIN_DECLARE("hello", "1.0", "M11 says hello", functions, .init = init, .run = run);

@@ -29,9 +29,7 @@ struct helix {
 static int init(const struct s42_host *h, const char *dir, void **self)
 {
   (void)dir;
-  if (h->size < sizeof(struct s42_host))
-    return S42_FAIL;
-  host = h;
+  S42_PLUGIN_INIT(h, host);
   *self = NULL;
   return S42_OK;
 }
@@ -182,30 +180,11 @@ static int path(void *self, struct s42_block *b, double t, double d[4])
 }
 
 static const struct s42_function functions[] = {
-  {sizeof(struct s42_function), 'G', 12, 1, "XYZAIJKF", S42_FN_PLANE | S42_FN_MOTION,
-   "helical interpolation clockwise: an arc as G02 plus one axis outside its plane"},
-  {sizeof(struct s42_function), 'G', 13, 1, "XYZAIJKF", S42_FN_PLANE | S42_FN_MOTION,
-   "helical interpolation counter-clockwise: an arc as G03 plus one axis outside its plane"},
+  S42_G_FUNCTION(12, 1, "XYZAIJKF", S42_FN_PLANE | S42_FN_MOTION,
+                 "helical interpolation clockwise: an arc as G02 plus one axis outside its plane"),
+  S42_G_FUNCTION(13, 1, "XYZAIJKF", S42_FN_PLANE | S42_FN_MOTION,
+                 "helical interpolation counter-clockwise: an arc as G03 plus one axis outside its plane"),
 };
 
-static const struct s42_plugin descriptor = {
-  .size = sizeof(struct s42_plugin),
-  .abi_major = S42_ABI_MAJOR,
-  .abi_minor = S42_ABI_MINOR,
-  .fingerprint = S42_ABI_FINGERPRINT,
-  .name = "helix",
-  .version = "1.0",
-  .summary = "helical interpolation (G12 G13)",
-  .functions = functions,
-  .nfunctions = sizeof functions / sizeof functions[0],
-  .init = init,
-  .check = check,
-  .run = run,
-  .path = path,
-};
-
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void)
-{
-  return &descriptor;
-}
+S42_PLUGIN_DECLARE("helix", "1.0", "helical interpolation (G12 G13)", functions,
+                   .init = init, .check = check, .run = run, .path = path);

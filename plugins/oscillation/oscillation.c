@@ -24,9 +24,7 @@ static const char axis_names[] = "XYZA";
 static int init(const struct s42_host *h, const char *dir, void **self)
 {
   (void)dir;
-  if (h->size < sizeof(struct s42_host))
-    return S42_FAIL;
-  host = h;
+  S42_PLUGIN_INIT(h, host);
   struct osc *o = h->alloc(sizeof *o);
   if (!o)
     return S42_FAIL;
@@ -204,38 +202,13 @@ static size_t describe(void *self, int what, char *buf, size_t cap)
 }
 
 static const struct s42_function functions[] = {
-  {sizeof(struct s42_function), 'G', 7, 1, "XYZAF", S42_FN_SEPARATE,
-   "oscillation parameters: one axis word (stroke, first direction) and F (speed)"},
-  {sizeof(struct s42_function), 'M', 13, 0, NULL, 0, "oscillation on, from the start of this block"},
-  {sizeof(struct s42_function), 'M', 14, 0, NULL, 0, "oscillation off at the end of this block; the axis returns"},
+  S42_G_FUNCTION(7, 1, "XYZAF", S42_FN_SEPARATE,
+                 "oscillation parameters: one axis word (stroke, first direction) and F (speed)"),
+  S42_M_FUNCTION(13, NULL, 0, "oscillation on, from the start of this block"),
+  S42_M_FUNCTION(14, NULL, 0, "oscillation off at the end of this block; the axis returns"),
 };
 
-static const struct s42_plugin descriptor = {
-  .size = sizeof(struct s42_plugin),
-  .abi_major = S42_ABI_MAJOR,
-  .abi_minor = S42_ABI_MINOR,
-  .fingerprint = S42_ABI_FINGERPRINT,
-  .name = "oscillation",
-  .version = "1.0",
-  .summary = "oscillation of one axis through blocks and subs (G07 M13 M14)",
-  .functions = functions,
-  .nfunctions = sizeof functions / sizeof functions[0],
-  .flags = S42_PL_EVERY_BLOCK,
-  .init = init,
-  .fini = fini,
-  .check = check,
-  .start = start,
-  .finish = finish,
-  .advance = advance,
-  .save = save,
-  .load = load,
-  .describe = describe,
-  .trace_key = "osc",
-  .reset = reset,
-};
-
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void)
-{
-  return &descriptor;
-}
+S42_PLUGIN_DECLARE("oscillation", "1.0", "oscillation of one axis through blocks and subs (G07 M13 M14)", functions,
+                   .flags = S42_PL_EVERY_BLOCK, .init = init, .fini = fini, .check = check, .start = start,
+                   .finish = finish, .advance = advance, .save = save, .load = load, .describe = describe,
+                   .trace_key = "osc", .reset = reset);

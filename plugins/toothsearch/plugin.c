@@ -65,9 +65,7 @@ static const struct s42_host *host;
 
 static int init(const struct s42_host *h, const char *dir, void **self)
 {
-  if (h->size < sizeof(struct s42_host) || h->abi_major != S42_ABI_MAJOR)
-    return S42_FAIL;   /* older than 1.1: the loader never lets it come to this */
-  host = h;
+  S42_PLUGIN_INIT(h, host);   /* older than 1.1: the loader never lets it come to this */
   const char *tool = h->option("tool");
   if (!tool || !*tool) {
     h->error(NULL, NULL, "a tooth-step search (G10/G11) needs a tool model: give --tool FILE");
@@ -389,35 +387,13 @@ static size_t describe(void *self, int what, char *buf, size_t cap)
 }
 
 static const struct s42_function functions[] = {
-  {sizeof(struct s42_function), 'G', 10, 1, "F", S42_FN_SEPARATE,
-   "tooth-step search, right-hand tool (needs --tool)"},
-  {sizeof(struct s42_function), 'G', 11, 1, "F", S42_FN_SEPARATE,
-   "tooth-step search, left-hand tool (needs --tool)"},
-  {sizeof(struct s42_function), 'M', 10, 0, "F", 0, "with G10/G11: also lead TK and helix angle UG (two sections)"},
-  {sizeof(struct s42_function), 'M', 12, 0, "F", 0, "with G10/G11: F is the search speed, deg/min"},
+  S42_G_FUNCTION(10, 1, "F", S42_FN_SEPARATE, "tooth-step search, right-hand tool (needs --tool)"),
+  S42_G_FUNCTION(11, 1, "F", S42_FN_SEPARATE, "tooth-step search, left-hand tool (needs --tool)"),
+  S42_M_FUNCTION(10, "F", 0, "with G10/G11: also lead TK and helix angle UG (two sections)"),
+  S42_M_FUNCTION(12, "F", 0, "with G10/G11: F is the search speed, deg/min"),
 };
 
-static const struct s42_plugin descriptor = {
-  .size = sizeof(struct s42_plugin),
-  .abi_major = S42_ABI_MAJOR,
-  .abi_minor = S42_ABI_MINOR,
-  .fingerprint = S42_ABI_FINGERPRINT,
-  .name = "toothsearch",
-  .version = "1.0",
-  .summary = "tooth-step search on simulated probe images (G10 G11 M10 M12; OpenCV, loaded on first use)",
-  .functions = functions,
-  .nfunctions = sizeof functions / sizeof functions[0],
-  .init = init,
-  .fini = fini,
-  .check = check,
-  .run = run,
-  .describe = describe,
-  .trace_key = "search",
-  .reset = reset,
-};
-
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void)
-{
-  return &descriptor;
-}
+S42_PLUGIN_DECLARE("toothsearch", "1.0",
+                   "tooth-step search on simulated probe images (G10 G11 M10 M12; OpenCV, loaded on first use)",
+                   functions, .init = init, .fini = fini, .check = check, .run = run, .describe = describe,
+                   .trace_key = "search", .reset = reset);

@@ -6,7 +6,7 @@
  * missing entry symbol, another ABI version, an init that fails -- is caught
  * here too, reported with the file and the reason, and the handle closed. */
 #include "plugin.h"
-#include "parse.h"
+#include "words.h"   /* the dialect's G/M table: which functions are a plugin's */
 #include <dirent.h>
 #include <dlfcn.h>
 #include <errno.h>
@@ -15,6 +15,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -26,32 +27,18 @@
 #define S42_PLUGINDIR "/usr/local/lib/s42/plugins"
 #endif
 
-/* The functions the language names whose work lives in plugins. */
-static const struct owner {
-  char kind;
-  int number;
-  const char *plugin, *what;
-} owners[] = {
-  {'G', 7, "oscillation", "oscillation parameters"},
-  {'M', 13, "oscillation", "oscillation on"},
-  {'M', 14, "oscillation", "oscillation off"},
-  {'G', 10, "toothsearch", "tooth-step search"},
-  {'G', 11, "toothsearch", "tooth-step search"},
-  {'M', 10, "toothsearch", "lead and helix angle"},
-  {'M', 12, "toothsearch", "search speed from F"},
-  {'G', 12, "helix", "helical interpolation"},
-  {'G', 13, "helix", "helical interpolation"},
-};
+static void release_thunk(struct plug_set *ps);   /* options and starting a plugin, below */
 
-const char *plug_owner(char kind, int number, const char **what)
+/* The functions the language names whose work lives in plugins: the
+ * owner column of the dialect's word table (words.h). */
+static const char *plug_owner(char kind, int number, const char **what)
 {
-  for (size_t i = 0; i < sizeof owners / sizeof owners[0]; i++)
-    if (owners[i].kind == kind && owners[i].number == number) {
-      if (what)
-        *what = owners[i].what;
-      return owners[i].plugin;
-    }
-  return NULL;
+  const struct kp_word *w = kp_word(kind, number);
+  if (!w || !w->owner)
+    return NULL;
+  if (what)
+    *what = w->name;
+  return w->owner;
 }
 
 static char *dupstr(const char *s)
@@ -556,6 +543,7 @@ void plug_free(struct plug_set *ps)
     free(ps->files[i].path);
   }
   free(ps->files);
+  release_thunk(ps);
   memset(ps, 0, sizeof *ps);
 }
 
@@ -564,9 +552,8 @@ void plug_free(struct plug_set *ps)
 /* Is kind/number a function of the language that is no plugin's (G01)? */
 static int core_function(char kind, int number)
 {
-  if (plug_owner(kind, number, NULL))
-    return 0;
-  return kind == 'G' ? kp_valid_g(number) : kp_valid_m(number);
+  const struct kp_word *w = kp_word(kind, number);
+  return w && !w->owner;
 }
 
 static const struct s42_function *provides(const struct plug *p, char kind, int number)
@@ -643,34 +630,92 @@ void plug_why_missing(const struct plug_set *ps, char kind, int number, char *ms
     snprintf(msg + k, n - k, " (give --plugins DIR or S42_PLUGIN_PATH)");
 }
 
-/* The options plugins may ask for, by name. */
-static struct {
-  const char *name, *value;
-} options[] = {{"tool", NULL}, {"dump-images", NULL}, {"lang", NULL}};
+/* ---- options and starting a plugin ---- */
 
-void plug_set_option(const char *name, const char *value)
+static const char *const option_names[PLUG_NOPT] = {
+  [PLUG_OPT_TOOL] = "tool", [PLUG_OPT_DUMP_IMAGES] = "dump-images", [PLUG_OPT_LANG] = "lang",
+};
+
+static int option_index(const char *name)
 {
-  for (size_t i = 0; i < sizeof options / sizeof options[0]; i++)
-    if (strcmp(options[i].name, name) == 0)
-      options[i].value = value;
+  for (int i = 0; name && i < PLUG_NOPT; i++)
+    if (strcmp(option_names[i], name) == 0)
+      return i;
+  return -1;
+}
+
+void plug_set_option(struct plug_set *ps, const char *name, const char *value)
+{
+  int i = option_index(name);
+  if (ps && i >= 0)
+    ps->opt[i] = value;
+}
+
+const char *plug_get_option(const struct plug_set *ps, const char *name)
+{
+  int i = option_index(name);
+  if (i < 0)
+    return NULL;
+  const char *v = ps ? ps->opt[i] : NULL;
+  return v ? v : i == PLUG_OPT_LANG ? "uk" : NULL;
+}
+
+/* The plugin being started on this thread, and its set: init() runs here
+ * and nowhere else, so what it says about itself (error(NULL, ...)) and
+ * asks (option()) belongs to them. */
+static _Thread_local struct plug *starting;
+static _Thread_local struct plug_set *starting_set;
+
+void plug_init_reason(const char *msg)
+{
+  if (starting)
+    snprintf(starting->reason, sizeof starting->reason, "%s", msg ? msg : "");
 }
 
 const char *plug_option(const char *name)
 {
-  if (!name)
-    return NULL;
-  for (size_t i = 0; i < sizeof options / sizeof options[0]; i++)
-    if (strcmp(options[i].name, name) == 0)
-      return options[i].value ? options[i].value : strcmp(name, "lang") == 0 ? "uk" : NULL;
-  return NULL;
+  return plug_get_option(starting_set, name);
 }
 
-/* What the plugin being started said about its failure. */
-static char init_reason[240];
+/* host->option() takes no context (ABI 1.1), and a plugin may call it from
+ * any callback.  So each set whose plugins start takes one of PLUG_THUNKS
+ * option functions, each answering for the set in its slot, for as long as
+ * the set lives; it puts that one in the host table its plugins get.  The
+ * slots are the only state the loader shares between sets: which set owns
+ * which function, never a value. */
+static struct plug_set *_Atomic thunk_set[PLUG_THUNKS];
+#define THUNK(k) \
+  static const char *option_##k(const char *name) { return plug_get_option(atomic_load(&thunk_set[k]), name); }
+THUNK(0) THUNK(1) THUNK(2) THUNK(3) THUNK(4) THUNK(5) THUNK(6) THUNK(7)
+THUNK(8) THUNK(9) THUNK(10) THUNK(11) THUNK(12) THUNK(13) THUNK(14) THUNK(15)
+static const char *(*const thunks[PLUG_THUNKS])(const char *) = {
+  option_0, option_1, option_2, option_3, option_4, option_5, option_6, option_7,
+  option_8, option_9, option_10, option_11, option_12, option_13, option_14, option_15,
+};
 
-void plug_init_reason(const char *msg)
+static void release_thunk(struct plug_set *ps)
 {
-  snprintf(init_reason, sizeof init_reason, "%s", msg ? msg : "");
+  if (ps->thunk)
+    atomic_store(&thunk_set[ps->thunk - 1], NULL);
+}
+
+/* The set's host table, made once from the caller's. */
+static void set_host(struct plug_set *ps, const struct s42_host *host)
+{
+  if (ps->host.size)
+    return;
+  ps->host = *host;
+  if (host->option != plug_option)
+    return;   /* the caller answers option() itself */
+  for (int k = 0; k < PLUG_THUNKS && !ps->thunk; k++) {
+    struct plug_set *none = NULL;
+    if (atomic_compare_exchange_strong(&thunk_set[k], &none, ps))
+      ps->thunk = k + 1;
+  }
+  /* all taken: plug_option answers, exactly in init(), where plugins read
+   * their options (the bundled ones do) */
+  if (ps->thunk)
+    ps->host.option = thunks[ps->thunk - 1];
 }
 
 int plug_use(struct plug_set *ps, int i, const struct s42_host *host)
@@ -680,14 +725,22 @@ int plug_use(struct plug_set *ps, int i, const struct s42_host *host)
     return 0;
   if (p->state == PLUG_FAILED)
     return -1;
+  set_host(ps, host);
   void *self = NULL;
-  init_reason[0] = 0;
-  int r = p->d->init(host, p->dir, &self);
+  p->reason[0] = 0;
+  struct plug *was = starting;
+  struct plug_set *was_set = starting_set;
+  starting = p;
+  starting_set = ps;
+  int r = p->d->init(&ps->host, p->dir, &self);
+  starting = was;
+  starting_set = was_set;
   if (r != S42_OK) {
-    snprintf(p->reason, sizeof p->reason, "%s", init_reason);
     p->usage = r == S42_FAIL_USAGE;
-    if (init_reason[0])
-      snprintf(p->err, sizeof p->err, "the %s plugin (%s) failed to start: %s", p->d->name, p->path, init_reason);
+    char why[sizeof p->reason];
+    memcpy(why, p->reason, sizeof why);   /* another member of *p: no overlap, but say so */
+    if (why[0])
+      snprintf(p->err, sizeof p->err, "the %s plugin (%s) failed to start: %s", p->d->name, p->path, why);
     else
       snprintf(p->err, sizeof p->err, "the %s plugin (%s) failed to start", p->d->name, p->path);
     p->state = PLUG_FAILED;

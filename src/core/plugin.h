@@ -48,6 +48,13 @@ struct plug_file {
   pid_t probe;               /* the probe's child, not yet reaped, or 0 */
 };
 
+/* The options a set gives its plugins (host->option, ABI 1.1). */
+enum plug_opt { PLUG_OPT_TOOL, PLUG_OPT_DUMP_IMAGES, PLUG_OPT_LANG, PLUG_NOPT };
+
+/* Everything the loader keeps is here, none of it in globals: two sets in
+ * one process (two sessions) have their own plugins, options and host
+ * table.  A set does not move once a plugin of it started (its plugins
+ * hold a pointer to its host table). */
 struct plug_set {
   struct plug v[PLUG_MAX];   /* the plugins opened, in the order they were */
   size_t n;
@@ -57,6 +64,10 @@ struct plug_set {
   size_t ndirs;
   struct plug_file *files;   /* every candidate, in search order */
   size_t nfiles;
+  const char *opt[PLUG_NOPT];  /* by reference (argv); NULL: not given */
+  struct s42_host host;      /* what its plugins' init() get: the caller's
+                                table, with option() answering for this set */
+  int thunk;                 /* which option() answers for it, + 1; 0 none yet */
 };
 
 /* List the plugin files of `opt_dir` (--plugins, may be NULL), then
@@ -83,21 +94,32 @@ int plug_by_name(struct plug_set *ps, const char *name);
 /* Open every file (for `s42 plugins`). */
 void plug_open_all(struct plug_set *ps);
 
-/* The plugin a language function belongs to ("helix" for G12), or NULL
- * when the language leaves it to the core. */
-const char *plug_owner(char kind, int number, const char **what);
-
 /* Why a function is unavailable: fills msg (for E-PLUGIN). */
 void plug_why_missing(const struct plug_set *ps, char kind, int number, char *msg, size_t n);
 
-/* Start plugin i (init) if it is not yet; 0, or -1 with ps->v[i].err. */
+/* Start plugin i (init) if it is not yet; 0, or -1 with ps->v[i].err.  Its
+ * init() gets the set's copy of `host` (the first plug_use's), whose
+ * option() -- when host's is plug_option -- answers with this set's
+ * options for the whole run. */
 int plug_use(struct plug_set *ps, int i, const struct s42_host *host);
 
-/* Options given to plugins (host->option, ABI 1.1): "tool", "dump-images",
- * "lang".  The value is kept by reference (argv); NULL unsets. */
-void plug_set_option(const char *name, const char *value);
+/* The options a set gives its plugins (host->option, ABI 1.1): "tool",
+ * "dump-images", "lang"; set after plug_scan, before a plugin starts.  The
+ * value is kept by reference (argv); NULL unsets; other names are ignored.
+ * plug_get_option answers as host->option() does: NULL when not given,
+ * "lang" "uk" then. */
+void plug_set_option(struct plug_set *ps, const char *name, const char *value);
+const char *plug_get_option(const struct plug_set *ps, const char *name);
+/* Two services of a host table (the session's) that come with no block:
+ * option() -- plug_option answers with the options of the set whose plugin
+ * is starting on this thread, and plug_use gives each set's plugins an
+ * option() of their own instead, which answers for that set at any time
+ * (for PLUG_THUNKS sets at once; a set beyond keeps plug_option: right in
+ * init(), NULL -- "uk" for lang -- outside it); and error(NULL, ...) in
+ * init() -- plug_init_reason keeps the reason of the plugin that is
+ * starting on this thread (none: ignored) for its E-PLUGIN message. */
+#define PLUG_THUNKS 16
 const char *plug_option(const char *name);
-/* The reason init() gives with host->error(NULL, ...), for plug_use. */
 void plug_init_reason(const char *msg);
 
 /* `s42 plugins --json`: the same as one JSON object (str writes a JSON

@@ -254,7 +254,7 @@ static int h_moves_axis(struct s42_block *b, int axis)
   if (axis < 0 || axis >= 4 || !sess_contour_block(s))
     return 0;
   const struct kp_attr *at = cur_attr(s);
-  int arc = at->motion == MO_G02 || at->motion == MO_G03 || at->motion == MO_G12 || at->motion == MO_G13;
+  int arc = kp_motion_arc(at->motion);
   if (arc && ((at->plane == 17 && (axis == 0 || axis == 1)) || (at->plane == 18 && (axis == 1 || axis == 2)) ||
               (at->plane == 19 && (axis == 0 || axis == 2))))
     return 1;

@@ -300,10 +300,6 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     return -1;
   }
   o->mb.addr = o->modbus;
-  /* what plugins may ask for (host->option) */
-  plug_set_option("tool", o->tool);
-  plug_set_option("dump-images", o->dump_images);
-  plug_set_option("lang", o->en ? "en" : "uk");
   return 0;
 }
 
@@ -329,6 +325,17 @@ static struct plug_set *plugins_init(const char *dir)
     atexit(plugins_free);
   }
   return &plugins;
+}
+
+/* The plugins of a run, plot or tui command, with what they may ask for
+ * (host->option): its --tool, --dump-images and --lang. */
+static struct plug_set *plugins_for(const struct opts *o)
+{
+  struct plug_set *ps = plugins_init(o->plugins);
+  plug_set_option(ps, "tool", o->tool);
+  plug_set_option(ps, "dump-images", o->dump_images);
+  plug_set_option(ps, "lang", o->en ? "en" : "uk");
+  return ps;
 }
 
 /* A function no plugin found (E-FUNC) may belong to a file that was
@@ -1412,7 +1419,7 @@ static int cmd_run(int argc, char **argv)
   struct opts o;
   if (parse_opts(argc, argv, 2, &o, 0))
     return EXIT_USAGE;
-  plugins_init(o.plugins);
+  plugins_for(&o);
   if (!o.program) {
     fprintf(stderr, "s42: run needs a program file\n");
     usage_to(stderr);
@@ -1430,7 +1437,7 @@ static int cmd_plot(int argc, char **argv)
   struct opts o;
   if (parse_opts(argc, argv, 2, &o, 0))
     return EXIT_USAGE;
-  plugins_init(o.plugins);
+  plugins_for(&o);
   if (!o.program || !o.out) {
     fprintf(stderr, "usage: s42 plot PROGRAM.kp -o FILE.png|.svg|.pdf [--operator FILE] [options]\n");
     return EXIT_USAGE;
@@ -1479,7 +1486,7 @@ static int cmd_tui(int argc, char **argv)
   }
   struct tui_opts t;
   memset(&t, 0, sizeof t);
-  t.plugins = plugins_init(o.plugins);
+  t.plugins = plugins_for(&o);
   t.program = o.program;
   t.state = o.state;
   t.restart = o.restart;

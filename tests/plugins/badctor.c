@@ -61,14 +61,7 @@ static int init(const struct s42_host *h, const char *dir, void **self)
 }
 
 static const struct s42_function fns[] = {
-  {sizeof(struct s42_function), 'G', 53, 1, "", S42_FN_SEPARATE, "does nothing (fixture)"},
+  S42_G_FUNCTION(53, 1, "", S42_FN_SEPARATE, "does nothing (fixture)"),
 };
 
-static const struct s42_plugin desc = {
-  .size = sizeof desc, .abi_major = S42_ABI_MAJOR, .abi_minor = S42_ABI_MINOR,
-  .fingerprint = S42_ABI_FINGERPRINT, .name = name, .version = "0.1", .summary = "fixture: its constructor",
-  .functions = fns, .nfunctions = 1, .init = init,
-};
-
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void) { return &desc; }
+S42_PLUGIN_DECLARE(name, "0.1", "fixture: its constructor", fns, .init = init);

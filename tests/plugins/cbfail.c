@@ -7,7 +7,7 @@ static const struct s42_host *host;
 static int init(const struct s42_host *h, const char *dir, void **self)
 {
   (void)dir;
-  host = h;
+  S42_PLUGIN_INIT(h, host);
   *self = NULL;
   return S42_OK;
 }
@@ -29,15 +29,8 @@ static int run(void *self, struct s42_block *b)
 }
 
 static const struct s42_function fns[] = {
-  {sizeof(struct s42_function), 'M', 24, 0, NULL, 0, "fails in run (fixture)"},
-  {sizeof(struct s42_function), 'G', 52, 1, "", S42_FN_SEPARATE, "fails in check (fixture)"},
+  S42_M_FUNCTION(24, NULL, 0, "fails in run (fixture)"),
+  S42_G_FUNCTION(52, 1, "", S42_FN_SEPARATE, "fails in check (fixture)"),
 };
 
-static const struct s42_plugin desc = {
-  .size = sizeof desc, .abi_major = S42_ABI_MAJOR, .abi_minor = S42_ABI_MINOR,
-  .fingerprint = S42_ABI_FINGERPRINT, .name = "cbfail", .version = "0.1", .summary = "fixture: callbacks fail",
-  .functions = fns, .nfunctions = 2, .init = init, .check = check, .run = run,
-};
-
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void) { return &desc; }
+S42_PLUGIN_DECLARE("cbfail", "0.1", "fixture: callbacks fail", fns, .init = init, .check = check, .run = run);

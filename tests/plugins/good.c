@@ -10,7 +10,7 @@ static const struct s42_host *host;
 static int init(const struct s42_host *h, const char *dir, void **self)
 {
   (void)dir;
-  host = h;
+  S42_PLUGIN_INIT(h, host);
   *self = NULL;
   return S42_OK;
 }
@@ -45,15 +45,8 @@ static int run(void *self, struct s42_block *b)
 }
 
 static const struct s42_function fns[] = {
-  {sizeof(struct s42_function), 'G', 50, 1, "XF", S42_FN_MOTION, "move X (fixture)"},
-  {sizeof(struct s42_function), 'M', 30, 0, NULL, 0, "count in R1 (fixture)"},
+  S42_G_FUNCTION(50, 1, "XF", S42_FN_MOTION, "move X (fixture)"),
+  S42_M_FUNCTION(30, NULL, 0, "count in R1 (fixture)"),
 };
 
-static const struct s42_plugin desc = {
-  .size = sizeof desc, .abi_major = S42_ABI_MAJOR, .abi_minor = S42_ABI_MINOR,
-  .fingerprint = S42_ABI_FINGERPRINT, .name = "good", .version = "0.1", .summary = "fixture: works",
-  .functions = fns, .nfunctions = 2, .init = init, .check = check, .run = run,
-};
-
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void) { return &desc; }
+S42_PLUGIN_DECLARE("good", "0.1", "fixture: works", fns, .init = init, .check = check, .run = run);

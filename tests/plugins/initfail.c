@@ -11,14 +11,7 @@ static int init(const struct s42_host *h, const char *dir, void **self)
 }
 
 static const struct s42_function fns[] = {
-  {sizeof(struct s42_function), 'M', 31, 0, NULL, 0, "never starts (fixture)"},
+  S42_M_FUNCTION(31, NULL, 0, "never starts (fixture)"),
 };
 
-static const struct s42_plugin desc = {
-  .size = sizeof desc, .abi_major = S42_ABI_MAJOR, .abi_minor = S42_ABI_MINOR,
-  .fingerprint = S42_ABI_FINGERPRINT, .name = "initfail", .version = "0.1", .summary = "fixture: init fails",
-  .functions = fns, .nfunctions = 1, .init = init,
-};
-
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void) { return &desc; }
+S42_PLUGIN_DECLARE("initfail", "0.1", "fixture: init fails", fns, .init = init);

@@ -11,7 +11,7 @@ static const struct s42_host *host;
 static int init(const struct s42_host *h, const char *dir, void **self)
 {
   (void)dir;
-  host = h;
+  S42_PLUGIN_INIT(h, host);
   *self = NULL;
   return S42_OK;
 }
@@ -36,15 +36,8 @@ static int run(void *self, struct s42_block *b)
 }
 
 static const struct s42_function fns[] = {
-  {sizeof(struct s42_function), 'M', 6, 0, "", 0, "writes R0 R1 TK UG and the arrays (fixture)"},
-  {sizeof(struct s42_function), 'M', 7, 0, "", 0, "writes as M06, then fails (fixture)"},
+  S42_M_FUNCTION(6, "", 0, "writes R0 R1 TK UG and the arrays (fixture)"),
+  S42_M_FUNCTION(7, "", 0, "writes as M06, then fails (fixture)"),
 };
 
-static const struct s42_plugin desc = {
-  .size = sizeof desc, .abi_major = S42_ABI_MAJOR, .abi_minor = S42_ABI_MINOR,
-  .fingerprint = S42_ABI_FINGERPRINT, .name = "txfail", .version = "0.1", .summary = "fixture: writes, then fails",
-  .functions = fns, .nfunctions = 2, .init = init, .run = run,
-};
-
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void);
-S42_EXPORT const struct s42_plugin *s42_plugin_entry(void) { return &desc; }
+S42_PLUGIN_DECLARE("txfail", "0.1", "fixture: writes, then fails", fns, .init = init, .run = run);

@@ -28,6 +28,7 @@ Suite *suite_travel(void);
 Suite *suite_state(void);
 Suite *suite_param(void);
 Suite *suite_verify(void);
+Suite *suite_words(void);
 
 /* A program compiled from a C string, with its diagnostics. */
 struct tprog {

@@ -13,6 +13,7 @@
 #define MAXROWS 64
 
 static struct plug_set ps;
+static struct plug_set ps2, many[PLUG_THUNKS + 1];   /* more sets in the process */
 static struct tprog t;
 static struct session *s;
 static struct sess_row rows[MAXROWS];
@@ -72,6 +73,9 @@ static void teardown(void)
   tp_free(&t);
   free(s);
   plug_free(&ps);
+  plug_free(&ps2);
+  for (size_t k = 0; k < sizeof many / sizeof many[0]; k++)
+    plug_free(&many[k]);
 }
 
 static void compile_with(const char *src)
@@ -323,6 +327,193 @@ START_TEST(missing_plugin_is_e_plugin_at_check)
 }
 END_TEST
 
+/* ---- two plugin sets in one process ---- */
+
+/* Two sessions, each with its own set and options (s42 run --tool A and
+ * --tool B in one process), run a block at a time in turn: each plugin
+ * gets its own set's options in init() and in every later callback. */
+struct rows { struct sess_row r[8]; char extra[8][96]; int n; };
+
+static void on_row_ctx(void *ctx, const struct session *ss, const struct sess_row *r)
+{
+  struct rows *rs = ctx;
+  (void)ss;
+  ck_assert_int_lt(rs->n, 8);
+  rs->r[rs->n] = *r;
+  snprintf(rs->extra[rs->n], sizeof rs->extra[rs->n], "%s", r->extra ? r->extra : "");
+  rs->n++;
+}
+
+START_TEST(two_sets_two_tools)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "opts"));
+  plug_scan(&ps2, dir_of("S42_FIXTURES", "opts"));
+  plug_set_option(&ps, "tool", "a.tool");
+  plug_set_option(&ps2, "tool", "bb.tool");
+  plug_set_option(&ps2, "lang", "en");
+  plug_set_option(&ps2, "no-such-option", "x");   /* ignored */
+  ck_assert_str_eq(plug_get_option(&ps, "tool"), "a.tool");
+  ck_assert_str_eq(plug_get_option(&ps2, "tool"), "bb.tool");
+  ck_assert_str_eq(plug_get_option(&ps, "lang"), "uk");
+  ck_assert_str_eq(plug_get_option(&ps2, "lang"), "en");
+  ck_assert_ptr_null(plug_get_option(&ps, "dump-images"));
+  ck_assert_ptr_null(plug_get_option(&ps2, "no-such-option"));
+  ck_assert_str_eq(plug_get_option(NULL, "lang"), "uk");
+
+  static const char src[] = "N1 M01\nN2 M01\nN3 M2\n";
+  struct tprog ta, tb;
+  struct session *sa = calloc(1, sizeof *sa), *sb = calloc(1, sizeof *sb);
+  struct rows ra = {0}, rb = {0};
+  ck_assert(sa && sb);
+  prog_init(&ta.p);
+  diag_init(&ta.d, "a.kp");
+  prog_init(&tb.p);
+  diag_init(&tb.d, "b.kp");
+  ck_assert_int_eq(comp_program_with(src, strlen(src), &ta.d, &ta.p, &ps), 0);
+  ck_assert_int_eq(comp_program_with(src, strlen(src), &tb.d, &tb.p, &ps2), 0);
+  sess_init(sa, &ta.p);
+  sess_init(sb, &tb.p);
+  sa->plugins = &ps;
+  sb->plugins = &ps2;
+  sa->sink.row = sb->sink.row = on_row_ctx;
+  sa->sink.ctx = &ra;
+  sb->sink.ctx = &rb;
+  uint8_t watch[3] = {1, 1, 1};
+  sa->vm.watch = sb->vm.watch = watch;
+  /* block by block, in turn: A N1 starts, B N1 starts, A's N1 runs
+   * (its plugin starts) and N2 starts, then B's */
+  for (int k = 0; k < 3; k++) {
+    ck_assert_int_eq(sess_run(sa), SE_START);
+    ck_assert_int_eq(sess_run(sb), SE_START);
+    if (k == 1) {
+      ck_assert_double_eq(sa->vm.reg[1], 6);    /* strlen("a.tool") */
+      ck_assert_double_eq(sb->vm.reg[1], 7);    /* strlen("bb.tool") */
+    }
+  }
+  enum sess_ev ev;
+  while ((ev = sess_run(sa)) == SE_START)
+    ;
+  ck_assert_int_eq(ev, SE_END);
+  while ((ev = sess_run(sb)) == SE_START)
+    ;
+  ck_assert_int_eq(ev, SE_END);
+  ck_assert_int_eq(ra.n, 3);
+  ck_assert_int_eq(rb.n, 3);
+  for (int i = 0; i < 2; i++) {
+    ck_assert_str_eq(ra.extra[i], ",\"opts\":{\"init\":\"a.tool\",\"now\":\"a.tool\",\"lang\":\"uk\"}");
+    ck_assert_str_eq(rb.extra[i], ",\"opts\":{\"init\":\"bb.tool\",\"now\":\"bb.tool\",\"lang\":\"en\"}");
+  }
+  /* the same shared object, started once in each set, with its own table */
+  int ia = plug_find(&ps, 'M', 1, NULL), ib = plug_find(&ps2, 'M', 1, NULL);
+  ck_assert_int_ge(ia, 0);
+  ck_assert_int_ge(ib, 0);
+  ck_assert_ptr_eq(ps.v[ia].d, ps2.v[ib].d);
+  ck_assert_ptr_ne(ps.v[ia].self, ps2.v[ib].self);
+  ck_assert(ps.host.option != ps2.host.option);
+  tp_free(&ta);
+  tp_free(&tb);
+  free(sa);
+  free(sb);
+}
+END_TEST
+
+/* init()'s reason (error(NULL, ...)) belongs to the plugin that starts: a
+ * set whose tool is refused says so; the other set's plugin is not hurt */
+START_TEST(init_reason_is_the_set_s)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "opts"));
+  plug_scan(&ps2, dir_of("S42_FIXTURES", "opts"));
+  plug_set_option(&ps, "tool", "fail");
+  plug_set_option(&ps2, "tool", "fine");
+  static const char src[] = "N1 M01\nN2 M2\n";
+  load(src);
+  char msg[300] = "";
+  size_t block = 99;
+  ck_assert_int_eq(sess_start_plugins(s, msg, sizeof msg, &block), -1);
+  ck_assert_str_eq(msg, "the tool is fail");
+  ck_assert_uint_eq(block, 0);
+  int i = plug_find(&ps, 'M', 1, NULL);
+  ck_assert_int_eq(ps.v[i].usage, 1);
+  ck_assert_ptr_nonnull(strstr(ps.v[i].err, "failed to start: the tool is fail"));
+  struct tprog tb;
+  prog_init(&tb.p);
+  diag_init(&tb.d, "b.kp");
+  ck_assert_int_eq(comp_program_with(src, strlen(src), &tb.d, &tb.p, &ps2), 0);
+  struct session *sb = calloc(1, sizeof *sb);
+  ck_assert_ptr_nonnull(sb);
+  sess_init(sb, &tb.p);
+  sb->plugins = &ps2;
+  ck_assert_int_eq(sess_start_plugins(sb, msg, sizeof msg, &block), 0);
+  int k = plug_find(&ps2, 'M', 1, NULL);
+  ck_assert_int_eq(ps2.v[k].state, PLUG_READY);
+  ck_assert_str_eq(ps2.v[k].reason, "");
+  /* said outside any init(): nobody's reason */
+  plug_init_reason("stray");
+  ck_assert_str_eq(ps2.v[k].reason, "");
+  ck_assert_str_eq(ps.v[i].reason, "the tool is fail");
+  tp_free(&tb);
+  free(sb);
+}
+END_TEST
+
+/* More sets at once than there are option() functions: the one beyond
+ * still gets its own options in init(), and NULL outside it; freeing a set
+ * gives its function to the next. */
+START_TEST(sets_beyond_the_thunks)
+{
+  static const char src[] = "N1 M01\nN2 M2\n";
+  static char tools[PLUG_THUNKS + 1][16];
+  char buf[160];
+  for (int k = 0; k <= PLUG_THUNKS; k++) {
+    plug_scan(&many[k], dir_of("S42_FIXTURES", "opts"));
+    snprintf(tools[k], sizeof tools[k], "t%d", k);
+    plug_set_option(&many[k], "tool", tools[k]);
+    struct tprog tk;
+    prog_init(&tk.p);
+    diag_init(&tk.d, "k.kp");
+    ck_assert_int_eq(comp_program_with(src, strlen(src), &tk.d, &tk.p, &many[k]), 0);
+    struct session *sk = calloc(1, sizeof *sk);
+    ck_assert_ptr_nonnull(sk);
+    sess_init(sk, &tk.p);
+    sk->plugins = &many[k];
+    ck_assert_int_eq(sess_start_plugins(sk, buf, sizeof buf, &(size_t){0}), 0);
+    tp_free(&tk);
+    free(sk);
+  }
+  for (int k = 0; k <= PLUG_THUNKS; k++) {
+    int i = plug_find(&many[k], 'M', 1, NULL);
+    struct plug *p = &many[k].v[i];
+    ck_assert_int_eq(p->state, PLUG_READY);
+    p->d->describe(p->self, S42_DESCRIBE_TRACE, buf, sizeof buf);
+    char want[160];
+    if (k < PLUG_THUNKS)
+      snprintf(want, sizeof want, "{\"init\":\"t%d\",\"now\":\"t%d\",\"lang\":\"uk\"}", k, k);
+    else
+      snprintf(want, sizeof want, "{\"init\":\"t%d\",\"now\":\"\",\"lang\":\"uk\"}", k);
+    ck_assert_str_eq(buf, want);
+    ck_assert_int_eq(many[k].thunk != 0, k < PLUG_THUNKS);
+  }
+  plug_free(&many[3]);
+  plug_scan(&many[3], dir_of("S42_FIXTURES", "opts"));
+  plug_set_option(&many[3], "tool", "again");
+  struct tprog tk;
+  prog_init(&tk.p);
+  diag_init(&tk.d, "k.kp");
+  ck_assert_int_eq(comp_program_with(src, strlen(src), &tk.d, &tk.p, &many[3]), 0);
+  struct session *sk = calloc(1, sizeof *sk);
+  ck_assert_ptr_nonnull(sk);
+  sess_init(sk, &tk.p);
+  sk->plugins = &many[3];
+  ck_assert_int_eq(sess_start_plugins(sk, buf, sizeof buf, &(size_t){0}), 0);
+  ck_assert_int_eq(many[3].thunk, 4);
+  struct plug *p = &many[3].v[plug_find(&many[3], 'M', 1, NULL)];
+  p->d->describe(p->self, S42_DESCRIBE_TRACE, buf, sizeof buf);
+  ck_assert_str_eq(buf, "{\"init\":\"again\",\"now\":\"again\",\"lang\":\"uk\"}");
+  tp_free(&tk);
+  free(sk);
+}
+END_TEST
+
 /* ---- oscillation ---- */
 
 static void with_plugins(void)
@@ -516,6 +707,9 @@ Suite *suite_plugin(void)
   tcase_add_test(tc, failing_callbacks);
   tcase_add_test(tc, failed_block_rolls_back_plugin_writes);
   tcase_add_test(tc, missing_plugin_is_e_plugin_at_check);
+  tcase_add_test(tc, two_sets_two_tools);
+  tcase_add_test(tc, init_reason_is_the_set_s);
+  tcase_add_test(tc, sets_beyond_the_thunks);
   suite_add_tcase(su, tc);
   tc = tcase_create("oscillation");
   tcase_add_checked_fixture(tc, setup, teardown);

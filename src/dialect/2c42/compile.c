@@ -16,10 +16,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *const kp_motion_name[MO__COUNT] = {
-  "none", "G01", "G02", "G03", "G04", "G07", "G10", "G11", "G12", "G13", "G20", "G37", "M19", "dialog", "plugin"
-};
-
 /* The most blocks a program may have (README "Limits"): a million-block
  * program compiles in well under a second, twice that is the ceiling. */
 #define COMP_MAX_BLOCKS (1 << 21)
@@ -451,24 +447,66 @@ static const struct word *find_word(const struct block *b, int kind)
   return NULL;
 }
 
+/* The block's motion (words.h): the first G in number order that is a
+ * motion of its own; else a plugin's G (check_block knows its group); an M
+ * that is a motion of its own (M19) overrides either; with none of them a
+ * dialog G makes it a dialog.  The caller makes a block with axis words
+ * and nothing else a G01. */
+/* The lowest function number in a block's g (or m) bits, taken out of
+ * them: a loop visits the block's few functions in number order. */
+static int take_low(uint64_t *bits)
+{
+  int n = __builtin_ctzll(*bits);
+  *bits &= *bits - 1;
+  return n;
+}
+
 static int motion_of(const struct block *b)
 {
-  if (G(1)) return MO_G01;
-  if (G(2)) return MO_G02;
-  if (G(3)) return MO_G03;
-  if (G(4)) return MO_G04;
-  if (G(7)) return MO_G07;
-  if (G(10)) return MO_G10;
-  if (G(11)) return MO_G11;
-  if (G(12)) return MO_G12;
-  if (G(13)) return MO_G13;
-  if (G(20)) return MO_G20;
-  if (G(37)) return MO_G37;
-  for (int n = 0; n < 64; n++)
-    if (G(n) && !kp_valid_g(n))
-      return MO_PLUGIN;    /* a function a plugin adds (check_block knows its group) */
-  return MO_NONE;
+  int mo = MO_NONE, plugin = 0, dialog = 0;
+  for (uint64_t g = b->g; g;) {
+    const struct kp_word *w = kp_g(take_low(&g));
+    if (!w)
+      plugin = 1;
+    else if (w->motion == MO_DIALOG)
+      dialog = 1;
+    else if (w->motion != MO_NONE && mo == MO_NONE)
+      mo = w->motion;
+  }
+  if (mo == MO_NONE && plugin)
+    mo = MO_PLUGIN;
+  for (uint64_t m = b->m; m;) {
+    const struct kp_word *w = kp_m(take_low(&m));
+    if (w && w->motion != MO_NONE)
+      return w->motion;
+  }
+  return mo == MO_NONE && dialog ? MO_DIALOG : mo;
 }
+
+/* The first G of the block whose row has `flag`, or -1. */
+static int first_g(const struct block *b, unsigned flag)
+{
+  for (uint64_t g = b->g; g;) {
+    int n = take_low(&g);
+    if (kp_g(n) && (kp_g(n)->flags & flag))
+      return n;
+  }
+  return -1;
+}
+
+/* The plane the block selects: its G17, G18 or G19 (the first), or 0. */
+static int plane_of(const struct block *b)
+{
+  for (uint64_t g = b->g; g;) {
+    const struct kp_word *w = kp_g(take_low(&g));
+    if (w && w->plane)
+      return w->plane;
+  }
+  return 0;
+}
+
+static int is_sep(const struct kp_word *w) { return w->kind == 'G' && (w->flags & KP_SEP); }
+static int is_arc(const struct kp_word *w) { return w->kind == 'G' && (w->flags & KP_ARC); }
 
 /* In-plane axes of G17 (XY), G18 (YZ), G19 (XZ): slot indices. */
 static void plane_axes(int plane, int *p, int *q)
@@ -609,8 +647,9 @@ static void plugin_function(struct comp *c, char kind, int n, unsigned col, int 
   const struct block *b = c->b;
   const struct s42_function *fn = NULL;
   int i = plug_find(c->plugins, kind, n, &fn);
+  const struct kp_word *kw = kp_word(kind, n);
   if (i < 0) {
-    if (plug_owner(kind, n, NULL)) {
+    if (kw && kw->owner) {
       char msg[600];
       plug_why_missing(c->plugins, kind, n, msg, sizeof msg);
       err(c, S42_E_PLUGIN, col, "%s", msg);
@@ -618,7 +657,7 @@ static void plugin_function(struct comp *c, char kind, int n, unsigned col, int 
     return;
   }
   c->plugmask |= 1u << i;
-  if (kind == 'G' ? kp_valid_g(n) : kp_valid_m(n))
+  if (kw)
     return;   /* the language's own rules were checked above */
   if (kind == 'G' && fn->group == 1)
     c->plug_g = n;
@@ -690,13 +729,13 @@ static void check_block(struct comp *c)
       F = &b->w[i];
   const struct word *L = find_word(b, WK_L), *P = find_word(b, WK_P), *PC = find_word(b, WK_PCOND),
                     *PP = find_word(b, WK_PP);
-  int arc = G(2) || G(3) || G(12) || G(13);
+  int arc = first_g(b, KP_ARC);   /* its G, or -1 */
+  char list[80];
 
   /* functions that stand in a separate block */
-  static const int sep[] = {4, 7, 10, 11, 20, 37};
-  for (size_t i = 0; i < sizeof sep / sizeof sep[0]; i++) {
-    int g = sep[i];
-    if (!G(g))
+  for (uint64_t bits = b->g; bits;) {
+    int g = take_low(&bits);
+    if (!kp_g(g) || !(kp_g(g)->flags & KP_SEP))
       continue;
     if (g == 7) {
       if (naxis != 1 || ncentre)
@@ -712,15 +751,17 @@ static void check_block(struct comp *c)
       err(c, S42_E_BLOCK, axcol ? axcol : cecol, "G%02d stands in a separate block: no axis or centre words beside it", g);
     }
   }
-  if (M(19) && (G(4) || G(7) || G(10) || G(11) || G(20) || G(37)))
-    err(c, S42_E_BLOCK, b->mcol[19], "M19 gives the direction of a move: not with G04 G07 G10 G11 G20 G37");
+  if (M(19) && first_g(b, KP_SEP) >= 0)
+    err(c, S42_E_BLOCK, b->mcol[19], "M19 gives the direction of a move: not with %s",
+        kp_codes(list, sizeof list, is_sep));
   if (M(19) && !naxis)
     err(c, S42_E_BLOCK, b->mcol[19], "M19 needs the increments that give the direction of the move");
 
   /* arcs and planes */
-  int plane = G(17) ? 17 : G(18) ? 18 : G(19) ? 19 : 0;
-  if (arc) {
-    int g = G(2) ? 2 : G(3) ? 3 : G(12) ? 12 : 13;
+  int plane = plane_of(b);
+  if (arc >= 0) {
+    int g = arc;
+    int helix = (kp_g(g)->flags & KP_HELIX) != 0;
     if (!plane) {
       err(c, S42_E_PLANE, b->gcol[g], "G%02d needs a plane in the same block: G17 (XY), G18 (YZ) or G19 (XZ)", g);
     } else {
@@ -731,11 +772,11 @@ static void check_block(struct comp *c)
         if (s == p || s == q || !slot_word(b, s, &col))
           continue;
         outside++;
-        if (g <= 3)
+        if (!helix)
           err(c, S42_E_PLANE, col, "%s is not in the G%d plane of this arc (%s%s)", slot_name(s), plane,
               slot_name(p), slot_name(q));
       }
-      if (g >= 12 && outside > 1)
+      if (helix && outside > 1)
         err(c, S42_E_PLANE, b->gcol[g], "G%d: only one axis outside the G%d plane may move along the helix", g, plane);
       for (int s = SL_I; s <= SL_K; s++)
         if (s - SL_I != p && s - SL_I != q && slot_word(b, s, &col))
@@ -744,9 +785,9 @@ static void check_block(struct comp *c)
     }
   } else {
     if (ncentre && !g4_words)
-      err(c, S42_E_BLOCK, cecol, "centre words I J K belong to an arc (G02 G03 G12 G13)");
+      err(c, S42_E_BLOCK, cecol, "centre words I J K belong to an arc (%s)", kp_codes(list, sizeof list, is_arc));
     if (plane && !M(19))
-      warn(c, b->gcol[plane], "G%d has no effect without an arc (G02 G03 G12 G13)", plane);
+      warn(c, b->gcol[plane], "G%d has no effect without an arc (%s)", plane, kp_codes(list, sizeof list, is_arc));
   }
 
   /* auxiliary functions */
@@ -765,8 +806,7 @@ static void check_block(struct comp *c)
     err(c, S42_E_BLOCK, b->mcol[17], "M17 and M2 in one block");
   if ((P || PC) && (M(17) || M(2)))
     err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
-  int dlg = G(10) || G(11) || G(27) || G(28) || G(33) || G(34);
-  int dg = G(10) ? 10 : G(11) ? 11 : G(27) ? 27 : G(28) ? 28 : G(33) ? 33 : 34;
+  int dg = first_g(b, KP_NODIR), dlg = dg >= 0;
   if (dlg && PP)
     err(c, S42_E_BLOCK, PP->col, "PP is not allowed in a block with G%02d", dg);
   if (dlg && M(18))
@@ -886,15 +926,11 @@ static void compile_block(struct comp *c)
   at->m = b->m;
   at->plugins = c->plugmask;
   at->plug_g = (uint8_t)c->plug_g;
-  at->plane = (uint8_t)(G(17) ? 17 : G(18) ? 18 : G(19) ? 19 : 0);
+  at->plane = (uint8_t)plane_of(b);
   at->g28reg = (int16_t)b->g28reg;
   at->g27form = b->g27form;
   at->g37axis = b->g37axis;
   int mo = motion_of(b);
-  if (M(19))
-    mo = MO_M19;
-  else if (mo == MO_NONE && (G(27) || G(28) || G(29) || G(33) || G(34)))
-    mo = MO_DIALOG;
   c->given = c->isconst = c->badslot = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
 
@@ -960,8 +996,9 @@ static void compile_block(struct comp *c)
       err(c, S42_E_RANGE, b->g28col, "G28 /%.10g:%.10g/: the minimum is over the maximum, so no number can pass",
           c->kval[SL_MIN], c->kval[SL_MAX]);
   }
-  if ((G(2) || G(3) || G(12) || G(13)) && at->plane)
-    check_arc_const(c, at->plane, b->gcol[G(2) ? 2 : G(3) ? 3 : G(12) ? 12 : 13]);
+  int arc = first_g(b, KP_ARC);
+  if (arc >= 0 && at->plane)
+    check_arc_const(c, at->plane, b->gcol[arc]);
   const struct word *PC = find_word(b, WK_PCOND);
   if (b->cond && PC && !b->bad) {
     gen(c, b->cond);

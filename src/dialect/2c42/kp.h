@@ -6,13 +6,8 @@
 
 #include "ast.h"
 #include "program.h"
+#include "words.h"   /* enum motion, kp_motion_name */
 #include <stdint.h>
-
-enum motion {
-  MO_NONE, MO_G01, MO_G02, MO_G03, MO_G04, MO_G07, MO_G10, MO_G11, MO_G12, MO_G13,
-  MO_G20, MO_G37, MO_M19, MO_DIALOG, MO_PLUGIN, MO__COUNT
-};
-extern const char *const kp_motion_name[MO__COUNT];
 
 struct kp_attr {
   uint64_t g;          /* bit n: Gn */

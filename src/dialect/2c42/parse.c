@@ -64,32 +64,6 @@ void arena_free(struct arena *a)
   memset(a, 0, sizeof *a);
 }
 
-int kp_valid_g(int n)
-{
-  switch (n) {
-  case 1: case 2: case 3: case 4: case 7: case 9: case 10: case 11: case 12: case 13:
-  case 17: case 18: case 19: case 20: case 27: case 28: case 29: case 33: case 34: case 37:
-    return 1;
-  default:
-    return 0;
-  }
-}
-
-int kp_g_group(int n)
-{
-  switch (n) {
-  case 17: case 18: case 19: return 2;
-  case 9: return 3;
-  case 27: case 28: case 29: case 33: case 34: return 4;
-  default: return 1;
-  }
-}
-
-int kp_valid_m(int n)
-{
-  return (n >= 2 && n <= 5) || n == 10 || (n >= 12 && n <= 23) || (n >= 25 && n <= 29);
-}
-
 /* ---- errors ---- */
 
 struct pstate {
@@ -588,26 +562,31 @@ static void open_slash(struct pstate *s, const char *fn, int code)
   adv(s);
 }
 
-static void slash_arg(struct pstate *s, struct block *b, int isg, int n)
+/* Where a text argument goes: each has its own place in the block. */
+static struct text *text_of(struct block *b, const struct kp_word *w)
+{
+  return w->kind == 'M' ? &b->m18 : w->number == 27 ? &b->g27 : &b->g33;
+}
+
+/* The slash argument of the function w (words.h: its kind). */
+static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w)
 {
   struct lex *l = &s->p->lx;
-  char fn[8];
-  snprintf(fn, sizeof fn, "%c%02d", isg ? 'G' : 'M', n);
-  if (isg && (n == 27 || n == 33)) {
+  const char *fn = w->code;
+  switch (w->slash) {
+  case KP_SA_PROMPT: case KP_SA_TEXT: {
     open_slash(s, fn, S42_E_TEXT);
-    struct text *t = n == 27 ? &b->g27 : &b->g33;
+    struct text *t = text_of(b, w);
     raw_text(s, t, fn);
     lex_raw_adv(l);   /* closing '/' */
-    if (n == 27) {
+    if (w->slash == KP_SA_PROMPT) {
       b->g27form = ':';
       if (peek(s) == ':') adv(s);
       else if (peek(s) == '-') { adv(s); b->g27form = '-'; }
     }
-  } else if (!isg && n == 18) {
-    open_slash(s, fn, S42_E_TEXT);
-    raw_text(s, &b->m18, fn);
-    lex_raw_adv(l);
-  } else if (isg && n == 29) {
+    break;
+  }
+  case KP_SA_LINES:
     open_slash(s, fn, S42_E_TEXT);
     for (;;) {
       if (b->ng29 >= MAX_LINES)
@@ -621,7 +600,8 @@ static void slash_arg(struct pstate *s, struct block *b, int isg, int n)
         break;
       }
     }
-  } else if (isg && n == 28) {
+    break;
+  case KP_SA_BOUNDS:
     open_slash(s, fn, S42_E_SYNTAX);
     b->g28col = pcol(s);
     s->p->slash_ends = 1;
@@ -631,7 +611,8 @@ static void slash_arg(struct pstate *s, struct block *b, int isg, int n)
     expect(s, '/', "'/' closing the G28 bounds");
     s->p->slash_ends = 0;
     b->g28reg = -2;   /* the R word must follow */
-  } else if (isg && n == 37) {
+    break;
+  case KP_SA_AXIS: {
     open_slash(s, fn, S42_E_SYNTAX);
     b->g37col = pcol(s);
     int32_t c = peek(s);
@@ -642,7 +623,9 @@ static void slash_arg(struct pstate *s, struct block *b, int isg, int n)
       fail(s, S42_E_AXIS, 0, "G37 takes one axis letter: G37 /Y/");
     }
     expect(s, '/', "'/' closing G37 /Y/");
-  } else if (!isg && n == 20) {
+    break;
+  }
+  case KP_SA_PARAMS:
     open_slash(s, fn, S42_E_SYNTAX);
     while (peek(s) == 'R') {
       unsigned col = pcol(s);
@@ -658,7 +641,8 @@ static void slash_arg(struct pstate *s, struct block *b, int isg, int n)
     if (b->nm20 == 0)
       fail(s, S42_E_SYNTAX, 0, "M20 lists parameters: M20 /R12R15/");
     expect(s, '/', "'/' closing the M20 list");
-  } else if (!isg && n == 16) {
+    break;
+  case KP_SA_CORR:
     open_slash(s, fn, S42_E_SYNTAX);
     while (peek(s) == 'R') {
       struct m16_item it;
@@ -686,7 +670,15 @@ static void slash_arg(struct pstate *s, struct block *b, int isg, int n)
       fail(s, S42_E_SYNTAX, 0, "M16 lists corrections to store: M16 /R1+X R2-Z//");
     expect(s, '/', "'//' closing the M16 list");
     accept(s, '/');
+    break;
+  default:
+    break;
   }
+}
+
+static int takes_slash(const struct kp_word *w)
+{
+  return w->slash != KP_SA_NONE;
 }
 
 /* ---- words ---- */
@@ -729,7 +721,8 @@ static void word(struct pstate *s)
   case 'G': case 'M': {
     adv(s);
     long n = number(s, 2, c == 'G' ? "a G function number" : "an M function number");
-    int valid = c == 'G' ? kp_valid_g((int)n) : kp_valid_m((int)n);
+    const struct kp_word *kw = kp_word((char)c, (int)n);
+    int valid = kw != NULL;
     if (!valid && n < (c == 'G' ? 64 : 32))   /* a function a plugin adds */
       valid = plug_find(s->p->plugins, (char)c, (int)n, NULL) >= 0;
     if (!valid) {
@@ -751,9 +744,8 @@ static void word(struct pstate *s)
     }
     w = new_word(s, c == 'G' ? WK_G : WK_M, (char)c, col);
     w->num = (int)n;
-    if ((c == 'G' && (n == 27 || n == 28 || n == 29 || n == 33 || n == 37)) ||
-        (c == 'M' && (n == 16 || n == 18 || n == 20)))
-      slash_arg(s, b, c == 'G', (int)n);
+    if (kw && kw->slash != KP_SA_NONE)
+      slash_arg(s, b, kw);
     return;
   }
   case 'X': case 'Y': case 'Z': case 'A': case 'I': case 'J': case 'K': {
@@ -877,8 +869,11 @@ static void word(struct pstate *s)
     w->num = (int)number(s, 3, "the target block number after P");
     return;
   }
-  case '/':
-    fail(s, S42_E_SYNTAX, col, "a slash argument must follow its function (G27 G28 G29 G33 G37 M16 M18 M20)");
+  case '/': {
+    char list[160];
+    fail(s, S42_E_SYNTAX, col, "a slash argument must follow its function (%s)",
+         kp_codes(list, sizeof list, takes_slash));
+  }
   case 'N': case 0x2116:
     fail(s, S42_E_SYNTAX, col, "a block number may only start the block");
   case 'U':

@@ -4,6 +4,7 @@
 
 #include "ast.h"
 #include "lex.h"
+#include "words.h"   /* kp_valid_g, kp_valid_m, kp_g_group */
 
 struct plug_set;
 struct parser {
@@ -22,10 +23,5 @@ void parse_free(struct parser *p);
 /* Parse the next non-empty block into b.  Returns 1 when a block was read,
  * 0 at the end of the text.  Errors are reported and set b->bad. */
 int parse_block(struct parser *p, struct block *b);
-
-/* G and M numbers of the language (E-FUNC otherwise). */
-int kp_valid_g(int n);
-int kp_valid_m(int n);
-int kp_g_group(int n);
 
 #endif
