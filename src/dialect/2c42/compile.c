@@ -4,6 +4,8 @@
  * jump and call targets, running off a unit's end, reachability) is checked
  * at the end on a compact per-block summary, and targets are patched in. */
 #include "compile.h"
+#include "geom.h"
+#include "kpmach.h"
 #include "errors.h"
 #include "kp.h"
 #include "opcodes.h"
@@ -508,14 +510,11 @@ static int plane_of(const struct block *b)
 static int is_sep(const struct kp_word *w) { return w->kind == 'G' && (w->flags & KP_SEP); }
 static int is_arc(const struct kp_word *w) { return w->kind == 'G' && (w->flags & KP_ARC); }
 
-/* In-plane axes of G17 (XY), G18 (YZ), G19 (XZ): slot indices. */
+/* In-plane axes of G17 (XY), G18 (YZ), G19 (XZ): slot indices (the slots
+ * of X Y Z are the axes' indices). */
 static void plane_axes(int plane, int *p, int *q)
 {
-  switch (plane) {
-  case 17: *p = SL_X; *q = SL_Y; break;
-  case 18: *p = SL_Y; *q = SL_Z; break;
-  default: *p = SL_X; *q = SL_Z; break;
-  }
+  geom_plane_axes(kp_plane(plane), p, q);
 }
 
 static const char *slot_name(int s)
@@ -543,14 +542,10 @@ static void check_arc_const(struct comp *c, int plane, unsigned col)
     else
       return;
   }
-  double r0 = hypot(v[2], v[3]);
-  double r1 = hypot(v[2] - v[0], v[3] - v[1]);
-  if (r0 == 0)
-    err(c, S42_E_ARC, col, "arc centre at its start point: radius 0");
-  else if (r0 > 4000000.0)
-    err(c, S42_E_ARC, col, "arc radius %.3f mm is over 4000 mm", r0 / 1000);
-  else if (fabs(r0 - r1) > 2.0)
-    err(c, S42_E_ARC, col, "arc start radius %.0f µm and end radius %.0f µm differ by more than 2 µm", r0, r1);
+  struct geom_arc a = {v[0], v[1], v[2], v[3], 0};   /* the sense does not change the radii */
+  char msg[200];
+  if (geom_arc_check(&a, MACH_ARC_RMAX, MACH_ARC_TOL, msg, sizeof msg))
+    err(c, S42_E_ARC, col, "%s", msg);
 }
 
 static int text_len_check(struct comp *c, const struct text *t, const char *fn, unsigned max)
