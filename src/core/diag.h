@@ -30,6 +30,7 @@ struct diag_list {
   const char *src;         /* the program text, for the source lines (not owned), or NULL */
   size_t nsrc;
   int color;               /* colour the severities (a terminal, and no NO_COLOR) */
+  int oom;                 /* the compile ran out of memory: not the program's fault (exit 4) */
 };
 
 void diag_init(struct diag_list *d, const char *file);

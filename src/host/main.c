@@ -431,6 +431,12 @@ static int load_as(const char *path, struct program *p, struct diag_list *d, cha
     return EXIT_IO;
   struct plug_set *ps = plugins_init(NULL);
   int r = dialect_of(path)->compile(*src, *n, d, p, ps);
+  if (r && d->oom) {
+    refused_notes(d, ps);
+    if (print)
+      diag_print(stderr, d);
+    return EXIT_IO;
+  }
   refused_notes(d, ps);
   if (print)
     diag_print(stderr, d);

@@ -32,6 +32,21 @@ else
   echo "cli: /dev/full is not here: the full-disk cases were skipped"
 fi
 
+# out of memory while the program is read: one error, status 4, no crash
+if [ -n "$ASAN_OPTIONS" ] || ldd "$S42" 2>/dev/null | grep -q libasan; then
+  echo "cli: a sanitizer build: the out-of-memory shim cannot come before its malloc, that case was skipped"
+elif cc -shared -fPIC -o "$T/oomshim.so" "$(dirname "$0")/oomshim.c" -ldl 2>/dev/null; then
+  LD_PRELOAD="$T/oomshim.so" "$S42" check programs/drill_point.kp 2>"$T/err"
+  st=$?
+  if [ "$st" -eq 4 ] && [ "$(grep -c 'error:' "$T/err")" -eq 1 ] && grep -q 'out of memory: the program could not be read' "$T/err"; then
+    ok
+  else
+    bad "out of memory: status $st, $(head -3 "$T/err")"
+  fi
+else
+  echo "cli: no C compiler for the out-of-memory shim: that case was skipped"
+fi
+
 # CR-only line ends (an old Mac OS file): lines, comments and errors as with LF
 printf '; a comment\r№1 G01 X+1000 F100 ^\r№2 G01 Q ^\r№3 M02 ^\r' >"$T/cr.kp"
 "$S42" check "$T/cr.kp" 2>"$T/err"

@@ -4,6 +4,7 @@
 #ifndef S42_AST_H
 #define S42_AST_H
 
+#include <setjmp.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -90,6 +91,7 @@ struct arena {
   char *buf;
   size_t used, cap;
   struct arena_chunk *more;
+  jmp_buf *oom;          /* where a failed allocation goes (the block being parsed), or NULL */
 };
 
 void *arena_alloc(struct arena *a, size_t n);

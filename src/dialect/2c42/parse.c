@@ -30,8 +30,9 @@ void *arena_alloc(struct arena *a, size_t n)
       cap *= 2;
     char *buf = malloc(cap);
     if (!buf) {
-      fprintf(stderr, "s42: out of memory\n");
-      exit(4);
+      if (a->oom)
+        longjmp(*a->oom, 2);   /* the parser reports it at the block, and the compile fails */
+      return NULL;
     }
     if (a->buf) {
       struct arena_chunk *c = (struct arena_chunk *)a->buf;
@@ -174,6 +175,8 @@ static struct expr *node(struct pstate *s, int kind, unsigned col)
   if (++s->p->nodes > MAX_NODES)
     fail(s, S42_E_BLOCKLEN, col, "block too long to analyse (over %d terms)", MAX_NODES);
   struct expr *e = arena_alloc(&s->p->ar, sizeof *e);
+  if (!e)
+    longjmp(s->jb, 2);   /* out of memory (arena_alloc goes there itself while a block is parsed) */
   memset(e, 0, sizeof *e);
   e->kind = (uint8_t)kind;
   e->col = col;
@@ -550,6 +553,8 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
   }
   buf[n] = 0;
   t->s = arena_alloc(&s->p->ar, n + 1);
+  if (!t->s)
+    longjmp(s->jb, 2);
   memcpy(t->s, buf, n + 1);
   t->nchars = nch;
 }
@@ -944,7 +949,16 @@ int parse_block(struct parser *p, struct block *b)
   b->line = l->cline;
   b->col = l->ccol;
   b->badnum = 0;
-  if (setjmp(s.jb) == 0) {
+  p->ar.oom = &s.jb;
+  int jumped = setjmp(s.jb);
+  if (jumped == 2) {   /* said once: the blocks after it are not read either */
+    if (!p->d->oom)
+      diag_add(p->d, DIAG_ERROR, S42_E_SYNTAX, b->line, b->col, b->number,
+               "out of memory: the program could not be read from this block on");
+    p->d->oom = 1;
+    b->bad = 1;
+  }
+  if (jumped == 0) {
     if (c == 'H' && lex_cyrillic(l)) {
       /* Н, the Cyrillic N, looks like a Latin H: a block number meant */
       struct lex_mark m = lex_mark(l);
@@ -979,6 +993,7 @@ int parse_block(struct parser *p, struct block *b)
   } else {
     lex_skip_block(l);
   }
+  p->ar.oom = NULL;
   p->depth = p->paren = p->slash_ends = p->nodes = 0;
   b->len = l->blen;
   if (lex_peek(l) == LX_EOB)
