@@ -464,3 +464,16 @@ void screen_print(FILE *f, uint32_t g[SCR_ROWS][SCR_COLS])
     fputc('\n', f);
   }
 }
+
+int screen_edit(struct screen *s, int op, int arg)
+{
+  switch (op) {
+  case SCREEN_DIGIT: screen_field_digit(s, arg); return 0;
+  case SCREEN_MINUS: screen_field_minus(s); return 0;
+  case SCREEN_BACKSPACE: screen_field_backspace(s); return 0;
+  case SCREEN_MOVE: screen_field_move(s, arg); return 0;
+  case SCREEN_SCROLL: screen_scroll(s, arg); return 0;
+  case SCREEN_P5_PAGE: return screen_p5_page(s, arg);
+  default: return 0;
+  }
+}

@@ -103,6 +103,11 @@ void screen_set_directive(struct screen *s, const char *text);
 void screen_clear_directive(struct screen *s);
 void screen_message(struct screen *s, const char *text);
 void screen_scroll(struct screen *s, int delta);
+/* The panel's keys on the screen, as one call: a digit (arg 0-9), the
+ * minus, ЗБ, the field's cursor (arg -1/+1), the buffer's scroll (arg),
+ * P5's pages (arg).  Returns what screen_p5_page returns for that, else 0. */
+enum screen_edit_op { SCREEN_DIGIT, SCREEN_MINUS, SCREEN_BACKSPACE, SCREEN_MOVE, SCREEN_SCROLL, SCREEN_P5_PAGE };
+int screen_edit(struct screen *s, int op, int arg);
 /* Render into cells; regs feeds the ((Rn fields (114 values). */
 void screen_render(const struct screen *s, const double *regs, int en, uint32_t grid[SCR_ROWS][SCR_COLS]);
 /* The grid as 16 UTF-8 text lines. */

@@ -1,5 +1,6 @@
 /* Trace and dump printers (src/core/report.h). */
 #include "report.h"
+#include "error.h"
 #include "errors.h"
 #include <math.h>
 #include <string.h>
@@ -112,19 +113,21 @@ void report_machine_msg(char *buf, size_t n, int code, int number, int aux, int 
     snprintf(buf, n, en ? "error in block %s: %s" : "помилка в КП №%s: %s", nb, err_title(code, en));
 }
 
-void report_dump(FILE *f, const char *status, const struct dump_error *err, const struct session *s)
+void report_dump(FILE *f, const char *status, const struct s42_error *err, int en, const struct session *s)
 {
   fprintf(f, "{\"status\":\"%s\",\"error\":", status);
   if (err) {
-    fprintf(f, "{\"code\":\"%s\",\"n\":", err->code);
-    if (err->n >= 0)
-      fprintf(f, "%d", err->n);
+    char machine[200];
+    s42_error_machine(err, en, machine, sizeof machine);
+    fprintf(f, "{\"code\":\"%s\",\"n\":", err_code(err->code));
+    if (err->number >= 0)
+      fprintf(f, "%d", err->number);
     else
       fputs("null", f);
     fprintf(f, ",\"line\":%u,\"col\":%u,\"message\":", err->line, err->col);
-    json_string(f, err->message);
+    json_string(f, err->msg);
     fputs(",\"machine\":", f);
-    json_string(f, err->machine);
+    json_string(f, machine);
     fputc('}', f);
   } else {
     fputs("null", f);

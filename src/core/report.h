@@ -17,15 +17,10 @@ void json_string(FILE *f, const char *s);
 void json_num(FILE *f, double v);
 
 /* The dump: status "end" | "error" | "stopped".  s may be NULL when the
- * program did not compile (err then names the first check-time error). */
-struct dump_error {
-  const char *code;
-  int n;             /* -1: null */
-  unsigned line, col;
-  const char *message;
-  char machine[200]; /* the machine's own message */
-};
-void report_dump(FILE *f, const char *status, const struct dump_error *err, const struct session *s);
+ * program did not compile (err then names the first check-time error);
+ * err NULL: "error":null.  en: the machine message's language. */
+struct s42_error;
+void report_dump(FILE *f, const char *status, const struct s42_error *err, int en, const struct session *s);
 /* The machine message for an error: "помилка в КП №n: ..." */
 void report_machine_msg(char *buf, size_t n, int code, int number, int aux, int en);
 

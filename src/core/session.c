@@ -2,6 +2,7 @@
  * work, waits and trace rows. */
 #include "session.h"
 #include "sess_rt.h"
+#include "error.h"
 #include "errors.h"
 #include "messages.h"
 #include <math.h>
@@ -93,6 +94,38 @@ void sess_renew(struct session *s)
   sess_set_single(s, single);
   sess_set_break(s, brk);
   memcpy(s->vm.reg, reg, sizeof reg);
+}
+
+void sess_error(const struct session *s, struct s42_error *e)
+{
+  const struct vm_error *v = &s->vm.err;
+  const struct prog_block *b = v->block < s->p->nblocks ? &s->p->blocks[v->block] : NULL;
+  memset(e, 0, sizeof *e);
+  e->code = v->code;
+  e->number = b && b->number ? (int)b->number : -1;
+  e->line = b ? b->line : 1;
+  e->col = v->col ? v->col : b ? b->col : 1;
+  e->aux = v->aux;
+  snprintf(e->msg, sizeof e->msg, "%s", v->msg);
+}
+
+void sess_show_error(struct session *s)
+{
+  struct s42_error e;
+  char m[200];
+  sess_error(s, &e);
+  s42_error_machine(&e, s->en, m, sizeof m);
+  screen_message(&s->scr, m);
+}
+
+void sess_show_message(struct session *s, const char *text)
+{
+  screen_message(&s->scr, text);
+}
+
+int sess_panel_edit(struct session *s, int op, int arg)
+{
+  return screen_edit(&s->scr, op, arg);
 }
 
 int sess_block_number(const struct session *s)
@@ -833,6 +866,12 @@ int sess_set_param(struct session *s, int reg, double v, char *why, size_t n)
   }
   vm_set_reg(&s->vm, (unsigned)reg, v);
   return 0;
+}
+
+void sess_load_params(struct session *s, unsigned r0, unsigned n, const double *v)
+{
+  if (r0 < VM_NREG && n <= VM_NREG - r0)
+    memcpy(&s->vm.reg[r0], v, n * sizeof *v);
 }
 
 int sess_override(struct session *s, int pct)

@@ -199,6 +199,11 @@ void sess_set_break(struct session *s, int n);
  * that fails afterwards takes it back with its own changes.  0, or -1 with
  * why (the cycle is over, TK UG F are not the operator's, out of range). */
 int sess_set_param(struct session *s, int reg, double v, char *why, size_t n);
+/* A client (Modbus) writes R[r0 .. r0+n-1] while no block runs (idle,
+ * waiting, stopped, ended, after an error): stored as they are, for this
+ * cycle and the next (the 2С42 keeps its parameters).  The caller checked
+ * the range and the values. */
+void sess_load_params(struct session *s, unsigned r0, unsigned n, const double *v);
 /* The plugins' JSON members for the dump (",\"osc\":{...}"), into buf. */
 void sess_plugin_json(const struct session *s, int what, char *buf, size_t n);
 /* The M15 state of the k-th started plugin that keeps one: 0 with its name
@@ -214,5 +219,16 @@ const char *sess_wait_text(const struct session *s);
 int sess_oscillating(const struct session *s);
 /* The current block's number (-1 none) and line. */
 int sess_block_number(const struct session *s);
+/* The run's error (SE_ERROR: the VM raised it, or the host failed or
+ * refused the run), located in the program's text. */
+struct s42_error;
+void sess_error(const struct session *s, struct s42_error *e);
+/* Put the run's error on the machine's screen (its own message). */
+void sess_show_error(struct session *s);
+/* A message on the machine's screen, as the machine shows its own. */
+void sess_show_message(struct session *s, const char *text);
+/* The operator's keys on the machine's screen (screen_edit's ops): the
+ * input field's digits, minus, ЗБ and cursor, the buffer's scroll, P5's pages. */
+int sess_panel_edit(struct session *s, int op, int arg);
 
 #endif

@@ -6,6 +6,7 @@
 #include "machfile.h"
 #include "cycle.h"
 #include "dialect.h"
+#include "error.h"
 #include "modbus.h"
 #include "nearest.h"
 #include "operator.h"
@@ -1174,15 +1175,9 @@ static int headless(const struct opts *opt, struct plot *plot)
   if (rc) {
     if (o.dump && rc == EXIT_PROGRAM) {
       const struct diag *g = diag_first_error(&d);
-      struct dump_error de;
-      memset(&de, 0, sizeof de);
-      de.code = g ? err_code(g->code) : "E-SYNTAX";
-      de.n = g ? g->number : -1;
-      de.line = g ? g->line : 0;
-      de.col = g ? g->col : 0;
-      de.message = g ? g->msg : "";
-      report_machine_msg(de.machine, sizeof de.machine, g ? g->code : S42_E_SYNTAX, de.n, 0, o.en);
-      report_dump(stdout, "error", &de, NULL);
+      struct s42_error de;
+      s42_error_of_diag(&de, g);
+      report_dump(stdout, "error", &de, o.en, NULL);
     }
     prog_free(&p);
     diag_free(&d);
@@ -1269,19 +1264,15 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
   int status = EXIT_END;
   const char *st = "end";
-  struct dump_error de, *dep = NULL;
+  struct s42_error de, *dep = NULL;
   char serr[512];
   int ran = 1;                       /* the cycle started (not refused before its first block) */
   if (o.restart && cycle_restart(&r.cyc, serr, sizeof serr)) {
     ran = 0;
     fprintf(stderr, "%s:1:1: error: N-: restart refused: %s [E-STATE]\n", o.program, serr);
-    memset(&de, 0, sizeof de);
-    de.code = err_code(S42_E_STATE);
-    de.n = -1;
-    de.line = 1;
-    de.col = 1;
-    de.message = serr;
-    report_machine_msg(de.machine, sizeof de.machine, S42_E_STATE, -1, 0, o.en);
+    sess_error(&r.s, &de);
+    snprintf(de.msg, sizeof de.msg, "%s", serr);   /* the dump says why; stderr said "restart refused" */
+    de.number = -1;
     dep = &de;
     status = EXIT_PROGRAM;
     st = "error";
@@ -1376,39 +1367,30 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
   /* the program's error, or a failed M15 save's (status 4) */
   if ((status == EXIT_PROGRAM || (status == EXIT_IO && r.s.state == SE_ERROR)) && !dep) {
-    const struct vm_error *e = &r.s.vm.err;
-    const struct prog_block *b = &p.blocks[e->block];
+    sess_error(&r.s, &de);
     struct diag g;
-    memset(&g, 0, sizeof g);
-    g.sev = DIAG_ERROR;
-    g.code = e->code;
-    g.line = b->line;
-    g.col = e->col ? e->col : b->col;
-    g.number = b->number ? b->number : -1;
-    snprintf(g.msg, sizeof g.msg, "%s", e->msg);
+    s42_error_diag(&de, &g);
     diag_print_in(stderr, &d, &g);
-    memset(&de, 0, sizeof de);
-    de.code = err_code(e->code);
-    de.n = g.number;
-    de.line = g.line;
-    de.col = g.col;
-    de.message = e->msg;
-    report_machine_msg(de.machine, sizeof de.machine, e->code, g.number, e->aux, o.en);
-    fprintf(stderr, "%s:%u:%u: note: %s: %s\n", o.program, g.line, g.col,
-            o.en ? "the machine shows" : "на екрані", de.machine);
+    char machine[200];
+    s42_error_machine(&de, o.en, machine, sizeof machine);
+    fprintf(stderr, "%s:%u:%u: note: %s: %s\n", o.program, de.line, de.col,
+            o.en ? "the machine shows" : "на екрані", machine);
     dep = &de;
   }
   /* what the script held that the run did not use (a run that started) */
   if (o.operator_file && ran)
     ops_warn_unused(&r.ops, r.next, r.unfit, r.runs, o.operator_file, stderr);
   if (o.dump)
-    report_dump(stdout, st, dep, &r.s);
+    report_dump(stdout, st, dep, o.en, &r.s);
   if (plot)
-    plot_result(plot, &r.s, status, dep ? dep->code : NULL, dep ? dep->n : -1, dep ? dep->line : 0);
+    plot_result(plot, &r.s, status, dep ? err_code(dep->code) : NULL, dep ? dep->number : -1, dep ? dep->line : 0);
   if (o.screen) {
     uint32_t grid[SCR_ROWS][SCR_COLS];
-    if (dep)
-      screen_message(&r.s.scr, dep->machine);
+    if (dep) {
+      char machine[200];
+      s42_error_machine(dep, o.en, machine, sizeof machine);
+      sess_show_message(&r.s, machine);
+    }
     sess_screen(&r.s, grid);
     screen_print(stdout, grid);
   }

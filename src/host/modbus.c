@@ -580,7 +580,7 @@ int mb_dev_apply(struct mb_dev *d, struct mb_machine *m, const struct mb_write *
   if (w->n) {
     if (!s || mb_run_state(m, now) == MB_RUN || w->r0 + w->n > NREG_R)
       return EX_BUSY;            /* the cycle went on since the view was published */
-    memcpy(&s->vm.reg[w->r0], w->val, w->n * sizeof *w->val);
+    sess_load_params(s, w->r0, w->n, w->val);
   }
   if (w->ovr >= 0) {
     if (m->set_override) {

@@ -9,6 +9,7 @@
 #define NCURSES_WIDECHAR 1
 #include "tui.h"
 #include "cycle.h"
+#include "error.h"
 #include "compile.h"
 #include "errors.h"
 #include "kp.h"
@@ -410,14 +411,11 @@ static void end_run(struct tui *t)
 /* The machine's own message for the run's error, on line 16 and below. */
 static void show_error(struct tui *t)
 {
-  const struct vm_error *e = &t->s.vm.err;
-  const struct prog_block *b = e->block < t->prog.nblocks ? &t->prog.blocks[e->block] : NULL;
-  int num = b && b->number ? b->number : -1;
-  char m[200], nb[16];
-  report_machine_msg(m, sizeof m, e->code, num, e->aux, t->o.en);
-  screen_message(&t->s.scr, m);
-  say(t, "%u:%u error %s: %s [%s]", b ? b->line : 1, e->col ? e->col : b ? b->col : 1, bname(num, nb), e->msg,
-      err_code(e->code));
+  struct s42_error e;
+  char nb[16];
+  sess_error(&t->s, &e);
+  sess_show_error(&t->s);
+  say(t, "%u:%u error %s: %s [%s]", e.line, e.col, bname(e.number, nb), e.msg, err_code(e.code));
 }
 
 /* After a restart: the dialog area as the program's dialog left it before
@@ -428,44 +426,7 @@ static void show_error(struct tui *t)
 static void restored(struct tui *t)
 {
   struct session *s = &t->s;
-  const struct program *p = &t->prog;
-  struct screen *sc = &s->scr;
-  /* the main program's blocks before the restart block, or before the
-   * call that leads to it */
-  size_t upto = s->vm.cur;
-  if (s->vm.depth > 0)
-    upto = prog_block_at(p, s->vm.frames[0].ret);
-  int p3 = sc->p3, open = 0;
-  if (sc->nbuf)
-    upto = 0;   /* the state brought the buffer itself */
-  for (size_t b = 0; b < upto && b < p->nblocks; b++) {
-    const struct kp_attr *at = kp_attr(p, b);
-    if (p->blocks[b].unit != 0)
-      continue;
-    if (BIT(at->m, 29))
-      sc->fixed = -1;
-    if (BIT(at->m, 28))
-      sc->at_fixed = 1;
-    if (BIT(at->g, 33))
-      screen_center(sc, kp_str(p, at->g33));
-    if (BIT(at->g, 27)) {
-      sc->editing = 0;   /* a G27 without its G28: the number it took is not known */
-      screen_prompt(sc, kp_str(p, at->g27), at->g27form == '-');
-      if (BIT(at->m, 27))
-        sc->fixed = sc->last;
-      open = 1;
-    } else if (BIT(at->m, 27)) {
-      sc->fixed = sc->last >= 0 ? sc->last : sc->nbuf;
-    }
-    if (BIT(at->g, 28) && open && at->g28reg >= 0) {
-      screen_field_type(sc, llround(s->vm.reg[at->g28reg]));
-      screen_field_close(sc);
-      open = 0;
-    }
-  }
-  sc->editing = 0;
-  sc->at_fixed = 0;
-  sc->p3 = p3;
+  kp_restore_dialog(s);
   /* the first NCHG parameters that are not 0, R0 at the top */
   int regs[NCHG], n = 0;
   for (int i = 0; i < 114 && n < NCHG; i++)
@@ -1522,37 +1483,43 @@ static void edit_key(struct tui *t, int fn, wint_t c)
   }
 }
 
+/* The panel's keys on the 2С42 screen: the running session's, or the idle one's. */
+static int panel_edit(struct tui *t, int op, int arg)
+{
+  return t->run != R_IDLE ? sess_panel_edit(&t->s, op, arg) : screen_edit(&t->idle, op, arg);
+}
+
 static void panel_key(struct tui *t, int fn, wint_t c)
 {
   int field = t->run == R_RUN && t->s.state == SE_WAIT && t->s.wait == W_ANSWER;
-  struct screen *sc = t->run != R_IDLE ? &t->s.scr : &t->idle;
+  const struct screen *sc = t->run != R_IDLE ? &t->s.scr : &t->idle;
   if (fn) {
     switch (c) {
     case KEY_BACKSPACE: c = 127; break;
-    case KEY_LEFT: screen_field_move(sc, -1); return;
-    case KEY_RIGHT: screen_field_move(sc, 1); return;
-    case KEY_UP: screen_scroll(sc, -1); return;
-    case KEY_DOWN: screen_scroll(sc, 1); return;
+    case KEY_LEFT: panel_edit(t, SCREEN_MOVE, -1); return;
+    case KEY_RIGHT: panel_edit(t, SCREEN_MOVE, 1); return;
+    case KEY_UP: panel_edit(t, SCREEN_SCROLL, -1); return;
+    case KEY_DOWN: panel_edit(t, SCREEN_SCROLL, 1); return;
     case KEY_ENTER: press_ps(t); return;
     default: return;
     }
   }
   if (c >= '0' && c <= '9') {
     if (field)
-      screen_field_digit(sc, (int)(c - '0'));
+      panel_edit(t, SCREEN_DIGIT, (int)(c - '0'));
     else
       say(t, "digits go into the input field of a G27 dialog");
     return;
   }
   /* the P5 results of a tooth search: + and - page through the steps */
   if (sc->p5 && !field && (c == '+' || c == '-')) {
-    if (screen_p5_page(sc, c == '+' ? 1 : -1))
+    if (panel_edit(t, SCREEN_P5_PAGE, c == '+' ? 1 : -1))
       say(t, c == '+' ? "the last steps are shown" : "the first steps are shown");
     return;
   }
   switch (c) {
-  case 127: case 8: screen_field_backspace(sc); return;
-  case '-': screen_field_minus(sc); return;
+  case 127: case 8: panel_edit(t, SCREEN_BACKSPACE, 0); return;
+  case '-': panel_edit(t, SCREEN_MINUS, 0); return;
   case '\r': case '\n': press_ps(t); return;
   case 'g': press_pusk(t); return;
   case 's': press_stop(t); return;

@@ -54,5 +54,9 @@ static inline const char *kp_str(const struct program *p, uint32_t off)
 /* The 2С42 runtime on the session (runtime.c). */
 struct sess_runtime;
 extern const struct sess_runtime kp_runtime;
+/* After a restart: the dialog area on the screen as the program's dialog
+ * left it before the restart point (the terminal shows it). */
+struct session;
+void kp_restore_dialog(struct session *s);
 
 #endif

@@ -329,6 +329,52 @@ static int do_block(struct session *s)
   return exec_block(s);
 }
 
+/* After a restart: the dialog area as the program's dialog left it before
+ * the restart point (the G33 headings, each G27 line with the number its
+ * G28 stored, now in the restored parameters).  The state keeps no screen
+ * buffer: the program text and the parameters say what it held. */
+void kp_restore_dialog(struct session *s)
+{
+  const struct program *p = s->p;
+  struct screen *sc = &s->scr;
+  /* the main program's blocks before the restart block, or before the
+   * call that leads to it */
+  size_t upto = s->vm.cur;
+  if (s->vm.depth > 0)
+    upto = prog_block_at(p, s->vm.frames[0].ret);
+  int p3 = sc->p3, open = 0;
+  if (sc->nbuf)
+    upto = 0;   /* the state brought the buffer itself */
+  for (size_t b = 0; b < upto && b < p->nblocks; b++) {
+    const struct kp_attr *at = kp_attr(p, b);
+    if (p->blocks[b].unit != 0)
+      continue;
+    if (BIT(at->m, 29))
+      sc->fixed = -1;
+    if (BIT(at->m, 28))
+      sc->at_fixed = 1;
+    if (BIT(at->g, 33))
+      screen_center(sc, kp_str(p, at->g33));
+    if (BIT(at->g, 27)) {
+      sc->editing = 0;   /* a G27 without its G28: the number it took is not known */
+      screen_prompt(sc, kp_str(p, at->g27), at->g27form == '-');
+      if (BIT(at->m, 27))
+        sc->fixed = sc->last;
+      open = 1;
+    } else if (BIT(at->m, 27)) {
+      sc->fixed = sc->last >= 0 ? sc->last : sc->nbuf;
+    }
+    if (BIT(at->g, 28) && open && at->g28reg >= 0) {
+      screen_field_type(sc, llround(s->vm.reg[at->g28reg]));
+      screen_field_close(sc);
+      open = 0;
+    }
+  }
+  sc->editing = 0;
+  sc->at_fixed = 0;
+  sc->p3 = p3;
+}
+
 /* Hooks the session calls (struct sess_runtime). */
 static void on_start(struct session *s)
 {
