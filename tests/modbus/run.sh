@@ -9,21 +9,18 @@ s42=$1
 client=$2
 py=${PYTHON:-python3}
 dir=$(dirname "$0")
-tmp=$(mktemp -d)
+. "$dir/../lib.sh"
+t_init modbus
+tmp=$T
 SPID=
-passes=0
-fails=0
-cleanup() { [ -n "$SPID" ] && kill -KILL "$SPID" 2>/dev/null; rm -rf "$tmp"; }
-trap cleanup EXIT
-trap 'exit 1' INT TERM
-ok() { passes=$((passes + 1)); }
-fail() { echo "FAIL modbus: $*"; fails=$((fails + 1)); }
+t_atexit '[ -n "$SPID" ] && kill -KILL "$SPID" 2>/dev/null'
+fail() { bad "$*"; }
 
 # start ARGS...: s42 run ARGS --modbus on a free port; sets PORT and SPID.
 start() {
   tries=0
   while [ $tries -lt 20 ]; do
-    PORT=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
+    PORT=$(t_port)
     rm -f "$tmp/err"
     "$s42" run "$@" --modbus "127.0.0.1:$PORT" >"$tmp/out" 2>"$tmp/err" &
     SPID=$!
@@ -48,13 +45,8 @@ start() {
 
 # stop: SIGTERM, then the exit status in STATUS (SIGKILL after 5 s).
 stop() {
-  kill -TERM "$SPID" 2>/dev/null
-  ( sleep 5; kill -KILL "$SPID" ) >/dev/null 2>&1 &
-  wd=$!
-  wait "$SPID"
-  STATUS=$?
-  kill "$wd" 2>/dev/null
-  wait "$wd" 2>/dev/null
+  t_stop "$SPID" 5
+  STATUS=$T_STATUS
   SPID=
 }
 
@@ -63,15 +55,8 @@ mbp() { timeout 10 mbpoll -m tcp -p "$PORT" -0 -1 -o 2 "$@" 2>&1; }
 # value REF ARGS...: the value mbpoll reads at REF
 value() { ref=$1; shift; mbp -r "$ref" "$@" 127.0.0.1 | sed -n "s/^\[$ref\]:[[:space:]]*//p"; }
 # wait_state N: poll input register 2 with mbpoll until it is N (10 s)
-wait_state() {
-  i=0
-  while [ $i -lt 100 ]; do
-    [ "$(value 2 -t 3)" = "$1" ] && return 0
-    sleep 0.1
-    i=$((i + 1))
-  done
-  return 1
-}
+state_is() { [ "$(value 2 -t 3)" = "$1" ]; }
+wait_state() { t_wait 10 state_is "$1"; }
 
 # 1. the libmodbus client: loop.kp through Modbus alone (paced, to see it run)
 if start "$dir/loop.kp" --realtime; then
@@ -130,7 +115,7 @@ for bad in "--modbus-idle 1" "--modbus --modbus-max-clients 0" "--modbus --modbu
   [ $st = 2 ] && [ -s "$tmp/e" ] && ok || fail "$bad: status $st, expected 2: $(cat "$tmp/e")"
 done
 # a server on every interface without an allow list says so (read-only, briefly)
-P2=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
+P2=$(t_port)
 timeout 1 "$s42" run "$dir/loop.kp" --modbus "0.0.0.0:$P2" --modbus-read-only 2>"$tmp/e"
 grep -q "warning: Modbus on 0.0.0.0:$P2: not a loopback address" "$tmp/e" || grep -q "in use" "$tmp/e" && ok ||
   fail "no warning on 0.0.0.0 without --modbus-allow: $(cat "$tmp/e")"
@@ -252,22 +237,14 @@ fi
 
 # 6. s42 tui --modbus in tmux: a client's keys are the panel's keys, the map
 # shows what the terminal shows
-if ! command -v mbpoll >/dev/null 2>&1 || ! command -v tmux >/dev/null 2>&1; then
+if ! t_have mbpoll || ! t_have tmux; then
   echo "modbus: mbpoll or tmux is not installed: the terminal's Modbus tests were skipped"
 else
-  sock="$tmp/tmux"
-  tm() { tmux -S "$sock" "$@"; }
-  screen_has() {   # screen_has TEXT: within 5 s
-    i=0
-    while [ $i -lt 50 ]; do
-      tm capture-pane -p -t mb 2>/dev/null | tr -d '\n' | grep -q "$1" && return 0
-      sleep 0.1
-      i=$((i + 1))
-    done
-    return 1
-  }
-  PORT=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
-  tm new -d -s mb -x 120 -y 40 "LANG=C.UTF-8 '$s42' tui programs/drill_point.kp --modbus 127.0.0.1:$PORT; echo \$? >'$tmp/tui-st'; sleep 30"
+  . "$dir/../tmux.sh"                         # the terminal tests' driver
+  tm_init "$tmp"
+  screen_has() { tm_wait mb -J "$1" 5; }      # screen_has TEXT: within 5 s, the rows joined
+  PORT=$(t_port)
+  tm_run mb 120 40 . -e LANG=C.UTF-8 "$s42" tui programs/drill_point.kp --modbus "127.0.0.1:$PORT"
   if screen_has "Modbus TCP on 127.0.0.1:$PORT"; then
     ok
     [ "$(value 2 -t 3)" = 0 ] && ok || fail "tui: not idle before Пуск"
@@ -298,27 +275,27 @@ else
     wait_state 0 && ok || fail "tui: run state not 0 after reset"
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
     wait_state 1 && ok || fail "tui: Пуск after reset"
-    tm send-keys -t mb f            # as fast as possible: to M2
+    tm_keys mb f                    # as fast as possible: to M2
     wait_state 5 && ok || fail "tui: never reached M2 (state $(value 2 -t 3))"
-    tm send-keys -t mb q
-    i=0; while [ ! -s "$tmp/tui-st" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
-    [ "$(cat "$tmp/tui-st" 2>/dev/null)" = 0 ] && ok || fail "tui: status $(cat "$tmp/tui-st" 2>/dev/null) after q"
+    tm_keys mb q
+    tm_ended mb 5
+    [ "$TM_STATUS" = exit=0 ] && ok || fail "tui: status '$TM_STATUS' after q"
   else
-    fail "tui --modbus did not start: $(tm capture-pane -p -t mb 2>&1 | head -5)"
+    fail "tui --modbus did not start: $(tm_pane mb | head -5)"
   fi
-  tm kill-server 2>/dev/null
   # the terminal computes a long tooth search; its server still answers
-  PORT=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
-  tm new -d -s mb -x 120 -y 40 "LANG=C.UTF-8 '$s42' tui programs/endmill_search.kp --tool '$tmp/big.tool' --state '$tmp/tui.state' --modbus 127.0.0.1:$PORT; sleep 30"
+  PORT=$(t_port)
+  tm_run mb 120 40 . -e LANG=C.UTF-8 "$s42" tui programs/endmill_search.kp --tool "$tmp/big.tool" \
+    --state "$tmp/tui.state" --modbus "127.0.0.1:$PORT"
   if screen_has "Modbus TCP on 127.0.0.1:$PORT"; then
     rb tuisearch "$PORT" && ok || fail "tui: a long tooth search stalled the server"
   else
-    fail "tui --modbus with the search did not start: $(tm capture-pane -p -t mb 2>&1 | head -5)"
+    fail "tui --modbus with the search did not start: $(tm_pane mb | head -5)"
   fi
-  tm kill-server 2>/dev/null
+  tm_kill mb
+  tm_end
   "$s42" tui programs/drill_point.kp --modbus 127.0.0.1:99999 </dev/null >/dev/null 2>"$tmp/e"; st=$?
   [ $st = 2 ] && grep -q 99999 "$tmp/e" && ok || fail "tui --modbus 127.0.0.1:99999: status $st, expected 2"
 fi
 
-echo "modbus: $passes passed, $fails failed"
-[ $fails = 0 ]
+t_done
