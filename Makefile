@@ -2,6 +2,7 @@
 #   make            build ./s42
 #   make check      all tests (unit, conformance, programs)
 #   make asan       the whole test suite under ASan + UBSan
+#   make check-switch  the unit suite and the conformance cases with the VM's switch dispatch
 #   make run        build and run the emulator on a bundled program (the TUI on a terminal)
 #   make install PREFIX=/usr/local
 .SUFFIXES:
@@ -45,7 +46,7 @@ include bench/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: all check test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli
+.PHONY: all check check-switch test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -96,6 +97,21 @@ asan:
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  $(ASAN_MAKE) test
 
+# The VM's other dispatch: vm/vm.c dispatches by computed goto under GCC and
+# by a switch otherwise; S42_SWITCH_DISPATCH forces the switch.  check-switch
+# builds everything so into build-switch/ (a build of its own), makes sure the
+# VM there has no computed-goto table, and runs the unit suite, the
+# conformance cases and the bundled programs on it (.ci/run calls it).
+SWITCH_BUILD := build-switch
+SWITCH_MAKE = $(MAKE) --no-print-directory BUILD=$(SWITCH_BUILD) S42=$(SWITCH_BUILD)/s42 \
+	  CFLAGS="$(CFLAGS) -DS42_SWITCH_DISPATCH"
+check-switch: deps
+	@$(SWITCH_MAKE) all unit-bin
+	@if nm $(SWITCH_BUILD)/vm/vm.o | grep -q ' disp\.'; then \
+	  echo "check-switch: $(SWITCH_BUILD)/vm/vm.o still has the computed-goto table (disp)"; exit 1; fi
+	@echo "check-switch: $(SWITCH_BUILD)/vm/vm.o dispatches by switch (no computed-goto table)"
+	@$(SWITCH_MAKE) unit conformance programs
+
 docs: docs/opcodes.md
 docs/opcodes.md: vm/opcodes.h $(S42)
 	$(S42) --opcodes-md > $@
@@ -111,6 +127,6 @@ install: $(S42) $(PLUGIN_SOS)
 	install -m 644 scripts/s42.bash $(DESTDIR)$(BASHCOMPDIR)/s42
 
 clean:
-	rm -rf build build-asan s42
+	rm -rf build build-asan $(SWITCH_BUILD) s42
 
 -include $(DEPS)
