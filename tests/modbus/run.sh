@@ -158,6 +158,9 @@ else
     '№3 G01 X-1000 ^' '№4 G01 X-1000 ^' '№5 M02 ^' >"$tmp/long.kp"
   feed() { mbp -B -t 3:int -r 18 127.0.0.1 | sed -n 's/^\[18\]:[[:space:]]*//p'; }
   xpos() { mbp -B -t 3:int -r 10 127.0.0.1 | sed -n 's/^\[10\]:[[:space:]]*//p'; }
+  feed_is() { [ "$(feed)" = "$1" ]; }
+  moved_past() { [ "$(feed)" = 60000 ] && [ "$(xpos)" -gt "$1" ]; }   # at 100 %, X beyond $1
+  waits_at() { [ "$(value 2 -t 3)" = 3 ] && [ "$(value 3 -t 3)" = "$1" ]; }   # run state 3 at block $1
   if start "$tmp/long.kp" --realtime; then
     c1=$(value 1 -t 3); sleep 1.1; c2=$(value 1 -t 3)
     [ -n "$c1" ] && [ $((c2 - c1)) -ge 4 ] && ok || fail "mbpoll: the snapshot counter went $c1 -> $c2 in 1.1 s idle"
@@ -166,8 +169,7 @@ else
     wait_state 1 && ok || fail "mbpoll override: no run after Пуск"
     [ "$(feed)" = 60000 ] && ok || fail "mbpoll override: feed $(feed), expected 60000 (0.001 mm/min)"
     mbp -t 4 -r 0 127.0.0.1 150 >/dev/null
-    sleep 0.2
-    [ "$(feed)" = 90000 ] && ok || fail "mbpoll override: feed $(feed) after 150 % within N1, expected 90000"
+    t_wait 1 feed_is 90000 && ok || fail "mbpoll override: feed $(feed) after 150 % within N1, expected 90000"
     [ "$(value 3 -t 3)" = 1 ] && ok || fail "mbpoll override: block $(value 3 -t 3), expected still N1"
     mbp -t 4 -r 0 127.0.0.1 0 >/dev/null
     wait_state 2 && ok || fail "mbpoll override: 0 % within a move: run state $(value 2 -t 3), expected 2"
@@ -179,8 +181,7 @@ else
     [ "$(xpos)" = "$x2" ] && ok || fail "mbpoll override: Пуск moved X at 0 %"
     mbp -t 4 -r 0 127.0.0.1 100 >/dev/null
     wait_state 1 && ok || fail "mbpoll override: 100 % again: run state $(value 2 -t 3)"
-    sleep 0.3
-    [ "$(feed)" = 60000 ] && [ "$(xpos)" -gt "$x2" ] && ok || fail "mbpoll override: 100 %: feed $(feed), X $(xpos)"
+    t_wait 2 moved_past "$x2" && ok || fail "mbpoll override: 100 %: feed $(feed), X $(xpos)"
     mbp -t 4 -r 0 127.0.0.1 40 >/dev/null
     mbp -t 0 -r 4 127.0.0.1 1 >/dev/null     # reset: the switch keeps its position
     wait_state 0 && ok || fail "mbpoll: no idle after reset"
@@ -194,14 +195,12 @@ else
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
     wait_state 3 && [ "$(value 3 -t 3)" = 2 ] && ok || fail "mbpoll single: N2 does not wait (block $(value 3 -t 3))"
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
-    sleep 0.2
-    wait_state 3 && [ "$(value 3 -t 3)" = 3 ] && ok || fail "mbpoll single: N3 does not wait (block $(value 3 -t 3))"
+    t_wait 10 waits_at 3 && ok || fail "mbpoll single: N3 does not wait (block $(value 3 -t 3))"
     mbp -t 0 -r 5 127.0.0.1 0 >/dev/null     # automatic, a breakpoint at N5
     mbp -t 4 -r 2 127.0.0.1 5 >/dev/null
     [ "$(value 2 -t 4)" = 5 ] && ok || fail "mbpoll: holding register 2 reads $(value 2 -t 4), expected 5"
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
-    sleep 0.2
-    wait_state 3 && [ "$(value 3 -t 3)" = 5 ] && ok || fail "mbpoll break: N5 does not wait (block $(value 3 -t 3))"
+    t_wait 10 waits_at 5 && ok || fail "mbpoll break: N5 does not wait (block $(value 3 -t 3))"
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
     wait_state 5 && ok || fail "mbpoll break: no M2 after Пуск at N5"
     stop
