@@ -68,12 +68,17 @@ run: deps
 	@if [ -t 0 ] && [ -t 1 ]; then $(S42) tui programs/drill_dialog.kp; \
 	else $(S42) run programs/reamer_rake.kp --trace --dump; fi
 
+# make check builds with CHECK_JOBS jobs, then runs the tests CHECK_JOBS at
+# a time, the longest first (each has its own temporary directory, tmux
+# server and ports), each one's output kept together (-Otarget).
+# CHECK_JOBS=1 runs them one after another.
+CHECK_JOBS ?= 2
 check: deps
-	@$(MAKE) --no-print-directory all unit-bin toothsearch-bin
-	@$(MAKE) --no-print-directory test
+	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) all unit-bin toothsearch-bin
+	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) -Otarget test
 
-# The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus errors guide tutorial cli
+# The tests themselves, once everything is built (the longest first).
+test: modbus tutorial toothsearch tui plot restart plugins conformance errors realtime limits regress unit programs guide cli shared
 
 # programs/errors/: one program per error class, its diagnostics exactly
 errors: $(S42)
