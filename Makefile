@@ -98,7 +98,7 @@ ASAN_MAKE = $(MAKE) BUILD=build-asan S42=build-asan/s42 \
 	  LDFLAGS="-fsanitize=address,undefined"
 asan:
 	@sh scripts/deps.sh
-	$(ASAN_MAKE) all unit-bin toothsearch-bin
+	$(ASAN_MAKE) -j$(CHECK_JOBS) all unit-bin toothsearch-bin
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  $(ASAN_MAKE) test
 

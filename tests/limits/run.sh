@@ -5,6 +5,7 @@
 S42=${1:-./s42}
 . "$(dirname "$0")/../lib.sh"
 t_init limits
+t_fast_dir                                     # T_FAST: the M15 saves of loop.kp, on a tmpfs
 # fail NAME MSG: "FAIL limits NAME: MSG", then the first lines of stderr
 fail() { t_case "$1"; bad "$2" "$(head -5 "$T/err")"; t_case ""; }
 
@@ -139,7 +140,7 @@ op "at N$(printf %063d 22) key EXIT"              # before: read as at N2
 expect op-long-at 2 's.op:1:4: error: a word of 64 characters' programs/drill_dialog.kp --operator "$T/s.op"
 op "at N$(printf %062d 2) key STOP"               # 63 characters: read whole
 expect op-zeros-at 3 'note: N2: the cycle was stopped \(key STOP\)' tests/restart/loop.kp --operator "$T/s.op" \
-  --state "$T/loop.state"                         # (not beside the program, in the tree)
+  --state "$T_FAST/loop.state"                    # (not beside the program, in the tree)
 printf 'answer 35\000000\n' > "$T/s.op"
 expect op-nul 2 's.op:1:8: error: a NUL byte inside a word' programs/drill_dialog.kp --operator "$T/s.op"
 op "answer 35000" "  at N22 key EXIT"
@@ -149,7 +150,7 @@ grep -q "drill_dialog.kp: note: the operator script $T/s.op is refused: the run 
   ok || fail op-at-missing "no note"
 op "at N1#5 key EXIT" "override 80" "key PUSK" "key PS"
 expect op-unused 0 "s.op:1:1: warning: at N1#5 key EXIT never fired: block N1 started only once" \
-  tests/restart/loop.kp --operator "$T/s.op" --state "$T/loop.state"
+  tests/restart/loop.kp --operator "$T/s.op" --state "$T_FAST/loop.state"   # 2000 saves
 grep -q "s.op:3:1: warning: key PUSK was not used: the run ended before it" "$T/err" &&
   grep -q "s.op:4:1: warning: key PS was not used: the run ended before it" "$T/err" &&
   ! grep -q "s.op:2:" "$T/err" && ok ||

@@ -1,11 +1,12 @@
 #!/bin/sh
 # End-to-end tests of `s42 tui` in a real terminal: tmux runs it in a
 # detached pane on a private socket (100x30, or TW x TH: 80x24 and 120x40
-# too), send-keys types, capture-pane
-# reads the screen.  Every wait polls the pane until the text appears, with
-# a timeout, so a slow machine only makes the tests slower.  The pane runs
-# the terminal inside a small shell script that records `stty -a` before
-# and after and the exit status, so the restored terminal is checked too.
+# too), send-keys types, capture-pane reads the screen, all through the
+# terminal tests' driver tests/tmux.sh.  Every wait polls the pane until the
+# text appears, with a limit, so a slow machine only makes the tests slower.
+# The pane runs the terminal inside the driver's small shell script that
+# records `stty -a` before and after and the exit status, so the restored
+# terminal is checked too.
 #   sh tests/tui/run.sh ./s42
 S42=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 HERE=$(cd "$(dirname "$0")" && pwd)
