@@ -2,6 +2,7 @@
 #   make            build ./s42
 #   make check      all tests (unit, conformance, programs)
 #   make asan       the whole test suite under ASan + UBSan
+#   make check-switch  the unit suite and the conformance cases with the VM's switch dispatch
 #   make run        build and run the emulator on a bundled program (the TUI on a terminal)
 #   make install PREFIX=/usr/local
 .SUFFIXES:
@@ -45,7 +46,7 @@ include bench/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: canon dialect all check test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli
+.PHONY: canon dialect all check check-switch test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -67,12 +68,17 @@ run: deps
 	@if [ -t 0 ] && [ -t 1 ]; then $(S42) tui programs/drill_dialog.kp; \
 	else $(S42) run programs/reamer_rake.kp --trace --dump; fi
 
+# make check builds with CHECK_JOBS jobs, then runs the tests CHECK_JOBS at
+# a time, the longest first (each has its own temporary directory, tmux
+# server and ports), each one's output kept together (-Otarget).
+# CHECK_JOBS=1 runs them one after another.
+CHECK_JOBS ?= 2
 check: deps
-	@$(MAKE) --no-print-directory all unit-bin toothsearch-bin
-	@$(MAKE) --no-print-directory test
+	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) all unit-bin toothsearch-bin
+	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) -Otarget test
 
-# The tests themselves, once everything is built.
-test: unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus errors guide tutorial cli canon dialect
+# The tests themselves, once everything is built (the longest first).
+test: modbus tutorial toothsearch tui plot restart plugins conformance errors realtime limits regress unit programs guide cli shared dialect canon
 
 # --trace=canon: the calls on the machine, exactly (tests/canon/)
 canon: $(S42)
@@ -96,9 +102,24 @@ ASAN_MAKE = $(MAKE) BUILD=build-asan S42=build-asan/s42 \
 	  LDFLAGS="-fsanitize=address,undefined"
 asan:
 	@sh scripts/deps.sh
-	$(ASAN_MAKE) all unit-bin toothsearch-bin
+	$(ASAN_MAKE) -j$(CHECK_JOBS) all unit-bin toothsearch-bin
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  $(ASAN_MAKE) test
+
+# The VM's other dispatch: vm/vm.c dispatches by computed goto under GCC and
+# by a switch otherwise; S42_SWITCH_DISPATCH forces the switch.  check-switch
+# builds everything so into build-switch/ (a build of its own), makes sure the
+# VM there has no computed-goto table, and runs the unit suite, the
+# conformance cases and the bundled programs on it (.ci/run calls it).
+SWITCH_BUILD := build-switch
+SWITCH_MAKE = $(MAKE) --no-print-directory BUILD=$(SWITCH_BUILD) S42=$(SWITCH_BUILD)/s42 \
+	  CFLAGS="$(CFLAGS) -DS42_SWITCH_DISPATCH"
+check-switch: deps
+	@$(SWITCH_MAKE) all unit-bin
+	@if nm $(SWITCH_BUILD)/vm/vm.o | grep -q ' disp\.'; then \
+	  echo "check-switch: $(SWITCH_BUILD)/vm/vm.o still has the computed-goto table (disp)"; exit 1; fi
+	@echo "check-switch: $(SWITCH_BUILD)/vm/vm.o dispatches by switch (no computed-goto table)"
+	@$(SWITCH_MAKE) unit conformance programs
 
 docs: docs/opcodes.md
 docs/opcodes.md: vm/opcodes.h $(S42)
@@ -115,6 +136,6 @@ install: $(S42) $(PLUGIN_SOS)
 	install -m 644 scripts/s42.bash $(DESTDIR)$(BASHCOMPDIR)/s42
 
 clean:
-	rm -rf build build-asan s42
+	rm -rf build build-asan $(SWITCH_BUILD) s42
 
 -include $(DEPS)

@@ -66,8 +66,15 @@ $(FORGE): tests/restart/forge.c src/core/state.h $(VM_OBJS) $(DISP_OBJS) $(SRC_O
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(ALL_INC) $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
 unit-bin: $(FORGE)
-restart: $(S42) $(FORGE)
-	sh tests/restart/run.sh $(S42) $(FORGE)
+# an LD_PRELOAD shim that kills a run inside its Nth save (tests/restart/killsave.c);
+# built without the sanitizers of make asan: it only wraps libc calls
+KILLSAVE := $(BUILD)/tests/restart/killsave.so
+$(KILLSAVE): tests/restart/killsave.c
+	@mkdir -p $(@D)
+	$(CC) -D_GNU_SOURCE $(WARN) -O2 -g -fPIC -shared -o $@ $< -ldl
+unit-bin: $(KILLSAVE)
+restart: $(S42) $(FORGE) $(KILLSAVE)
+	sh tests/restart/run.sh $(S42) $(FORGE) $(KILLSAVE)
 
 # --realtime paces the run at machine speed (a lower bound on the wall time)
 realtime: $(S42)

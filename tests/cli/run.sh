@@ -3,12 +3,8 @@
 # be written is status 4 with the reason, for every command that writes;
 # a CR-only program reads as lines.   usage: run.sh S42
 S42=${1:-./s42}
-T=${TMPDIR:-/tmp}/s42-cli.$$
-mkdir -p "$T"
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL cli $1"; fail=$((fail + 1)); }
+. "$(dirname "$0")/../lib.sh"
+t_init cli
 
 # stdout on a full disk: every command that prints exits 4 and says why
 if [ -w /dev/full ]; then
@@ -145,5 +141,4 @@ assert {"helix", "oscillation"} <= set(names), names
 assert all(f["function"][0] in "GM" for p in d["plugins"] for f in p["functions"])
 ' "$T/out"; then ok; else bad "plugins --json: $(head -c 300 "$T/out")"; fi
 
-echo "cli: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+t_done

@@ -3,10 +3,11 @@
 # clear message and its exit status, never a crash.  Run by make check, and
 # under make asan with the sanitized binary.   usage: run.sh S42
 S42=${1:-./s42}
-T=${TMPDIR:-/tmp}/s42-limits.$$
-mkdir -p "$T"
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
+. "$(dirname "$0")/../lib.sh"
+t_init limits
+t_fast_dir                                     # T_FAST: the M15 saves of loop.kp, on a tmpfs
+# fail NAME MSG: "FAIL limits NAME: MSG", then the first lines of stderr
+fail() { t_case "$1"; bad "$2" "$(head -5 "$T/err")"; t_case ""; }
 
 # expect NAME STATUS PATTERN FILE [ARGS...]: s42 run FILE ARGS exits with
 # STATUS and says PATTERN (grep -E) on stderr
@@ -16,13 +17,11 @@ expect() {
   "$S42" run "$f" "$@" >"$T/out" 2>"$T/err"
   st=$?
   if [ "$st" -ne "$want" ]; then
-    echo "FAIL limits $name: status $st, expected $want"; sed 's/^/  /' "$T/err" | head -5
-    fail=$((fail + 1))
+    fail "$name" "status $st, expected $want"
   elif ! grep -Eq -- "$pat" "$T/err"; then
-    echo "FAIL limits $name: stderr does not match /$pat/"; sed 's/^/  /' "$T/err" | head -5
-    fail=$((fail + 1))
+    fail "$name" "stderr does not match /$pat/"
   else
-    pass=$((pass + 1))
+    ok
   fi
 }
 
@@ -71,7 +70,7 @@ expect text-non-utf8 1 'textbad\.kp:1:11: error: N-: not UTF-8: the byte 0xFF he
 for e in cp1251:cp1251 koi8:koi8-u cp866:cp866; do
   expect "encoding-${e%%:*}" 1 "${e%%:*}\\.kp:1:3: error: N-: not UTF-8 \\(it reads as ${e#*:}.*\\): convert it with \`iconv -f ${e#*:} -t utf-8 .*${e%%:*}\\.kp > NEW\\.kp\`" "$T/${e%%:*}.kp"
   if [ "$(grep -c 'error:' "$T/err")" -ne 1 ] || [ "$(wc -l <"$T/err")" -ne 1 ]; then
-    echo "FAIL limits encoding-${e%%:*}: more than one line: $(cat "$T/err")"; fail=$((fail + 1))
+    t_case "encoding-${e%%:*}"; bad "more than one line: $(cat "$T/err")"; t_case ""
   fi
 done
 expect text-nul 1 'textnul\.kp:1:11: error: N1: G33: text holds a NUL byte \[E-TEXT\]' "$T/textnul.kp"
@@ -98,11 +97,11 @@ expect_t() {
 chk() {   # NAME STATUS PATTERN: of the last expect_t
   st=$(cat "$T/st")
   if [ "$st" -ne "$2" ]; then
-    echo "FAIL limits $1: status $st, expected $2"; sed 's/^/  /' "$T/err" | head -5; fail=$((fail + 1))
+    fail "$1" "status $st, expected $2"
   elif ! grep -Eq -- "$3" "$T/err"; then
-    echo "FAIL limits $1: stderr does not match /$3/"; sed 's/^/  /' "$T/err" | head -5; fail=$((fail + 1))
+    fail "$1" "stderr does not match /$3/"
   else
-    pass=$((pass + 1))
+    ok
   fi
 }
 fifo_msg='fifo: is a FIFO, not a regular file \(a pipe is read only as standard input\)'
@@ -114,21 +113,21 @@ expect_t fifo-state-restart "$S42" run tests/restart/loop.kp --restart --state "
 chk fifo-state-restart 1 "restart refused: no restart state: $T/fifo: is a FIFO, not a regular file \[E-STATE\]"
 expect_t fifo-state-save "$S42" run tests/restart/loop.kp --state "$T/fifo" --dump
 chk fifo-state-save 4 "error: N3: cannot save the M15 restart state: $T/fifo is a FIFO, not a restart state: it is not replaced \[E-STATE\]"
-[ -p "$T/fifo" ] && pass=$((pass + 1)) || { echo "FAIL limits fifo-state-save: the FIFO was replaced"; fail=$((fail + 1)); }
+[ -p "$T/fifo" ] && ok || fail fifo-state-save "the FIFO was replaced"
 expect_t device-program "$S42" run /dev/zero; chk device-program 4 's42: /dev/zero: is a character device, not a regular file'
 expect_t device-operator "$S42" run programs/drill_dialog.kp --operator /dev/null
 chk device-operator 4 's42: /dev/null: is a character device, not a regular file'
 # standard input as a pipe: the program, and the operator script
 if cat programs/drill_point.kp | "$S42" run /dev/stdin --dump 2>"$T/err" | grep -q '"status":"end"'; then
-  pass=$((pass + 1))
+  ok
 else
-  echo "FAIL limits stdin-program: a program on a pipe did not run"; sed 's/^/  /' "$T/err" | head -5; fail=$((fail + 1))
+  fail stdin-program "a program on a pipe did not run"
 fi
 if cat programs/drill_dialog.operator | "$S42" run programs/drill_dialog.kp --operator /dev/stdin --dump 2>"$T/err" |
    grep -q '"status":"end"'; then
-  pass=$((pass + 1))
+  ok
 else
-  echo "FAIL limits stdin-operator: a script on a pipe was not read"; sed 's/^/  /' "$T/err" | head -5; fail=$((fail + 1))
+  fail stdin-operator "a script on a pipe was not read"
 fi
 
 # the operator script: no word cut short, `at` for a block the program has,
@@ -140,21 +139,22 @@ expect op-long-word 2 "s.op:5:10: error: a word of 64 characters: at most 63 \(i
 op "at N$(printf %063d 22) key EXIT"              # before: read as at N2
 expect op-long-at 2 's.op:1:4: error: a word of 64 characters' programs/drill_dialog.kp --operator "$T/s.op"
 op "at N$(printf %062d 2) key STOP"               # 63 characters: read whole
-expect op-zeros-at 3 'note: N2: the cycle was stopped \(key STOP\)' tests/restart/loop.kp --operator "$T/s.op"
+expect op-zeros-at 3 'note: N2: the cycle was stopped \(key STOP\)' tests/restart/loop.kp --operator "$T/s.op" \
+  --state "$T_FAST/loop.state"                    # (not beside the program, in the tree)
 printf 'answer 35\000000\n' > "$T/s.op"
 expect op-nul 2 's.op:1:8: error: a NUL byte inside a word' programs/drill_dialog.kp --operator "$T/s.op"
 op "answer 35000" "  at N22 key EXIT"
 expect op-at-missing 2 "s.op:2:3: error: at N22: the program has no block N22, so this never fires" \
   programs/drill_dialog.kp --operator "$T/s.op"
 grep -q "drill_dialog.kp: note: the operator script $T/s.op is refused: the run does not start" "$T/err" &&
-  pass=$((pass + 1)) || { echo "FAIL limits op-at-missing: no note"; fail=$((fail + 1)); }
+  ok || fail op-at-missing "no note"
 op "at N1#5 key EXIT" "override 80" "key PUSK" "key PS"
 expect op-unused 0 "s.op:1:1: warning: at N1#5 key EXIT never fired: block N1 started only once" \
-  tests/restart/loop.kp --operator "$T/s.op"
+  tests/restart/loop.kp --operator "$T/s.op" --state "$T_FAST/loop.state"   # 2000 saves
 grep -q "s.op:3:1: warning: key PUSK was not used: the run ended before it" "$T/err" &&
   grep -q "s.op:4:1: warning: key PS was not used: the run ended before it" "$T/err" &&
-  ! grep -q "s.op:2:" "$T/err" && pass=$((pass + 1)) ||
-  { echo "FAIL limits op-unused: the unused actions were not each warned"; sed 's/^/  /' "$T/err"; fail=$((fail + 1)); }
+  ! grep -q "s.op:2:" "$T/err" && ok ||
+  { t_case op-unused; bad "the unused actions were not each warned" "$(cat "$T/err")"; t_case ""; }
 
 # CRLF line ends: the same run, to the byte, as the LF original
 for f in programs/reamer_rake.kp programs/drill_dialog.kp; do
@@ -167,12 +167,10 @@ for f in programs/reamer_rake.kp programs/drill_dialog.kp; do
   # shellcheck disable=SC2086
   "$S42" run "$T/$b-crlf.kp" $op --dump --screen > "$T/crlf.out" 2>/dev/null
   if cmp -s "$T/lf.out" "$T/crlf.out"; then
-    pass=$((pass + 1))
+    ok
   else
-    echo "FAIL limits crlf-$b: the CRLF file runs differently"; diff "$T/lf.out" "$T/crlf.out" | head -5
-    fail=$((fail + 1))
+    t_case "crlf-$b"; bad "the CRLF file runs differently" "$(diff "$T/lf.out" "$T/crlf.out" | head -5)"; t_case ""
   fi
 done
 
-echo "limits: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+t_done

@@ -9,21 +9,18 @@ s42=$1
 client=$2
 py=${PYTHON:-python3}
 dir=$(dirname "$0")
-tmp=$(mktemp -d)
+. "$dir/../lib.sh"
+t_init modbus
+tmp=$T
 SPID=
-passes=0
-fails=0
-cleanup() { [ -n "$SPID" ] && kill -KILL "$SPID" 2>/dev/null; rm -rf "$tmp"; }
-trap cleanup EXIT
-trap 'exit 1' INT TERM
-ok() { passes=$((passes + 1)); }
-fail() { echo "FAIL modbus: $*"; fails=$((fails + 1)); }
+t_atexit '[ -n "$SPID" ] && kill -KILL "$SPID" 2>/dev/null'
+fail() { bad "$*"; }
 
 # start ARGS...: s42 run ARGS --modbus on a free port; sets PORT and SPID.
 start() {
   tries=0
   while [ $tries -lt 20 ]; do
-    PORT=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
+    PORT=$(t_port)
     rm -f "$tmp/err"
     "$s42" run "$@" --modbus "127.0.0.1:$PORT" >"$tmp/out" 2>"$tmp/err" &
     SPID=$!
@@ -48,13 +45,8 @@ start() {
 
 # stop: SIGTERM, then the exit status in STATUS (SIGKILL after 5 s).
 stop() {
-  kill -TERM "$SPID" 2>/dev/null
-  ( sleep 5; kill -KILL "$SPID" ) >/dev/null 2>&1 &
-  wd=$!
-  wait "$SPID"
-  STATUS=$?
-  kill "$wd" 2>/dev/null
-  wait "$wd" 2>/dev/null
+  t_stop "$SPID" 5
+  STATUS=$T_STATUS
   SPID=
 }
 
@@ -63,15 +55,8 @@ mbp() { timeout 10 mbpoll -m tcp -p "$PORT" -0 -1 -o 2 "$@" 2>&1; }
 # value REF ARGS...: the value mbpoll reads at REF
 value() { ref=$1; shift; mbp -r "$ref" "$@" 127.0.0.1 | sed -n "s/^\[$ref\]:[[:space:]]*//p"; }
 # wait_state N: poll input register 2 with mbpoll until it is N (10 s)
-wait_state() {
-  i=0
-  while [ $i -lt 100 ]; do
-    [ "$(value 2 -t 3)" = "$1" ] && return 0
-    sleep 0.1
-    i=$((i + 1))
-  done
-  return 1
-}
+state_is() { [ "$(value 2 -t 3)" = "$1" ]; }
+wait_state() { t_wait 10 state_is "$1"; }
 
 # 1. the libmodbus client: loop.kp through Modbus alone (paced, to see it run)
 if start "$dir/loop.kp" --realtime; then
@@ -130,7 +115,7 @@ for bad in "--modbus-idle 1" "--modbus --modbus-max-clients 0" "--modbus --modbu
   [ $st = 2 ] && [ -s "$tmp/e" ] && ok || fail "$bad: status $st, expected 2: $(cat "$tmp/e")"
 done
 # a server on every interface without an allow list says so (read-only, briefly)
-P2=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
+P2=$(t_port)
 timeout 1 "$s42" run "$dir/loop.kp" --modbus "0.0.0.0:$P2" --modbus-read-only 2>"$tmp/e"
 grep -q "warning: Modbus on 0.0.0.0:$P2: not a loopback address" "$tmp/e" || grep -q "in use" "$tmp/e" && ok ||
   fail "no warning on 0.0.0.0 without --modbus-allow: $(cat "$tmp/e")"
@@ -173,6 +158,9 @@ else
     '№3 G01 X-1000 ^' '№4 G01 X-1000 ^' '№5 M02 ^' >"$tmp/long.kp"
   feed() { mbp -B -t 3:int -r 18 127.0.0.1 | sed -n 's/^\[18\]:[[:space:]]*//p'; }
   xpos() { mbp -B -t 3:int -r 10 127.0.0.1 | sed -n 's/^\[10\]:[[:space:]]*//p'; }
+  feed_is() { [ "$(feed)" = "$1" ]; }
+  moved_past() { [ "$(feed)" = 60000 ] && [ "$(xpos)" -gt "$1" ]; }   # at 100 %, X beyond $1
+  waits_at() { [ "$(value 2 -t 3)" = 3 ] && [ "$(value 3 -t 3)" = "$1" ]; }   # run state 3 at block $1
   if start "$tmp/long.kp" --realtime; then
     c1=$(value 1 -t 3); sleep 1.1; c2=$(value 1 -t 3)
     [ -n "$c1" ] && [ $((c2 - c1)) -ge 4 ] && ok || fail "mbpoll: the snapshot counter went $c1 -> $c2 in 1.1 s idle"
@@ -181,8 +169,7 @@ else
     wait_state 1 && ok || fail "mbpoll override: no run after Пуск"
     [ "$(feed)" = 60000 ] && ok || fail "mbpoll override: feed $(feed), expected 60000 (0.001 mm/min)"
     mbp -t 4 -r 0 127.0.0.1 150 >/dev/null
-    sleep 0.2
-    [ "$(feed)" = 90000 ] && ok || fail "mbpoll override: feed $(feed) after 150 % within N1, expected 90000"
+    t_wait 1 feed_is 90000 && ok || fail "mbpoll override: feed $(feed) after 150 % within N1, expected 90000"
     [ "$(value 3 -t 3)" = 1 ] && ok || fail "mbpoll override: block $(value 3 -t 3), expected still N1"
     mbp -t 4 -r 0 127.0.0.1 0 >/dev/null
     wait_state 2 && ok || fail "mbpoll override: 0 % within a move: run state $(value 2 -t 3), expected 2"
@@ -194,8 +181,7 @@ else
     [ "$(xpos)" = "$x2" ] && ok || fail "mbpoll override: Пуск moved X at 0 %"
     mbp -t 4 -r 0 127.0.0.1 100 >/dev/null
     wait_state 1 && ok || fail "mbpoll override: 100 % again: run state $(value 2 -t 3)"
-    sleep 0.3
-    [ "$(feed)" = 60000 ] && [ "$(xpos)" -gt "$x2" ] && ok || fail "mbpoll override: 100 %: feed $(feed), X $(xpos)"
+    t_wait 2 moved_past "$x2" && ok || fail "mbpoll override: 100 %: feed $(feed), X $(xpos)"
     mbp -t 4 -r 0 127.0.0.1 40 >/dev/null
     mbp -t 0 -r 4 127.0.0.1 1 >/dev/null     # reset: the switch keeps its position
     wait_state 0 && ok || fail "mbpoll: no idle after reset"
@@ -209,14 +195,12 @@ else
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
     wait_state 3 && [ "$(value 3 -t 3)" = 2 ] && ok || fail "mbpoll single: N2 does not wait (block $(value 3 -t 3))"
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
-    sleep 0.2
-    wait_state 3 && [ "$(value 3 -t 3)" = 3 ] && ok || fail "mbpoll single: N3 does not wait (block $(value 3 -t 3))"
+    t_wait 10 waits_at 3 && ok || fail "mbpoll single: N3 does not wait (block $(value 3 -t 3))"
     mbp -t 0 -r 5 127.0.0.1 0 >/dev/null     # automatic, a breakpoint at N5
     mbp -t 4 -r 2 127.0.0.1 5 >/dev/null
     [ "$(value 2 -t 4)" = 5 ] && ok || fail "mbpoll: holding register 2 reads $(value 2 -t 4), expected 5"
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
-    sleep 0.2
-    wait_state 3 && [ "$(value 3 -t 3)" = 5 ] && ok || fail "mbpoll break: N5 does not wait (block $(value 3 -t 3))"
+    t_wait 10 waits_at 5 && ok || fail "mbpoll break: N5 does not wait (block $(value 3 -t 3))"
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
     wait_state 5 && ok || fail "mbpoll break: no M2 after Пуск at N5"
     stop
@@ -252,22 +236,14 @@ fi
 
 # 6. s42 tui --modbus in tmux: a client's keys are the panel's keys, the map
 # shows what the terminal shows
-if ! command -v mbpoll >/dev/null 2>&1 || ! command -v tmux >/dev/null 2>&1; then
+if ! t_have mbpoll || ! t_have tmux; then
   echo "modbus: mbpoll or tmux is not installed: the terminal's Modbus tests were skipped"
 else
-  sock="$tmp/tmux"
-  tm() { tmux -S "$sock" "$@"; }
-  screen_has() {   # screen_has TEXT: within 5 s
-    i=0
-    while [ $i -lt 50 ]; do
-      tm capture-pane -p -t mb 2>/dev/null | tr -d '\n' | grep -q "$1" && return 0
-      sleep 0.1
-      i=$((i + 1))
-    done
-    return 1
-  }
-  PORT=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
-  tm new -d -s mb -x 120 -y 40 "LANG=C.UTF-8 '$s42' tui programs/drill_point.kp --modbus 127.0.0.1:$PORT; echo \$? >'$tmp/tui-st'; sleep 30"
+  . "$dir/../tmux.sh"                         # the terminal tests' driver
+  tm_init "$tmp"
+  screen_has() { tm_wait mb -J "$1" 5; }      # screen_has TEXT: within 5 s, the rows joined
+  PORT=$(t_port)
+  tm_run mb 120 40 . -e LANG=C.UTF-8 "$s42" tui programs/drill_point.kp --modbus "127.0.0.1:$PORT"
   if screen_has "Modbus TCP on 127.0.0.1:$PORT"; then
     ok
     [ "$(value 2 -t 3)" = 0 ] && ok || fail "tui: not idle before Пуск"
@@ -298,27 +274,27 @@ else
     wait_state 0 && ok || fail "tui: run state not 0 after reset"
     mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
     wait_state 1 && ok || fail "tui: Пуск after reset"
-    tm send-keys -t mb f            # as fast as possible: to M2
+    tm_keys mb f                    # as fast as possible: to M2
     wait_state 5 && ok || fail "tui: never reached M2 (state $(value 2 -t 3))"
-    tm send-keys -t mb q
-    i=0; while [ ! -s "$tmp/tui-st" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
-    [ "$(cat "$tmp/tui-st" 2>/dev/null)" = 0 ] && ok || fail "tui: status $(cat "$tmp/tui-st" 2>/dev/null) after q"
+    tm_keys mb q
+    tm_ended mb 5
+    [ "$TM_STATUS" = exit=0 ] && ok || fail "tui: status '$TM_STATUS' after q"
   else
-    fail "tui --modbus did not start: $(tm capture-pane -p -t mb 2>&1 | head -5)"
+    fail "tui --modbus did not start: $(tm_pane mb | head -5)"
   fi
-  tm kill-server 2>/dev/null
   # the terminal computes a long tooth search; its server still answers
-  PORT=$((20000 + $(od -An -N2 -tu2 /dev/urandom) % 40000))
-  tm new -d -s mb -x 120 -y 40 "LANG=C.UTF-8 '$s42' tui programs/endmill_search.kp --tool '$tmp/big.tool' --state '$tmp/tui.state' --modbus 127.0.0.1:$PORT; sleep 30"
+  PORT=$(t_port)
+  tm_run mb 120 40 . -e LANG=C.UTF-8 "$s42" tui programs/endmill_search.kp --tool "$tmp/big.tool" \
+    --state "$tmp/tui.state" --modbus "127.0.0.1:$PORT"
   if screen_has "Modbus TCP on 127.0.0.1:$PORT"; then
     rb tuisearch "$PORT" && ok || fail "tui: a long tooth search stalled the server"
   else
-    fail "tui --modbus with the search did not start: $(tm capture-pane -p -t mb 2>&1 | head -5)"
+    fail "tui --modbus with the search did not start: $(tm_pane mb | head -5)"
   fi
-  tm kill-server 2>/dev/null
+  tm_kill mb
+  tm_end
   "$s42" tui programs/drill_point.kp --modbus 127.0.0.1:99999 </dev/null >/dev/null 2>"$tmp/e"; st=$?
   [ $st = 2 ] && grep -q 99999 "$tmp/e" && ok || fail "tui --modbus 127.0.0.1:99999: status $st, expected 2"
 fi
 
-echo "modbus: $passes passed, $fails failed"
-[ $fails = 0 ]
+t_done

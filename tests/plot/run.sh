@@ -13,12 +13,10 @@ PROGS=${PROGRAMS:-programs}
 # under ASan: fontconfig's process-long configuration is not ours
 LSAN_OPTIONS="suppressions=$(cd "$HERE" && pwd)/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 export LSAN_OPTIONS
-T=$(mktemp -d "${TMPDIR:-/tmp}/s42plot.XXXXXX") || exit 1
-trap 'rm -rf "$T"' EXIT INT TERM
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL $1"; shift; [ $# -gt 0 ] && printf '%s\n' "$@" | sed 's/^/  /'; }
+. "$HERE/../lib.sh"
+t_init plot
+# fail CASE MSG [LINE...]: "FAIL plot CASE: MSG" and the lines indented
+fail() { t_case "$1"; shift; bad "$@"; t_case ""; }
 
 # case NAME PROGRAM.kp [options]: run it (trace, dump) and plot it to PNG,
 # SVG and PDF; the plot's status is the run's (and $expect when set);
@@ -26,10 +24,11 @@ bad() { fail=$((fail + 1)); echo "FAIL $1"; shift; [ $# -gt 0 ] && printf '%s\n'
 case_() {
   name=$1
   shift
+  set -- "$@" --state "$T/$name.state"    # M15 saves here, not beside the program in the tree
   "$S42" run "$@" --trace=json >"$T/$name.jsonl" 2>/dev/null
   want=$?
   if [ -n "$expect" ] && [ "$want" != "$expect" ]; then
-    bad "$name" "the run's exit status is $want, the test expects $expect"
+    fail "$name" "the run's exit status is $want, the test expects $expect"
     return
   fi
   "$S42" run "$@" --dump >"$T/$name.dump" 2>/dev/null
@@ -39,18 +38,18 @@ case_() {
     st="$st $?"
   done
   if [ "$st" != " $want $want $want" ]; then
-    bad "$name" "plot exit$st (png svg pdf), run exit $want" "$(cat "$T/$name.err")"
+    fail "$name" "plot exit$st (png svg pdf), run exit $want" "$(cat "$T/$name.err")"
     return
   fi
   if [ ! -s "$T/$name.png" ] || [ ! -s "$T/$name.svg" ] || [ ! -s "$T/$name.pdf" ]; then
-    bad "$name" "no picture written" "$(cat "$T/$name.err")"
+    fail "$name" "no picture written" "$(cat "$T/$name.err")"
     return
   fi
   if msg=$("$PY" "$HERE/check.py" "$T/$name.png" "$T/$name.svg" "$T/$name.jsonl" "$T/$name.dump" \
            "$T/$name.pdf" ${title:+"$title"}); then
     ok
   else
-    bad "$name" "$msg"
+    fail "$name" "$msg"
   fi
 }
 
@@ -84,7 +83,7 @@ case_ osc-line "$HERE/osc-line.kp"
 if msg=$("$PY" "$HERE/check.py" --tips "$T/osc-line.png" XZ 12); then
   ok
 else
-  bad "osc-tips" "$msg"
+  fail "osc-tips" "$msg"
 fi
 
 # a failed run whose picture cannot be written: 4, and no file
@@ -93,7 +92,7 @@ st=$?
 if [ $st -eq 4 ] && [ ! -e "$T/nodir/div0.png" ] && grep -q 'nodir' "$T/nodir-div0.err"; then
   ok
 else
-  bad "io-error-failed-run" "exit $st for a failed run and a missing directory, want 4" "$(cat "$T/nodir-div0.err")"
+  fail "io-error-failed-run" "exit $st for a failed run and a missing directory, want 4" "$(cat "$T/nodir-div0.err")"
 fi
 
 # the same picture as PDF
@@ -105,7 +104,7 @@ set -- "$first"
 if head -c 5 "$T/out.pdf" 2>/dev/null | grep -q '%PDF-' && tail -c 8 "$T/out.pdf" | grep -q '%%EOF'; then
   ok
 else
-  bad "pdf" "$T/out.pdf is not a PDF"
+  fail "pdf" "$T/out.pdf is not a PDF"
 fi
 
 # an unknown extension: usage error, a clear message, no file
@@ -114,7 +113,7 @@ st=$?
 if [ $st -eq 2 ] && grep -q '\.png' "$T/jpg.err" && [ ! -e "$T/out.jpg" ]; then
   ok
 else
-  bad "extension" "exit $st for .jpg, want 2 with a message naming .png/.svg/.pdf" "$(cat "$T/jpg.err")"
+  fail "extension" "exit $st for .jpg, want 2 with a message naming .png/.svg/.pdf" "$(cat "$T/jpg.err")"
 fi
 
 # a directory that does not exist: an I/O error, nothing left behind
@@ -123,7 +122,7 @@ st=$?
 if [ $st -eq 4 ] && [ -s "$T/nodir.err" ]; then
   ok
 else
-  bad "io-error" "exit $st for a missing directory, want 4" "$(cat "$T/nodir.err")"
+  fail "io-error" "exit $st for a missing directory, want 4" "$(cat "$T/nodir.err")"
 fi
 
 # an existing picture is replaced whole, and no temporary file is left
@@ -133,8 +132,7 @@ left=$(ls "$T" | grep -c '\.tmp' || true)
 if [ "$(head -c 4 "$T/keep.png" | od -An -c | tr -d ' ')" = '211PNG' ] && [ "$left" -eq 0 ]; then
   ok
 else
-  bad "atomic" "keep.png not replaced by a PNG, or $left temporary files left"
+  fail "atomic" "keep.png not replaced by a PNG, or $left temporary files left"
 fi
 
-echo "plot: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+t_done

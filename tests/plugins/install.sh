@@ -10,11 +10,9 @@
 S42=$1
 BUILD=${2:-build}
 PREFIX=${3:-/usr/local}
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL install: $*"; fail=$((fail + 1)); }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT INT TERM
+. "$(dirname "$0")/../lib.sh"
+t_init install
+tmp=$T
 src=$(pwd)
 case $S42 in /*) tree=$S42 ;; *) tree=$src/$S42 ;; esac
 # a make of its own: not a job of the make that runs the tests
@@ -73,5 +71,4 @@ make -n --no-print-directory install PREFIX=/elsewhere BUILD="$BUILD" S42="$S42"
 grep -q "S42_PLUGINDIR='\"/elsewhere/lib/s42/plugins\"'.* -o $BUILD/src/core/plugin.o src/core/plugin.c" "$tmp/n" && ok ||
   bad "make install PREFIX=/elsewhere would not rebuild plugin.o for that prefix"
 
-echo "install: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+t_done

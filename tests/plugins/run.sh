@@ -7,11 +7,9 @@
 # usage: tests/plugins/run.sh S42 BUILD
 S42=$1
 BUILD=${2:-build}
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { echo "FAIL plugins: $*"; fail=$((fail + 1)); }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT INT TERM
+. "$(dirname "$0")/../lib.sh"
+t_init plugins
+tmp=$T
 
 # the header as `make install` installs it (checked with make -n, which
 # builds nothing), then a plugin that sees nothing else of s42
@@ -152,5 +150,4 @@ S42_BADCTOR=crash "$S42" run "$tmp/helix.kp" --plugins "$tmp/hx" --dump >"$tmp/o
   bad "a broken helix.so shadowed the good one: $(cat "$tmp/err")"
 unset S42_MARKER
 
-echo "plugins: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+t_done

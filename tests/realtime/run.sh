@@ -5,19 +5,17 @@
 # Ctrl-C (SIGINT) or SIGTERM stop a paced run at the next block boundary
 # with the dump of that moment, status 3, and a note naming the block.
 s42=$1
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-pass=0 fail=0
+. "$(dirname "$0")/../lib.sh"
+t_init realtime
 printf '№1 G04 X+2 ^\n№2 G01 X+600 F120 ^\n№3 M02 ^\n' > "$T/p.kp"   # 0.2 s + 0.3 s
-ms() { date +%s%3N; }
-a=$(ms); "$s42" run "$T/p.kp" --realtime >/dev/null; st=$?; b=$(ms)
+a=$(t_ms); "$s42" run "$T/p.kp" --realtime >/dev/null; st=$?; b=$(t_ms)
 took=$((b - a))
 if [ "$st" -ne 0 ]; then
-  echo "FAIL realtime: status $st"; fail=$((fail + 1))
+  bad "status $st"
 elif [ "$took" -ge 480 ]; then
-  echo "realtime: 0.5 s simulated took ${took} ms"; pass=$((pass + 1))
+  echo "realtime: 0.5 s simulated took ${took} ms"; ok
 else
-  echo "FAIL realtime: 0.5 s simulated took only ${took} ms"; fail=$((fail + 1))
+  bad "0.5 s simulated took only ${took} ms"
 fi
 
 # 100 one-second dwells: interrupted after about a second
@@ -32,11 +30,9 @@ for sig in INT TERM; do
   if [ "$st" -eq 3 ] && grep -q '"status":"stopped"' "$T/out" &&
      grep -Eq 'long\.kp:[0-9]+:1: note: N[23]: stopped by (Ctrl-C \(SIGINT\)|SIGTERM) before this block' "$T/err" &&
      python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if 1 <= d["r"][1] < 100 else 1)' "$T/out"; then
-    pass=$((pass + 1))
+    ok
   else
-    echo "FAIL realtime: SIG$sig: status $st, $(cat "$T/err") $(head -c 200 "$T/out")"
-    fail=$((fail + 1))
+    bad "SIG$sig: status $st, $(cat "$T/err") $(head -c 200 "$T/out")"
   fi
 done
-echo "realtime: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+t_done

@@ -10,12 +10,8 @@
 S42=${1:-./s42}
 PY=${PYTHON:-python3}
 HERE=$(cd "$(dirname "$0")" && pwd)
-T=$(mktemp -d "${TMPDIR:-/tmp}/tg-tsplugin.XXXXXX") || exit 1
-trap 'rm -rf "$T"' EXIT INT TERM
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL toothsearch plugin: $*"; }
+. "$HERE/../lib.sh"
+t_init "toothsearch plugin"
 
 # model G M10 SECTION_X: the program, the operator script, the run, the check
 search() {
@@ -103,5 +99,4 @@ else
   bad "trace row of the search: $(cat "$T/trace")"
 fi
 
-echo "toothsearch plugin: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+t_done

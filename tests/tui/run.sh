@@ -1,97 +1,58 @@
 #!/bin/sh
 # End-to-end tests of `s42 tui` in a real terminal: tmux runs it in a
 # detached pane on a private socket (100x30, or TW x TH: 80x24 and 120x40
-# too), send-keys types, capture-pane
-# reads the screen.  Every wait polls the pane until the text appears, with
-# a timeout, so a slow machine only makes the tests slower.  The pane runs
-# the terminal inside a small shell script that records `stty -a` before
-# and after and the exit status, so the restored terminal is checked too.
+# too), send-keys types, capture-pane reads the screen, all through the
+# terminal tests' driver tests/tmux.sh.  Every wait polls the pane until the
+# text appears, with a limit, so a slow machine only makes the tests slower.
+# The pane runs the terminal inside the driver's small shell script that
+# records `stty -a` before and after and the exit status, so the restored
+# terminal is checked too.
 #   sh tests/tui/run.sh ./s42
 S42=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
-if ! command -v tmux >/dev/null 2>&1; then
+. "$HERE/../lib.sh"
+. "$HERE/../tmux.sh"
+if ! t_have tmux; then
   echo "tui: tmux is not installed: the terminal tests were skipped (sh scripts/deps.sh installs it)"
   exit 0
 fi
 export LC_ALL=C.UTF-8                      # the tmux client prints the pane as UTF-8
 # (under make asan the panes inherit ASAN_OPTIONS through the tmux server:
 # a leak or an error shows as a wrong exit status below)
-SOCK=s42test-$$
-T="tmux -L $SOCK -f /dev/null"
-WORK=$(mktemp -d)
-cleanup() { $T kill-server 2>/dev/null; rm -rf "$WORK"; }
-trap cleanup EXIT
-trap 'exit 1' INT TERM HUP
-# a session that lives as long as the test: killing a case's session never
-# empties the server, whose exit would race the next case's new-session
-# ("server exited unexpectedly" under load)
-$T new-session -d -s keep -x 20 -y 5 'sleep 86400'
-pass=0
-fail=0
-name=""
+t_init tui
+WORK=$T/work
+mkdir -p "$WORK"
+# the driver (tests/tmux.sh): a private server with a session that lives as
+# long as the test, each case's terminal in the recording script
+tm_init "$T" || { bad "tmux did not start"; t_done; }
 
-# The pane's program: the terminal between two `stty -a`, then the status.
-cat > "$WORK/pane.sh" <<'EOF'
-cd "$1" || exit 1
-shift
-trap : INT      # Ctrl-C is for s42 (it restores the tty and exits 130), not for this script
-stty -a > stty.before
-sh -c 'echo $$ > pid; exec "$@"' sh "$@"
-echo "exit=$?" > status
-stty -a > stty.after
-echo S42-TUI-ENDED
-exec sleep 600
-EOF
-
-# start NAME LOCALE ARGS...: a fresh pane running s42 tui ARGS, TW x TH
-# (100x30 unless they are set)
+# start NAME LOCALE ARGS...: a fresh pane running s42 tui ARGS in WORK,
+# TW x TH (100x30 unless they are set)
 start() {
-  name=$1
+  t_case "$1"
   loc=$2
   shift 2
-  $T kill-session -t s42 2>/dev/null
-  rm -f "$WORK/status" "$WORK/pid" "$WORK/stty.before" "$WORK/stty.after"
-  $T new-session -d -s s42 -x "${TW:-100}" -y "${TH:-30}" -e LC_ALL="$loc" -e TERM=screen sh "$WORK/pane.sh" "$WORK" "$S42" tui "$@"
+  tm_run s42 "${TW:-100}" "${TH:-30}" "$WORK" -e LC_ALL="$loc" -e TERM=screen "$S42" tui "$@"
 }
-pane() { $T capture-pane -p -t s42 2>/dev/null; }
-keys() { $T send-keys -t s42 "$@"; }
-ok() { pass=$((pass + 1)); }
-bad() {
-  echo "FAIL tui $name: $*"
-  fail=$((fail + 1))
-  pane | sed 's/^/    | /'
-}
+pane() { tm_pane s42; }
+keys() { tm_keys s42 "$@"; }
+# a failure shows the screen
+t_on_bad() { pane | sed 's/^/    | /'; }
 # wait_for MODE TEXT [SECONDS]: poll until the pane has (MODE -F or -E) TEXT
-wait_for() {
-  n=0
-  lim=$((${3:-10} * 10))
-  while [ $n -lt $lim ]; do
-    pane | grep -q "$1" -- "$2" && return 0
-    sleep 0.1
-    n=$((n + 1))
-  done
-  return 1
-}
+wait_for() { tm_wait s42 "$1" "$2" "${3:-10}"; }
 see() { if wait_for -F "$1" "$2"; then ok; else bad "'$1' did not appear"; fi; }
 see_re() { if wait_for -E "$1" "$2"; then ok; else bad "/$1/ did not appear"; fi; }
 gone() {   # the text leaves the pane
-  n=0
-  while [ $n -lt 50 ]; do
-    pane | grep -qF -- "$1" || { ok; return; }
-    sleep 0.1
-    n=$((n + 1))
-  done
-  bad "'$1' stayed"
+  if tm_gone s42 "$1" 5; then ok; else bad "'$1' stayed"; fi
 }
 # ended STATUS: the terminal quit with that status and left the tty as it was
 ended() {
-  if wait_for -F S42-TUI-ENDED 10 && [ -f "$WORK/status" ]; then
-    got=$(cat "$WORK/status")
-    if [ "$got" = "exit=$1" ]; then ok; else bad "quit with $got, expected exit=$1"; fi
-    if cmp -s "$WORK/stty.before" "$WORK/stty.after"; then ok; else
+  if tm_ended s42 10; then
+    if [ "$TM_STATUS" = "exit=$1" ]; then ok; else bad "quit with $TM_STATUS, expected exit=$1"; fi
+    if tm_stty_same; then ok; else
       bad "the terminal settings changed:"
-      diff "$WORK/stty.before" "$WORK/stty.after" | sed 's/^/    /'
+      diff "$TM_DIR/stty.before" "$TM_DIR/stty.after" | sed 's/^/    /'
     fi
   else
     bad "s42 tui did not quit"
@@ -113,8 +74,8 @@ for i, r in enumerate(rows[1:-3], 2):
     if ascii_only and any(ord(c) > 126 for c in r):
         bad.append("row %d is not ASCII: %r" % (i, r))
 print("\n".join(bad[:5]))
-sys.exit(1 if bad else 0)' "$1" "$2" > "$WORK/layout.out" 2>&1
-  if [ $? -eq 0 ]; then ok; else bad "layout $1 $2: $(cat "$WORK/layout.out")"; fi
+sys.exit(1 if bad else 0)' "$1" "$2" > "$TM_DIR/layout.out" 2>&1
+  if [ $? -eq 0 ]; then ok; else bad "layout $1 $2: $(cat "$TM_DIR/layout.out")"; fi
 }
 
 cp "$ROOT/programs/drill_dialog.kp" "$WORK/drill.kp"
@@ -226,30 +187,24 @@ fi
 cp "$ROOT/programs/drill_dialog.kp" "$WORK/drill.kp"
 start resize C.UTF-8 drill.kp
 see "┌─ machine ─"
-$T resize-window -t s42 -x 70 -y 24
+tm_resize s42 70 24
 gone "┌─ drill.kp ─"                             # narrow: the machine stays, the listing goes
 see "┌─ machine ─"
 see "┌─ 2С42-65 ─"
 layout 70 utf8
-$T resize-window -t s42 -x 30 -y 15
+tm_resize s42 30 15
 see "the terminal is 30x15: s42 tui"            # wrapped at words in 30 columns
 see "needs at least 34x21; q quits"
-$T resize-window -t s42 -x 120 -y 40
+tm_resize s42 120 40
 see "┌─ machine ─"
 layout 120 utf8
-$T resize-window -t s42 -x 100 -y 30
 # back to the size it started with before quitting, so that the tty's own
 # settings compare equal: wait until the pane and the layout are 100x30
 # (tmux applies a resize in its own time; under load it lags)
-n=0
-while [ "$($T display -p -t s42 '#{pane_width}x#{pane_height}')" != 100x30 ] && [ $n -lt 100 ]; do
-  sleep 0.1; n=$((n + 1))
-done
+tm_resize s42 100 30
 see "┌─ machine ─"
-n=0
-while ! pane | python3 -c 'import sys; r = sys.stdin.read().split("\n"); sys.exit(0 if any(len(l) == 100 and l.startswith("┌") for l in r) else 1)' && [ $n -lt 100 ]; do
-  sleep 0.1; n=$((n + 1))
-done
+wide100() { pane | grep -q '^┌.\{99\}$'; }
+t_wait 10 wide100
 layout 100 utf8
 keys C-c
 ended 130
@@ -264,7 +219,7 @@ see "DIAMETR, MKM.............  35000"
 keys F4
 see "|AVTOMAT R"
 layout 100 ascii
-kill -TERM "$(cat "$WORK/pid")"
+kill -TERM "$(tm_pid)"
 ended 143
 
 # ---- 5. manual mode: G20 with a directive, jogs, ПС, Пуск ----
@@ -429,10 +384,10 @@ see "; СВЕРДЛО, ДІАЛОГ: заточув"
 keys F10
 ended 0
 start missing C.UTF-8 nodir/nosuch.kp          # a new file's directory must be there
-see "S42-TUI-ENDED"
+see "TM-PANE-ENDED"
 ended 4
 if pane | grep -qF "nodir/nosuch.kp: No such file"; then ok; else bad "no message for a missing file"; fi
-name=cli
+t_case cli
 "$S42" tui "$WORK/drill.kp" < /dev/null > "$WORK/out" 2>&1
 st=$?
 if [ $st -eq 2 ] && grep -q "must be a terminal" "$WORK/out"; then ok; else bad "not a terminal: status $st: $(cat "$WORK/out")"; fi
@@ -695,5 +650,4 @@ see "* 1 ; СВЕРДЛО, ДІАЛОГ: заточу…"
 keys q
 ended 0
 
-echo "tui: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+t_done

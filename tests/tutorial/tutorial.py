@@ -13,7 +13,8 @@ and the test cannot drift apart:
 - a `sh` block: each line is a command run in the copy, which must succeed
   (`make` builds the copy from scratch: only the repository's files are
   copied, never build/ or ./s42); a `./s42 tui ...` line starts the terminal
-  in a detached 100x30 tmux pane on a private socket instead;
+  in a detached 100x30 tmux pane on a private socket instead (through
+  tests/tmux.sh, the driver the terminal tests share);
 - a `console` block: each `$ COMMAND` line is run (one sh session per
   block); the lines after it must be its stdout then its stderr (trailing
   spaces and trailing empty lines aside);
@@ -42,10 +43,9 @@ import transcript  # noqa: E402  (tests/transcript.py)
 
 root = os.path.abspath(sys.argv[1])
 passed = failed = 0
-tmp = tempfile.mkdtemp(prefix="dg-tutorial.")
+tmp = tempfile.mkdtemp(prefix="s42-tutorial.")
 repo = os.path.join(tmp, "repo")
-sock = os.path.join(tmp, "tmux.sock")
-TMUX = ["tmux", "-S", sock, "-f", "/dev/null"]
+DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tmux.sh")
 
 
 def ok():
@@ -99,36 +99,37 @@ def copy_repository():
     return len(names)
 
 
-# ---- the terminal in tmux ----
-PANE_SH = r'''cd "$1" || exit 1
-shift
-trap : INT
-stty -a > "$TUT_DIR/stty.before"
-"$@"
-echo "exit=$?" > "$TUT_DIR/status"
-stty -a > "$TUT_DIR/stty.after"
-echo TUTORIAL-TUI-ENDED
-exec sleep 600
-'''
+# ---- the terminal in tmux: tests/tmux.sh, one function a call ----
+tm_env = None                               # TM_SOCK and TM_DIR once the server runs
+
+
+def tm(*args, **kw):
+    return subprocess.run(["sh", DRIVER] + list(args), env=tm_env or env, capture_output=True, text=True, **kw)
+
+
+def tm_init():
+    global tm_env
+    r = tm("init", tmp)
+    if r.returncode != 0:
+        bad("tmux did not start: %s" % r.stderr.strip())
+        return False
+    tm_env = dict(env)
+    for line in r.stdout.split("\n"):
+        if "=" in line:
+            k, v = line.split("=", 1)
+            tm_env[k] = v
+    return True
 
 
 def pane():
-    r = subprocess.run(TMUX + ["capture-pane", "-p", "-t", "tut"], capture_output=True, text=True)
-    return r.stdout
+    return tm("pane", "tut").stdout
 
 
 def wait_for(text, seconds=30):
     # spacing is insignificant, except where the README writes a run of
     # spaces on purpose (the 7-digit field's right-aligned number): then the
     # pane must show it exactly so
-    exact = "  " in text
-    want = text if exact else squeeze(text)
-    end = time.time() + seconds
-    while time.time() < end:
-        if want in (pane() if exact else squeeze(pane())):
-            return True
-        time.sleep(0.1)
-    return False
+    return tm("wait", "tut", "-F" if "  " in text else "-S", text, str(seconds)).returncode == 0
 
 
 def show_pane():
@@ -136,20 +137,11 @@ def show_pane():
 
 
 def start_tui(cmd):
-    # a session that outlives the cases: killing "tut" never empties the
-    # server, whose exit would race the new-session below under load
-    subprocess.run(TMUX + ["new-session", "-d", "-s", "keep", "-x", "20", "-y", "5", "sleep 86400"],
-                   capture_output=True, env=env)
-    subprocess.run(TMUX + ["kill-session", "-t", "tut"], capture_output=True)
-    for f in ("status", "stty.before", "stty.after"):
-        if os.path.exists(os.path.join(tmp, f)):
-            os.unlink(os.path.join(tmp, f))
-    argv = shlex.split(cmd)
-    r = subprocess.run(TMUX + ["new-session", "-d", "-s", "tut", "-x", "100", "-y", "30",
-                               "-e", "LC_ALL=C.UTF-8", "-e", "TERM=screen",
-                               "-e", "TUT_DIR=" + tmp,
-                               "sh", os.path.join(tmp, "pane.sh"), repo] + argv,
-                       env=env, capture_output=True, text=True)
+    # the driver's server has a session that outlives the cases: killing
+    # "tut" never empties it (whose exit would race a new-session under load)
+    if tm_env is None and not tm_init():
+        return False
+    r = tm("run", "tut", "100", "30", repo, "-e", "LC_ALL=C.UTF-8", "-e", "TERM=screen", *shlex.split(cmd))
     if r.returncode != 0:
         bad("tmux could not start `%s`: %s" % (cmd, r.stderr.strip()))
         return False
@@ -165,26 +157,20 @@ def press(key):
     if not re.fullmatch(r"F[0-9]{1,2}", k) and k not in KEYS.values() and len(k) != 1:
         bad("the tutorial names a key this test does not know: %r" % key)
         return
-    subprocess.run(TMUX + ["send-keys", "-t", "tut"] + (["-l", k] if len(k) == 1 else [k]))
+    tm(*(["type", "tut", k] if len(k) == 1 else ["keys", "tut", k]))
 
 
 def tui_ended():
-    end = time.time() + 10
-    while time.time() < end:
-        if os.path.exists(os.path.join(tmp, "status")) and "TUTORIAL-TUI-ENDED" in pane():
-            break
-        time.sleep(0.1)
-    else:
+    r = tm("ended", "tut", "10")
+    if r.returncode != 0:
         bad("s42 tui did not quit after q:\n" + show_pane())
         return
-    st = open(os.path.join(tmp, "status")).read().strip()
+    st = r.stdout.strip()
     if st == "exit=0":
         ok()
     else:
         bad("s42 tui quit with %s, not exit=0" % st)
-    before = open(os.path.join(tmp, "stty.before")).read()
-    after = open(os.path.join(tmp, "stty.after")).read()
-    if before == after:
+    if tm("stty_same").returncode == 0:
         ok()
     else:
         bad("the terminal settings changed after s42 tui")
@@ -250,7 +236,6 @@ def main():
         print("tutorial: tmux is not installed: the tutorial test was skipped (sh scripts/deps.sh installs it)")
         return 0
     n = copy_repository()
-    open(os.path.join(tmp, "pane.sh"), "w").write(PANE_SH)
     readme = open(os.path.join(repo, "README.md"), encoding="utf-8").read()
     lines = readme.split("\n")
     try:
@@ -342,7 +327,8 @@ try:
 except subprocess.TimeoutExpired as e:
     bad("timed out: %s" % e)
 finally:
-    subprocess.run(TMUX + ["kill-server"], capture_output=True)
+    if tm_env is not None:
+        tm("end")
     shutil.rmtree(tmp, ignore_errors=True)
 print("tutorial: %d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)
