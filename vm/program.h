@@ -24,10 +24,9 @@ struct prog_rule {
 struct prog_block {
   uint32_t code;     /* first instruction (its BLOCK) */
   uint32_t line;
+  uint32_t number;   /* 0: the block has no number (the 2С42 has 3 digits, 2У22 5, FMS-3000 7) */
   uint16_t col;
-  uint16_t number;   /* 0: the block has no number */
   uint16_t unit;     /* 0 = main program, 1.. = subs in text order */
-  uint16_t pad;
 };
 
 struct program {

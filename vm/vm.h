@@ -83,7 +83,7 @@ void vm_set_reg(struct vm *vm, unsigned reg, double v);
 void vm_load_array(struct vm *vm, int k, const double *v, int n);
 
 /* Block number of block index b (0 when it has none). */
-static inline unsigned vm_block_number(const struct vm *vm, uint32_t b)
+static inline uint32_t vm_block_number(const struct vm *vm, uint32_t b)
 {
   return vm->p->blocks[b].number;
 }

@@ -949,7 +949,7 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
         const struct vm_error *e = &r->s.vm.err;
         b = &r->s.p->blocks[e->block];
         fprintf(stderr, "%s:%u:%u: note: %s: the cycle stopped with %s (%s); reset (coil 4) to start again\n",
-                r->file, b->line, e->col ? e->col : b->col, bname(b->number ? b->number : -1, nb),
+                r->file, b->line, e->col ? e->col : b->col, bname(b->number ? (int)b->number : -1, nb),
                 err_code(e->code), e->msg);
       }
     }
@@ -1072,7 +1072,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
   for (size_t i = 0; i < r.ops.nat; i++)
     for (size_t b = 0; b < p.nblocks; b++)
-      if (p.blocks[b].number == r.ops.at[i].at_number)
+      if ((int)p.blocks[b].number == r.ops.at[i].at_number)
         r.watch[b] = 1;
   /* M15 blocks save the restart state when they start */
   char *state_path = NULL;
@@ -1104,7 +1104,7 @@ static int headless(const struct opts *opt, struct plot *plot)
       const struct prog_block *b = &p.blocks[fb];
       fprintf(stderr, "s42: %s\n", why);
       fprintf(stderr, "%s:%u:%u: note: %s: the first block that needs it\n", o.program, b->line, b->col,
-              bname(b->number ? b->number : -1, nbuf));
+              bname(b->number ? (int)b->number : -1, nbuf));
       headless_free(&r, state_path, &p, &d, src);
       return EXIT_USAGE;
     }
@@ -1227,7 +1227,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     g.code = e->code;
     g.line = b->line;
     g.col = e->col ? e->col : b->col;
-    g.number = b->number ? b->number : -1;
+    g.number = b->number ? (int)b->number : -1;
     snprintf(g.msg, sizeof g.msg, "%s", e->msg);
     diag_print_in(stderr, &d, &g);
     memset(&de, 0, sizeof de);

@@ -414,7 +414,7 @@ static void show_error(struct tui *t)
 {
   const struct vm_error *e = &t->s.vm.err;
   const struct prog_block *b = e->block < t->prog.nblocks ? &t->prog.blocks[e->block] : NULL;
-  int num = b && b->number ? b->number : -1;
+  int num = b && b->number ? (int)b->number : -1;
   char m[200], nb[16];
   report_machine_msg(m, sizeof m, e->code, num, e->aux, t->o.en);
   scr_message(&t->s.scr, m);
@@ -1848,12 +1848,12 @@ static int shown_block(const struct tui *t, unsigned *line)
   if (t->s.state == SE_ERROR && t->s.vm.err.block < t->prog.nblocks) {
     const struct prog_block *b = &t->prog.blocks[t->s.vm.err.block];
     *line = b->line;
-    return b->number ? b->number : -1;
+    return b->number ? (int)b->number : -1;
   }
   if (t->s.state == SE_WAIT || !t->cur.valid) {
     const struct prog_block *b = &t->prog.blocks[t->s.vm.cur];
     *line = b->line;
-    return b->number ? b->number : -1;
+    return b->number ? (int)b->number : -1;
   }
   *line = t->cur.line;
   return t->cur.n;

@@ -859,7 +859,7 @@ static void compile_block(struct comp *c)
   struct prog_block pb = {0};
   pb.line = b->line;
   pb.col = (uint16_t)(b->col > 0xffff ? 0xffff : b->col);
-  pb.number = (uint16_t)(b->number < 0 ? 0 : b->number);
+  pb.number = (uint32_t)(b->number < 0 ? 0 : b->number);
   pb.code = (uint32_t)c->p->ncode;
   long bi = prog_block_add(c->p, &pb);
   if (bi < 0) {
@@ -1070,7 +1070,7 @@ static void serr(struct comp *c, size_t i, unsigned col, int code, const char *f
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
   const struct prog_block *s = &c->p->blocks[i];
-  diag_add(c->d, code ? DIAG_ERROR : DIAG_WARNING, code, s->line, col ? col : s->col, s->number ? s->number : -1,
+  diag_add(c->d, code ? DIAG_ERROR : DIAG_WARNING, code, s->line, col ? col : s->col, s->number ? (int)s->number : -1,
            "%s", msg);
 }
 
@@ -1127,7 +1127,7 @@ static void structure(struct comp *c)
   if (mp < 0 && nonum)
     ;   /* block 1 may be the one whose number is wrong: that error says it */
   else if (mp < 0)
-    diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[0].line, B[0].col, B[0].number ? B[0].number : -1,
+    diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[0].line, B[0].col, B[0].number ? (int)B[0].number : -1,
              "no block 1: the main program starts at block 1");
   else if (count[1] > 1)
     for (size_t i = 0; i < n; i++)
@@ -1211,7 +1211,7 @@ static void structure(struct comp *c)
     }
   }
   if (!anym2 && mp >= 0 && !anybad)
-    diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[n - 1].line, B[n - 1].col, B[n - 1].number ? B[n - 1].number : -1,
+    diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[n - 1].line, B[n - 1].col, B[n - 1].number ? (int)B[n - 1].number : -1,
              "no M2: the program never ends (its last block needs M2 or an unconditional jump)");
 
   /* reachability, per unit, for the dead-code warning */
