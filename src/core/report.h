@@ -26,7 +26,9 @@ struct dump_error {
   char machine[200]; /* the machine's own message */
 };
 void report_dump(FILE *f, const char *status, const struct dump_error *err, const struct session *s);
-/* The machine message for an error: "помилка в КП №n: ..." */
-void report_machine_msg(char *buf, size_t n, int code, int number, int aux, int en);
+/* The machine's message for an error, in the texts of program p (its
+ * dialect's table, vm/msgs.h; NULL: the VM's neutral ones): the 2С42-65's
+ * "помилка в КП №n: ..." (number <= 0: "-"). */
+void report_machine_msg(char *buf, size_t n, const struct program *p, int code, int number, int aux, int en);
 
 #endif

@@ -150,7 +150,7 @@ static int h_set_param(struct s42_block *b, int n, double v)
 
 static int h_load_array(struct s42_block *b, int array, const double *v, int n)
 {
-  if (array < 1 || array > 2 || n < 0 || n > VM_ACELLS || (n && !v))
+  if (array < 1 || array > (int)b->s->p->lim.arrays || n < 0 || n > (int)b->s->p->lim.cells || (n && !v))
     return -1;
   for (int i = 0; i < n; i++)   /* the cells' range, as array words have it (E-RANGE) */
     if (!(fabs(v[i]) <= 9999999))

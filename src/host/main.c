@@ -1013,7 +1013,7 @@ static int headless(const struct opts *opt, struct plot *plot)
       de.line = g ? g->line : 0;
       de.col = g ? g->col : 0;
       de.message = g ? g->msg : "";
-      report_machine_msg(de.machine, sizeof de.machine, g ? g->code : S42_E_SYNTAX, de.n, 0, o.en);
+      report_machine_msg(de.machine, sizeof de.machine, &p, g ? g->code : S42_E_SYNTAX, de.n, 0, o.en);
       report_dump(stdout, "error", &de, NULL);
     }
     prog_free(&p);
@@ -1123,7 +1123,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     de.line = 1;
     de.col = 1;
     de.message = serr;
-    report_machine_msg(de.machine, sizeof de.machine, S42_E_STATE, -1, 0, o.en);
+    report_machine_msg(de.machine, sizeof de.machine, &p, S42_E_STATE, -1, 0, o.en);
     dep = &de;
     status = EXIT_PROGRAM;
     st = "error";
@@ -1236,7 +1236,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     de.line = g.line;
     de.col = g.col;
     de.message = e->msg;
-    report_machine_msg(de.machine, sizeof de.machine, e->code, g.number, e->aux, o.en);
+    report_machine_msg(de.machine, sizeof de.machine, &p, e->code, g.number, e->aux, o.en);
     fprintf(stderr, "%s:%u:%u: note: %s: %s\n", o.program, g.line, g.col,
             o.en ? "the machine shows" : "на екрані", de.machine);
     dep = &de;

@@ -6,6 +6,7 @@
 #include "compile.h"
 #include "errors.h"
 #include "kp.h"
+#include "kpmsg.h"
 #include "opcodes.h"
 #include "parse.h"
 #include "plugin.h"
@@ -206,7 +207,7 @@ static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
   default:
     return 0;
   }
-  int code = vm_math(e->op, a, b, v, msg, sizeof msg);
+  int code = vm_math(c->p, e->op, a, b, v, msg, sizeof msg);
   if (code) {
     err(c, code, e->col, "%s", msg);
     *failed = 1;
@@ -1290,6 +1291,17 @@ static void structure(struct comp *c)
   free(unit);
 }
 
+void comp_setup(struct program *p)
+{
+  p->saved_reg = REG_F;
+  p->lim = (struct prog_limits){
+    .depth = KP_DEPTH, .arrays = KP_ARRAYS, .cells = KP_CELLS,
+    .param_lo = -9999999, .param_hi = 9999999, .cell_lo = -9999999, .cell_hi = 9999999,
+    .angle = 0.001, .trig_max = 2304000, .atan_max = 9999999, .log_max = 9999999,
+  };
+  p->msgs = &kp_msgs;
+}
+
 int comp_program(const char *src, size_t n, struct diag_list *d, struct program *p)
 {
   return comp_program_with(src, n, d, p, NULL);
@@ -1314,7 +1326,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   p->ext_free = ext_free;
   d->src = src;   /* the source lines under the diagnostics */
   d->nsrc = n;
-  p->saved_reg = REG_F;
+  comp_setup(p);
   p->file = d->file;
   /* a file in another encoding is one error, not one a block */
   unsigned bl, bc, bb;
