@@ -52,6 +52,7 @@
   OP(JCOND,  PC,   0, 0, "jump to A if the block's condition held") \
   OP(RET,    NONE, 0, 0, "end of sub: run it again or return to the caller (E-SUB in the main program)") \
   OP(END,    NONE, 0, 0, "end of program") \
+  OP(RETEND, NONE, 0, 0, "RET in a called sub, END in the main program (Bosch M2, FMS-3000 M99)") \
   /* superinstructions: the common shapes of a block in one dispatch */ \
   OP(ADDI,   I,    1, 1, "add the integer A (INT A; ADD)") \
   OP(SUBI,   I,    1, 1, "subtract the integer A (INT A; SUB)") \

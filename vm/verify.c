@@ -66,7 +66,8 @@ static int commits(int op)
 
 static int leaves(int op)
 {
-  return op == OP_CALL || op == OP_PPJ || op == OP_JMP || op == OP_JCOND || op == OP_RET || op == OP_END;
+  return op == OP_CALL || op == OP_PPJ || op == OP_JMP || op == OP_JCOND || op == OP_RET || op == OP_RETEND ||
+         op == OP_END;
 }
 
 static int works(int op)
@@ -83,7 +84,7 @@ static int works(int op)
 /* Instructions that never go on to the next one: the code may end with one. */
 static int stops(int op)
 {
-  return op == OP_END || op == OP_JMP || op == OP_CJMP || op == OP_RET;
+  return op == OP_END || op == OP_JMP || op == OP_CJMP || op == OP_RET || op == OP_RETEND;
 }
 
 /* pc starts a block: what a jump, a call or the entry may target (the
@@ -260,7 +261,7 @@ static int table(const struct program *p, char *msg, size_t n)
   unsigned op = INS_OP(p->code[last]);
   if (op < OP__COUNT && !stops((int)op))
     return bad(msg, n, "pc %u: the code ends with %s, which runs on past its end (the last instruction must be "
-               "END, JMP, CJMP or RET)", last, vm_ops[op].name);
+               "END, JMP, CJMP, RET or RETEND)", last, vm_ops[op].name);
   if (p->saved_reg < -1 || p->saved_reg >= VM_NREG)
     return bad(msg, n, "the register saved across calls is %d, not -1 (none) or 0..%d", p->saved_reg, VM_NREG - 1);
   for (size_t r = 0; r < p->nrules; r++) {

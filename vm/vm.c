@@ -456,6 +456,7 @@ enum vm_event vm_run(struct vm *vm)
           raise_msg(vm, pc - 1, S42_E_SUB, VMSG_RETMAIN);
           RAISED;
         }
+      ret:;   /* RETEND in a called sub comes here: the same return */
         struct vm_frame *f = &vm->frames[vm->depth - 1];
         if (p->saved_reg >= 0)
           vm->reg[p->saved_reg] = f->saved;
@@ -470,6 +471,15 @@ enum vm_event vm_run(struct vm *vm)
         vmbreak;
       }
       vmcase(END) {
+        vm->pc = pc;
+        vm->exit_latch = 0;
+        vm->done = 1;
+        return VM_EV_END;
+      }
+      /* return when called, end otherwise (Bosch M2, FMS-3000 M99) */
+      vmcase(RETEND) {
+        if (vm->depth > 0)
+          goto ret;
         vm->pc = pc;
         vm->exit_latch = 0;
         vm->done = 1;

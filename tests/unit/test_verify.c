@@ -379,7 +379,7 @@ START_TEST(entry_and_end)
   t.p.ncode = 60;
   ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
   ck_assert_str_eq(msg, "pc 59: the code ends with COMMIT, which runs on past its end (the last instruction must be "
-                   "END, JMP, CJMP or RET)");
+                   "END, JMP, CJMP, RET or RETEND)");
   t.p.ncode = 0;
   ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
   ck_assert_str_eq(msg, "the program has no instructions");

@@ -2,7 +2,7 @@
  * functions and their domains, arrays, transactions, subs, limits, the
  * operational jump, watched blocks, and many VMs on one program; and on
  * hand-assembled programs, what the VM takes from the program -- the
- * limits, the message table, 32-bit block numbers. */
+ * limits, the message table, 32-bit block numbers -- and RETEND. */
 #include "suites.h"
 #include "ast.h"
 #include "disasm.h"
@@ -1210,6 +1210,105 @@ START_TEST(block_numbers_32_bit)
 }
 END_TEST
 
+/* ---- RETEND: return when called, end otherwise ---- */
+
+START_TEST(retend_returns_from_a_call)
+{
+  hstart(sub_and_main(OP_RETEND, 1, OP_END));
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_int_eq(vm->depth, 0);
+  ck_assert_uint_eq(vm->blocks, 3);   /* N1, N10, N2 */
+}
+END_TEST
+
+START_TEST(retend_repeats_as_ret)
+{
+  /* a count of 3: it runs again twice, then returns, as RET does */
+  hstart(sub_and_main(OP_RETEND, 3, OP_END));
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 3);
+  ck_assert_uint_eq(vm->blocks, 5);
+  hstart(sub_and_main(OP_RET, 3, OP_END));
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 3);
+  ck_assert_uint_eq(vm->blocks, 5);
+}
+END_TEST
+
+START_TEST(retend_ends_the_main_program)
+{
+  /* the main program's last block ends with RETEND: the program ends there */
+  hstart(sub_and_main(OP_RETEND, 1, OP_RETEND));
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_uint_eq(vm_block_number(vm, vm->cur), 2);
+  ck_assert_int_eq(vm_run(vm), VM_EV_END);   /* and stays ended */
+  ck_assert_uint_eq(vm->blocks, 3);
+  /* RET there is E-SUB, with the VM's neutral text */
+  hstart(sub_and_main(OP_RETEND, 1, OP_RET));
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_SUB, 2);
+  ck_assert_str_eq(vm->err.msg, "return from the main program");
+}
+END_TEST
+
+START_TEST(retend_restores_the_saved_register)
+{
+  /* as RET: the register saved across calls comes back on return */
+  hp.saved_reg = 7;
+  hblock(10, 1);
+  hemit(OP_INT, 9);
+  hemit(OP_SETP, 7);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_RETEND, 0);
+  uint32_t entry = hblock(1, 0);
+  hemit(OP_INT, 5);
+  hemit(OP_SETP, 7);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_INT, 1);
+  hemit(OP_CALL, 0);
+  hblock(2, 0);
+  hemit(OP_REG, 7);
+  hemit(OP_SETP, 8);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_RETEND, 0);
+  hstart(entry);
+  vm->yield_all = 1;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(7), 5);
+  ck_assert_double_eq(R(8), 5);
+}
+END_TEST
+
+START_TEST(retend_in_verify_and_disasm)
+{
+  char msg[200];
+  hp.entry = sub_and_main(OP_RETEND, 1, OP_RETEND);
+  hp.max_stack = 1;
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), 0);   /* the code may end with it */
+  /* control leaves the block there: only after its COMMIT */
+  hp.code[4] = INS(OP_RETEND, 0);
+  hp.code[5] = INS(OP_COMMIT, 0);
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 4: RETEND before block 0 is committed: control leaves a block only after its COMMIT");
+  hp.code[4] = INS(OP_COMMIT, 0);
+  hp.code[5] = INS(OP_RETEND, 1);
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 5: RETEND takes no operand but has 1");
+  hp.code[5] = INS(OP_RETEND, 0);
+  char *buf = NULL;
+  size_t n = 0;
+  FILE *f = open_memstream(&buf, &n);
+  vm_disasm(f, &hp, NULL, 0);
+  fclose(f);
+  ck_assert_ptr_nonnull(strstr(buf, "0005  RETEND\n"));
+  free(buf);
+  ck_assert_int_eq(vm_ops[OP_RETEND].pop, 0);
+  ck_assert_int_eq(vm_ops[OP_RETEND].push, 0);
+}
+END_TEST
+
 Suite *suite_vm(void)
 {
   Suite *s = suite_create("vm");
@@ -1302,5 +1401,13 @@ Suite *suite_vm(void)
   tcase_add_test(tc, block_numbers_32_bit);
   suite_add_tcase(s, tc);
 
+  tc = tcase_create("retend");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, retend_returns_from_a_call);
+  tcase_add_test(tc, retend_repeats_as_ret);
+  tcase_add_test(tc, retend_ends_the_main_program);
+  tcase_add_test(tc, retend_restores_the_saved_register);
+  tcase_add_test(tc, retend_in_verify_and_disasm);
+  suite_add_tcase(s, tc);
   return s;
 }
