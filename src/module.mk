@@ -27,3 +27,4 @@ $(BUILD)/gen/dialects.o: $(BUILD)/gen/dialects.c
 # What a test or a tool built outside these folders sees: all of it.
 ALL_INC := $(HOST_INC)
 LDLIBS += -ldl
+-include $(BUILD)/gen/dialects.d

@@ -1,9 +1,9 @@
-/* Names and machine messages of the error codes (vm/errors.h). */
+/* Names and neutral meanings of the error codes (vm/errors.h). */
 #include "errors.h"
 #include <string.h>
 
-static const struct { const char *code, *uk, *en; } table[] = {
-#define ERR_ROW(e, c, uk, en) {c, uk, en},
+static const struct { const char *code, *text; } table[] = {
+#define ERR_ROW(e, c, text) {c, text},
   S42_ERRORS(ERR_ROW)
 #undef ERR_ROW
 };
@@ -13,11 +13,9 @@ const char *err_code(int e)
   return (e >= 0 && e < S42_E_COUNT) ? table[e].code : "E-?";
 }
 
-const char *err_title(int e, int en)
+const char *err_meaning(int e)
 {
-  if (e < 0 || e >= S42_E_COUNT)
-    return "?";
-  return en ? table[e].en : table[e].uk;
+  return (e >= 0 && e < S42_E_COUNT) ? table[e].text : "?";
 }
 
 int err_from_code(const char *code)

@@ -1,49 +1,51 @@
-/* The error codes of language.md section 17, with the machine's own message
- * for each (Ukrainian, as on the 2С42-65 screen, and English).  One table:
- * the enum, the code names and both message columns all come from it. */
+/* The error codes of language.md section 17, shared by every dialect
+ * (contracts.md section 8): the enum, the code names and a neutral meaning
+ * of each, from one table.  What a machine *says* for a code -- the
+ * 2С42-65's Ukrainian screen text, say -- is the dialect's, in the message
+ * table its front end gives the program (vm/msgs.h). */
 #ifndef S42_ERRORS_H
 #define S42_ERRORS_H
 
-/* ERR(enum, "code", "uk", "en") */
+/* ERR(enum, "code", "neutral meaning") */
 #define S42_ERRORS(ERR) \
-  ERR(NONE,     "",           "немає помилки",                       "no error") \
-  ERR(SYNTAX,   "E-SYNTAX",   "помилка синтаксису",                  "syntax error") \
-  ERR(RANGE,    "E-RANGE",    "значення поза діапазоном",            "value out of range") \
-  ERR(FUNC,     "E-FUNC",     "невідома функція",                    "unknown function") \
-  ERR(GROUP,    "E-GROUP",    "дві функції однієї групи",            "two functions of one group") \
-  ERR(BLOCK,    "E-BLOCK",    "недопустиме поєднання в кадрі",       "forbidden combination in a block") \
-  ERR(BLOCKLEN, "E-BLOCKLEN", "кадр довший за 320 символів",         "block longer than 320 characters") \
-  ERR(PLANE,    "E-PLANE",    "помилка площини інтерполяції",        "interpolation plane error") \
-  ERR(ARC,      "E-ARC",      "помилка дуги",                        "arc error") \
-  ERR(AXIS,     "E-AXIS",     "недопустима координата",              "axis not allowed") \
-  ERR(DIV0,     "E-DIV0",     "ділення на нуль",                     "division by zero") \
-  ERR(DOMAIN,   "E-DOMAIN",   "аргумент поза областю визначення",    "argument out of domain") \
-  ERR(TARGET,   "E-TARGET",   "немає кадру переходу",                "jump or call target missing or duplicated") \
-  ERR(SCOPE,    "E-SCOPE",    "перехід за межі програми",            "jump out of its unit") \
-  ERR(SUB,      "E-SUB",      "помилка структури програми",          "bad program structure") \
-  ERR(NEST,     "E-NEST",     "понад 8 рівнів вкладеності ПП",       "more than 8 nested sub calls") \
-  ERR(ARRAYP,   "E-ARRAY+",   "Порушена межа масиву +",              "array bound exceeded +") \
-  ERR(ARRAYM,   "E-ARRAY-",   "Порушена межа масиву –",              "array bound exceeded -") \
-  ERR(WHEEL,    "E-WHEEL",    "реверс круга без M5",                 "wheel reversed without M5") \
-  ERR(OSC,      "E-OSC",      "помилка осциляції",                   "oscillation error") \
-  ERR(TEXT,     "E-TEXT",     "помилка тексту",                      "text too long or malformed") \
-  ERR(ORDER,    "E-ORDER",    "порушено порядок діалогу",            "dialog order error") \
-  ERR(TEETH,    "E-TEETH",    "помилка пошуку зубців",               "tooth search error") \
-  ERR(PLUGIN,   "E-PLUGIN",   "функція недоступна",                  "function not available") \
-  ERR(FEED,     "E-FEED",     "контурна швидкість дорівнює нулю",    "contour speed is zero") \
-  ERR(LIMIT,    "E-LIMIT",    "вичерпано ліміт кадрів",              "block budget exhausted") \
-  ERR(STATE,    "E-STATE",    "повторний пуск неможливий",           "restart refused") \
-  ERR(TRAVEL,   "E-TRAVEL",   "вихід за межу переміщення",           "travel limit")
+  ERR(NONE,     "",           "no error") \
+  ERR(SYNTAX,   "E-SYNTAX",   "syntax error") \
+  ERR(RANGE,    "E-RANGE",    "value out of range") \
+  ERR(FUNC,     "E-FUNC",     "unknown function") \
+  ERR(GROUP,    "E-GROUP",    "two functions of one group") \
+  ERR(BLOCK,    "E-BLOCK",    "forbidden combination in a block") \
+  ERR(BLOCKLEN, "E-BLOCKLEN", "block too long") \
+  ERR(PLANE,    "E-PLANE",    "interpolation plane error") \
+  ERR(ARC,      "E-ARC",      "arc error") \
+  ERR(AXIS,     "E-AXIS",     "axis not allowed") \
+  ERR(DIV0,     "E-DIV0",     "division by zero") \
+  ERR(DOMAIN,   "E-DOMAIN",   "argument out of domain") \
+  ERR(TARGET,   "E-TARGET",   "jump or call target missing or duplicated") \
+  ERR(SCOPE,    "E-SCOPE",    "jump out of its unit") \
+  ERR(SUB,      "E-SUB",      "bad program structure") \
+  ERR(NEST,     "E-NEST",     "calls nested too deep") \
+  ERR(ARRAYP,   "E-ARRAY+",   "array bound exceeded +") \
+  ERR(ARRAYM,   "E-ARRAY-",   "array bound exceeded -") \
+  ERR(WHEEL,    "E-WHEEL",    "spindle reversed without a stop") \
+  ERR(OSC,      "E-OSC",      "oscillation error") \
+  ERR(TEXT,     "E-TEXT",     "text too long or malformed") \
+  ERR(ORDER,    "E-ORDER",    "dialog order error") \
+  ERR(TEETH,    "E-TEETH",    "tooth search error") \
+  ERR(PLUGIN,   "E-PLUGIN",   "function not available") \
+  ERR(FEED,     "E-FEED",     "contour speed is zero") \
+  ERR(LIMIT,    "E-LIMIT",    "limit exceeded") \
+  ERR(STATE,    "E-STATE",    "restart refused") \
+  ERR(TRAVEL,   "E-TRAVEL",   "travel limit")
 
 enum s42_err {
-#define ERR_ENUM(e, c, uk, en) S42_E_##e,
+#define ERR_ENUM(e, c, text) S42_E_##e,
   S42_ERRORS(ERR_ENUM)
 #undef ERR_ENUM
   S42_E_COUNT
 };
 
 const char *err_code(int e);            /* "E-ARC" */
-const char *err_title(int e, int en);   /* the machine message */
+const char *err_meaning(int e);         /* the neutral meaning: "arc error" */
 int err_from_code(const char *code);    /* -1 when unknown */
 
 #endif

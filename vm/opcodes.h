@@ -6,8 +6,10 @@
  * OP(name, operand kind, pop, push, "meaning")
  * Operand kinds: NONE; K constant index; I small integer; REG register;
  * SLOT word slot; SET destination+rule (dest | rule<<10); ARR array access
- * (arr | mode<<2); MASK array mask (1, 2 or 3); REL relation mask (1 <, 2 =,
- * 4 >); PC jump target; BLK block index. */
+ * (arr | mode<<2, arr below the program's lim.arrays); MASK array mask (bit n
+ * array n, within lim.arrays); REL relation mask (1 <, 2 =, 4 >); PC jump
+ * target; BLK block index.  The limits named lim.* are the program's
+ * (vm/program.h), the messages its table's (vm/msgs.h). */
 #ifndef S42_OPCODES_H
 #define S42_OPCODES_H
 
@@ -23,16 +25,16 @@
   OP(MUL,    NONE, 2, 1, "multiply") \
   OP(DIV,    NONE, 2, 1, "divide (E-DIV0 on zero)") \
   OP(POW,    NONE, 2, 1, "power (E-DOMAIN for a negative base with a fractional exponent)") \
-  OP(SIN,    NONE, 1, 1, "sine of 0.001 deg (|x| <= 2304000)") \
-  OP(COS,    NONE, 1, 1, "cosine of 0.001 deg (|x| <= 2304000)") \
-  OP(TAN,    NONE, 1, 1, "tangent of 0.001 deg (not at odd multiples of 90000)") \
-  OP(ASIN,   NONE, 1, 1, "arcsine in 0.001 deg (|x| <= 1)") \
-  OP(ACOS,   NONE, 1, 1, "arccosine in 0.001 deg (|x| <= 1)") \
-  OP(ATAN,   NONE, 1, 1, "arctangent in 0.001 deg (|x| <= 9999999)") \
-  OP(LOG,    NONE, 1, 1, "natural logarithm (0 < x <= 9999999)") \
+  OP(SIN,    NONE, 1, 1, "sine of x in the program's angle unit (E-DOMAIN for |x| over lim.trig_max)") \
+  OP(COS,    NONE, 1, 1, "cosine of x in the angle unit (|x| <= lim.trig_max)") \
+  OP(TAN,    NONE, 1, 1, "tangent of x in the angle unit (|x| <= lim.trig_max, not at odd multiples of 90 degrees)") \
+  OP(ASIN,   NONE, 1, 1, "arcsine in the angle unit (|x| <= 1)") \
+  OP(ACOS,   NONE, 1, 1, "arccosine in the angle unit (|x| <= 1)") \
+  OP(ATAN,   NONE, 1, 1, "arctangent in the angle unit (|x| <= lim.atan_max)") \
+  OP(LOG,    NONE, 1, 1, "natural logarithm (0 < x <= lim.log_max)") \
   OP(SET,    SET,  1, 0, "pop into register or word slot, converted and checked by rule") \
-  OP(ARD,    ARR,  0, 1, "array read at the pointer (mode 1 then advance, 2 stay, 3 back first)") \
-  OP(AWR,    ARR,  1, 0, "array write at the pointer (modes as ARD)") \
+  OP(ARD,    ARR,  0, 1, "array read at the pointer (mode 1 then advance, 2 stay, 3 back first; E-ARRAY+ past lim.cells)") \
+  OP(AWR,    ARR,  1, 0, "array write at the pointer (modes as ARD; E-RANGE outside lim.cell_lo..cell_hi)") \
   OP(AZERO,  MASK, 0, 0, "zero the arrays in A: cells, pointer and length") \
   OP(APTR0,  MASK, 0, 0, "pointer of the arrays in A to 0") \
   OP(APTREND,MASK, 0, 0, "pointer of the array in A to its length") \
@@ -44,12 +46,13 @@
   OP(SYNC,   NONE, 0, 0, "yield the block to the host only when it watches every block") \
   OP(TRUNC,  REG,  0, 0, "register A to its integer part, towards zero") \
   OP(COMMIT, NONE, 0, 0, "close the block's transaction, count it executed") \
-  OP(CALL,   PC,   1, 0, "call the sub at A, popped-count times (0: not at all)") \
+  OP(CALL,   PC,   1, 0, "call the sub at A, popped-count times (0: not at all; E-NEST past lim.depth)") \
   OP(PPJ,    PC,   0, 0, "operational jump to A if cycle exit is latched (clears it)") \
   OP(JMP,    PC,   0, 0, "jump to A") \
   OP(JCOND,  PC,   0, 0, "jump to A if the block's condition held") \
-  OP(RET,    NONE, 0, 0, "end of sub: run it again or return to the caller") \
+  OP(RET,    NONE, 0, 0, "end of sub: run it again or return to the caller (E-SUB in the main program)") \
   OP(END,    NONE, 0, 0, "end of program") \
+  OP(RETEND, NONE, 0, 0, "RET in a called sub, END in the main program (Bosch M2, FMS-3000 M99)") \
   /* superinstructions: the common shapes of a block in one dispatch */ \
   OP(ADDI,   I,    1, 1, "add the integer A (INT A; ADD)") \
   OP(SUBI,   I,    1, 1, "subtract the integer A (INT A; SUB)") \
@@ -63,7 +66,7 @@
   OP(SUBR,   REG,  1, 1, "subtract register A (REG A; SUB)") \
   OP(MULR,   REG,  1, 1, "multiply by register A (REG A; MUL)") \
   OP(DIVR,   REG,  1, 1, "divide by register A (REG A; DIV)") \
-  OP(SETP,   REG,  1, 0, "pop into parameter register A, E-RANGE outside -9999999..9999999 (SET with a parameter's rule)") \
+  OP(SETP,   REG,  1, 0, "pop into parameter register A, E-RANGE outside lim.param_lo..param_hi (SET with a parameter's rule)") \
   OP(CMPC,   REL,  2, 0, "the block's jump condition is the relation A between two values (CMP A; COND)") \
   OP(CMPCK,  RELK, 1, 0, "the block's jump condition is the relation A&7 between a value and constant K[A>>3] (CONST; CMPC)") \
   OP(CMPCR,  RELR, 1, 0, "the block's jump condition is the relation A&7 between a value and register A>>3 (REG; CMPC)") \

@@ -1,6 +1,7 @@
 /* Growing arrays of a compiled program (vm/program.h). */
 #include "program.h"
 #include "opcodes.h"
+#include <float.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -8,6 +9,11 @@ void prog_init(struct program *p)
 {
   memset(p, 0, sizeof *p);
   p->saved_reg = -1;
+  p->lim = (struct prog_limits){
+    .depth = VM_DEPTH_MAX, .arrays = VM_ARRAYS_MAX, .cells = VM_CELLS_MAX,
+    .param_lo = -DBL_MAX, .param_hi = DBL_MAX, .cell_lo = -DBL_MAX, .cell_hi = DBL_MAX,
+    .angle = 1.0, .trig_max = DBL_MAX, .atan_max = DBL_MAX, .log_max = DBL_MAX,
+  };
 }
 
 void prog_free(struct program *p)

@@ -1,5 +1,8 @@
 /* A compiled program: bytecode, constants, conversion rules, the block table
- * (bytecode -> block number, line, column) and a per-instruction column map.
+ * (bytecode -> block number, line, column) and a per-instruction column map,
+ * and what the VM is to enforce and say for it: the dialect's limits
+ * (`lim`: call depth, arrays, value ranges, the angle unit and the
+ * functions' domains) and its message texts (`msgs`, vm/msgs.h).
  * Dialect-neutral: what a block *means* to the machine is kept by the front
  * end in `ext`, indexed like `blocks`; the VM never looks at it. */
 #ifndef S42_PROGRAM_H
@@ -10,6 +13,11 @@
 
 #define VM_NREG 128   /* register file: the dialect decides what each holds */
 #define VM_NSLOT 16   /* word slots of the pending block record */
+/* The VM's fixed upper bounds; a program's limits (struct prog_limits) lie
+ * at or below them, and vm_init refuses a program whose limits do not. */
+#define VM_DEPTH_MAX 256   /* nested calls (FMS-3000 allows 65535: s42 stops at 256) */
+#define VM_ARRAYS_MAX 4    /* arrays: the 2 bits of an ARR operand */
+#define VM_CELLS_MAX 64    /* cells of one array */
 
 /* How SET converts and checks a value before storing it. */
 struct prog_rule {
@@ -24,11 +32,27 @@ struct prog_rule {
 struct prog_block {
   uint32_t code;     /* first instruction (its BLOCK) */
   uint32_t line;
+  uint32_t number;   /* 0: the block has no number (the 2С42 has 3 digits, 2У22 5, FMS-3000 7) */
   uint16_t col;
-  uint16_t number;   /* 0: the block has no number */
   uint16_t unit;     /* 0 = main program, 1.. = subs in text order */
-  uint16_t pad;
 };
+
+/* What the VM enforces, set by the front end for its dialect (prog_init
+ * gives the VM's upper bounds and no ranges: a front end that sets nothing
+ * gets a VM that refuses only what it cannot hold). */
+struct prog_limits {
+  uint32_t depth;              /* nested calls at most (E-NEST beyond); <= VM_DEPTH_MAX */
+  uint32_t arrays;             /* arrays the ARR and MASK operands may name; <= VM_ARRAYS_MAX */
+  uint32_t cells;              /* cells of each array (E-ARRAY+ past them); <= VM_CELLS_MAX */
+  double param_lo, param_hi;   /* what SETP stores (E-RANGE outside) */
+  double cell_lo, cell_hi;     /* what AWR stores (E-RANGE outside) */
+  double angle;                /* degrees per unit of SIN COS TAN's argument and of ASIN ACOS ATAN's result */
+  double trig_max;             /* SIN COS TAN: |x| <= trig_max (E-DOMAIN outside) */
+  double atan_max;             /* ATAN: |x| <= atan_max */
+  double log_max;              /* LOG: 0 < x <= log_max */
+};
+
+struct vm_msgs;   /* vm/msgs.h */
 
 struct program {
   uint32_t *code;  size_t ncode, capcode;
@@ -40,6 +64,8 @@ struct program {
   uint32_t max_stack;                 /* the deepest stack any block needs (the front end
                                          records it; vm_init refuses more than the VM has) */
   int saved_reg;                      /* register saved across calls, -1 none */
+  struct prog_limits lim;             /* the dialect's limits (above) */
+  const struct vm_msgs *msgs;         /* the dialect's texts (not owned); NULL: the VM's neutral ones */
   const char *file;                   /* for messages (not owned) */
   void *ext;                          /* front end's per-block data */
   const void *runtime;                /* the front end's runtime for the session (src/core/sess_rt.h) */

@@ -6,7 +6,9 @@
  * of every path the VM can take. */
 #include "verify.h"
 #include "errors.h"
+#include "msgs.h"
 #include "opcodes.h"
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -64,7 +66,8 @@ static int commits(int op)
 
 static int leaves(int op)
 {
-  return op == OP_CALL || op == OP_PPJ || op == OP_JMP || op == OP_JCOND || op == OP_RET || op == OP_END;
+  return op == OP_CALL || op == OP_PPJ || op == OP_JMP || op == OP_JCOND || op == OP_RET || op == OP_RETEND ||
+         op == OP_END;
 }
 
 static int works(int op)
@@ -81,7 +84,7 @@ static int works(int op)
 /* Instructions that never go on to the next one: the code may end with one. */
 static int stops(int op)
 {
-  return op == OP_END || op == OP_JMP || op == OP_CJMP || op == OP_RET;
+  return op == OP_END || op == OP_JMP || op == OP_CJMP || op == OP_RET || op == OP_RETEND;
 }
 
 /* pc starts a block: what a jump, a call or the entry may target (the
@@ -143,14 +146,16 @@ static int operand(const struct program *p, uint32_t pc, char *msg, size_t n)
     return 0;
   }
   case OPD_ARR:
-    if ((a & 3) > 1)
-      return bad(msg, n, "pc %u: %s of array %u but there are 2 arrays", pc, name, (a & 3) + 1);
+    if ((a & 3) >= p->lim.arrays)
+      return bad(msg, n, "pc %u: %s of array %u but there %s %u arra%s", pc, name, (a & 3) + 1,
+                 p->lim.arrays == 1 ? "is" : "are", p->lim.arrays, p->lim.arrays == 1 ? "y" : "ys");
     if ((a >> 2) < 1 || (a >> 2) > 3)
       return bad(msg, n, "pc %u: %s in mode %u, not 1 (then advance), 2 (stay) or 3 (back first)", pc, name, a >> 2);
     return 0;
   case OPD_MASK:
-    if (a < 1 || a > 3)
-      return bad(msg, n, "pc %u: %s of arrays %u, not 1, 2 or 3 (both)", pc, name, a);
+    if (a < 1 || a >= 1u << p->lim.arrays)
+      return bad(msg, n, "pc %u: %s of arrays %u, not a mask of the %u array%s (1..%u)", pc, name, a,
+                 p->lim.arrays, plural(p->lim.arrays), (1u << p->lim.arrays) - 1);
     return 0;
   case OPD_REL:
     /* 0 is an empty relation ("never"), which the language allows */
@@ -186,10 +191,43 @@ static int operand(const struct program *p, uint32_t pc, char *msg, size_t n)
   }
 }
 
+/* lo..hi a range (not NaN, lo <= hi). */
+static int range_ok(double lo, double hi)
+{
+  return lo <= hi;
+}
+
+/* The program's limits: within what the VM holds, and each one sane. */
+static int limits(const struct program *p, char *msg, size_t n)
+{
+  const struct prog_limits *l = &p->lim;
+  if (l->depth > VM_DEPTH_MAX)
+    return bad(msg, n, "the program nests calls %u deep; the VM holds %d", l->depth, VM_DEPTH_MAX);
+  if (l->arrays > VM_ARRAYS_MAX || l->cells > VM_CELLS_MAX)
+    return bad(msg, n, "the program has %u arrays of %u cells; the VM holds %d of %d", l->arrays, l->cells,
+               VM_ARRAYS_MAX, VM_CELLS_MAX);
+  if (!range_ok(l->param_lo, l->param_hi))
+    return bad(msg, n, "the parameter range %.10g..%.10g is empty", l->param_lo, l->param_hi);
+  if (!range_ok(l->cell_lo, l->cell_hi))
+    return bad(msg, n, "the array cell range %.10g..%.10g is empty", l->cell_lo, l->cell_hi);
+  if (!(l->angle > 0 && isfinite(l->angle)))
+    return bad(msg, n, "the angle unit is %.10g degrees, not a positive number", l->angle);
+  if (!(l->trig_max >= 0) || !(l->atan_max >= 0) || !(l->log_max > 0))
+    return bad(msg, n, "a function's domain is empty (SIN COS TAN |x| <= %.10g, ATAN |x| <= %.10g, LOG 0 < x <= %.10g)",
+               l->trig_max, l->atan_max, l->log_max);
+  char why[200];
+  if (vm_msgs_check(p->msgs, why, sizeof why))
+    return bad(msg, n, "the message table%s%s: %s", p->msgs->name ? " of " : "", p->msgs->name ? p->msgs->name : "",
+               why);
+  return 0;
+}
+
 /* The block table, the entry and what the code needs around it. */
 static int table(const struct program *p, char *msg, size_t n)
 {
   char buf[40];
+  if (limits(p, msg, n))
+    return -1;
   if (p->ncode == 0)
     return bad(msg, n, "the program has no instructions");
   if (!p->code || !p->cols)
@@ -223,7 +261,7 @@ static int table(const struct program *p, char *msg, size_t n)
   unsigned op = INS_OP(p->code[last]);
   if (op < OP__COUNT && !stops((int)op))
     return bad(msg, n, "pc %u: the code ends with %s, which runs on past its end (the last instruction must be "
-               "END, JMP, CJMP or RET)", last, vm_ops[op].name);
+               "END, JMP, CJMP, RET or RETEND)", last, vm_ops[op].name);
   if (p->saved_reg < -1 || p->saved_reg >= VM_NREG)
     return bad(msg, n, "the register saved across calls is %d, not -1 (none) or 0..%d", p->saved_reg, VM_NREG - 1);
   for (size_t r = 0; r < p->nrules; r++) {

@@ -17,8 +17,11 @@
  * end); each block a transaction (one COMMIT, CJMP or CJCOND, its work
  * before it, jumps, calls and the end after it -- so every loop counts
  * against the block budget); that the code cannot run off its end; the
- * rules and the register saved across calls; and that p->max_stack is no
- * less than what the deepest block needs.  Linear in the program's size. */
+ * rules and the register saved across calls; the program's limits (within
+ * the VM's bounds, each range non-empty, the angle unit positive, the array
+ * operands within lim.arrays) and its message table (every format against
+ * the arguments vm/msgs.h declares); and that p->max_stack is no less than
+ * what the deepest block needs.  Linear in the program's size. */
 int prog_verify(const struct program *p, char *msg, size_t n);
 /* The same, and *need (when not NULL) is the deepest stack any block
  * reaches, as far as the walk got. */

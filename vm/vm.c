@@ -5,15 +5,14 @@
  * the arrays snapshotted at their first change, so an error rolls back. */
 #include "vm.h"
 #include "errors.h"
+#include "msgs.h"
 #include "opcodes.h"
 #include "vmmath.h"
 #include <math.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
-
-#define CELL_MAX 9999999.0
-#define PARAM_MAX 9999999.0   /* SETP: the range of a parameter R0..R113 */
 
 const struct vm_opinfo vm_ops[OP__COUNT] = {
 #define OP_INFO(name, opd, pop, push, doc) {#name, OPD_##opd, pop, push, doc},
@@ -21,23 +20,41 @@ const struct vm_opinfo vm_ops[OP__COUNT] = {
 #undef OP_INFO
 };
 
+/* vm_init's refusal: before anything runs, naming the entry block. */
+static int refuse(struct vm *vm, enum vm_detail id, ...)
+{
+  const struct program *p = vm->p;
+  va_list ap;
+  vm->cur = p->nblocks && p->entry < p->ncode ? (uint32_t)prog_block_at(p, p->entry) : 0;
+  vm->err.code = S42_E_LIMIT;
+  vm->err.block = vm->cur;
+  va_start(ap, id);
+  vm_msg_vformat(vm->err.msg, sizeof vm->err.msg, p->msgs, id, ap);
+  va_end(ap);
+  vm->done = 1;
+  return -1;
+}
+
 int vm_init(struct vm *vm, const struct program *p)
 {
   memset(vm, 0, sizeof *vm);
   vm->p = p;
   vm->pc = p->entry;
   vm->max_blocks = 100000000;
-  if (p->max_stack > VM_STACK) {
-    /* refused before anything runs: the error names the entry block */
-    vm->cur = p->nblocks && p->entry < p->ncode ? (uint32_t)prog_block_at(p, p->entry) : 0;
-    vm->err.code = S42_E_LIMIT;
-    vm->err.block = vm->cur;
-    snprintf(vm->err.msg, sizeof vm->err.msg, "the program needs a stack of %u values; this VM has %d",
-             p->max_stack, VM_STACK);
-    vm->done = 1;
-    return -1;
-  }
+  if (p->max_stack > VM_STACK)
+    return refuse(vm, VMSG_STACK, p->max_stack, VM_STACK);
+  if (p->lim.depth > VM_DEPTH_MAX)
+    return refuse(vm, VMSG_DEPTH, p->lim.depth, VM_DEPTH_MAX);
+  if (p->lim.arrays > VM_ARRAYS_MAX || p->lim.cells > VM_CELLS_MAX)
+    return refuse(vm, VMSG_ARRAYS, p->lim.arrays, p->lim.cells, VM_ARRAYS_MAX, VM_CELLS_MAX);
   return 0;
+}
+
+/* The part of an array the program uses: the pointer, the length and its
+ * lim.cells cells (a snapshot copies no more than the 2С42's 2 x 15 did). */
+static inline size_t used_bytes(const struct vm *vm)
+{
+  return offsetof(struct vm_array, cell) + vm->p->lim.cells * sizeof(double);
 }
 
 static void rollback(struct vm *vm)
@@ -46,9 +63,9 @@ static void rollback(struct vm *vm)
     vm->nundo--;
     vm->reg[vm->undo[vm->nundo].reg] = vm->undo[vm->nundo].old;
   }
-  if (vm->arr_saved)
-    memcpy(vm->arr, vm->arr_old, sizeof vm->arr);
-  vm->arr_saved = 0;
+  for (uint32_t k = 0; vm->arr_saved; k++, vm->arr_saved >>= 1)
+    if (vm->arr_saved & 1)
+      memcpy(&vm->arr[k], &vm->arr_old[k], used_bytes(vm));
 }
 
 static void verr(struct vm *vm, int code, unsigned col, const char *fmt, va_list ap)
@@ -69,6 +86,18 @@ static void raise_at(struct vm *vm, uint32_t pc, int code, const char *fmt, ...)
   va_start(ap, fmt);
   verr(vm, code, pc < vm->p->ncode ? vm->p->cols[pc] : 0, fmt, ap);
   va_end(ap);
+}
+
+/* Raise code with the program's detail message id (vm/msgs.h: the
+ * arguments that id declares, in order). */
+static void raise_msg(struct vm *vm, uint32_t pc, int code, enum vm_detail id, ...)
+{
+  char msg[sizeof vm->err.msg];
+  va_list ap;
+  va_start(ap, id);
+  vm_msg_vformat(msg, sizeof msg, vm->p->msgs, id, ap);
+  va_end(ap);
+  raise_at(vm, pc, code, "%s", msg);
 }
 
 void vm_fail(struct vm *vm, int code, const char *fmt, ...)
@@ -106,19 +135,29 @@ void vm_set_reg(struct vm *vm, unsigned reg, double v)
   vm->reg[reg] = v;
 }
 
-static inline void save_arrays(struct vm *vm)
+/* An array's first change in a block snapshots it (the part in use): a
+ * block that touches one array copies one. */
+static inline void save_array(struct vm *vm, uint32_t k)
 {
-  if (!vm->arr_saved) {
-    memcpy(vm->arr_old, vm->arr, sizeof vm->arr);
-    vm->arr_saved = 1;
+  if (!(vm->arr_saved & 1u << k)) {
+    memcpy(&vm->arr_old[k], &vm->arr[k], used_bytes(vm));
+    vm->arr_saved |= 1u << k;
   }
+}
+
+/* The arrays of mask (bit k: array k) that the program has. */
+static inline void save_arrays(struct vm *vm, uint32_t mask)
+{
+  for (uint32_t k = 0; k < vm->p->lim.arrays; k++)
+    if (mask & 1u << k)
+      save_array(vm, k);
 }
 
 void vm_load_array(struct vm *vm, int k, const double *v, int n)
 {
-  if (k < 0 || k > 1 || n < 0 || n > VM_ACELLS)
+  if (k < 0 || (uint32_t)k >= vm->p->lim.arrays || n < 0 || (uint32_t)n > vm->p->lim.cells)
     return;
-  save_arrays(vm);
+  save_array(vm, (uint32_t)k);
   struct vm_array *a = &vm->arr[k];
   memset(a, 0, sizeof *a);
   for (int i = 0; i < n; i++)
@@ -148,8 +187,8 @@ static int do_set(struct vm *vm, uint32_t pc, uint32_t a, double v)
       }
       v = r->hi;
     } else {
-      raise_at(vm, pc, r->err, "%s = %s is outside %s..%s", r->name, num(b1, sizeof b1, v),
-               num(b2, sizeof b2, r->lo), num(b3, sizeof b3, r->hi));
+      raise_msg(vm, pc, r->err, VMSG_RULE, r->name, num(b1, sizeof b1, v), num(b2, sizeof b2, r->lo),
+                num(b3, sizeof b3, r->hi));
       return r->err;
     }
   }
@@ -162,25 +201,30 @@ static int do_set(struct vm *vm, uint32_t pc, uint32_t a, double v)
   return 0;
 }
 
-/* Array access; mode 1 (T1x: then advance), 2 (T2x: stay), 3 (T3x: back first). */
+/* An array bound broken: out of line, so that arr_pos stays a leaf. */
+static __attribute__((noinline, cold)) int arr_fail(struct vm *vm, uint32_t pc, int code, int n)
+{
+  if (code == S42_E_ARRAYM)
+    raise_msg(vm, pc, code, VMSG_ARRAYM, n);
+  else
+    raise_msg(vm, pc, code, VMSG_ARRAYP, n, vm->arr[n - 1].ptr, (int)vm->p->lim.cells - 1);
+  vm->err.aux = n;
+  return code;
+}
+
+/* Array access; mode 1 (T1x: then advance), 2 (T2x: stay), 3 (T3x: back
+ * first).  The caller has snapshotted the array (save_array). */
 static int arr_pos(struct vm *vm, uint32_t pc, uint32_t a, int *idx)
 {
   struct vm_array *ar = &vm->arr[a & 3];
   int mode = (int)(a >> 2), n = (int)(a & 3) + 1;
-  save_arrays(vm);
   if (mode == 3) {
-    if (ar->ptr == 0) {
-      raise_at(vm, pc, S42_E_ARRAYM, "array %d: pointer already at cell 0, cannot move back", n);
-      vm->err.aux = n;
-      return S42_E_ARRAYM;
-    }
+    if (ar->ptr == 0)
+      return arr_fail(vm, pc, S42_E_ARRAYM, n);
     ar->ptr--;
   }
-  if (ar->ptr >= VM_ACELLS) {
-    raise_at(vm, pc, S42_E_ARRAYP, "array %d: pointer at %d, past the last cell 14", n, ar->ptr);
-    vm->err.aux = n;
-    return S42_E_ARRAYP;
-  }
+  if ((uint32_t)ar->ptr >= vm->p->lim.cells)
+    return arr_fail(vm, pc, S42_E_ARRAYP, n);
   *idx = ar->ptr;
   if (mode == 1)
     ar->ptr++;
@@ -191,7 +235,7 @@ static int arr_pos(struct vm *vm, uint32_t pc, uint32_t a, int *idx)
 static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, double *out)
 {
   char msg[sizeof vm->err.msg];
-  int e = vm_math(op, a, b, out, msg, sizeof msg);
+  int e = vm_math(vm->p, op, a, b, out, msg, sizeof msg);
   if (e)
     raise_at(vm, pc, e, "%s", msg);
   return e;
@@ -229,6 +273,9 @@ enum vm_event vm_run(struct vm *vm)
   const uint64_t limit = vm->max_blocks ? vm->max_blocks : UINT64_MAX;
   const int watching = vm->start_all || vm->watch;
   const int yield_all = vm->yield_all;
+  /* the program's parameter range, in locals: a store to a register could
+   * alias p->lim for the compiler, and SETP runs in nearly every block */
+  const double param_lo = p->lim.param_lo, param_hi = p->lim.param_hi;
 
   if (vm->done)
     return vm->err.code ? VM_EV_ERROR : VM_EV_END;
@@ -248,8 +295,7 @@ enum vm_event vm_run(struct vm *vm)
       vmcase(BLOCK) {
         vm->cur = INS_A(ins);
         if (vm->blocks >= limit) {
-          raise_at(vm, pc - 1, S42_E_LIMIT, "the budget of %llu blocks ran out (--max-blocks)",
-                   (unsigned long long)vm->max_blocks);
+          raise_msg(vm, pc - 1, S42_E_LIMIT, VMSG_BUDGET, (unsigned long long)vm->max_blocks);
           RAISED;
         }
         if (watching && (vm->start_all || vm->watch[vm->cur])) {
@@ -301,19 +347,21 @@ enum vm_event vm_run(struct vm *vm)
       }
       vmcase(ARD) {
         int i;
+        save_array(vm, INS_A(ins) & 3);
         if (arr_pos(vm, pc - 1, INS_A(ins), &i)) RAISED;
         PUSH(vm->arr[INS_A(ins) & 3].cell[i]);
         vmbreak;
       }
       vmcase(AWR) {
         int i;
-        char bv[32];
+        char bv[32], b1[32], b2[32];
         a = POP();
-        if (!(fabs(a) <= CELL_MAX)) {
-          raise_at(vm, pc - 1, S42_E_RANGE, "array %u: value %s outside -9999999..9999999",
-                   (INS_A(ins) & 3) + 1, num(bv, sizeof bv, a));
+        if (!(a >= p->lim.cell_lo && a <= p->lim.cell_hi)) {
+          raise_msg(vm, pc - 1, S42_E_RANGE, VMSG_CELL, (INS_A(ins) & 3) + 1, num(bv, sizeof bv, a),
+                    num(b1, sizeof b1, p->lim.cell_lo), num(b2, sizeof b2, p->lim.cell_hi));
           RAISED;
         }
+        save_array(vm, INS_A(ins) & 3);
         if (arr_pos(vm, pc - 1, INS_A(ins), &i)) RAISED;
         struct vm_array *ar = &vm->arr[INS_A(ins) & 3];
         ar->cell[i] = a;
@@ -322,22 +370,22 @@ enum vm_event vm_run(struct vm *vm)
         vmbreak;
       }
       vmcase(AZERO) {
-        save_arrays(vm);
-        for (int n = 0; n < 2; n++)
+        save_arrays(vm, INS_A(ins));
+        for (uint32_t n = 0; n < p->lim.arrays; n++)
           if (INS_A(ins) & (1u << n))
-            memset(&vm->arr[n], 0, sizeof vm->arr[n]);
+            memset(&vm->arr[n], 0, used_bytes(vm));
         vmbreak;
       }
       vmcase(APTR0) {
-        save_arrays(vm);
-        for (int n = 0; n < 2; n++)
+        save_arrays(vm, INS_A(ins));
+        for (uint32_t n = 0; n < p->lim.arrays; n++)
           if (INS_A(ins) & (1u << n))
             vm->arr[n].ptr = 0;
         vmbreak;
       }
       vmcase(APTREND) {
-        save_arrays(vm);
-        for (int n = 0; n < 2; n++)
+        save_arrays(vm, INS_A(ins));
+        for (uint32_t n = 0; n < p->lim.arrays; n++)
           if (INS_A(ins) & (1u << n))
             vm->arr[n].ptr = vm->arr[n].len;
         vmbreak;
@@ -375,8 +423,8 @@ enum vm_event vm_run(struct vm *vm)
         uint32_t n = (uint32_t)POP();
         if (n == 0)
           vmbreak;
-        if (vm->depth >= VM_MAXDEPTH) {
-          raise_at(vm, pc - 1, S42_E_NEST, "a 9th nested sub call (at most %d levels)", VM_MAXDEPTH);
+        if ((uint32_t)vm->depth >= p->lim.depth) {
+          raise_msg(vm, pc - 1, S42_E_NEST, VMSG_NEST, vm->depth + 1, (int)p->lim.depth);
           RAISED;
         }
         struct vm_frame *f = &vm->frames[vm->depth++];
@@ -405,9 +453,10 @@ enum vm_event vm_run(struct vm *vm)
       }
       vmcase(RET) {
         if (vm->depth == 0) {
-          raise_at(vm, pc - 1, S42_E_SUB, "M17 reached in the main program");
+          raise_msg(vm, pc - 1, S42_E_SUB, VMSG_RETMAIN);
           RAISED;
         }
+      ret:;   /* RETEND in a called sub comes here: the same return */
         struct vm_frame *f = &vm->frames[vm->depth - 1];
         if (p->saved_reg >= 0)
           vm->reg[p->saved_reg] = f->saved;
@@ -422,6 +471,15 @@ enum vm_event vm_run(struct vm *vm)
         vmbreak;
       }
       vmcase(END) {
+        vm->pc = pc;
+        vm->exit_latch = 0;
+        vm->done = 1;
+        return VM_EV_END;
+      }
+      /* return when called, end otherwise (Bosch M2, FMS-3000 M99) */
+      vmcase(RETEND) {
+        if (vm->depth > 0)
+          goto ret;
         vm->pc = pc;
         vm->exit_latch = 0;
         vm->done = 1;
@@ -443,10 +501,10 @@ enum vm_event vm_run(struct vm *vm)
 #undef BINARY
       vmcase(SETP) {
         a = POP();
-        if (!(a >= -PARAM_MAX && a <= PARAM_MAX)) {
-          char b1[32];
-          raise_at(vm, pc - 1, S42_E_RANGE, "R%u = %s is outside -9999999..9999999", INS_A(ins),
-                   num(b1, sizeof b1, a));
+        if (!(a >= param_lo && a <= param_hi)) {
+          char b1[32], b2[32], b3[32];
+          raise_msg(vm, pc - 1, S42_E_RANGE, VMSG_PARAM, INS_A(ins), num(b1, sizeof b1, a),
+                    num(b2, sizeof b2, param_lo), num(b3, sizeof b3, param_hi));
           RAISED;
         }
         journal(vm, INS_A(ins));

@@ -8,8 +8,9 @@
 #include "program.h"
 #include <stdint.h>
 
-#define VM_MAXDEPTH 8     /* nested sub calls */
-#define VM_ACELLS 15      /* cells per array */
+/* The call depth, the arrays and their cells, the ranges and the angle unit
+ * are the program's (program.lim); the frames and arrays below hold up to
+ * the VM's upper bounds of vm/program.h. */
 #define VM_JOURNAL 512    /* register writes one block can make (a block is <= 320 chars) */
 #define VM_STACK 512      /* values on the evaluation stack (program.max_stack at most) */
 
@@ -20,7 +21,8 @@ enum vm_event {
   VM_EV_ERROR    /* vm.err says what; the block was rolled back */
 };
 
-struct vm_array { double cell[VM_ACELLS]; int ptr, len; };
+/* An array: the program's lim.cells of cell[] are used, the rest stay 0. */
+struct vm_array { int ptr, len; double cell[VM_CELLS_MAX]; };
 
 struct vm_frame {
   uint32_t ret, start, left, block;
@@ -44,10 +46,10 @@ struct vm {
   uint32_t cur;                /* index of the block being run */
   double reg[VM_NREG];
   double w[VM_NSLOT];          /* the pending block's word values */
-  struct vm_array arr[2];
+  struct vm_array arr[VM_ARRAYS_MAX];   /* the program's lim.arrays are used */
   uint8_t jflag;               /* the block's jump condition */
   int depth;
-  struct vm_frame frames[VM_MAXDEPTH];
+  struct vm_frame frames[VM_DEPTH_MAX];  /* lim.depth of them at most */
   uint64_t blocks;             /* blocks executed (committed) */
   uint64_t max_blocks;         /* E-LIMIT when reached; 0 = no limit */
   int yield_all;               /* SYNC yields too: the host watches every block */
@@ -61,13 +63,15 @@ struct vm {
   struct vm_error err;
   /* the open block's transaction */
   unsigned nundo;
-  int arr_saved;
+  unsigned arr_saved;           /* bit k: array k is snapshotted in arr_old[k] */
   struct vm_undo undo[VM_JOURNAL];
-  struct vm_array arr_old[2];
+  struct vm_array arr_old[VM_ARRAYS_MAX];
 };
 
-/* 0, or -1 when the program needs a deeper stack than VM_STACK: the VM is
- * then ended with that error (E-LIMIT), which the first vm_run returns. */
+/* 0, or -1 when the program needs more than this VM holds -- a deeper stack
+ * than VM_STACK, a call depth, arrays or cells above VM_DEPTH_MAX,
+ * VM_ARRAYS_MAX, VM_CELLS_MAX: the VM is then ended with that error
+ * (E-LIMIT), which the first vm_run returns. */
 int vm_init(struct vm *vm, const struct program *p);
 enum vm_event vm_run(struct vm *vm);
 /* The host's machine work for the current block failed: roll the block back
@@ -77,13 +81,14 @@ void vm_fail(struct vm *vm, int code, const char *fmt, ...)
 /* Set a register from the host (dialog input, teach-in, M16, a plugin),
  * journaled as part of the open block however often the host writes. */
 void vm_set_reg(struct vm *vm, unsigned reg, double v);
-/* Load array k (0 or 1) from the host (a plugin's results): n <= VM_ACELLS
- * values from the start, the rest 0, the pointer at the start; snapshotted
- * as part of the open block, as the program's own array words are. */
+/* Load array k (0 .. lim.arrays - 1) from the host (a plugin's results):
+ * n <= lim.cells values from the start, the rest 0, the pointer at the
+ * start; snapshotted as part of the open block, as the program's own array
+ * words are. */
 void vm_load_array(struct vm *vm, int k, const double *v, int n);
 
 /* Block number of block index b (0 when it has none). */
-static inline unsigned vm_block_number(const struct vm *vm, uint32_t b)
+static inline uint32_t vm_block_number(const struct vm *vm, uint32_t b)
 {
   return vm->p->blocks[b].number;
 }

@@ -26,7 +26,7 @@ void s42_error_diag(const struct s42_error *e, struct diag *g)
   snprintf(g->msg, sizeof g->msg, "%.*s", (int)sizeof g->msg - 1, e->msg);
 }
 
-void s42_error_machine(const struct s42_error *e, int en, char *buf, size_t n)
+void s42_error_machine(const struct s42_error *e, const struct program *p, int en, char *buf, size_t n)
 {
-  report_machine_msg(buf, n, e->code, e->number, e->aux, en);
+  report_machine_msg(buf, n, p, e->code, e->number, e->aux, en);
 }

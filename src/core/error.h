@@ -21,7 +21,9 @@ struct s42_error {
 void s42_error_of_diag(struct s42_error *e, const struct diag *g);
 /* As a diagnostic, to print with diag_print_in. */
 void s42_error_diag(const struct s42_error *e, struct diag *g);
-/* The machine's own message: "помилка в КП №5: ділення на нуль". */
-void s42_error_machine(const struct s42_error *e, int en, char *buf, size_t n);
+/* The machine's own message, in the texts of program p (its dialect's;
+ * NULL: the VM's neutral ones): "помилка в КП №5: ділення на нуль". */
+struct program;
+void s42_error_machine(const struct s42_error *e, const struct program *p, int en, char *buf, size_t n);
 
 #endif

@@ -2,6 +2,7 @@
 #include "report.h"
 #include "error.h"
 #include "errors.h"
+#include "msgs.h"
 #include <math.h>
 #include <string.h>
 
@@ -99,26 +100,18 @@ void report_row(void *ctx, const struct session *s, const struct sess_row *r)
   }
 }
 
-void report_machine_msg(char *buf, size_t n, int code, int number, int aux, int en)
+void report_machine_msg(char *buf, size_t n, const struct program *p, int code, int number, int aux, int en)
 {
-  char nb[16];
-  if (number > 0)
-    snprintf(nb, sizeof nb, "%d", number);
-  else
-    strcpy(nb, "-");
-  if (code == S42_E_ARRAYP || code == S42_E_ARRAYM)
-    snprintf(buf, n, en ? "error in block %s: array %d bound broken %s" : "помилка в КП №%s: Порушена межа масиву %d %s",
-             nb, aux, code == S42_E_ARRAYP ? "+" : "–");
-  else
-    snprintf(buf, n, en ? "error in block %s: %s" : "помилка в КП №%s: %s", nb, err_title(code, en));
+  vm_msg_machine(buf, n, p ? p->msgs : NULL, code, number, aux, en);
 }
 
-void report_dump(FILE *f, const char *status, const struct s42_error *err, int en, const struct session *s)
+void report_dump(FILE *f, const char *status, const struct s42_error *err, const struct program *p, int en,
+                 const struct session *s)
 {
   fprintf(f, "{\"status\":\"%s\",\"error\":", status);
   if (err) {
     char machine[200];
-    s42_error_machine(err, en, machine, sizeof machine);
+    s42_error_machine(err, p, en, machine, sizeof machine);
     fprintf(f, "{\"code\":\"%s\",\"n\":", err_code(err->code));
     if (err->number >= 0)
       fprintf(f, "%d", err->number);
@@ -162,9 +155,9 @@ void report_dump(FILE *f, const char *status, const struct s42_error *err, int e
   json_num(f, vm->reg[REG_F]);
   static const char *const wheel[] = {"off", "cw", "ccw"};
   fprintf(f, ",\"wheel\":\"%s\",\"arrays\":[", wheel[s->m.wheel]);
-  for (int a = 0; a < 2; a++) {
+  for (uint32_t a = 0; a < s->p->lim.arrays; a++) {
     fprintf(f, "%s{\"ptr\":%d,\"len\":%d,\"cells\":[", a ? "," : "", vm->arr[a].ptr, vm->arr[a].len);
-    for (int i = 0; i < VM_ACELLS; i++) {
+    for (uint32_t i = 0; i < s->p->lim.cells; i++) {
       if (i)
         fputc(',', f);
       json_num(f, vm->arr[a].cell[i]);

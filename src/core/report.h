@@ -20,8 +20,11 @@ void json_num(FILE *f, double v);
  * program did not compile (err then names the first check-time error);
  * err NULL: "error":null.  en: the machine message's language. */
 struct s42_error;
-void report_dump(FILE *f, const char *status, const struct s42_error *err, int en, const struct session *s);
-/* The machine message for an error: "помилка в КП №n: ..." */
-void report_machine_msg(char *buf, size_t n, int code, int number, int aux, int en);
+void report_dump(FILE *f, const char *status, const struct s42_error *err, const struct program *p, int en,
+                 const struct session *s);
+/* The machine's message for an error, in the texts of program p (its
+ * dialect's table, vm/msgs.h; NULL: the VM's neutral ones): the 2С42-65's
+ * "помилка в КП №n: ..." (number <= 0: "-"). */
+void report_machine_msg(char *buf, size_t n, const struct program *p, int code, int number, int aux, int en);
 
 #endif

@@ -114,7 +114,7 @@ void sess_show_error(struct session *s)
   struct s42_error e;
   char m[200];
   sess_error(s, &e);
-  s42_error_machine(&e, s->en, m, sizeof m);
+  s42_error_machine(&e, s->p, s->en, m, sizeof m);
   screen_message(&s->scr, m);
 }
 
@@ -250,7 +250,7 @@ static int h_set_param(struct s42_block *b, int n, double v)
 
 static int h_load_array(struct s42_block *b, int array, const double *v, int n)
 {
-  if (array < 1 || array > 2 || n < 0 || n > VM_ACELLS || (n && !v))
+  if (array < 1 || array > (int)b->s->p->lim.arrays || n < 0 || n > (int)b->s->p->lim.cells || (n && !v))
     return -1;
   for (int i = 0; i < n; i++)   /* the cells' range, as array words have it (E-RANGE) */
     if (!(fabs(v[i]) <= 9999999))

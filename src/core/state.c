@@ -249,7 +249,7 @@ static void check_payload(struct chk *c, const struct state_payload *pl)
     refuse(c, "code address is %u, not %u where the restart block starts", pl->pc, b->code);
   if (pl->blocks > STATE_BLOCKS_MAX)
     refuse(c, "count of executed blocks is %llu, over 2^53", (unsigned long long)pl->blocks);
-  ints(c, "sub call depth", pl->depth, 0, VM_MAXDEPTH);
+  ints(c, "sub call depth", pl->depth, 0, p->lim.depth < VM_DEPTH_MAX ? p->lim.depth : VM_DEPTH_MAX);
   if (!c->bad)
     check_frames(c, pl);
   /* parameters and the machine's registers */
@@ -265,16 +265,28 @@ static void check_payload(struct chk *c, const struct state_payload *pl)
     snprintf(what, sizeof what, "unused register %d", r);
     range(c, what, pl->reg[r], 0, 0, 0);
   }
-  for (int a = 0; a < 2; a++) {
+  /* the program's arrays, then what it has not: 0 */
+  const int narr = (int)p->lim.arrays, ncell = (int)p->lim.cells;
+  for (int a = 0; a < VM_ARRAYS_MAX; a++) {
     const struct vm_array *ar = &pl->arr[a];
+    char v[40];
+    if (a >= narr) {
+      int i = 0;
+      while (i < VM_CELLS_MAX && ar->cell[i] == 0)
+        i++;
+      if (ar->ptr || ar->len || i < VM_CELLS_MAX)
+        refuse(c, "array %d is not empty, and the program has %d array%s", a + 1, narr, narr == 1 ? "" : "s");
+      continue;
+    }
     snprintf(what, sizeof what, "array %d pointer", a + 1);
-    ints(c, what, ar->ptr, 0, VM_ACELLS);
+    ints(c, what, ar->ptr, 0, ncell);
     snprintf(what, sizeof what, "array %d length", a + 1);
-    ints(c, what, ar->len, 0, VM_ACELLS);
-    for (int i = 0; i < VM_ACELLS; i++) {
+    ints(c, what, ar->len, 0, ncell);
+    for (int i = 0; i < VM_CELLS_MAX; i++) {
       snprintf(what, sizeof what, "array %d cell %d", a + 1, i);
-      char v[40];
-      if (i < ar->len || ar->len < 0)
+      if (i >= ncell && ar->cell[i] != 0)
+        refuse(c, "%s is %s, past the array's last cell %d", what, num(v, sizeof v, ar->cell[i]), ncell - 1);
+      else if (i < ar->len || ar->len < 0)
         range(c, what, ar->cell[i], -R_MAX, R_MAX, 0);
       else if (ar->cell[i] != 0)   /* past the length a cell is always 0 */
         refuse(c, "%s is %s, past the array's length %d", what, num(v, sizeof v, ar->cell[i]), ar->len);

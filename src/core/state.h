@@ -14,7 +14,8 @@
 #include <stdint.h>
 
 #define STATE_MAGIC "S42STATE"
-#define STATE_VERSION 3u  /* 2: code addresses of the superinstructions; plugin states; 3: CMPCK/CMPCR */
+#define STATE_VERSION 4u  /* 2: code addresses of the superinstructions; plugin states; 3: CMPCK/CMPCR;
+                             4: frames and arrays at the VM's upper bounds (the program's limits) */
 #define STATE_PLUGS 8
 #define STATE_PLUG_MAX 512
 /* Positions and the block count stay within 2^53, where a double (a JSON
@@ -38,9 +39,9 @@ struct state_payload {
   uint32_t block, pc;
   uint64_t blocks;
   double reg[VM_NREG];
-  struct vm_array arr[2];
+  struct vm_array arr[VM_ARRAYS_MAX];   /* the program's lim.arrays and lim.cells used, the rest 0 */
   int32_t depth;
-  struct vm_frame frames[VM_MAXDEPTH];
+  struct vm_frame frames[VM_DEPTH_MAX]; /* depth of them (at most the program's lim.depth) */
   int64_t pos[4];
   double t;
   int32_t wheel, override_pct, override_allowed, corr_allowed;

@@ -1006,7 +1006,7 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
         const struct vm_error *e = &r->s.vm.err;
         b = &r->s.p->blocks[e->block];
         fprintf(stderr, "%s:%u:%u: note: %s: the cycle stopped with %s (%s); reset (coil 4) to start again\n",
-                r->file, b->line, e->col ? e->col : b->col, bname(b->number ? b->number : -1, nb),
+                r->file, b->line, e->col ? e->col : b->col, bname(b->number ? (int)b->number : -1, nb),
                 err_code(e->code), e->msg);
       }
     }
@@ -1177,7 +1177,7 @@ static int headless(const struct opts *opt, struct plot *plot)
       const struct diag *g = diag_first_error(&d);
       struct s42_error de;
       s42_error_of_diag(&de, g);
-      report_dump(stdout, "error", &de, o.en, NULL);
+      report_dump(stdout, "error", &de, &p, o.en, NULL);
     }
     prog_free(&p);
     diag_free(&d);
@@ -1220,7 +1220,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
   for (size_t i = 0; i < r.ops.nat; i++)
     for (size_t b = 0; b < p.nblocks; b++)
-      if (p.blocks[b].number == r.ops.at[i].at_number)
+      if ((int)p.blocks[b].number == r.ops.at[i].at_number)
         r.watch[b] = 1;
   for (size_t b = 0; b < p.nblocks; b++)   /* M15 blocks save the restart state when they start */
     if ((kp_attr(&p, b)->m >> 15) & 1)
@@ -1252,7 +1252,7 @@ static int headless(const struct opts *opt, struct plot *plot)
       const struct prog_block *b = &p.blocks[fb];
       fprintf(stderr, "s42: %s\n", why);
       fprintf(stderr, "%s:%u:%u: note: %s: the first block that needs it\n", o.program, b->line, b->col,
-              bname(b->number ? b->number : -1, nbuf));
+              bname(b->number ? (int)b->number : -1, nbuf));
       headless_free(&r, &p, &d, src);
       return EXIT_USAGE;
     }
@@ -1372,7 +1372,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     s42_error_diag(&de, &g);
     diag_print_in(stderr, &d, &g);
     char machine[200];
-    s42_error_machine(&de, o.en, machine, sizeof machine);
+    s42_error_machine(&de, &p, o.en, machine, sizeof machine);
     fprintf(stderr, "%s:%u:%u: note: %s: %s\n", o.program, de.line, de.col,
             o.en ? "the machine shows" : "на екрані", machine);
     dep = &de;
@@ -1381,14 +1381,14 @@ static int headless(const struct opts *opt, struct plot *plot)
   if (o.operator_file && ran)
     ops_warn_unused(&r.ops, r.next, r.unfit, r.runs, o.operator_file, stderr);
   if (o.dump)
-    report_dump(stdout, st, dep, o.en, &r.s);
+    report_dump(stdout, st, dep, &p, o.en, &r.s);
   if (plot)
     plot_result(plot, &r.s, status, dep ? err_code(dep->code) : NULL, dep ? dep->number : -1, dep ? dep->line : 0);
   if (o.screen) {
     uint32_t grid[SCR_ROWS][SCR_COLS];
     if (dep) {
       char machine[200];
-      s42_error_machine(dep, o.en, machine, sizeof machine);
+      s42_error_machine(dep, &p, o.en, machine, sizeof machine);
       sess_show_message(&r.s, machine);
     }
     sess_screen(&r.s, grid);

@@ -49,7 +49,7 @@
 #define SCR_W (SCR_COLS + 2)
 #define SIDE_MIN 24         /* narrowest listing worth drawing beside the machine */
 #define MACH_W 20           /* the machine pane when the terminal is narrow */
-#define NPITEM (114 + 4 + 2 * (1 + VM_ACELLS))   /* the parameters page: R0-R113, D1 TK UG F, two arrays */
+#define NPITEM (114 + 4 + 2 * (1 + KP_CELLS))   /* the parameters page: R0-R113, D1 TK UG F, two arrays */
 #define PCOLW 22            /* one column of the parameters page */
 #define EST_SECONDS 5       /* the estimate's computation gives up after this (a loop): "at least" */
 #define BIT(x, n) (((x) >> (n)) & 1)
@@ -1309,7 +1309,7 @@ static void pitem(const struct tui *t, int i, char *b, size_t n, int *reg)
     snprintf(b, n, "%-5s%14.10g", name[i - 114], vm ? vm->reg[i] : 0.0);
     return;
   }
-  int k = (i - 118) / (1 + VM_ACELLS), c = (i - 118) % (1 + VM_ACELLS) - 1;
+  int k = (i - 118) / (1 + KP_CELLS), c = (i - 118) % (1 + KP_CELLS) - 1;
   const struct vm_array *a = vm ? &vm->arr[k] : NULL;
   if (c < 0)
     snprintf(b, n, "array %d: ptr %d len %d", k + 1, a ? a->ptr : 0, a ? a->len : 0);
@@ -1796,12 +1796,12 @@ static int shown_block(const struct tui *t, unsigned *line)
   if (t->s.state == SE_ERROR && t->s.vm.err.block < t->prog.nblocks) {
     const struct prog_block *b = &t->prog.blocks[t->s.vm.err.block];
     *line = b->line;
-    return b->number ? b->number : -1;
+    return b->number ? (int)b->number : -1;
   }
   if (t->s.state == SE_WAIT || !t->cur.valid) {
     const struct prog_block *b = &t->prog.blocks[t->s.vm.cur];
     *line = b->line;
-    return b->number ? b->number : -1;
+    return b->number ? (int)b->number : -1;
   }
   *line = t->cur.line;
   return t->cur.n;
@@ -1929,7 +1929,7 @@ static void draw_page(struct tui *t, const struct layout *l)
       char b[64] = "";
       if (i < NPITEM)
         pitem(t, i, b, sizeof b, &reg);
-      attr_t a = i == t->psel && focus ? A_REVERSE : i >= 118 && (i - 118) % (1 + VM_ACELLS) == 0 ? A_BOLD : A_NORMAL;
+      attr_t a = i == t->psel && focus ? A_REVERSE : i >= 118 && (i - 118) % (1 + KP_CELLS) == 0 ? A_BOLD : A_NORMAL;
       text(l->py + 1 + r, l->lx + 1 + c * cw, cw - (c + 1 < ncol ? 1 : 0), b, a, 1);
     }
 }

@@ -45,7 +45,7 @@ static int set(const char *f, const char *v)
   if (strcmp(f, "t") == 0) { pl.t = d; return 0; }
   if (strcmp(f, "dirtext") == 0) { snprintf(pl.dirtext, sizeof pl.dirtext, "%s", v); return 0; }
   if (sscanf(f, "r.%d", &a) == 1 && a >= 0 && a < VM_NREG) { pl.reg[a] = d; return 0; }
-  if (sscanf(f, "arr.%d.cell.%d", &a, &b) == 2 && a >= 1 && a <= 2 && b >= 0 && b < VM_ACELLS) {
+  if (sscanf(f, "arr.%d.cell.%d", &a, &b) == 2 && a >= 1 && a <= 2 && b >= 0 && b < VM_CELLS_MAX) {
     pl.arr[a - 1].cell[b] = d;
     return 0;
   }
@@ -54,7 +54,7 @@ static int set(const char *f, const char *v)
     if (strcmp(sub, "len") == 0) { pl.arr[a - 1].len = (int)i; return 0; }
     return -1;
   }
-  if (sscanf(f, "frame.%d.%15s", &a, sub) == 2 && a >= 1 && a <= VM_MAXDEPTH) {
+  if (sscanf(f, "frame.%d.%15s", &a, sub) == 2 && a >= 1 && a <= VM_DEPTH_MAX) {
     struct vm_frame *fr = &pl.frames[a - 1];
     if (strcmp(sub, "ret") == 0) { fr->ret = (uint32_t)i; return 0; }
     if (strcmp(sub, "start") == 0) { fr->start = (uint32_t)i; return 0; }

@@ -361,6 +361,30 @@ START_TEST(positions_between_blocks)
 }
 END_TEST
 
+/* Block numbers are 32 bits (2У22 5 digits, FMS-3000 7): input register 3
+ * shows one that fits in 16 bits and 0 for one above 65535. */
+START_TEST(block_number_above_16_bits)
+{
+  static const uint8_t rd[] = {4, 0, 0, 0, 22};
+  mm.idle = 0;
+  t.p.blocks[s->vm.cur].number = 65535;
+  req(rd, sizeof rd, 1.0);
+  ck_assert_uint_eq(reg(3), 65535);
+  t.p.blocks[s->vm.cur].number = 65536;
+  req(rd, sizeof rd, 1.0);
+  ck_assert_uint_eq(reg(3), 0);
+  t.p.blocks[s->vm.cur].number = 9999999;
+  req(rd, sizeof rd, 1.0);
+  ck_assert_uint_eq(reg(3), 0);
+  mm.motion.active = 1;                   /* a move of that block, under way */
+  mm.motion.start = 1;
+  mm.motion.end = 2;
+  mm.motion.block = sess_block_number(s);
+  req(rd, sizeof rd, 1.5);
+  ck_assert_uint_eq(reg(3), 0);
+}
+END_TEST
+
 START_TEST(read_only_device)
 {
   mm.idle = 1;
@@ -601,6 +625,7 @@ Suite *suite_modbus(void)
   tcase_add_test(tc, exceptions);
   tcase_add_test(tc, keys_in_order);
   tcase_add_test(tc, positions_between_blocks);
+  tcase_add_test(tc, block_number_above_16_bits);
   tcase_add_test(tc, read_only_device);
   tcase_add_test(tc, allow_lists);
   suite_add_tcase(su, tc);

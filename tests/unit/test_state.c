@@ -335,7 +335,7 @@ START_TEST(random_edits_refused_or_safe)
     ck_assert_msg(ev == SE_END || ev == SE_ERROR, "iteration %d: event %d", it, ev);
     for (int a = 0; a < 2; a++) {
       ck_assert_int_ge(s->vm.arr[a].ptr, 0);
-      ck_assert_int_le(s->vm.arr[a].ptr, VM_ACELLS);
+      ck_assert_int_le(s->vm.arr[a].ptr, KP_CELLS);
     }
     ck_assert(isfinite(s->m.t));
   }

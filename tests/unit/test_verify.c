@@ -7,11 +7,13 @@
  * tripping a sanitizer.  The make target passes S42_SRCDIR and S42_PLUGINS. */
 #include "suites.h"
 #include "errors.h"
+#include "msgs.h"
 #include "opcodes.h"
 #include "plugin.h"
 #include "session.h"
 #include "verify.h"
 #include <dirent.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -274,8 +276,8 @@ START_TEST(operand_out_of_range)
   refused(22, INS(OP_SET, 144), "pc 22: SET into 144, neither a register (0..127) nor a word slot (128..143)");
   refused(6, INS(OP_AWR, 2 | 1 << 2), "pc 6: AWR of array 3 but there are 2 arrays");
   refused(47, INS(OP_ARD, 0), "pc 47: ARD in mode 0, not 1 (then advance), 2 (stay) or 3 (back first)");
-  refused(20, INS(OP_APTR0, 4), "pc 20: APTR0 of arrays 4, not 1, 2 or 3 (both)");
-  refused(57, INS(OP_AZERO, 0), "pc 57: AZERO of arrays 0, not 1, 2 or 3 (both)");
+  refused(20, INS(OP_APTR0, 4), "pc 20: APTR0 of arrays 4, not a mask of the 2 arrays (1..3)");
+  refused(57, INS(OP_AZERO, 0), "pc 57: AZERO of arrays 0, not a mask of the 2 arrays (1..3)");
   refused(7, INS(OP_SYNC, 1), "pc 7: SYNC takes no operand but has 1");
   /* a CMP relation: 0 (an empty relation, "never") is fine, 8 is not */
   load("N1 R1+1 P(R1::R2)1\nN2 M2\n");
@@ -377,7 +379,7 @@ START_TEST(entry_and_end)
   t.p.ncode = 60;
   ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
   ck_assert_str_eq(msg, "pc 59: the code ends with COMMIT, which runs on past its end (the last instruction must be "
-                   "END, JMP, CJMP or RET)");
+                   "END, JMP, CJMP, RET or RETEND)");
   t.p.ncode = 0;
   ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
   ck_assert_str_eq(msg, "the program has no instructions");
@@ -409,6 +411,47 @@ START_TEST(max_stack_understated)
   ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
   ck_assert_str_eq(msg, "block 4 (pc 35) needs a stack of 4 values but the program records 3");
   t.p.max_stack = 400;   /* more than needed is no error */
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), 0);
+}
+END_TEST
+
+/* The program's limits and message table are part of what is verified:
+ * within what the VM holds, each range a range, the angle unit a unit, and
+ * every format of the table taking the arguments the VM gives it. */
+START_TEST(limits_and_messages)
+{
+  load(rich);
+  struct prog_limits keep = t.p.lim;
+  t.p.lim.depth = VM_DEPTH_MAX + 1;
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "the program nests calls 257 deep; the VM holds 256");
+  t.p.lim = keep;
+  t.p.lim.arrays = VM_ARRAYS_MAX + 1;
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "the program has 5 arrays of 15 cells; the VM holds 4 of 64");
+  t.p.lim = keep;
+  t.p.lim.arrays = 1;   /* the rich program uses array 2 (T21 in N3) */
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 20: APTR0 of arrays 3, not a mask of the 1 array (1..1)");
+  t.p.lim = keep;
+  t.p.lim.param_lo = NAN;
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "the parameter range nan..9999999 is empty");
+  t.p.lim = keep;
+  t.p.lim.angle = INFINITY;
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "the angle unit is inf degrees, not a positive number");
+  t.p.lim = keep;
+  t.p.lim.trig_max = -1;
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "a function's domain is empty (SIN COS TAN |x| <= -1, ATAN |x| <= 9999999, LOG 0 < x <= 9999999)");
+  t.p.lim = keep;
+  static const struct vm_msgs bad = {.name = "a test", .screen = {[1] = "error %d"}};
+  t.p.msgs = &bad;
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "the message table of a test: error line (English) \"error %d\": conversion 1 takes an int "
+                        "where the argument is a string");
+  t.p.msgs = NULL;   /* the VM's own texts */
   ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), 0);
 }
 END_TEST
@@ -519,6 +562,7 @@ Suite *suite_verify(void)
   tcase_add_test(tc, block_mismatch);
   tcase_add_test(tc, entry_and_end);
   tcase_add_test(tc, max_stack_understated);
+  tcase_add_test(tc, limits_and_messages);
   suite_add_tcase(s, tc);
 
   tc = tcase_create("vm");

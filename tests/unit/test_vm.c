@@ -1,18 +1,27 @@
 /* The VM (vm/vm.h) on compiled programs, driven directly: arithmetic,
  * functions and their domains, arrays, transactions, subs, limits, the
- * operational jump, watched blocks, and many VMs on one program. */
+ * operational jump, watched blocks, and many VMs on one program; and on
+ * hand-assembled programs, what the VM takes from the program -- the
+ * limits, the message table, 32-bit block numbers -- and RETEND. */
 #include "suites.h"
 #include "ast.h"
+#include "disasm.h"
 #include "errors.h"
 #include "kp.h"
+#include "kpmsg.h"
+#include "msgs.h"
+#include "verify.h"
 #include "vmmath.h"
 #include "opcodes.h"
+#include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 static struct tprog t;
 static struct vm *vm;
+static struct program hp;   /* a hand-assembled program */
 
 static void setup(void)
 {
@@ -20,12 +29,67 @@ static void setup(void)
   prog_init(&t.p);
   diag_init(&t.d, "t.kp");
   vm = calloc(1, sizeof *vm);
+  prog_init(&hp);
 }
 
 static void teardown(void)
 {
   tp_free(&t);
   free(vm);
+  prog_free(&hp);
+}
+
+/* ---- hand assembly: hblock opens a block (its BLOCK), hemit adds an
+ * instruction; each returns the pc of what it added ---- */
+
+static uint32_t hemit(int op, uint32_t a)
+{
+  long pc = prog_emit(&hp, INS(op, a), 1);
+  ck_assert_int_ge(pc, 0);
+  return (uint32_t)pc;
+}
+
+static uint32_t hblock(uint32_t number, uint16_t unit)
+{
+  struct prog_block b = {.code = (uint32_t)hp.ncode, .line = (uint32_t)hp.nblocks + 1, .number = number, .col = 1,
+                         .unit = unit};
+  long i = prog_block_add(&hp, &b);
+  ck_assert_int_ge(i, 0);
+  return hemit(OP_BLOCK, (uint32_t)i);
+}
+
+/* The hand-assembled program, entered at entry, must verify; then a VM on it. */
+static void hstart(uint32_t entry)
+{
+  char msg[300];
+  uint32_t need;
+  hp.entry = entry;
+  hp.max_stack = VM_STACK;
+  ck_assert_msg(prog_verify_need(&hp, &need, msg, sizeof msg) == 0, "%s", msg);
+  hp.max_stack = need;
+  ck_assert_msg(prog_verify(&hp, msg, sizeof msg) == 0, "%s", msg);
+  ck_assert_int_eq(vm_init(vm, &hp), 0);
+}
+
+/* A sub of one block at pc 0 (block 0, number sub_n, unit 1) that adds 1 to
+ * r1 and ends with `end`; the main program calls it `count` times, then
+ * ends with main_end.  Returns the main program's entry. */
+static uint32_t sub_and_main(int end, uint32_t count, int main_end)
+{
+  hblock(10, 1);
+  hemit(OP_REG, 1);
+  hemit(OP_ADDI, 1);
+  hemit(OP_SETP, 1);
+  hemit(OP_COMMIT, 0);
+  hemit(end, 0);
+  uint32_t entry = hblock(1, 0);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_INT, count);
+  hemit(OP_CALL, 0);
+  hblock(2, 0);
+  hemit(OP_COMMIT, 0);
+  hemit(main_end, 0);
+  return entry;
 }
 
 /* Compile (must succeed) and start a VM on it. */
@@ -763,15 +827,485 @@ START_TEST(vm_math_direct)
 {
   double r;
   char msg[100];
-  ck_assert_int_eq(vm_math(OP_DIV, 1, 0, &r, msg, sizeof msg), S42_E_DIV0);
-  ck_assert_int_eq(vm_math(OP_POW, 0, -1, &r, msg, sizeof msg), S42_E_DIV0);
-  ck_assert_int_eq(vm_math(OP_POW, -8, 1.0 / 3, &r, msg, sizeof msg), S42_E_DOMAIN);
-  ck_assert_int_eq(vm_math(OP_MUL, 1e300, 1e300, &r, msg, sizeof msg), S42_E_RANGE);
-  ck_assert_int_eq(vm_math(OP_LOG, 0, 0, &r, msg, sizeof msg), S42_E_DOMAIN);
-  ck_assert_int_eq(vm_math(OP_NEG, 3, 0, &r, msg, sizeof msg), 0);
+  ck_assert_int_eq(vm_math(&t.p, OP_DIV, 1, 0, &r, msg, sizeof msg), S42_E_DIV0);
+  ck_assert_int_eq(vm_math(&t.p, OP_POW, 0, -1, &r, msg, sizeof msg), S42_E_DIV0);
+  ck_assert_int_eq(vm_math(&t.p, OP_POW, -8, 1.0 / 3, &r, msg, sizeof msg), S42_E_DOMAIN);
+  ck_assert_int_eq(vm_math(&t.p, OP_MUL, 1e300, 1e300, &r, msg, sizeof msg), S42_E_RANGE);
+  ck_assert_int_eq(vm_math(&t.p, OP_LOG, 0, 0, &r, msg, sizeof msg), S42_E_DOMAIN);
+  ck_assert_int_eq(vm_math(&t.p, OP_NEG, 3, 0, &r, msg, sizeof msg), 0);
   ck_assert_double_eq(r, -3);
-  ck_assert_int_eq(vm_math(OP_POW, 2, 10, &r, msg, sizeof msg), 0);
+  ck_assert_int_eq(vm_math(&t.p, OP_POW, 2, 10, &r, msg, sizeof msg), 0);
   ck_assert_double_eq(r, 1024);
+}
+END_TEST
+
+/* ---- what the VM takes from the program ---- */
+
+/* Every detail message a 2С42 run can raise, byte for byte as before the
+ * texts moved into the dialect's table (kpmsg.h). */
+START_TEST(kp_messages_exact)
+{
+  static const struct { const char *src, *msg; } c[] = {
+    {"N1 R1+2 R2+ASI(R1)\nN2 M2\n", "ASI(2): argument outside -1..1"},
+    {"N1 R1-11/10 R2+ACO(R1)\nN2 M2\n", "ACO(-1.1): argument outside -1..1"},
+    {"N1 R0+2304001 R1+SI(R0)\nN2 M2\n", "SI(2304001): argument outside -2304000..2304000"},
+    {"N1 R0-2304001 R1+CO(R0)\nN2 M2\n", "CO(-2304001): argument outside -2304000..2304000"},
+    {"N1 R0+2304001 R1+TG(R0)\nN2 M2\n", "TG(2304001): argument outside -2304000..2304000"},
+    {"N1 R0+90000 R1+TG(R0)\nN2 M2\n", "TG(90000): tangent of an odd multiple of 90 degrees"},
+    {"N1 R0+9999999 R1+ATG(R0+1)\nN2 M2\n", "ATG(10000000): argument outside -9999999..9999999"},
+    {"N1 R1+LO(R0)\nN2 M2\n", "LO(0): argument outside 0 (excluded)..9999999"},
+    {"N1 R0+9999999 R1+LO(R0+1)\nN2 M2\n", "LO(10000000): argument outside 0 (excluded)..9999999"},
+    {"N1 R1+5\nN2 R2+1 R3+R1/R0\nN3 M2\n", "division of 5 by zero"},
+    {"N1 R1-4 R2+R1%%(1/2)\nN2 M2\n", "power: negative base -4 with the fractional exponent 0.5"},
+    {"N1 R1-1 R2+R0%%R1\nN2 M2\n", "power: zero to the negative exponent -1"},
+    {"N1 R1+9999999\nN2 R2+R1+1\nN3 M2\n", "R2 = 10000000 is outside -9999999..9999999"},
+    {"N1 R1+999999\nN2 X+R1+1 F1\nN3 M2\n", "X = 1000000 is outside -999999..999999"},
+    {"N1 R1+9999999 T11+R1+1\nN2 M2\n", "array 1: value 10000000 outside -9999999..9999999"},
+    {"N1 R1+T31\nN2 M2\n", "array 1: pointer already at cell 0, cannot move back"},
+    {"N1 TT1\nN2 R1+R1+1 T11+R1 P(R1:M:20)2\nN3 M2\n", "array 1: pointer at 15, past the last cell 14"},
+  };
+  for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+    ck_assert_int_eq(run(c[i].src), VM_EV_ERROR);
+    ck_assert_str_eq(vm->err.msg, c[i].msg);
+  }
+  char src[1024];
+  ck_assert_int_eq(run(chain(10, src, sizeof src)), VM_EV_ERROR);
+  ck_assert_str_eq(vm->err.msg, "a 9th nested sub call (at most 8 levels)");
+  load("N1 R1+R1+1 P(R1:M:1000)1\nN2 M2\n");
+  vm->max_blocks = 5;
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  ck_assert_str_eq(vm->err.msg, "the budget of 5 blocks ran out (--max-blocks)");
+  /* M17 at depth 0, which no 2С42 program that compiles reaches */
+  hp.msgs = &kp_msgs;
+  hstart(sub_and_main(OP_RET, 1, OP_RET));
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_SUB, 2);
+  ck_assert_str_eq(vm->err.msg, "M17 reached in the main program");
+}
+END_TEST
+
+/* The 2С42's program carries the 2С42-65's limits and table, complete (no
+ * text falls back to the VM's), and the table's formats pass the check. */
+START_TEST(kp_program_carries_limits_and_texts)
+{
+  load("N1 M2\n");
+  const struct prog_limits *l = &t.p.lim;
+  ck_assert_uint_eq(l->depth, 8);
+  ck_assert_uint_eq(l->arrays, 2);
+  ck_assert_uint_eq(l->cells, 15);
+  ck_assert_double_eq(l->param_lo, -9999999);
+  ck_assert_double_eq(l->param_hi, 9999999);
+  ck_assert_double_eq(l->cell_lo, -9999999);
+  ck_assert_double_eq(l->cell_hi, 9999999);
+  ck_assert_double_eq(l->angle, 0.001);
+  ck_assert_double_eq(180.0 / l->angle, 180000.0);   /* exact: the unit of SI CO TG is as it was */
+  ck_assert_double_eq(l->trig_max, 2304000);
+  ck_assert_double_eq(l->atan_max, 9999999);
+  ck_assert_double_eq(l->log_max, 9999999);
+  ck_assert_ptr_eq(t.p.msgs, &kp_msgs);
+  char msg[200];
+  ck_assert_msg(vm_msgs_check(&kp_msgs, msg, sizeof msg) == 0, "%s", msg);
+  ck_assert_msg(vm_msgs_check(&vm_msgs_neutral, msg, sizeof msg) == 0, "%s", msg);
+  for (int en = 0; en < 2; en++) {
+    ck_assert_ptr_nonnull(kp_msgs.screen[en]);
+    for (int e = 0; e < S42_E_COUNT; e++)
+      ck_assert_msg(kp_msgs.title[en][e] != NULL, "no title for %s", err_code(e));
+  }
+  for (int i = 0; i < VMSG__COUNT; i++)
+    ck_assert_msg(kp_msgs.detail[i] != NULL, "no detail %d", i);
+}
+END_TEST
+
+/* The machine's line: the dialect's title (with the array's number) in its
+ * screen format; the VM's neutral line with no table. */
+START_TEST(machine_line_from_the_table)
+{
+  char buf[200];
+  vm_msg_machine(buf, sizeof buf, &kp_msgs, S42_E_ARC, 12, 0, 0);
+  ck_assert_str_eq(buf, "помилка в КП №12: помилка дуги");
+  vm_msg_machine(buf, sizeof buf, &kp_msgs, S42_E_ARC, -1, 0, 1);
+  ck_assert_str_eq(buf, "error in block -: arc error");
+  vm_msg_machine(buf, sizeof buf, &kp_msgs, S42_E_ARRAYP, 3, 2, 0);
+  ck_assert_str_eq(buf, "помилка в КП №3: Порушена межа масиву 2 +");
+  vm_msg_machine(buf, sizeof buf, &kp_msgs, S42_E_ARRAYM, 3, 1, 1);
+  ck_assert_str_eq(buf, "error in block 3: array 1 bound broken –");
+  vm_msg_machine(buf, sizeof buf, &kp_msgs, S42_E_NEST, 9999999, 0, 0);
+  ck_assert_str_eq(buf, "помилка в КП №9999999: понад 8 рівнів вкладеності ПП");
+  vm_msg_machine(buf, sizeof buf, NULL, S42_E_NEST, 5, 0, 0);
+  ck_assert_str_eq(buf, "error in block 5: calls nested too deep");
+  /* a table's missing entries fall back to the VM's */
+  static const struct vm_msgs part = {.name = "part", .title = {[1] = {[S42_E_ARC] = "bad arc"}}};
+  vm_msg_machine(buf, sizeof buf, &part, S42_E_ARC, 7, 0, 1);
+  ck_assert_str_eq(buf, "error in block 7: bad arc");
+  vm_msg_machine(buf, sizeof buf, &part, S42_E_ARC, 7, 0, 0);
+  ck_assert_str_eq(buf, "error in block 7: arc error");
+  ck_assert_str_eq(vm_msg_detail(&part, VMSG_NEST), "a call %d levels deep (at most %d)");
+}
+END_TEST
+
+/* A table whose format does not take its arguments as declared is refused
+ * by the check, and by prog_verify for a program that carries it. */
+START_TEST(message_formats_checked)
+{
+  char msg[200];
+  ck_assert_int_eq(vm_format_check("a %dth call (at most %d)", "dd", msg, sizeof msg), 0);
+  ck_assert_int_eq(vm_format_check("100%% of %d", "dd", msg, sizeof msg), 0);   /* a leading part */
+  ck_assert_int_eq(vm_format_check("%5.2s|%-3u|%04x|%llu", "suuL", msg, sizeof msg), 0);
+  ck_assert_int_eq(vm_format_check("%s", "d", msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "format \"%s\": conversion 1 takes a string where the argument is an int");
+  ck_assert_int_eq(vm_format_check("%d %d", "d", msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "format \"%d %d\": conversion 2, but it has 1 argument");
+  ck_assert_int_eq(vm_format_check("%n", "d", msg, sizeof msg), -1);
+  ck_assert_int_eq(vm_format_check("%*d", "dd", msg, sizeof msg), -1);
+  ck_assert_int_eq(vm_format_check("%1$d", "d", msg, sizeof msg), -1);
+  ck_assert_int_eq(vm_format_check("%ld", "d", msg, sizeof msg), -1);
+  ck_assert_int_eq(vm_format_check("%g", "s", msg, sizeof msg), -1);
+  ck_assert_int_eq(vm_format_check("50%", "", msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "format \"50%\": it ends inside a conversion");
+  static const struct vm_msgs bad = {.name = "a bad table", .detail = {[VMSG_NEST] = "call %s too deep"}};
+  ck_assert_int_eq(vm_msgs_check(&bad, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "detail NEST \"call %s too deep\": conversion 1 takes a string where the argument is an int");
+  static const struct vm_msgs badt = {.title = {[0] = {[S42_E_ARC] = "%s"}}};
+  ck_assert_int_eq(vm_msgs_check(&badt, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "title of E-ARC (own language) \"%s\": conversion 1 takes a string where the argument is an int");
+  hp.msgs = &bad;
+  hp.entry = sub_and_main(OP_RET, 1, OP_END);
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "the message table of a bad table: detail NEST \"call %s too deep\": conversion 1 takes a "
+                        "string where the argument is an int");
+}
+END_TEST
+
+/* The call depth is the program's: the 2С42's 8 above, 3 here, with the
+ * message from the program's table or the VM's. */
+START_TEST(depth_from_the_program)
+{
+  /* a sub that calls itself: level 1 from the main program, 2, 3, then the 4th fails */
+  hblock(5, 1);
+  hemit(OP_REG, 1);
+  hemit(OP_ADDI, 1);
+  hemit(OP_SETP, 1);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_INT, 1);
+  hemit(OP_CALL, 0);
+  uint32_t entry = hblock(1, 0);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_INT, 1);
+  hemit(OP_CALL, 0);
+  hblock(2, 0);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_END, 0);
+  hp.lim.depth = 3;
+  hstart(entry);
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_NEST, 5);
+  ck_assert_str_eq(vm->err.msg, "a call 4 levels deep (at most 3)");
+  ck_assert_double_eq(R(1), 3);        /* each level's block committed before its call */
+  ck_assert_int_eq(vm->depth, 3);
+  hp.msgs = &kp_msgs;
+  hstart(entry);
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  ck_assert_str_eq(vm->err.msg, "a 4th nested sub call (at most 3 levels)");
+  /* up to the VM's bound, and no further */
+  hp.lim.depth = VM_DEPTH_MAX;
+  hstart(entry);
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  ck_assert_int_eq(vm->depth, VM_DEPTH_MAX);
+  ck_assert_double_eq(R(1), VM_DEPTH_MAX);
+  hp.lim.depth = VM_DEPTH_MAX + 1;
+  hp.msgs = NULL;
+  ck_assert_int_eq(vm_init(vm, &hp), -1);
+  ck_assert_int_eq(vm_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_LIMIT, 1);
+  ck_assert_str_eq(vm->err.msg, "the program nests calls 257 deep; this VM has 256 levels");
+  char msg[200];
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "the program nests calls 257 deep; the VM holds 256");
+}
+END_TEST
+
+/* Arrays, their cells and the value ranges are the program's. */
+START_TEST(arrays_and_ranges_from_the_program)
+{
+  /* write r1 into array 1 three times, then a fourth: E-ARRAY+ past cell 2 */
+  uint32_t entry = hblock(1, 0);
+  hemit(OP_AZERO, 1);
+  for (int i = 0; i < 4; i++) {
+    hemit(OP_REG, 1);
+    hemit(OP_AWR, 0 | 1 << 2);
+  }
+  hemit(OP_COMMIT, 0);
+  hemit(OP_END, 0);
+  hp.lim.arrays = 1;
+  hp.lim.cells = 3;
+  hstart(entry);
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_ARRAYP, 1);
+  ck_assert_str_eq(vm->err.msg, "array 1: pointer at 3, past the last cell 2");
+  ck_assert_int_eq(vm->arr[0].ptr, 0);   /* rolled back */
+  /* array 2 of a program with one array is refused before it runs */
+  hp.code[3] = INS(OP_AWR, 1 | 1 << 2);
+  char msg[200];
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 3: AWR of array 2 but there is 1 array");
+  hp.code[3] = INS(OP_AWR, 0 | 1 << 2);
+  hp.code[1] = INS(OP_AZERO, 3);
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 1: AZERO of arrays 3, not a mask of the 1 array (1..1)");
+  hp.code[1] = INS(OP_AZERO, 1);
+  /* the cell range: r1 = 5 is outside -4..4 */
+  hp.lim.cells = 4;
+  hp.lim.cell_lo = -4;
+  hp.lim.cell_hi = 4;
+  hstart(entry);
+  vm->reg[1] = 5;
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_RANGE, 1);
+  ck_assert_str_eq(vm->err.msg, "array 1: value 5 outside -4..4");
+  hstart(entry);
+  vm->reg[1] = 4;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_int_eq(vm->arr[0].len, 4);
+  ck_assert_double_eq(vm->arr[0].cell[3], 4);
+  /* the host loads no more than the program's cells, into its arrays only */
+  double v[5] = {1, 2, 3, 4, 5};
+  vm_load_array(vm, 0, v, 5);
+  ck_assert_int_eq(vm->arr[0].len, 4);
+  vm_load_array(vm, 1, v, 2);
+  ck_assert_int_eq(vm->arr[1].len, 0);
+  vm_load_array(vm, 0, v, 2);
+  ck_assert_int_eq(vm->arr[0].len, 2);
+  /* more arrays or cells than the VM holds: refused by vm_init and verify */
+  hp.lim.cells = VM_CELLS_MAX + 1;
+  ck_assert_int_eq(vm_init(vm, &hp), -1);
+  assert_error(S42_E_LIMIT, 1);
+  ck_assert_str_eq(vm->err.msg, "the program has 1 arrays of 65 cells; this VM has 4 of 64");
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "the program has 1 arrays of 65 cells; the VM holds 4 of 64");
+  hp.lim.cells = 4;
+  hp.lim.cell_lo = 1;
+  hp.lim.cell_hi = 0;
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "the array cell range 1..0 is empty");
+}
+END_TEST
+
+START_TEST(parameter_range_from_the_program)
+{
+  uint32_t entry = hblock(1, 0);
+  hemit(OP_REG, 2);
+  hemit(OP_SETP, 3);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_END, 0);
+  hp.lim.param_lo = 0;
+  hp.lim.param_hi = 100;
+  hstart(entry);
+  vm->reg[2] = -1;
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_RANGE, 1);
+  ck_assert_str_eq(vm->err.msg, "r3 = -1 is outside 0..100");
+  hp.msgs = &kp_msgs;
+  hstart(entry);
+  vm->reg[2] = 101;
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  ck_assert_str_eq(vm->err.msg, "R3 = 101 is outside 0..100");
+  hstart(entry);
+  vm->reg[2] = 100;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(3), 100);
+  /* with prog_init's limits nothing finite is out of range */
+  hp.lim.param_lo = -DBL_MAX;
+  hp.lim.param_hi = DBL_MAX;
+  hstart(entry);
+  vm->reg[2] = 1e300;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+}
+END_TEST
+
+/* The angle unit and the functions' domains: degrees here, 0.001 deg for
+ * the 2С42; constant folding takes the same (vm_math on the program). */
+START_TEST(angle_unit_and_domains_from_the_program)
+{
+  double r;
+  char msg[200];
+  hp.lim.angle = 1.0;
+  hp.lim.trig_max = 360;
+  ck_assert_int_eq(vm_math(&hp, OP_SIN, 90, 0, &r, msg, sizeof msg), 0);
+  ck_assert_double_eq(r, 1);
+  ck_assert_int_eq(vm_math(&hp, OP_ASIN, 1, 0, &r, msg, sizeof msg), 0);
+  ck_assert_double_eq(r, 90);
+  ck_assert_int_eq(vm_math(&hp, OP_ATAN, 1, 0, &r, msg, sizeof msg), 0);
+  ck_near(r, 45, 1e-12);
+  ck_assert_int_eq(vm_math(&hp, OP_TAN, 90, 0, &r, msg, sizeof msg), S42_E_DOMAIN);
+  ck_assert_str_eq(msg, "TAN(90): tangent of an odd multiple of 90 degrees");
+  ck_assert_int_eq(vm_math(&hp, OP_TAN, -270, 0, &r, msg, sizeof msg), S42_E_DOMAIN);
+  ck_assert_int_eq(vm_math(&hp, OP_TAN, 180, 0, &r, msg, sizeof msg), 0);
+  ck_assert_int_eq(vm_math(&hp, OP_COS, 361, 0, &r, msg, sizeof msg), S42_E_DOMAIN);
+  ck_assert_str_eq(msg, "COS(361): argument outside -360..360");
+  hp.lim.angle = 0.001;   /* the 2С42's unit: exactly the old arithmetic */
+  hp.lim.trig_max = 2304000;
+  ck_assert_int_eq(vm_math(&hp, OP_SIN, 20000, 0, &r, msg, sizeof msg), 0);
+  ck_assert_double_eq(r, sin(20000 * (M_PI / 180000.0)));
+  ck_assert_int_eq(vm_math(&hp, OP_ACOS, 0.5, 0, &r, msg, sizeof msg), 0);
+  ck_assert_double_eq(r, acos(0.5) / (M_PI / 180000.0));
+  ck_assert_int_eq(vm_math(&hp, OP_TAN, 90000, 0, &r, msg, sizeof msg), S42_E_DOMAIN);
+  hp.lim.atan_max = 10;
+  hp.lim.log_max = 100;
+  ck_assert_int_eq(vm_math(&hp, OP_ATAN, -11, 0, &r, msg, sizeof msg), S42_E_DOMAIN);
+  ck_assert_str_eq(msg, "ATAN(-11): argument outside -10..10");
+  ck_assert_int_eq(vm_math(&hp, OP_LOG, 101, 0, &r, msg, sizeof msg), S42_E_DOMAIN);
+  ck_assert_str_eq(msg, "LOG(101): argument outside 0 (excluded)..100");
+  hp.msgs = &kp_msgs;
+  ck_assert_int_eq(vm_math(&hp, OP_LOG, 101, 0, &r, msg, sizeof msg), S42_E_DOMAIN);
+  ck_assert_str_eq(msg, "LO(101): argument outside 0 (excluded)..100");
+  /* a unit that is no unit is refused by verify */
+  hp.entry = hblock(1, 0);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_END, 0);
+  hp.lim.angle = 0;
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "the angle unit is 0 degrees, not a positive number");
+  hp.lim.angle = 1;
+  hp.lim.log_max = 0;
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+}
+END_TEST
+
+/* Block numbers are 32 bits: the 2У22's 5 digits, FMS-3000's 7. */
+START_TEST(block_numbers_32_bit)
+{
+  hblock(9999999, 1);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_RET, 0);
+  uint32_t entry = hblock(99999, 0);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_INT, 1);
+  hemit(OP_CALL, 0);
+  hblock(4294967295u, 0);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_END, 0);
+  hstart(entry);
+  ck_assert_uint_eq(vm_block_number(vm, 0), 9999999);
+  ck_assert_uint_eq(vm_block_number(vm, 1), 99999);
+  ck_assert_uint_eq(vm_block_number(vm, 2), 4294967295u);
+  vm->start_all = 1;
+  ck_assert_int_eq(vm_run(vm), VM_EV_START);
+  ck_assert_uint_eq(vm_block_number(vm, vm->cur), 99999);
+  ck_assert_int_eq(vm_run(vm), VM_EV_START);
+  ck_assert_uint_eq(vm_block_number(vm, vm->cur), 9999999);
+  /* the disassembler prints them whole, in the headers and at the call */
+  char *buf = NULL;
+  size_t n = 0;
+  FILE *f = open_memstream(&buf, &n);
+  vm_disasm(f, &hp, NULL, 0);
+  fclose(f);
+  ck_assert_ptr_nonnull(strstr(buf, "; N9999999 line 1\n"));
+  ck_assert_ptr_nonnull(strstr(buf, "; N99999 line 2\n"));
+  ck_assert_ptr_nonnull(strstr(buf, "; N4294967295 line 3\n"));
+  ck_assert_ptr_nonnull(strstr(buf, "CALL    0000\t; N9999999\n"));
+  free(buf);
+  char line[200];
+  vm_msg_machine(line, sizeof line, &kp_msgs, S42_E_SUB, 9999999, 0, 1);
+  ck_assert_str_eq(line, "error in block 9999999: bad program structure");
+}
+END_TEST
+
+/* ---- RETEND: return when called, end otherwise ---- */
+
+START_TEST(retend_returns_from_a_call)
+{
+  hstart(sub_and_main(OP_RETEND, 1, OP_END));
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_int_eq(vm->depth, 0);
+  ck_assert_uint_eq(vm->blocks, 3);   /* N1, N10, N2 */
+}
+END_TEST
+
+START_TEST(retend_repeats_as_ret)
+{
+  /* a count of 3: it runs again twice, then returns, as RET does */
+  hstart(sub_and_main(OP_RETEND, 3, OP_END));
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 3);
+  ck_assert_uint_eq(vm->blocks, 5);
+  hstart(sub_and_main(OP_RET, 3, OP_END));
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 3);
+  ck_assert_uint_eq(vm->blocks, 5);
+}
+END_TEST
+
+START_TEST(retend_ends_the_main_program)
+{
+  /* the main program's last block ends with RETEND: the program ends there */
+  hstart(sub_and_main(OP_RETEND, 1, OP_RETEND));
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 1);
+  ck_assert_uint_eq(vm_block_number(vm, vm->cur), 2);
+  ck_assert_int_eq(vm_run(vm), VM_EV_END);   /* and stays ended */
+  ck_assert_uint_eq(vm->blocks, 3);
+  /* RET there is E-SUB, with the VM's neutral text */
+  hstart(sub_and_main(OP_RETEND, 1, OP_RET));
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_SUB, 2);
+  ck_assert_str_eq(vm->err.msg, "return from the main program");
+}
+END_TEST
+
+START_TEST(retend_restores_the_saved_register)
+{
+  /* as RET: the register saved across calls comes back on return */
+  hp.saved_reg = 7;
+  hblock(10, 1);
+  hemit(OP_INT, 9);
+  hemit(OP_SETP, 7);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_RETEND, 0);
+  uint32_t entry = hblock(1, 0);
+  hemit(OP_INT, 5);
+  hemit(OP_SETP, 7);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_INT, 1);
+  hemit(OP_CALL, 0);
+  hblock(2, 0);
+  hemit(OP_REG, 7);
+  hemit(OP_SETP, 8);
+  hemit(OP_COMMIT, 0);
+  hemit(OP_RETEND, 0);
+  hstart(entry);
+  vm->yield_all = 1;
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(7), 5);
+  ck_assert_double_eq(R(8), 5);
+}
+END_TEST
+
+START_TEST(retend_in_verify_and_disasm)
+{
+  char msg[200];
+  hp.entry = sub_and_main(OP_RETEND, 1, OP_RETEND);
+  hp.max_stack = 1;
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), 0);   /* the code may end with it */
+  /* control leaves the block there: only after its COMMIT */
+  hp.code[4] = INS(OP_RETEND, 0);
+  hp.code[5] = INS(OP_COMMIT, 0);
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 4: RETEND before block 0 is committed: control leaves a block only after its COMMIT");
+  hp.code[4] = INS(OP_COMMIT, 0);
+  hp.code[5] = INS(OP_RETEND, 1);
+  ck_assert_int_eq(prog_verify(&hp, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 5: RETEND takes no operand but has 1");
+  hp.code[5] = INS(OP_RETEND, 0);
+  char *buf = NULL;
+  size_t n = 0;
+  FILE *f = open_memstream(&buf, &n);
+  vm_disasm(f, &hp, NULL, 0);
+  fclose(f);
+  ck_assert_ptr_nonnull(strstr(buf, "0005  RETEND\n"));
+  free(buf);
+  ck_assert_int_eq(vm_ops[OP_RETEND].pop, 0);
+  ck_assert_int_eq(vm_ops[OP_RETEND].push, 0);
 }
 END_TEST
 
@@ -852,6 +1386,28 @@ Suite *suite_vm(void)
   tcase_add_test(tc, sync_blocks_do_not_yield);
   tcase_add_test(tc, many_vms_one_program);
   tcase_add_test(tc, superinstructions_same_errors);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("program");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, kp_messages_exact);
+  tcase_add_test(tc, kp_program_carries_limits_and_texts);
+  tcase_add_test(tc, machine_line_from_the_table);
+  tcase_add_test(tc, message_formats_checked);
+  tcase_add_test(tc, depth_from_the_program);
+  tcase_add_test(tc, arrays_and_ranges_from_the_program);
+  tcase_add_test(tc, parameter_range_from_the_program);
+  tcase_add_test(tc, angle_unit_and_domains_from_the_program);
+  tcase_add_test(tc, block_numbers_32_bit);
+  suite_add_tcase(s, tc);
+
+  tc = tcase_create("retend");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_test(tc, retend_returns_from_a_call);
+  tcase_add_test(tc, retend_repeats_as_ret);
+  tcase_add_test(tc, retend_ends_the_main_program);
+  tcase_add_test(tc, retend_restores_the_saved_register);
+  tcase_add_test(tc, retend_in_verify_and_disasm);
   suite_add_tcase(s, tc);
   return s;
 }

@@ -8,6 +8,7 @@
 #include "kpmach.h"
 #include "errors.h"
 #include "kp.h"
+#include "kpmsg.h"
 #include "opcodes.h"
 #include "parse.h"
 #include "plugin.h"
@@ -204,7 +205,7 @@ static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
   default:
     return 0;
   }
-  int code = vm_math(e->op, a, b, v, msg, sizeof msg);
+  int code = vm_math(c->p, e->op, a, b, v, msg, sizeof msg);
   if (code) {
     err(c, code, e->col, "%s", msg);
     *failed = 1;
@@ -894,7 +895,7 @@ static void compile_block(struct comp *c)
   struct prog_block pb = {0};
   pb.line = b->line;
   pb.col = (uint16_t)(b->col > 0xffff ? 0xffff : b->col);
-  pb.number = (uint16_t)(b->number < 0 ? 0 : b->number);
+  pb.number = (uint32_t)(b->number < 0 ? 0 : b->number);
   pb.code = (uint32_t)c->p->ncode;
   long bi = prog_block_add(c->p, &pb);
   if (bi < 0) {
@@ -1102,7 +1103,7 @@ static void serr(struct comp *c, size_t i, unsigned col, int code, const char *f
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
   const struct prog_block *s = &c->p->blocks[i];
-  diag_add(c->d, code ? DIAG_ERROR : DIAG_WARNING, code, s->line, col ? col : s->col, s->number ? s->number : -1,
+  diag_add(c->d, code ? DIAG_ERROR : DIAG_WARNING, code, s->line, col ? col : s->col, s->number ? (int)s->number : -1,
            "%s", msg);
 }
 
@@ -1159,7 +1160,7 @@ static void structure(struct comp *c)
   if (mp < 0 && nonum)
     ;   /* block 1 may be the one whose number is wrong: that error says it */
   else if (mp < 0)
-    diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[0].line, B[0].col, B[0].number ? B[0].number : -1,
+    diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[0].line, B[0].col, B[0].number ? (int)B[0].number : -1,
              "no block 1: the main program starts at block 1");
   else if (count[1] > 1)
     for (size_t i = 0; i < n; i++)
@@ -1243,7 +1244,7 @@ static void structure(struct comp *c)
     }
   }
   if (!anym2 && mp >= 0 && !anybad)
-    diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[n - 1].line, B[n - 1].col, B[n - 1].number ? B[n - 1].number : -1,
+    diag_add(c->d, DIAG_ERROR, S42_E_SUB, B[n - 1].line, B[n - 1].col, B[n - 1].number ? (int)B[n - 1].number : -1,
              "no M2: the program never ends (its last block needs M2 or an unconditional jump)");
 
   /* reachability, per unit, for the dead-code warning */
@@ -1322,6 +1323,17 @@ static void structure(struct comp *c)
   free(unit);
 }
 
+void comp_setup(struct program *p)
+{
+  p->saved_reg = REG_F;
+  p->lim = (struct prog_limits){
+    .depth = KP_DEPTH, .arrays = KP_ARRAYS, .cells = KP_CELLS,
+    .param_lo = -9999999, .param_hi = 9999999, .cell_lo = -9999999, .cell_hi = 9999999,
+    .angle = 0.001, .trig_max = 2304000, .atan_max = 9999999, .log_max = 9999999,
+  };
+  p->msgs = &kp_msgs;
+}
+
 int comp_program(const char *src, size_t n, struct diag_list *d, struct program *p)
 {
   return comp_program_with(src, n, d, p, NULL);
@@ -1347,7 +1359,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   p->runtime = &kp_runtime;   /* the session runs a 2С42 block through src/dialect/2c42/runtime.c */
   d->src = src;   /* the source lines under the diagnostics */
   d->nsrc = n;
-  p->saved_reg = REG_F;
+  comp_setup(p);
   p->file = d->file;
   /* a file in another encoding is one error, not one a block */
   unsigned bl, bc, bb;
