@@ -72,7 +72,7 @@ struct sess_config {
   int yield_all;                /* a row for every block (the trace, the terminal's listing) */
   int start_all;                /* every block's start comes back to the host */
   const uint8_t *watch;         /* per block: its start comes back (`at`, M15), or NULL */
-  void (*canon)(void *ctx, const char *call);   /* --trace=canon: the machine's calls */
+  void (*canon)(void *ctx, const struct canon_call *c);   /* the machine's calls (--trace=canon) */
   void *canon_ctx;
 };
 

@@ -4,6 +4,7 @@
 #include "disasm.h"
 #include "errors.h"
 #include "machfile.h"
+#include "canon.h"
 #include "cycle.h"
 #include "dialect.h"
 #include "error.h"
@@ -1238,9 +1239,11 @@ static int headless(const struct opts *opt, struct plot *plot)
   cfg.sink.moved = sink_moved;
   cfg.yield_all = o.trace;
   cfg.watch = r.watch;
+  struct canon_trace ct;
   if (o.canon) {
-    cfg.canon = canon_line;
-    cfg.canon_ctx = stdout;
+    canon_trace_init(&ct, canon_line, stdout);
+    cfg.canon = canon_trace_call;
+    cfg.canon_ctx = &ct;
   }
   /* the plugins the program uses start now: one that cannot because of
    * the command line (no --tool for G10) stops the run before it begins */

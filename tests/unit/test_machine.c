@@ -7,6 +7,7 @@
 #include "machine.h"
 #include "kpmach.h"
 #include "geom.h"
+#include "canon.h"
 #include <math.h>
 #include <stdarg.h>
 #include <string.h>
@@ -456,13 +457,16 @@ static void canon_to_buf(void *ctx, const char *call)
   strncat(canon_buf, call, sizeof canon_buf - strlen(canon_buf) - 2);
   strcat(canon_buf, "\n");
 }
+static struct canon_trace canon_sink;
 
 /* The canonical calls, with the trace observer watching: each call once,
  * as LinuxCNC prints it; SET_FEED_RATE and SELECT_PLANE only on a change. */
 START_TEST(canonical_calls_traced)
 {
   canon_buf[0] = 0;
-  m.canon = canon_to_buf;
+  canon_trace_init(&canon_sink, canon_to_buf, NULL);
+  m.canon = canon_trace_call;
+  m.canon_ctx = &canon_sink;
   struct mach_path pa = {.to = {10000, 0, 0, 0}};
   mach_feed(&m, &pa, 600, &o);
   pa.to[0] = 20000;

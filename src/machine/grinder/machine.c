@@ -1,8 +1,8 @@
 /* The simulated machine (src/machine/grinder/machine.h). */
 #include "machine.h"
 #include "errors.h"
+#include "canon.h"
 #include "geom.h"
-#include <stdarg.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -12,8 +12,6 @@ void mach_init(struct machine *m)
   memset(m, 0, sizeof *m);
   m->override_pct = 100;
   m->override_allowed = 1;
-  m->canon_f = -1;
-  m->canon_plane = -1;
 }
 
 const struct mach_axis mach_axes[MACH_NAXES] = {
@@ -69,57 +67,24 @@ double mach_linear_limit(const double d[4])
   return MACH_AXIS_MAX * sqrt(l2 / (x * x + 36.0 * 36.0 * y * y + z * z + a * a));
 }
 
-/* ---- the trace observer: the calls as LinuxCNC's canonical ones ---- */
+/* ---- the trace observer: each call as a canonical event ---- */
 
-static void canon(const struct machine *m, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void canon(const struct machine *m, const char *fmt, ...)
+static void report(const struct machine *m, struct canon_call *c)
 {
-  char line[256];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(line, sizeof line, fmt, ap);
-  va_end(ap);
-  m->canon(m->canon_ctx, line);
+  memcpy(c->pos, m->pos, sizeof c->pos);
+  m->canon(m->canon_ctx, c);
 }
 
-#define MM(v) ((double)(v) / 1000.0)
-
-static void canon_feed_rate(struct machine *m, double f)
+static void report_move(const struct machine *m, const struct mach_path *along, const int64_t centre[2], double f)
 {
-  if (m->canon && f != m->canon_f) {
-    canon(m, "SET_FEED_RATE(%.4f)", f);
-    m->canon_f = f;
+  struct canon_call c = {.kind = along && along->arc ? CANON_FEED_ARC : CANON_FEED_LINE, .f = f};
+  if (along && along->arc) {
+    c.plane = along->plane;
+    c.centre[0] = centre[0];
+    c.centre[1] = centre[1];
+    c.ccw = along->ccw;
   }
-}
-
-static void canon_point(const struct machine *m, const char *call)
-{
-  canon(m, "%s(%.4f, %.4f, %.4f, %.4f, 0.0000, 0.0000)", call, MM(m->pos[AX_X]), MM(m->pos[AX_Y]),
-        MM(m->pos[AX_Z]), MM(m->pos[AX_A]));
-}
-
-/* LinuxCNC's planes: XY (X, Y; axis Z), YZ (Y, Z; axis X), XZ (Z, X; axis Y):
- * the first and second axes in its order, the plane's name, and whether
- * its turning sense is the reverse of ours (our XZ turns from X to Z). */
-static void canon_arc(struct machine *m, const struct mach_path *pa, const int64_t centre[2])
-{
-  static const char *const name[] = {"CANON_PLANE_XY", "CANON_PLANE_YZ", "CANON_PLANE_XZ"};
-  static const int first[] = {AX_X, AX_Y, AX_Z}, second[] = {AX_Y, AX_Z, AX_X}, axis[] = {AX_Z, AX_X, AX_Y};
-  int pl = pa->plane >= 0 && pa->plane <= 2 ? pa->plane : GEOM_XZ;
-  if (m->canon_plane != pl) {
-    canon(m, "SELECT_PLANE(%s)", name[pl]);
-    m->canon_plane = pl;
-  }
-  int p, q;
-  geom_plane_axes(pl, &p, &q);
-  double c[4] = {0, 0, 0, 0};
-  c[p] = (double)centre[0];
-  c[q] = (double)centre[1];
-  int rot = pa->ccw ? 1 : -1;
-  if (pl == GEOM_XZ)
-    rot = -rot;
-  canon(m, "ARC_FEED(%.4f, %.4f, %.4f, %.4f, %d, %.4f, %.4f, 0.0000, 0.0000)", MM(m->pos[first[pl]]),
-        MM(m->pos[second[pl]]), MM(c[first[pl]]), MM(c[second[pl]]), rot, MM(m->pos[axis[pl]]), MM(m->pos[AX_A]));
+  report(m, &c);
 }
 
 /* ---- contour moves ---- */
@@ -231,16 +196,14 @@ int mach_check_spindle(const struct machine *m, int dir, char *msg, size_t n)
 
 void mach_spindle(struct machine *m, int dir)
 {
+  if (m->canon)
+    report(m, &(struct canon_call){.kind = CANON_SPINDLE, .dir = dir > 0 ? 1 : dir < 0 ? -1 : 0});
   if (dir == 0) {
-    if (m->canon)
-      canon(m, "STOP_SPINDLE_TURNING(0)");
     if (m->wheel != WHEEL_OFF)
       mach_advance(m, MACH_WHEEL_RUNDOWN);
     m->wheel = WHEEL_OFF;
     return;
   }
-  if (m->canon)
-    canon(m, dir > 0 ? "START_SPINDLE_CLOCKWISE(0)" : "START_SPINDLE_COUNTERCLOCKWISE(0)");
   m->wheel = dir > 0 ? WHEEL_CW : WHEEL_CCW;
 }
 
@@ -251,20 +214,20 @@ void mach_switch(struct machine *m, int sw, int on)
     return;
   }
   if (m->canon && (on != 0) != (m->override_allowed != 0))
-    canon(m, on ? "ENABLE_FEED_OVERRIDE()" : "DISABLE_FEED_OVERRIDE()");
+    report(m, &(struct canon_call){.kind = CANON_OVERRIDE, .on = on != 0});
   m->override_allowed = on != 0;
 }
 
 void mach_program_end(struct machine *m)
 {
   if (m->canon)
-    canon(m, "PROGRAM_END()");
+    report(m, &(struct canon_call){.kind = CANON_END});
 }
 
 void mach_dwell(struct machine *m, double sec)
 {
   if (m->canon)
-    canon(m, "DWELL(%.4f)", sec);
+    report(m, &(struct canon_call){.kind = CANON_DWELL, .v = sec});
   mach_advance(m, sec);
 }
 
@@ -275,7 +238,7 @@ void mach_traverse_axis(struct machine *m, int axis, int64_t to, struct mach_out
   m->pos[axis] += d;
   o->d[axis] += d;
   if (m->canon)
-    canon_point(m, "STRAIGHT_TRAVERSE");
+    report(m, &(struct canon_call){.kind = CANON_TRAVERSE});
 }
 
 /* The move proper, its speed and time (no trace line). */
@@ -304,7 +267,6 @@ void mach_feed(struct machine *m, const struct mach_path *pa, double f, struct m
     centre[0] = m->pos[p] + (int64_t)llround(pa->cp);
     centre[1] = m->pos[q] + (int64_t)llround(pa->cq);
   }
-  canon_feed_rate(m, f);
   move(m, d, len, lim, f, o);
   double lin2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   if (len > 0 && d[3] != 0 && lin2 > 0 && !pa->arc) {
@@ -312,12 +274,8 @@ void mach_feed(struct machine *m, const struct mach_path *pa, double f, struct m
     o->v = o->feed * sqrt((lin2 + ad * ad) / (lin2 + d[3] * d[3]));
     o->has_v = 1;
   }
-  if (m->canon) {
-    if (pa->arc)
-      canon_arc(m, pa, centre);
-    else
-      canon_point(m, "STRAIGHT_FEED");
-  }
+  if (m->canon)
+    report_move(m, pa, centre, f);
 }
 
 void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o)
@@ -335,14 +293,9 @@ void mach_move_along(struct machine *m, const struct mach_path *along, const dou
     centre[0] = m->pos[p] + (int64_t)llround(along->cp);
     centre[1] = m->pos[q] + (int64_t)llround(along->cq);
   }
-  canon_feed_rate(m, f);
   move(m, d, len, limit, f, o);
-  if (!m->canon)
-    return;
-  if (along && along->arc)
-    canon_arc(m, along, centre);
-  else
-    canon_point(m, "STRAIGHT_FEED");
+  if (m->canon)
+    report_move(m, along, centre, f);
 }
 
 static void move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o)

@@ -44,6 +44,7 @@ struct mach_out {
 
 /* The travel of each axis (--machine FILE), discretes relative to the
  * program's start position; an axis without `has` is unlimited. */
+struct canon_call;
 struct mach_travel {
   uint8_t has[4];
   int64_t lo[4], hi[4];
@@ -69,11 +70,10 @@ struct machine {
   /* called whenever simulated time passes, with the seconds */
   void (*tick)(void *ctx, double dt);
   void *tick_ctx;
-  /* --trace=canon: each call, as LinuxCNC's canonical call (NULL: none) */
-  void (*canon)(void *ctx, const char *call);
+  /* each canonical call it carries out, as an event (src/core/canon.h;
+   * --trace=canon), or NULL */
+  void (*canon)(void *ctx, const struct canon_call *c);
   void *canon_ctx;
-  double canon_f;      /* the last SET_FEED_RATE printed (-1 none) */
-  int canon_plane;     /* the last SELECT_PLANE printed (-1 none) */
 };
 
 /* The machine's axes as the canonical interface describes them: name,
