@@ -92,6 +92,15 @@ const struct diag *diag_first_error(const struct diag_list *d)
   return NULL;
 }
 
+const char *diag_block(int n, char buf[16])
+{
+  if (n > 0)
+    snprintf(buf, 16, "N%d", n);
+  else
+    snprintf(buf, 16, "N-");
+  return buf;
+}
+
 static void print_head(FILE *f, const char *file, const struct diag *g, int color)
 {
   static const char *const sev[] = {"error", "warning", "note"};

@@ -37,6 +37,9 @@ void diag_init(struct diag_list *d, const char *file);
 void diag_free(struct diag_list *d);
 void diag_add(struct diag_list *d, int sev, int code, unsigned line, unsigned col, int number,
               const char *fmt, ...) __attribute__((format(printf, 7, 8)));
+/* A block as the messages name it: "N12", or "N-" for none (n <= 0); buf
+ * holds 16 bytes. */
+const char *diag_block(int n, char buf[16]);
 /* Sort by position (stable), so the first error in text order comes first. */
 void diag_sort(struct diag_list *d);
 const struct diag *diag_first_error(const struct diag_list *d);

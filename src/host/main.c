@@ -599,11 +599,7 @@ static int cmd_disasm(int argc, char **argv)
 /* "N12", or "N-" for a block without a number. */
 static const char *bname(int n, char *buf)
 {
-  if (n > 0)
-    snprintf(buf, 16, "N%d", n);
-  else
-    strcpy(buf, "N-");
-  return buf;
+  return diag_block(n, buf);
 }
 
 struct runner {
@@ -1077,7 +1073,7 @@ static int run_bare(const struct opts *o, struct program *p, struct diag_list *d
         } else {
           char nb[16];
           printf("%6llu %-5s L%-4u none  t 0.0000\n", (unsigned long long)++seq,
-                 b->number ? (snprintf(nb, sizeof nb, "N%u", (unsigned)b->number), nb) : "N-", b->line);
+                 diag_block(b->number ? (int)b->number : -1, nb), b->line);
         }
       }
       continue;

@@ -265,11 +265,7 @@ static void note(struct tui *t, const char *fmt, ...)
 
 static const char *bname(int n, char buf[16])
 {
-  if (n > 0)
-    snprintf(buf, 16, "N%d", n);
-  else
-    snprintf(buf, 16, "N-");
-  return buf;
+  return diag_block(n, buf);
 }
 
 /* A block for messages: its number, or its line when it has none. */
