@@ -219,6 +219,21 @@ const char *sess_wait_text(const struct session *s);
 int sess_oscillating(const struct session *s);
 /* The current block's number (-1 none) and line. */
 int sess_block_number(const struct session *s);
+/* What the hosts read of a session (they never write it): the simulated
+ * time, an axis's position (discretes), the block being run (its index in
+ * the program), a parameter, the blocks executed, the PP jumps taken, the
+ * feed override switch and whether it acts (M25/M26), the wheel
+ * (WHEEL_*), cycle exit latched. */
+static inline double sess_time(const struct session *s) { return s->m.t; }
+static inline int64_t sess_pos(const struct session *s, int axis) { return s->m.pos[axis]; }
+static inline uint32_t sess_cur(const struct session *s) { return s->vm.cur; }
+static inline double sess_reg(const struct session *s, int n) { return s->vm.reg[n]; }
+static inline uint64_t sess_blocks(const struct session *s) { return s->vm.blocks; }
+static inline uint32_t sess_pp_jumps(const struct session *s) { return s->vm.pp_jumps; }
+static inline int sess_override_pct(const struct session *s) { return s->m.override_pct; }
+static inline int sess_override_allowed(const struct session *s) { return s->m.override_allowed; }
+static inline int sess_wheel(const struct session *s) { return s->m.wheel; }
+static inline int sess_exit_latched(const struct session *s) { return s->vm.exit_latch; }
 /* The run's error (SE_ERROR: the VM raised it, or the host failed or
  * refused the run), located in the program's text. */
 struct s42_error;

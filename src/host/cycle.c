@@ -54,7 +54,7 @@ int cycle_restart(struct cycle *c, char *why, size_t n)
 int cycle_m15(struct cycle *c)
 {
   struct session *s = c->s;
-  if (!c->state_path || !BIT(kp_attr(s->p, s->vm.cur)->m, 15))
+  if (!c->state_path || !BIT(kp_attr(s->p, sess_cur(s))->m, 15))
     return 0;
   char err[512];
   if (state_save(s, c->state_path, c->hash, err, sizeof err)) {

@@ -619,7 +619,7 @@ struct runner {
 static void warn_sink(void *ctx, const struct session *s, const char *msg)
 {
   struct runner *r = ctx;
-  const struct prog_block *b = &s->p->blocks[s->vm.cur];
+  const struct prog_block *b = &s->p->blocks[sess_cur(s)];
   fprintf(stderr, "%s:%u:%u: warning: N", r->file, b->line, b->col);
   if (b->number)
     fprintf(stderr, "%u", b->number);
@@ -728,7 +728,7 @@ static void at_boundary(struct runner *r)
   while (r->next < r->ops.n && !ops_is_waiting(&r->ops.v[r->next]) && r->s.state != SE_STOPPED)
     apply_immediate(r, &r->ops.v[r->next++]);
   int num = sess_block_number(&r->s);
-  if (num > 0 && r->watch[r->s.vm.cur]) {
+  if (num > 0 && r->watch[sess_cur(&r->s)]) {
     unsigned run = ++r->runs[num];
     for (size_t i = 0; i < r->ops.nat; i++) {
       struct op_action *a = &r->ops.at[i];
@@ -749,7 +749,7 @@ static int serve_wait(struct runner *r)
     if (r->next >= r->ops.n) {
       if (r->lenient)
         return -1;
-      const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
+      const struct prog_block *b = &r->s.p->blocks[sess_cur(&r->s)];
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s and the operator script has no more actions\n",
               r->file, b->line, b->col, bname(sess_block_number(&r->s), nb), sess_wait_text(&r->s));
       return -1;
@@ -778,7 +778,7 @@ static int serve_wait(struct runner *r)
       if (r->lenient)
         return -1;
       r->unfit = r->next + 1;
-      const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
+      const struct prog_block *b = &r->s.p->blocks[sess_cur(&r->s)];
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s; the operator script's next action "
               "(line %u: %s) does not fit\n", r->file, b->line, b->col, bname(sess_block_number(&r->s), nb),
               sess_wait_text(&r->s), a->line, ops_describe(a, what, sizeof what));
@@ -835,8 +835,8 @@ static void override_in_motion(struct session *s, struct mb_machine *mm, double 
   double frac = mo->held ? mo->held_frac : (now - mo->start) / len;
   if (frac < 0)
     frac = 0;
-  double sim = s->m.t - (1 - frac) * len;   /* the simulated time the motion has reached */
-  if (s->m.override_pct == 0) {
+  double sim = sess_time(s) - (1 - frac) * len;   /* the simulated time the motion has reached */
+  if (sess_override_pct(s) == 0) {
     if (!mo->held && s->m.mv.on && sim >= s->m.mv.t0 && sim < s->m.mv.t1) {
       mo->held_frac = frac;
       mo->held = 1;
@@ -944,7 +944,7 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
   fprintf(stderr, "s42: Modbus TCP on %s%s\n", mb_address(mb),
           mm->idle ? "; the cycle starts with Пуск (coil 0)" : "");
   int told = -1;                /* the session state last reported on stderr */
-  int ovr_seen = r->s.m.override_pct;   /* a write of it acts within the motion */
+  int ovr_seen = sess_override_pct(&r->s);   /* a write of it acts within the motion */
   char nb[16];
   while (!quit_signal) {
     double now = mb_now();
@@ -961,8 +961,8 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
       *st = "stopped";
       return EXIT_IO;
     }
-    if (r->s.m.override_pct != ovr_seen) {
-      ovr_seen = r->s.m.override_pct;
+    if (sess_override_pct(&r->s) != ovr_seen) {
+      ovr_seen = sess_override_pct(&r->s);
       override_in_motion(&r->s, mm, mb_now());
     }
     for (int k; (k = mb_key(mb)) != MB_KEY_NONE;)
@@ -995,7 +995,7 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
     }
     mb_publish(mb, mm);
     if (r->s.state != told && (r->s.state == SE_END || r->s.state == SE_ERROR)) {
-      const struct prog_block *b = &r->s.p->blocks[r->s.vm.cur];
+      const struct prog_block *b = &r->s.p->blocks[sess_cur(&r->s)];
       if (r->s.state == SE_END)
         fprintf(stderr, "%s:%u:%u: note: %s: the program reached M2; Пуск runs it again\n", r->file, b->line,
                 b->col, bname(sess_block_number(&r->s), nb));
@@ -1290,7 +1290,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     sigaction(SIGTERM, &sa, NULL);
     bs.pace.stop = &quit_signal;
   }
-  pace_start(&bs.pace, r.s.m.t);     /* a restart goes on from the saved time */
+  pace_start(&bs.pace, sess_time(&r.s));     /* a restart goes on from the saved time */
   if (o.modbus && status == EXIT_END) {
     char err[300];
     int bad;
@@ -1305,7 +1305,7 @@ static int headless(const struct opts *opt, struct plot *plot)
       mm.s = &r.s;
       mm.idle = !o.operator_file;
       bs.mm = &mm;
-      bs.last_t = r.s.m.t;
+      bs.last_t = sess_time(&r.s);
       status = modbus_loop(&r, &bs, mb, &st);
       mb_close(mb);
       r.mb = NULL;
@@ -1315,7 +1315,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   while (status == EXIT_END) {
     sess_set_start_all(&r.s, interruptible || (r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next])));
     if (interruptible && quit_signal) {
-      const struct prog_block *b = &p.blocks[r.s.vm.cur];
+      const struct prog_block *b = &p.blocks[sess_cur(&r.s)];
       char qb[16];
       fprintf(stderr, "%s:%u:%u: note: %s: stopped by %s before this block\n", o.program, b->line, b->col,
               bname(sess_block_number(&r.s), qb), quit_signal == SIGINT ? "Ctrl-C (SIGINT)" : "SIGTERM");
@@ -1359,7 +1359,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
   char nb[16];
   if (r.s.state == SE_STOPPED && status == EXIT_STOPPED) {
-    const struct prog_block *b = &p.blocks[r.s.vm.cur];
+    const struct prog_block *b = &p.blocks[sess_cur(&r.s)];
     if (r.next <= r.ops.n && r.s.wait == W_NONE)
       fprintf(stderr, "%s:%u:%u: note: %s: the cycle was stopped (key STOP)\n", o.program, b->line, b->col,
               bname(sess_block_number(&r.s), nb));

@@ -184,7 +184,7 @@ void mb_view_of(struct mb_view *v, const struct mb_machine *m)
   v->idle = m->idle;
   v->feed = m->feed;
   v->motion = m->motion;
-  v->override_hr = m->set_override ? m->override_pct : s ? s->m.override_pct : 100;
+  v->override_hr = m->set_override ? m->override_pct : s ? sess_override_pct(s) : 100;
   v->override_eff = v->override_hr;   /* idle: the switch as it stands */
   v->single = m->single;
   v->brk = m->brk;
@@ -195,11 +195,11 @@ void mb_view_of(struct mb_view *v, const struct mb_machine *m)
   v->wait_feed = s->wait == W_FEED;
   v->err_code = (int)s->vm.err.code;
   v->block = sess_block_number(s);
-  v->override_eff = s->m.override_allowed ? s->m.override_pct : 100;
-  v->wheel = s->m.wheel != WHEEL_OFF;
+  v->override_eff = sess_override_allowed(s) ? sess_override_pct(s) : 100;
+  v->wheel = sess_wheel(s) != WHEEL_OFF;
   v->osc = s->extra[0] && sess_oscillating(s);
   memcpy(v->pos, s->m.pos, sizeof v->pos);
-  v->t = s->m.t;
+  v->t = sess_time(s);
   memcpy(v->reg, s->vm.reg, sizeof v->reg);
 }
 
@@ -586,7 +586,7 @@ int mb_dev_apply(struct mb_dev *d, struct mb_machine *m, const struct mb_write *
     if (m->set_override) {
       if (m->set_override(m->host, w->ovr))
         return EX_BUSY;
-    } else if (!s || !s->m.override_allowed || sess_override(s, w->ovr)) {
+    } else if (!s || !sess_override_allowed(s) || sess_override(s, w->ovr)) {
       return EX_BUSY;            /* M25 forbids the override (checked first: no warning printed) */
     }
   }

@@ -133,7 +133,7 @@ void plot_sample(struct plot *pl, const struct session *s, int axis, int64_t d)
     pl->osc = nv;
     pl->caposc = nc;
   }
-  pl->osc[pl->nosc++] = (struct osc_pt){s->m.t, pl->disp[axis], axis, d == 0};
+  pl->osc[pl->nosc++] = (struct osc_pt){sess_time(s), pl->disp[axis], axis, d == 0};
 }
 
 void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r_in)
@@ -224,10 +224,10 @@ void plot_result(struct plot *pl, const struct session *s, int status, const cha
     return;
   pl->ended = 1;
   pl->status = status;
-  pl->blocks = s ? (unsigned long long)s->vm.blocks : 0;
-  pl->t_end = s ? s->m.t : 0;
+  pl->blocks = s ? (unsigned long long)sess_blocks(s) : 0;
+  pl->t_end = s ? sess_time(s) : 0;
   for (int a = 0; a < 4; a++)
-    pl->end_pos[a] = s ? s->m.pos[a] : 0;
+    pl->end_pos[a] = s ? sess_pos(s, a) : 0;
   pl->why[0] = 0;
   if (status != 1 && status != 3)
     return;
@@ -236,7 +236,7 @@ void plot_result(struct plot *pl, const struct session *s, int status, const cha
   if (status == 3 && s) {
     int num = sess_block_number(s);
     n = num;
-    line = s->vm.cur < s->p->nblocks ? s->p->blocks[s->vm.cur].line : 0;
+    line = sess_cur(s) < s->p->nblocks ? s->p->blocks[sess_cur(s)].line : 0;
   }
   if (n > 0)
     snprintf(at, sizeof at, " at N%d", n);

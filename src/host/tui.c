@@ -282,7 +282,7 @@ static const char *blockname(int n, unsigned line, char buf[24])
 static void exit_taken(struct tui *t, int from_n, unsigned from_line, int to_n, unsigned to_line)
 {
   char a[24], b[24];
-  t->pp_seen = t->s.vm.pp_jumps;
+  t->pp_seen = sess_pp_jumps(&t->s);
   say(t, "cycle exit: %s → %s", blockname(from_n, from_line, a), blockname(to_n, to_line, b));
 }
 
@@ -354,7 +354,7 @@ static void on_row(void *ctx, const struct session *s, const struct sess_row *r)
 {
   struct tui *t = ctx;
   /* a PP jump runs after its block's row: this row is the block it went to */
-  if (s->vm.pp_jumps != t->pp_seen && t->cur.valid)
+  if (sess_pp_jumps(s) != t->pp_seen && t->cur.valid)
     exit_taken(t, t->cur.n, t->cur.line, r->n, r->line);
   t->cur.valid = 1;
   memcpy(t->cur.from, r->start, sizeof t->cur.from);
@@ -369,7 +369,7 @@ static void on_row(void *ctx, const struct session *s, const struct sess_row *r)
   t->osc = sess_oscillating(s);
   t->last_t = r->t;
   for (int i = 0; i < 114; i++) {
-    double v = s->vm.reg[i];
+    double v = sess_reg(s, i);
     if (v == t->regs[i] || (isnan(v) && isnan(t->regs[i])))
       continue;
     t->regs[i] = v;
@@ -426,12 +426,12 @@ static void restored(struct tui *t)
   /* the first NCHG parameters that are not 0, R0 at the top */
   int regs[NCHG], n = 0;
   for (int i = 0; i < 114 && n < NCHG; i++)
-    if (s->vm.reg[i] != 0)
+    if (sess_reg(s, i) != 0)
       regs[n++] = i;
   t->nchg = 0;
   while (n > 0) {
     n--;
-    chg_add(t, regs[n], s->vm.reg[regs[n]], sess_block_number(s), 1);
+    chg_add(t, regs[n], sess_reg(s, regs[n]), sess_block_number(s), 1);
   }
 }
 
@@ -516,12 +516,12 @@ static void start_run(struct tui *t)
     restored(t);
   }
   t->runs++;
-  t->pp_seen = t->s.vm.pp_jumps;
+  t->pp_seen = sess_pp_jumps(&t->s);
   if (t->override != 100 && sess_override(&t->s, t->override) == 0)
     say(t, "feed override %d %%", t->override);
   memcpy(t->regs, t->s.vm.reg, sizeof t->regs);
-  t->last_t = t->wait_t = t->s.m.t;
-  pace_start(&t->pace, t->s.m.t);
+  t->last_t = t->wait_t = sess_time(&t->s);
+  pace_start(&t->pace, sess_time(&t->s));
   say(t, "Пуск: the cycle starts");
 }
 
@@ -586,13 +586,13 @@ static int advance(struct tui *t)
       }
       continue;
     case SE_WAIT:
-      t->wait_t = t->s.m.t;
+      t->wait_t = sess_time(&t->s);
       note(t, "%s waits: %s", bname(sess_block_number(&t->s), nb), wait_hint(&t->s));
       t->msg_wait = 1;
       return -1;
     case SE_END:
       t->run = R_DONE;
-      say(t, "the program ended (M2): %llu blocks, %.2f s", (unsigned long long)t->s.vm.blocks, t->s.m.t);
+      say(t, "the program ended (M2): %llu blocks, %.2f s", (unsigned long long)sess_blocks(&t->s), sess_time(&t->s));
       return -1;
     case SE_STOPPED:
       t->run = R_DONE;
@@ -1397,7 +1397,7 @@ static int page_key(struct tui *t, int fn, wint_t c)
     }
     snprintf(pr, sizeof pr, reg == REG_D1 ? "set D1 = " : "set R%d = ", reg);
     char v[40];
-    snprintf(v, sizeof v, "%.10g", t->run != R_IDLE ? t->s.vm.reg[reg] : 0.0);
+    snprintf(v, sizeof v, "%.10g", t->run != R_IDLE ? sess_reg(&t->s, reg) : 0.0);
     input_open(t, IN_PARAM, pr, v);
     t->input.reg = reg;
     return 1;
@@ -1524,7 +1524,7 @@ static void panel_key(struct tui *t, int fn, wint_t c)
   case 'f':
     t->fast = !t->fast;
     if (!t->fast && t->run == R_RUN)
-      pace_start(&t->pace, t->s.m.t);   /* machine speed from here */
+      pace_start(&t->pace, sess_time(&t->s));   /* machine speed from here */
     say(t, t->fast ? "speed: as fast as possible" : "speed: machine speed");
     return;
   case 'j':
@@ -1779,7 +1779,7 @@ static long run_line(const struct tui *t)
   if (t->s.state == SE_ERROR)
     return t->s.vm.err.block < t->prog.nblocks ? (long)t->prog.blocks[t->s.vm.err.block].line - 1 : -1;
   if (t->s.state == SE_WAIT || !t->cur.valid)
-    return (long)t->prog.blocks[t->s.vm.cur].line - 1;
+    return (long)t->prog.blocks[sess_cur(&t->s)].line - 1;
   return (long)t->cur.line - 1;
 }
 
@@ -1795,7 +1795,7 @@ static int shown_block(const struct tui *t, unsigned *line)
     return b->number ? (int)b->number : -1;
   }
   if (t->s.state == SE_WAIT || !t->cur.valid) {
-    const struct prog_block *b = &t->prog.blocks[t->s.vm.cur];
+    const struct prog_block *b = &t->prog.blocks[sess_cur(&t->s)];
     *line = b->line;
     return b->number ? (int)b->number : -1;
   }
@@ -1939,8 +1939,8 @@ static void shown_pos(const struct tui *t, double pos[4], double *tm, double *fe
   if (t->run == R_IDLE)
     return;
   for (int a = 0; a < 4; a++)
-    pos[a] = (double)t->s.m.pos[a];
-  *tm = t->s.m.t;
+    pos[a] = (double)sess_pos(&t->s, a);
+  *tm = sess_time(&t->s);
   if (t->fast || !t->cur.valid || t->s.state == SE_WAIT || (t->run != R_RUN && !t->stopped_mid))
     return;
   double now = pace_now(&t->pace);
@@ -2044,7 +2044,7 @@ static void est_text(const struct tui *t, double tm, int wide, char *b, size_t n
   int done = t->run == R_DONE && t->s.state == SE_END;   /* the cycle's own time */
   if (t->run == R_IDLE || (!done && t->est.run != t->runs))
     return;
-  double total = done ? t->s.m.t : t->est.total;
+  double total = done ? sess_time(&t->s) : t->est.total;
   const char *lab = wide ? "estimate" : "of";
   if (!done && t->est.kind == EST_NONE) {
     snprintf(b, n, "%s %s", lab, t->est.pid ? "..." : "unknown");
@@ -2078,7 +2078,7 @@ static void draw_machine(struct tui *t, const struct layout *l)
   for (int a = 0; a < 4 && y < end; a++)
     textf(y++, x, w, A_BOLD, wide ? "%s %12.3f %s" : "%s%11.3f %s", ax[a], pos[a] / 1000.0, a == 3 ? "deg" : "mm");
   const struct machine *m = t->run != R_IDLE ? &t->s.m : NULL;
-  double f = t->run != R_IDLE ? t->s.vm.reg[REG_F] : 0;
+  double f = t->run != R_IDLE ? sess_reg(&t->s, REG_F) : 0;
   if (y < end) textf(y++, x, w, A_NORMAL, wide ? "F    %8.0f mm/min" : "F   %6.0f mm/min", f);
   if (y < end) textf(y++, x, w, A_NORMAL, wide ? "feed %10.1f mm/min" : "feed %6.1f mm/min", feed);
   if (y < end)
@@ -2110,7 +2110,7 @@ static void draw_machine(struct tui *t, const struct layout *l)
   } else if (y < end) {
     textf(y++, x, w, A_NORMAL, "%s  jog %lld", corr, (long long)t->jog_step);
   }
-  if (y < end) textf(y++, x, w, A_NORMAL, "blocks %llu", t->run != R_IDLE ? (unsigned long long)t->s.vm.blocks : 0ULL);
+  if (y < end) textf(y++, x, w, A_NORMAL, "blocks %llu", t->run != R_IDLE ? (unsigned long long)sess_blocks(&t->s) : 0ULL);
   if (y < end) text(y++, x, w, wide ? "registers changed last" : "changed last", A_BOLD, 1);
   for (int k = 0; k < t->nchg && y < end; k++) {
     const char *by = t->chg[k].how == 1 ? "restart" : t->chg[k].how == 2 ? "panel" : bname(t->chg[k].n, nb);
@@ -2418,8 +2418,8 @@ static _Noreturn void est_child(struct tui *t, int fd)
     r.kind = ev == SE_END ? EST_END : ev == SE_ERROR ? EST_ERROR : EST_LEAST;
     break;
   }
-  r.t = s->m.t;
-  r.blocks = s->vm.blocks;
+  r.t = sess_time(s);
+  r.blocks = sess_blocks(s);
   r.resumed = s->resumed;
   ssize_t w = write(fd, &r, sizeof r);
   (void)w;
@@ -2432,8 +2432,8 @@ static void est_start(struct tui *t)
   if (t->est.run != t->runs)
     t->est.kind = EST_NONE;   /* a new cycle: the last one's says nothing */
   t->est.run = t->runs;
-  t->est.override = t->s.m.override_pct;
-  t->est.latch = t->s.vm.exit_latch;
+  t->est.override = sess_override_pct(&t->s);
+  t->est.latch = sess_exit_latched(&t->s);
   int p[2];
   if (pipe(p))
     return;
@@ -2475,18 +2475,18 @@ static void est_read(struct tui *t)
  * whose row comes only when the wait ends. */
 static void watch(struct tui *t)
 {
-  if (t->run == R_RUN && t->s.state == SE_WAIT && t->s.vm.pp_jumps != t->pp_seen && t->cur.valid)
-    exit_taken(t, t->cur.n, t->cur.line, sess_block_number(&t->s), t->prog.blocks[t->s.vm.cur].line);
+  if (t->run == R_RUN && t->s.state == SE_WAIT && sess_pp_jumps(&t->s) != t->pp_seen && t->cur.valid)
+    exit_taken(t, t->cur.n, t->cur.line, sess_block_number(&t->s), t->prog.blocks[sess_cur(&t->s)].line);
   if (t->run != R_RUN) {
     if (t->est.pid)
       est_stop(t);   /* the cycle is over: its own time is exact now */
     return;
   }
-  int want = t->est.run != t->runs || t->s.m.override_pct != t->est.override ||
-             (t->s.vm.exit_latch && !t->est.latch);
+  int want = t->est.run != t->runs || sess_override_pct(&t->s) != t->est.override ||
+             (sess_exit_latched(&t->s) && !t->est.latch);
   if (!want && !t->est.pid && t->est.kind == EST_LEAST)   /* the operator did what stopped it */
-    want = t->s.vm.blocks > t->est.at_blocks ||
-           (t->s.vm.blocks == t->est.at_blocks && t->s.resumed > t->est.at_resumed);
+    want = sess_blocks(&t->s) > t->est.at_blocks ||
+           (sess_blocks(&t->s) == t->est.at_blocks && t->s.resumed > t->est.at_resumed);
   if (want)
     est_start(t);
 }
@@ -2573,7 +2573,7 @@ int tui_override(struct tui *t, int pct)
 {
   if (pct < 0 || pct > 150)
     return -1;
-  if (t->run == R_RUN && !t->s.m.override_allowed)
+  if (t->run == R_RUN && !sess_override_allowed(&t->s))
     return -1;
   set_override(t, pct);
   return 0;
