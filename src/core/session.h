@@ -187,6 +187,10 @@ int sess_override(struct session *s, int pct);
  * the move goes at the new speed (mach_override_at).  Returns the seconds
  * the move's end moved by. */
 double sess_override_at(struct session *s, double now);
+/* Is `now` within the block's contour move that takes the override
+ * (mach_in_move), and that move's speed now (mm/min)? */
+static inline int sess_in_move(const struct session *s, double now) { return mach_in_move(&s->m, now); }
+static inline double sess_move_feed(const struct session *s) { return s->m.mv.feed; }
 /* Single block: from the next block on, each block waits for Пуск (W_BLOCK)
  * before it starts.  A breakpoint: block number n waits for Пуск each time
  * it is about to start (0: none).  The switches stay as set until changed;

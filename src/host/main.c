@@ -837,7 +837,7 @@ static void override_in_motion(struct session *s, struct mb_machine *mm, double 
     frac = 0;
   double sim = sess_time(s) - (1 - frac) * len;   /* the simulated time the motion has reached */
   if (sess_override_pct(s) == 0) {
-    if (!mo->held && s->m.mv.on && sim >= s->m.mv.t0 && sim < s->m.mv.t1) {
+    if (!mo->held && sess_in_move(s, sim)) {
       mo->held_frac = frac;
       mo->held = 1;
       mm->ovr_held = 1;
@@ -850,12 +850,12 @@ static void override_in_motion(struct session *s, struct mb_machine *mm, double 
     mm->ovr_held = 0;
     mo->held = s->state == SE_STOPPED;   /* a Стоп meanwhile still holds it */
   }
-  if (d == 0 && !mo->held && rest == mo->end - now)
-    return;
+  if (d == 0 && !mo->held)
+    return;                      /* not within a move that takes the override: nothing changes */
   len = frac < 1 ? rest / (1 - frac) : len;
-  mo->start = (mo->held ? now : now) - frac * len;
+  mo->start = now - frac * len;
   mo->end = mo->start + len;
-  mo->feed = mm->feed = s->m.mv.feed;
+  mo->feed = mm->feed = sess_move_feed(s);
 }
 
 /* A block's motion is under way on the wall clock (not held). */

@@ -725,10 +725,9 @@ static void override_in_move(struct tui *t)
   if ((t->fast && !t->ovr_held) || !t->cur.valid || t->s.state == SE_WAIT)
     return;   /* fast: the block is done before the switch can turn, unless 0 % holds it */
   double now = pace_now(&t->pace);
-  const struct machine *m = &t->s.m;
-  if (now >= t->cur.t1 || !m->mv.on || now < m->mv.t0 || now >= m->mv.t1)
+  if (now >= t->cur.t1 || !sess_in_move(&t->s, now))
     return;
-  if (m->override_pct == 0) {
+  if (sess_override_pct(&t->s) == 0) {
     t->ovr_held = 1;
     pace_hold(&t->pace, 1);
     return;
@@ -739,7 +738,7 @@ static void override_in_move(struct tui *t)
   t->cur.ts = now;
   t->cur.t1 += d;
   t->last_t += d;
-  t->cur.feed = m->mv.feed;
+  t->cur.feed = sess_move_feed(&t->s);
   if (t->ovr_held) {
     t->ovr_held = 0;
     if (!t->held)

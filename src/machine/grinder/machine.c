@@ -321,10 +321,14 @@ static void move(struct machine *m, const double d[4], double len, double limit,
   }
 }
 
+int mach_in_move(const struct machine *m, double now)
+{
+  return m->mv.on && m->override_allowed && m->mv.feed > 0 && now >= m->mv.t0 && now < m->mv.t1;
+}
+
 double mach_override_at(struct machine *m, double now)
 {
-  if (!m->mv.on || !m->override_allowed || m->override_pct <= 0 || now < m->mv.t0 || now >= m->mv.t1 ||
-      m->mv.feed <= 0)
+  if (m->override_pct <= 0 || !mach_in_move(m, now))
     return 0;
   double f = effective(m, m->mv.f);
   if (f > m->mv.limit)

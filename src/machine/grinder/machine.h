@@ -124,6 +124,9 @@ void mach_move_along(struct machine *m, const struct mach_path *along, const dou
  * move that takes the override).  At 0 % nothing changes: the host holds
  * the move (its clock stops) and calls this again when the switch leaves 0. */
 double mach_override_at(struct machine *m, double now);
+/* Is simulated time `now` within the last contour move, one that takes the
+ * override (M26)?  What mach_override_at acts on, and where a 0 % holds. */
+int mach_in_move(const struct machine *m, double now);
 /* Would a feed override of 0 % hold a contour move that moves an axis? */
 int mach_held(const struct machine *m, int moves);
 /* Effective speed limit of a linear move (increments in discretes). */
