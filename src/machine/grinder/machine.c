@@ -247,7 +247,6 @@ static void move(struct machine *m, const double d[4], double len, double limit,
 void mach_feed(struct machine *m, const struct mach_path *pa, double f, struct mach_out *o)
 {
   double d[4], len, lim;
-  int64_t centre[2] = {0, 0};
   for (int a = 0; a < 4; a++)
     d[a] = (double)(pa->to[a] - m->pos[a]);
   if (!pa->arc) {
@@ -264,18 +263,14 @@ void mach_feed(struct machine *m, const struct mach_path *pa, double f, struct m
     for (int a = 0; a < 4; a++)
       if (a != p && a != q)
         d[a] = 0;
-    centre[0] = m->pos[p] + (int64_t)llround(pa->cp);
-    centre[1] = m->pos[q] + (int64_t)llround(pa->cq);
   }
-  move(m, d, len, lim, f, o);
+  mach_move_along(m, pa, d, len, lim, f, o);
   double lin2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
   if (len > 0 && d[3] != 0 && lin2 > 0 && !pa->arc) {
     double ad = d[3] * M_PI * (pa->d1 / 1000.0) / 360.0;
     o->v = o->feed * sqrt((lin2 + ad * ad) / (lin2 + d[3] * d[3]));
     o->has_v = 1;
   }
-  if (m->canon)
-    report_move(m, pa, centre, f);
 }
 
 void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o)
