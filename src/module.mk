@@ -7,7 +7,7 @@ include src/core/module.mk
 # every dialect's folder registers itself (DIALECTS += NAME): adding one
 # edits no file here
 include $(sort $(wildcard src/dialect/*/module.mk))
-include src/machine/grinder/module.mk
+include $(sort $(wildcard src/machine/*/module.mk))
 include src/host/module.mk
 
 # Everything but the hosts that link into s42 alone (the unit tests and the

@@ -35,7 +35,8 @@
   ERR(FEED,     "E-FEED",     "contour speed is zero") \
   ERR(LIMIT,    "E-LIMIT",    "limit exceeded") \
   ERR(STATE,    "E-STATE",    "restart refused") \
-  ERR(TRAVEL,   "E-TRAVEL",   "travel limit")
+  ERR(TRAVEL,   "E-TRAVEL",   "travel limit") \
+  ERR(THREAD,   "E-THREAD",   "thread cannot be cut")
 
 enum s42_err {
 #define ERR_ENUM(e, c, text) S42_E_##e,

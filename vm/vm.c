@@ -258,6 +258,17 @@ static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, doubl
 #define POP() (popped = tos, tos = st[--sp], popped)
 #define PUSH(v) (st[sp++] = tos, tos = (v))
 
+int vm_skip(struct vm *vm)
+{
+  const struct program *p = vm->p;
+  if (vm->done || vm->cur + 1 >= p->nblocks || vm->pc != p->blocks[vm->cur].code + 1 || vm->nundo)
+    return -1;
+  if (p->blocks[vm->cur + 1].unit != p->blocks[vm->cur].unit)
+    return -1;
+  vm->pc = p->blocks[vm->cur + 1].code;
+  return 0;
+}
+
 enum vm_event vm_run(struct vm *vm)
 {
   const struct program *p = vm->p;

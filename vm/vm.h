@@ -87,6 +87,13 @@ void vm_set_reg(struct vm *vm, unsigned reg, double v);
  * words are. */
 void vm_load_array(struct vm *vm, int k, const double *v, int n);
 
+/* Right after VM_EV_START: do not run the block that was about to start
+ * (block skip, `/`); vm_run goes on with the next block in the program's
+ * text, which must exist in the same unit (the front end refuses a
+ * skippable block that ends a unit or a repeat).  0, or -1 when not at a
+ * block's start or there is no next block (nothing changes). */
+int vm_skip(struct vm *vm);
+
 /* Block number of block index b (0 when it has none). */
 static inline uint32_t vm_block_number(const struct vm *vm, uint32_t b)
 {

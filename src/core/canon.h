@@ -2,7 +2,7 @@
  * them as LinuxCNC's canonical machining functions (--trace=canon: what
  * `rs274 -g` prints for a twin program, without its N... prefix).  A
  * machine reports each call it carries out (struct canon_call: absolute
- * positions in discretes, after the call); the sink keeps what LinuxCNC
+ * positions in counts, after the call); the sink keeps what LinuxCNC
  * prints only on a change (the feed rate, the plane). */
 #ifndef S42_CANON_H
 #define S42_CANON_H
@@ -17,7 +17,13 @@ enum canon_kind {
   CANON_DWELL,           /* DWELL(v) seconds */
   CANON_SPINDLE,         /* dir 1 START_SPINDLE_CLOCKWISE, -1 COUNTERCLOCKWISE, 0 STOP_SPINDLE_TURNING */
   CANON_OVERRIDE,        /* on: ENABLE_FEED_OVERRIDE, else DISABLE */
-  CANON_END              /* PROGRAM_END */
+  CANON_END,             /* PROGRAM_END */
+  CANON_SPINDLE_SPEED,   /* SET_SPINDLE_SPEED(0, v) rpm */
+  CANON_FEED_MODE,       /* SET_FEED_MODE(0, on): on 1 per revolution, 0 per minute */
+  CANON_SYNCH_START,     /* START_SPEED_FEED_SYNC(v, 0): a thread's pitch v mm per revolution */
+  CANON_SYNCH_STOP,      /* STOP_SPEED_FEED_SYNCH() */
+  CANON_COOLANT,         /* on: FLOOD_ON(), else MIST_OFF() FLOOD_OFF() as LinuxCNC's M9 */
+  CANON_TOOL             /* SELECT_TOOL(dir): the tool number */
 };
 
 struct canon_call {
@@ -29,6 +35,8 @@ struct canon_call {
   int plane;             /* ARC: enum geom_plane (XY, YZ, XZ) */
   int64_t centre[2];     /* ARC: the centre in the plane's two axes (geom_plane_axes order), absolute */
   int ccw;               /* ARC: turning from the plane's first axis towards its second */
+  const double *mm;      /* mm (deg) per count of X Y Z A; NULL: 0.001 each (a lathe's X
+                            counts its diameter and prints the radius: 0.0005) */
 };
 
 /* The sink: prints a line per call to out, SET_FEED_RATE and SELECT_PLANE

@@ -20,10 +20,20 @@ struct dialect {
    * -1 when it has errors.  plugins: the plugin functions known (may be
    * NULL where the dialect has none). */
   int (*compile)(const char *src, size_t n, struct diag_list *d, struct program *p, const struct plug_set *plugins);
-  /* 1: the 2С42 runtime runs it (the session: dialogs, the grinder, the
-   * panel, plugins); 0: blocks run on the VM alone against no machine
-   * (its registers, jumps and calls; the dump's pos is empty). */
-  int session;
+  /* How its programs run (enum dialect_run). */
+  int run;
+};
+
+enum dialect_run {
+  /* blocks run on the VM alone against no machine (its registers, jumps
+   * and calls; the dump's pos is empty) */
+  DIALECT_RUN_VM,
+  /* the 2С42 runtime runs it (the session: dialogs, the grinder, the
+   * panel, plugins) */
+  DIALECT_RUN_SESSION,
+  /* the neutral runner (src/core/mrun.h) with the dialect's runtime and
+   * machine (program.runtime is a struct mrun_rt) */
+  DIALECT_RUN_MACHINE
 };
 
 /* The registered dialects, NULL-terminated, in the order the build lists them. */

@@ -519,7 +519,7 @@ static int cmd_dialects(int argc, char **argv)
   for (size_t i = 0; dialect_list[i]; i++) {
     const struct dialect *d = dialect_list[i];
     printf("%-10s %-6s %-10s %s%s\n", d->name, d->ext, d->machine, d->controller,
-           d->session ? "" : " (blocks run on the VM alone)");
+           d->run == DIALECT_RUN_VM ? " (blocks run on the VM alone)" : "");
   }
   return 0;
 }
@@ -1157,7 +1157,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   char *src = NULL;
   size_t n = 0;
   int rc = load(o.program, &p, &d, &src, &n);
-  if (rc == 0 && !dialect_of(o.program)->session) {
+  if (rc == 0 && dialect_of(o.program)->run == DIALECT_RUN_VM) {
     rc = run_bare(&o, &p, &d, plot);
     prog_free(&p);
     diag_free(&d);
@@ -1463,7 +1463,7 @@ static int cmd_tui(int argc, char **argv)
     return EXIT_USAGE;
   }
   const struct dialect *dl = o.program ? dialect_of(o.program) : cli_dialect;
-  if (dl && !dl->session) {
+  if (dl && dl->run == DIALECT_RUN_VM) {
     fprintf(stderr, "s42: tui: the %s dialect has no panel yet (s42 run and s42 check take it)\n", dl->name);
     return EXIT_USAGE;
   }

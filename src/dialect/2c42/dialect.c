@@ -13,5 +13,5 @@ const struct dialect dialect_2c42 = {
   .controller = "2С42-65 (ВЗ-208Ф3 tool-grinding semi-automatic)",
   .machine = "grinder",
   .compile = compile,
-  .session = 1,
+  .run = DIALECT_RUN_SESSION,
 };

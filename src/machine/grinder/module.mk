@@ -3,6 +3,7 @@
 # canonical calls that know no language.  It sees vm/'s error codes, core's
 # geometry (src/core/geom.h) and the canonical events it reports
 # (src/core/canon.h); no other core header is included.
-MACHINE_SRCS := $(wildcard src/machine/grinder/*.c)
-MACHINE_INC  := -Isrc/machine/grinder -Isrc/core -Ivm
-$(MACHINE_SRCS:%.c=$(BUILD)/%.o): MOD_CPPFLAGS = $(MACHINE_INC)
+GRINDER_SRCS := $(wildcard src/machine/grinder/*.c)
+GRINDER_INC  := -Isrc/machine/grinder -Isrc/core -Ivm
+$(GRINDER_SRCS:%.c=$(BUILD)/%.o): MOD_CPPFLAGS = $(GRINDER_INC)
+MACHINE_SRCS += $(GRINDER_SRCS)

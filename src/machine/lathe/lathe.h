@@ -1,0 +1,128 @@
+/* The simulated 16Б16Ф3 lathe (spec/dialects/2u22.md sec. 1, D-22..D-32):
+ * the cross slide X and the carriage Z, the spindle with its two ranges,
+ * the turret's tools with their X/Z corrections, coolant, machine zero and
+ * the part zero, the travel, the working-feed and traverse limits, and
+ * simulated time.  It knows no language: its calls are the canonical
+ * machine's (a traverse, a line, an arc, a thread, a dwell, the spindle,
+ * the feed mode, a tool, coolant, homing), and a trace observer sees each
+ * as LinuxCNC prints it (src/core/canon.h; --trace=canon).
+ *
+ * Units: positions are counts of 1 µm; X counts the DIAMETER (a diameter
+ * change of d moves the slide d/2).  A position given to a call is the
+ * tool tip's in the part's coordinates (what the program and the display
+ * mean, and what LinuxCNC's canonical calls print: its work coordinates);
+ * the machine keeps where the slides are in machine coordinates
+ * (slide = tip + part zero - the tool's correction) and checks the travel
+ * there.  Feeds are mm/min of the path measured on the slides (D-24). */
+#ifndef S42_LATHE_H
+#define S42_LATHE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+struct canon_call;
+
+enum { LX, LZ };                      /* the axes: X (diameter), Z */
+
+#define LATHE_TOOLS 100               /* T0..T99; T0 is no tool (no correction) */
+#define LATHE_FEED_X 1200.0           /* mm/min of the X slide (working feed) */
+#define LATHE_FEED_Z 2400.0           /* mm/min of Z */
+#define LATHE_RAPID_X 5000.0          /* traverse, mm/min of the X slide */
+#define LATHE_RAPID_Z 10000.0
+#define LATHE_TRAVEL_X 225000         /* µm of radius either side of machine zero (D-23) */
+#define LATHE_TRAVEL_Z 650000         /* µm either side of machine zero */
+#define LATHE_ARC_TOL 10              /* µm of radius: start and end radii may differ this much (D-32) */
+
+/* A tool's correction (the tool table, --tools FILE): tip = slide + d. */
+struct lathe_tool {
+  int has;                            /* in the table */
+  int64_t d[2];                       /* µm, X as a diameter */
+};
+
+/* Spindle ranges: 0 none selected (45..1800 rpm, D-30), 1 M38 45..280, 2 M39 224..1800. */
+extern const double lathe_range_lo[3], lathe_range_hi[3];
+
+struct lathe {
+  int64_t slide[2];                   /* machine coordinates, µm (X diameter); 0 0 = machine zero */
+  int64_t zero[2];                    /* the part zero OX OZ: machine coordinates of the part's origin */
+  int64_t lo[2], hi[2];               /* the travel of the slides, machine coordinates (D-23 by default) */
+  struct lathe_tool tools[LATHE_TOOLS];
+  int tool;                           /* in the working position, 0 none */
+  double t;                           /* simulated seconds */
+  int dir;                            /* spindle: 1 CW (M03), -1 CCW (M04), 0 stopped */
+  double s;                           /* the S in force: rpm (G97) or m/min (G96), after clamping */
+  int range;                          /* 0, 1, 2 */
+  int per_rev;                        /* G95: feeds are mm per revolution */
+  int css;                            /* G96: s is the cutting speed, m/min */
+  int coolant;
+  double feed;                        /* the last feed move's effective speed, mm/min of the path */
+  double rpm_now;                     /* the spindle's speed at the end of the last call (css varies it) */
+  /* a warning the machine raises (a feed cut to the axes' limits, an S
+   * clamped to the range): the text, for the host; NULL ignores them */
+  void (*warn)(void *ctx, const char *msg);
+  void *warn_ctx;
+  /* each canonical call carried out (src/core/canon.h), or NULL */
+  void (*canon)(void *ctx, const struct canon_call *c);
+  void *canon_ctx;
+};
+
+/* Power-on (D-7, D-22): slides at machine zero, part zero 0, the default
+ * travel, no tools in the table, T0, spindle stopped, no range, G94 G97,
+ * coolant off, time 0. */
+void lathe_init(struct lathe *l);
+/* The tool tip's position in the part's coordinates (µm, X diameter). */
+int64_t lathe_pos(const struct lathe *l, int axis);
+/* The part zero (the operator's V0 entry, `zero X <mm> Z <mm>`): the tip
+ * stays where it is in the machine, its part coordinates change. */
+void lathe_set_zero(struct lathe *l, int64_t ox, int64_t oz);
+/* The spindle's speed now, rpm (0 stopped); under G96 at diameter d (µm). */
+double lathe_rpm(const struct lathe *l, int64_t d);
+
+/* Each call returns 0, or an error code (vm/errors.h: S42_E_TRAVEL,
+ * S42_E_ARC, S42_E_FEED, S42_E_THREAD) with the message in msg, having
+ * changed nothing: a call checks before it moves. */
+
+/* STRAIGHT_TRAVERSE of the axes in mask (bit LX, bit LZ) to `to` (part
+ * coordinates), each at its traverse speed, together; the time is the
+ * longer axis's. */
+int lathe_traverse(struct lathe *l, unsigned mask, const int64_t to[2], char *msg, size_t n);
+/* G25: the axes in mask to machine zero at traverse speed (D-31). */
+int lathe_home(struct lathe *l, unsigned mask, char *msg, size_t n);
+/* STRAIGHT_FEED to `to` at f: mm/min (G94), or mm per revolution (G95,
+ * times the spindle's speed, which must turn: E-FEED otherwise).  f 0 is
+ * E-FEED.  The speed is cut so that neither slide passes its working-feed
+ * limit (a warning when it is, D-24). */
+int lathe_feed_line(struct lathe *l, const int64_t to[2], double f, char *msg, size_t n);
+/* ARC_FEED to `to` round centre c (part coordinates, X diameter); cw:
+ * G02, else G03 (as LinuxCNC's G2/G3 in G18).  One quadrant at most and
+ * the radii within LATHE_ARC_TOL (E-ARC); speed as a line's. */
+int lathe_feed_arc(struct lathe *l, const int64_t to[2], const int64_t c[2], int cw, double f, char *msg, size_t n);
+/* G33: a thread to `to`, pitch k µm of Z per revolution (taper: X changes
+ * with it); the spindle must turn and Z speed = k * rpm must stay within
+ * LATHE_FEED_Z (E-THREAD). */
+int lathe_thread(struct lathe *l, const int64_t to[2], double k, char *msg, size_t n);
+/* DWELL: sec of simulated time. */
+void lathe_dwell(struct lathe *l, double sec);
+/* The spindle: dir 1 CW, -1 CCW, 0 stop. */
+void lathe_spindle(struct lathe *l, int dir);
+/* S: rpm (G97) or m/min (G96), clamped to the range in force with a
+ * warning (D-10); M38/M39 (lathe_range) re-clamp it. */
+void lathe_speed(struct lathe *l, double s);
+void lathe_range(struct lathe *l, int range);
+/* G96 on / G97 off. */
+void lathe_css(struct lathe *l, int on);
+/* G94 / G95 (SET_FEED_MODE). */
+void lathe_feed_mode(struct lathe *l, int per_rev);
+/* T: the tool in the working position; its correction applies from now. */
+void lathe_tool(struct lathe *l, int t);
+void lathe_coolant(struct lathe *l, int on);
+/* PROGRAM_END (M02, M30): spindle and coolant stop (D-30). */
+void lathe_end(struct lathe *l);
+
+/* The tool table (--tools FILE), in the text format README documents:
+ *   ; comment
+ *   T1  X -12.50  Z 40.00      the corrections in mm, X as a diameter
+ * 0, or -1 with "FILE:LINE:COL: message" in err. */
+int lathe_tools_parse(struct lathe *l, const char *text, size_t len, const char *file, char *err, size_t n);
+
+#endif
