@@ -13,6 +13,7 @@
 
 #include "program.h"
 #include "vm.h"
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -59,6 +60,10 @@ struct mrun_rt {
   int (*zero)(struct mrun *r, const double *mm, int n, char *why, size_t nwhy);
   /* the simulated time, seconds */
   double (*time)(const struct mrun *r);
+  /* a file the machine reads (what: "tools", the --tools table): 0, or -1
+   * with "FILE:LINE:COL: message" in err */
+  int (*load)(struct mrun *r, const char *what, const char *text, size_t len, const char *file, char *err,
+              size_t nerr);
 };
 
 /* What the host gets back and how it set the run up. */
@@ -85,6 +90,7 @@ struct mrun {
   int at_start;              /* the last MR_WAIT is a watched block's start (vm.cur) */
   int single, skip, optstop; /* the operator's switches: П/АВТ, U/, ST */
   int go;                    /* the cycle's first block needs no Пуск of its own */
+  int stop_after;            /* the row just out ends in a programmed stop */
   uint64_t seq;              /* rows out */
 };
 

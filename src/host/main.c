@@ -11,6 +11,7 @@
 #include "modbus.h"
 #include "nearest.h"
 #include "operator.h"
+#include "mhost.h"
 #include "pace.h"
 #include "plot.h"
 #include "plugin.h"
@@ -43,6 +44,7 @@ static const struct optinfo {
 } optinfo[] = {
   {"--operator", "FILE", C_RUN | C_PLOT, "operator actions for a headless run"},
   {"--tool", "FILE", C_RUN | C_TUI | C_PLOT, "tool model for tooth-step search (G10/G11)"},
+  {"--tools", "FILE", C_RUN | C_TUI | C_PLOT, "a lathe's tool table: each tool's X and Z corrections (2У22)"},
   {"--dump-images", "DIR", C_RUN | C_TUI | C_PLOT, "write the probe images of each search there, plain and annotated"},
   {"--trace", NULL, C_RUN | C_PLOT, "one line per executed block on stdout"},
   {"--trace=json", NULL, C_RUN | C_PLOT, "the same as JSON Lines (--trace=text: as --trace)"},
@@ -143,7 +145,7 @@ static int cmd_help(const struct cmdinfo *c)
 
 struct opts {
   unsigned cmd;              /* C_RUN, C_TUI or C_PLOT: for "did you mean" */
-  const char *program, *operator_file, *tool, *dump_images, *state, *plugins, *modbus, *out, *machine;
+  const char *program, *operator_file, *tool, *tools, *dump_images, *state, *plugins, *modbus, *out, *machine;
   struct mach_travel travel; /* from --machine FILE (none without it) */
   int trace, json, canon, dump, screen, restart, realtime, en;
   unsigned long long max_blocks;
@@ -233,6 +235,7 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     }
     if (strcmp(a, "--operator") == 0) val = &o->operator_file;
     else if (strcmp(a, "--tool") == 0) val = &o->tool;
+    else if (strcmp(a, "--tools") == 0) val = &o->tools;
     else if (strcmp(a, "--dump-images") == 0) val = &o->dump_images;
     else if (strcmp(a, "--state") == 0) val = &o->state;
     else if (strcmp(a, "--machine") == 0) val = &o->machine;
@@ -710,7 +713,7 @@ static void apply_immediate(struct runner *r, const struct op_action *a)
   case OA_OVERRIDE:
     sess_override(&r->s, (int)a->n);
     break;
-  case OA_MODE:
+  case OA_MODE:   /* the 2С42's scripts have only single block (refused_for_2c42) */
     sess_set_single(&r->s, (int)a->n);
     break;
   case OA_BREAK:
@@ -1129,6 +1132,50 @@ static int run_bare(const struct opts *o, struct program *p, struct diag_list *d
   return st;
 }
 
+/* Operator actions of other machines in a 2С42 script: refused before the run. */
+static int refused_for_2c42(const struct opscript *ops, const char *file)
+{
+  int bad = 0;
+  for (int pass = 0; pass < 2; pass++)
+    for (size_t i = 0; i < (pass ? ops->nat : ops->n); i++) {
+      const struct op_action *a = pass ? &ops->at[i] : &ops->v[i];
+      const char *why = a->kind == OA_ZERO ? "zero: the ВЗ-208Ф3 has no part zero to set (that is the lathe's)"
+                        : a->kind == OA_MODE && a->n2 == OPMODE_SKIP ? "mode skip: the 2С42-65 has no block skip"
+                        : a->kind == OA_MODE && a->n2 == OPMODE_OPTSTOP ? "mode optstop: the 2С42-65 has no M01"
+                                                                        : NULL;
+      if (why) {
+        fprintf(stderr, "%s:%u:%u: error: %s\n", file, a->line, a->col, why);
+        bad = 1;
+      }
+    }
+  return bad;
+}
+
+/* A dialect on the neutral runner (src/host/mhost.c). */
+static int run_machine(const struct opts *o, struct program *p, struct diag_list *d, struct plot *plot)
+{
+  const char *no = plot ? "plot" : o->modbus ? "--modbus" : o->state ? "--state" : o->restart ? "--restart"
+                   : o->tool ? "--tool" : o->machine ? "--machine" : o->screen ? "--screen"
+                   : o->realtime ? "--realtime" : o->dump_images ? "--dump-images" : NULL;
+  if (no) {
+    fprintf(stderr, "s42: %s: %s is not there yet for the %s dialect (%s)\n", o->program, no,
+            dialect_of(o->program)->name, dialect_of(o->program)->machine);
+    return EXIT_USAGE;
+  }
+  struct mhost_opts m;
+  memset(&m, 0, sizeof m);
+  m.program = o->program;
+  m.operator_file = o->operator_file;
+  m.tools = o->tools;
+  m.trace = o->trace;
+  m.json = o->json;
+  m.canon = o->canon;
+  m.dump = o->dump;
+  m.en = o->en;
+  m.max_blocks = o->max_blocks;
+  return mhost_run(&m, p, d);
+}
+
 static int headless(const struct opts *opt, struct plot *plot)
 {
   struct opts o = *opt;
@@ -1157,6 +1204,21 @@ static int headless(const struct opts *opt, struct plot *plot)
   char *src = NULL;
   size_t n = 0;
   int rc = load(o.program, &p, &d, &src, &n);
+  if (rc == 0 && dialect_of(o.program)->run == DIALECT_RUN_MACHINE) {
+    rc = run_machine(&o, &p, &d, plot);
+    prog_free(&p);
+    diag_free(&d);
+    free(src);
+    ops_free(&r.ops);
+    return rc;
+  }
+  if (o.tools) {
+    fprintf(stderr, "s42: %s: --tools is a lathe's tool table; the 2С42's tooth-search tool model is --tool\n",
+            o.program);
+    rc = rc ? rc : EXIT_USAGE;
+  }
+  if (rc == 0 && dialect_of(o.program)->run == DIALECT_RUN_SESSION && refused_for_2c42(&r.ops, o.operator_file))
+    rc = EXIT_USAGE;
   if (rc == 0 && dialect_of(o.program)->run == DIALECT_RUN_VM) {
     rc = run_bare(&o, &p, &d, plot);
     prog_free(&p);

@@ -8,7 +8,9 @@
 #include <string.h>
 
 static const char *const keys[] = {"PUSK", "PS", "EXIT", "STOP"};
-static const char *const actions[] = {"answer", "key", "jog", "correct", "override", "section", "mode", "break", "at"};
+static const char *const actions[] = {"answer", "key", "jog", "correct", "override", "section", "mode", "break", "at",
+                                      "zero"};
+static const char *const modes[] = {"single", "skip", "optstop"};
 
 int ops_is_waiting(const struct op_action *a)
 {
@@ -28,7 +30,13 @@ const char *ops_describe(const struct op_action *a, char *buf, size_t n)
   case OA_JOG: snprintf(buf, n, "jog %c %+lld", ax[a->axis], (long long)a->n); break;
   case OA_CORRECT: snprintf(buf, n, "correct %c %+lld", ax[a->axis], (long long)a->n); break;
   case OA_OVERRIDE: snprintf(buf, n, "override %lld", (long long)a->n); break;
-  case OA_MODE: snprintf(buf, n, "mode %s", a->n ? "single" : "auto"); break;
+  case OA_MODE:
+    if (a->n2 == OPMODE_SINGLE && !a->n)
+      snprintf(buf, n, "mode auto");
+    else
+      snprintf(buf, n, "mode %s %s", modes[a->n2 >= 0 && a->n2 < 3 ? a->n2 : 0], a->n ? "on" : "off");
+    break;
+  case OA_ZERO: snprintf(buf, n, "zero"); break;
   case OA_BREAK:
     if (a->n)
       snprintf(buf, n, "break N%lld", (long long)a->n);
@@ -131,6 +139,36 @@ static int integer(const char *w, int64_t lo, int64_t hi, int64_t *out)
   return 1;
 }
 
+/* Millimetres with at most 3 decimals, |v| <= 10000, into µm. */
+static int millimetres(const char *w, int64_t *um)
+{
+  const char *p = w;
+  int neg = *p == '-';
+  if (*p == '+' || *p == '-')
+    p++;
+  int64_t v = 0;
+  int digits = 0, dec = -1;
+  for (; *p; p++) {
+    if (*p == '.' && dec < 0) {
+      dec = 0;
+      continue;
+    }
+    if (!isdigit((unsigned char)*p) || dec >= 3 || ++digits > 8)
+      return 0;
+    v = v * 10 + (*p - '0');
+    if (dec >= 0)
+      dec++;
+  }
+  if (!digits)
+    return 0;
+  for (int i = dec < 0 ? 0 : dec; i < 3; i++)
+    v *= 10;
+  if (v > 10000000)
+    return 0;
+  *um = neg ? -v : v;
+  return 1;
+}
+
 static int axis(const char *w)
 {
   if (strlen(w) != 1)
@@ -193,25 +231,61 @@ static const char *action(struct cur *c, struct op_action *a)
       return "override takes a percentage 0..150";
   } else if (strcmp(w, "mode") == 0) {
     a->kind = OA_MODE;
-    if (!word(c, w, sizeof w) || (strcmp(w, "single") != 0 && strcmp(w, "auto") != 0))
-      return "mode is single (each block waits for key PUSK) or auto";
-    a->n = w[0] == 's';
+    a->n2 = -1;
+    if (!word(c, w, sizeof w))
+      w[0] = 0;
+    if (strcmp(w, "auto") == 0) {
+      a->n2 = OPMODE_SINGLE;
+      a->n = 0;
+      return NULL;
+    }
+    for (int i = 0; i < 3; i++)
+      if (strcmp(w, modes[i]) == 0)
+        a->n2 = i;
+    if (a->n2 < 0)
+      return "mode is single, skip or optstop, then on or off (or: mode single, mode auto)";
+    skipws(c);
+    if (c->p >= c->end || *c->p == ';') {
+      if (a->n2 != OPMODE_SINGLE)
+        return "mode skip and mode optstop take on or off";
+      a->n = 1;        /* `mode single`: on */
+      return NULL;
+    }
+    if (!word(c, w2, sizeof w2) || (strcmp(w2, "on") != 0 && strcmp(w2, "off") != 0))
+      return "a mode is switched on or off";
+    a->n = strcmp(w2, "on") == 0;
+  } else if (strcmp(w, "zero") == 0) {
+    /* the part zero: zero X <mm> Z <mm> (either or both, decimals allowed) */
+    a->kind = OA_ZERO;
+    a->axis = 0;
+    while (skipws(c), c->p < c->end && *c->p != ';') {
+      if (!word(c, w, sizeof w) || (strcmp(w, "X") != 0 && strcmp(w, "Z") != 0))
+        return "zero takes X <mm> and Z <mm>: zero X 0 Z 300.5";
+      int bit = w[0] == 'X' ? 1 : 2;
+      if (a->axis & bit)
+        return "zero: an axis given twice";
+      if (!word(c, w2, sizeof w2) || !millimetres(w2, bit == 1 ? &a->n : &a->n2))
+        return "zero: expected millimetres, e.g. 300.5 (at most 3 decimals, |value| <= 10000)";
+      a->axis |= bit;
+    }
+    if (!a->axis)
+      return "zero takes X <mm> and Z <mm>: zero X 0 Z 300.5";
   } else if (strcmp(w, "break") == 0) {
     a->kind = OA_BREAK;
     if (!word(c, w, sizeof w))
       return "break needs a block: break N54 (it waits for key PUSK before N54 starts), or break off";
     if (strcmp(w, "off") == 0)
       a->n = 0;
-    else if (w[0] != 'N' || w[1] == '+' || w[1] == '-' || !integer(w + 1, 1, 999, &a->n))
-      return "break needs a block: break N54 (block 1..999), or break off";
+    else if (w[0] != 'N' || w[1] == '+' || w[1] == '-' || !integer(w + 1, 1, 99999, &a->n))
+      return "break needs a block: break N54 (block 1..99999), or break off";
   } else {
     const char *m = nearest_word(w, actions, sizeof actions / sizeof actions[0]);
     if (m)
       snprintf(msg, sizeof msg, "unknown action '%.40s': did you mean %s? (answer, key, jog, correct, override, "
-               "section, mode, break, at)", w, m);
+               "section, mode, break, at, zero)", w, m);
     else
       snprintf(msg, sizeof msg, "unknown action '%.40s' (answer, key, jog, correct, override, section, mode, "
-               "break, at)", w);
+               "break, at, zero)", w);
     return msg;
   }
   skipws(c);
@@ -261,9 +335,9 @@ int ops_parse(const char *text, size_t len, const char *file, struct opscript *s
         int64_t nb = 0, run = 1;
         if (hash)
           *hash = 0;
-        if (!integer(t + 1, 1, 999, &nb) || t[1] == '+' || t[1] == '-' ||
+        if (!integer(t + 1, 1, 99999, &nb) || t[1] == '+' || t[1] == '-' ||
             (hash && (!integer(hash + 1, 1, 1000000000, &run) || hash[1] == '+' || hash[1] == '-')))
-          msg = "at needs a block: at N54 or at N54#3 (block 1..999, run from 1)";
+          msg = "at needs a block: at N54 or at N54#3 (block 1..99999, run from 1)";
         a.at_number = (int)nb;
         a.at_run = (unsigned)run;
       }

@@ -9,15 +9,19 @@
 #include <stdint.h>
 #include <stdio.h>
 
-enum op_kind { OA_ANSWER, OA_KEY, OA_JOG, OA_CORRECT, OA_OVERRIDE, OA_SECTION, OA_MODE, OA_BREAK };
+enum op_kind { OA_ANSWER, OA_KEY, OA_JOG, OA_CORRECT, OA_OVERRIDE, OA_SECTION, OA_MODE, OA_BREAK, OA_ZERO };
+/* OA_MODE's switch (n2): single block (П/АВТ), block skip (U/), optional stop (ST) */
+enum op_mode { OPMODE_SINGLE, OPMODE_SKIP, OPMODE_OPTSTOP };
 enum op_key { OPKEY_PUSK, OPKEY_PS, OPKEY_EXIT, OPKEY_STOP };
 
 struct op_action {
   int kind;
   int key;                 /* OA_KEY */
-  int axis, axis2;         /* OA_JOG, OA_CORRECT, OA_SECTION (axis2 -1 none) */
-  int64_t n, n2;           /* amounts; OA_ANSWER the number; OA_OVERRIDE %; OA_MODE 1 single, 0 auto;
-                              OA_BREAK the block number, 0 off */
+  int axis, axis2;         /* OA_JOG, OA_CORRECT, OA_SECTION (axis2 -1 none); OA_ZERO: bit 0 X
+                              given, bit 1 Z given */
+  int64_t n, n2;           /* amounts; OA_ANSWER the number; OA_OVERRIDE %; OA_MODE n 1 on, 0 off
+                              (`mode auto`: single off), n2 the switch (enum op_mode);
+                              OA_BREAK the block number, 0 off; OA_ZERO µm of X, of Z */
   unsigned line, col;       /* where the action (or its `at`) starts */
   int at_number;           /* `at N54#3 ...`: block number, -1 not an at line */
   unsigned at_run;         /* which run of it (1 = first) */

@@ -266,7 +266,7 @@ START_TEST(reject_bad_at)
 {
   refused("at 54 key EXIT", 1);
   refused("at N0 key EXIT", 1);
-  refused("at N1000 key EXIT", 1);
+  refused("at N100000 key EXIT", 1);
   refused("at N5#0 key EXIT", 1);
   refused("at N5# key EXIT", 1);
   refused("at N-5 key EXIT", 1);
@@ -367,6 +367,45 @@ START_TEST(at_block_must_exist)
 }
 END_TEST
 
+/* The lathe's switches and its part zero (2u22.md D-34). */
+START_TEST(lathe_modes_and_zero)
+{
+  char d[64];
+  const struct op_action *a = one("mode skip on");
+  ck_assert_int_eq(a->kind, OA_MODE);
+  ck_assert_int_eq(a->n2, OPMODE_SKIP);
+  ck_assert_int_eq(a->n, 1);
+  ck_assert_str_eq(ops_describe(a, d, sizeof d), "mode skip on");
+  a = one("mode optstop off ; ST off");
+  ck_assert_int_eq(a->n2, OPMODE_OPTSTOP);
+  ck_assert_int_eq(a->n, 0);
+  a = one("mode single off");
+  ck_assert_int_eq(a->n2, OPMODE_SINGLE);
+  ck_assert_int_eq(a->n, 0);
+  ck_assert_str_eq(ops_describe(a, d, sizeof d), "mode auto");
+  a = one("mode single on");
+  ck_assert_int_eq(a->n, 1);
+  a = one("zero X 0 Z 300.5");
+  ck_assert_int_eq(a->kind, OA_ZERO);
+  ck_assert_int_eq(a->axis, 3);
+  ck_assert_int_eq(a->n, 0);
+  ck_assert_int_eq(a->n2, 300500);
+  ck_assert(!ops_is_waiting(a));
+  a = one("zero Z -12.25");
+  ck_assert_int_eq(a->axis, 2);
+  ck_assert_int_eq(a->n2, -12250);
+  refused_at("mode skip", 9, 1, 6, "take on or off");
+  refused_at("mode skip maybe", 15, 1, 11, "on or off");
+  refused_at("zero", 4, 1, 1, "zero takes X");
+  refused_at("zero X 1.2345", 13, 1, 8, "millimetres");
+  refused_at("zero X 1 X 2", 12, 1, 10, "twice");
+  refused_at("zero Y 3", 8, 1, 6, "zero takes X");
+  /* 5-digit blocks (the 2У22's) in at and break */
+  ck_assert_int_eq(parse("at N2001 key STOP\n"), 0);
+  ck_assert_int_eq(sc.at[0].at_number, 2001);
+}
+END_TEST
+
 START_TEST(mode_and_break)
 {
   const struct op_action *a = one("mode single");
@@ -388,8 +427,8 @@ START_TEST(mode_and_break)
   ck_assert_int_eq(sc.nat, 1);
   refused_at("mode singel", 11, 1, 6, "mode is single");
   refused_at("break 54", 8, 1, 7, "break needs a block");
-  refused_at("break N1000", 11, 1, 7, "block 1..999");
-  refused_at("break N-3", 9, 1, 7, "block 1..999");
+  refused_at("break N100000", 13, 1, 7, "block 1..99999");
+  refused_at("break N-3", 9, 1, 7, "block 1..99999");
   refused_at("mode", 4, 1, 5, "mode is single");
   /* a break for a block the program lacks is refused before the run */
   ck_assert_int_eq(parse("break N22\nkey PUSK\nbreak off\n"), 0);
@@ -411,7 +450,7 @@ START_TEST(did_you_mean)
 {
   refused_at("anser 118", 9, 1, 1,
              "unknown action 'anser': did you mean answer? (answer, key, jog, correct, override, section, mode, "
-             "break, at)");
+             "break, at, zero)");
   refused_at("key PUS", 7, 1, 5, "unknown key 'PUS': did you mean PUSK? (PUSK, PS, EXIT, STOP)");
   refused_at("key STPO", 8, 1, 5, "did you mean STOP?");
   refused_at("frobnicate 3", 12, 1, 1, "unknown action 'frobnicate' (answer, key,");
@@ -482,6 +521,7 @@ Suite *suite_operator(void)
   tcase_add_test(tc, reject_unknown_key);
   tcase_add_test(tc, reject_at_with_waiting_action);
   tcase_add_test(tc, reject_bad_at);
+  tcase_add_test(tc, lathe_modes_and_zero);
   tcase_add_test(tc, reject_trailing_text);
   tcase_add_test(tc, reject_reports_every_bad_line);
   tcase_add_test(tc, reject_columns);

@@ -41,7 +41,8 @@
   T(FEED,     "контурна швидкість дорівнює нулю",    "contour speed is zero") \
   T(LIMIT,    "вичерпано ліміт кадрів",              "block budget exhausted") \
   T(STATE,    "повторний пуск неможливий",           "restart refused") \
-  T(TRAVEL,   "вихід за межу переміщення",           "travel limit")
+  T(TRAVEL,   "вихід за межу переміщення",           "travel limit") \
+  T(THREAD,   "різьбу нарізати неможливо",           "thread cannot be cut")
 
 /* The error line under the screen: the block number ("-": none), the title. */
 #define KP_SCREEN_UK "помилка в КП №%s: %s"

@@ -1,0 +1,151 @@
+/* The neutral runner (src/core/mrun.h). */
+#include "mrun.h"
+#include "diag.h"
+#include "errors.h"
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+int mrun_init(struct mrun *r, const struct program *p, const struct mrun_config *c)
+{
+  memset(r, 0, sizeof *r);
+  r->p = p;
+  r->rt = p->runtime;
+  r->cfg = *c;
+  r->go = 1;
+  r->state = MR_ROW;
+  int bad = vm_init(&r->vm, p);
+  r->vm.max_blocks = c->max_blocks;
+  r->vm.watch = c->watch;
+  r->st = calloc(1, r->rt && r->rt->size ? r->rt->size : 1);
+  if (!r->st) {
+    vm_fail(&r->vm, S42_E_LIMIT, "out of memory");
+    return -1;
+  }
+  if (r->rt && r->rt->reset)
+    r->rt->reset(r);
+  return bad ? -1 : 0;
+}
+
+void mrun_free(struct mrun *r)
+{
+  free(r->st);
+  r->st = NULL;
+}
+
+void mrun_fail(struct mrun *r, int code, const char *fmt, ...)
+{
+  char msg[sizeof r->vm.err.msg];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  vm_fail(&r->vm, code, "%s", msg);
+}
+
+void mrun_warn(struct mrun *r, const char *fmt, ...)
+{
+  char msg[240];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  if (r->cfg.warn)
+    r->cfg.warn(r->cfg.ctx, r, msg);
+}
+
+int mrun_block_number(const struct mrun *r)
+{
+  uint32_t n = r->p->blocks[r->vm.cur].number;
+  return n ? (int)n : -1;
+}
+
+int mrun_pusk(struct mrun *r)
+{
+  if (r->state != MR_WAIT)
+    return -1;
+  if (r->wait == MRW_BLOCK)
+    r->go = 1;             /* the block that waited starts now */
+  r->wait = MRW_NONE;
+  r->state = MR_ROW;
+  return 0;
+}
+
+void mrun_stop(struct mrun *r)
+{
+  if (r->state != MR_END && r->state != MR_ERROR)
+    r->state = MR_STOPPED;
+}
+
+enum mrun_ev mrun_run(struct mrun *r)
+{
+  if (r->state == MR_END || r->state == MR_ERROR || r->state == MR_STOPPED)
+    return (enum mrun_ev)r->state;
+  if (r->state == MR_WAIT && r->wait != MRW_NONE)
+    return MR_WAIT;
+  if (r->stop_after) {
+    r->stop_after = 0;
+    r->wait = MRW_STOP;
+    return (enum mrun_ev)(r->state = MR_WAIT);
+  }
+  /* a watched start or a single block's wait that was answered: the block goes on */
+  r->vm.start_all = r->single || r->skip;
+  for (;;) {
+    int was_start = r->at_start;
+    r->at_start = 0;
+    enum vm_event ev = was_start ? VM_EV_START : vm_run(&r->vm);
+    if (ev == VM_EV_START) {
+      uint32_t b = r->vm.cur;
+      if (!was_start && r->cfg.watch && r->cfg.watch[b]) {
+        r->at_start = 1;   /* the host acts at this block's start; the next call goes on from here */
+        r->wait = MRW_NONE;
+        return (enum mrun_ev)(r->state = MR_WAIT);
+      }
+      if (r->skip && r->rt->skippable && r->rt->skippable(r, b) && vm_skip(&r->vm) == 0)
+        continue;
+      if (r->single && !r->go) {
+        r->at_start = 1;
+        r->wait = MRW_BLOCK;
+        return (enum mrun_ev)(r->state = MR_WAIT);
+      }
+      r->go = 0;
+      continue;
+    }
+    if (ev == VM_EV_BLOCK) {
+      r->go = 0;
+      int st = r->rt->block ? r->rt->block(r) : 0;
+      if (st < 0)
+        continue;          /* mrun_fail ended the VM: the next vm_run says VM_EV_ERROR */
+      r->seq++;
+      r->stop_after = st > 0;   /* the row is out first; the next call waits */
+      r->state = MR_ROW;
+      return MR_ROW;
+    }
+    if (ev == VM_EV_END)
+      return (enum mrun_ev)(r->state = MR_END);
+    return (enum mrun_ev)(r->state = MR_ERROR);
+  }
+}
+
+void mrun_row_json(const struct mrun *r, FILE *out)
+{
+  fprintf(out, "{\"seq\":%llu,\"n\":", (unsigned long long)r->seq);
+  int n = mrun_block_number(r);
+  if (n >= 0)
+    fprintf(out, "%d", n);
+  else
+    fputs("null", out);
+  fprintf(out, ",\"line\":%u,\"depth\":%d", r->p->blocks[r->vm.cur].line, r->vm.depth);
+  if (r->rt->row_json)
+    r->rt->row_json(r, out);
+  fputc('}', out);
+}
+
+void mrun_row_text(const struct mrun *r, FILE *out)
+{
+  char nb[16];
+  fprintf(out, "%6llu %-6s L%-4u", (unsigned long long)r->seq, diag_block(mrun_block_number(r), nb),
+          r->p->blocks[r->vm.cur].line);
+  if (r->rt->row_text)
+    r->rt->row_text(r, out);
+}

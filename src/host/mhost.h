@@ -1,0 +1,22 @@
+/* `s42 run` for a dialect on the neutral runner (src/core/mrun.h): the
+ * headless run with its trace (text, JSON, canon), its dump and the
+ * operator script (contracts.md secs. 3 and 8). */
+#ifndef S42_MHOST_H
+#define S42_MHOST_H
+
+#include "diag.h"
+#include "program.h"
+#include <stdint.h>
+
+struct mhost_opts {
+  const char *program;          /* for messages */
+  const char *operator_file;    /* --operator, or NULL */
+  const char *tools;            /* --tools FILE (the machine's tool table), or NULL */
+  int trace, json, canon, dump, en;
+  uint64_t max_blocks;
+};
+
+/* Run p (compiled, d its diagnostics); the exit status of contracts.md sec. 1. */
+int mhost_run(const struct mhost_opts *o, const struct program *p, const struct diag_list *d);
+
+#endif
