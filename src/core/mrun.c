@@ -27,6 +27,23 @@ int mrun_init(struct mrun *r, const struct program *p, const struct mrun_config 
   return bad ? -1 : 0;
 }
 
+void mrun_renew(struct mrun *r)
+{
+  vm_init(&r->vm, r->p);
+  r->vm.max_blocks = r->cfg.max_blocks;
+  r->vm.watch = r->cfg.watch;
+  r->state = MR_ROW;
+  r->wait = MRW_NONE;
+  r->at_start = r->stop_after = 0;
+  r->go = 1;
+  if (r->rt->renew)
+    r->rt->renew(r);
+  else if (r->rt->reset) {
+    memset(r->st, 0, r->rt->size ? r->rt->size : 1);
+    r->rt->reset(r);
+  }
+}
+
 void mrun_free(struct mrun *r)
 {
   free(r->st);

@@ -64,7 +64,18 @@ struct mrun_rt {
    * with "FILE:LINE:COL: message" in err */
   int (*load)(struct mrun *r, const char *what, const char *text, size_t len, const char *file, char *err,
               size_t nerr);
+  /* a new cycle after the end (Пуск after M02, the terminal's reset): the
+   * machine stays where it is, the language's state is at power-on; NULL:
+   * reset */
+  void (*renew)(struct mrun *r);
+  /* The machine's display pages (the 2У22's DG and DI), for a terminal:
+   * their names, NULL-terminated, and page k's text -- lines of at most
+   * MRUN_PAGE_COLS columns, UTF-8, each ended by a newline. */
+  const char *const *pages;
+  void (*page)(const struct mrun *r, int k, FILE *out);
 };
+
+#define MRUN_PAGE_COLS 40
 
 /* What the host gets back and how it set the run up. */
 struct mrun_config {
@@ -99,6 +110,10 @@ struct mrun {
 int mrun_init(struct mrun *r, const struct program *p, const struct mrun_config *c);
 void mrun_free(struct mrun *r);
 enum mrun_ev mrun_run(struct mrun *r);
+/* A new cycle of the same program from its first block (after the end,
+ * an error or a stop): the VM afresh, the runtime's renew, the switches
+ * kept. */
+void mrun_renew(struct mrun *r);
 /* Пуск: ends a wait (0), or -1 when nothing waits for it. */
 int mrun_pusk(struct mrun *r);
 /* Стоп: the cycle stops (MR_STOPPED at the next mrun_run). */
