@@ -4,7 +4,14 @@
 # otherwise it prints the exact command and fails.
 #   sh scripts/deps.sh           install what is missing
 #   sh scripts/deps.sh --check   only say what is missing (exit 1 if any)
+#   sh scripts/deps.sh --oracle  also LinuxCNC's rs274 (linuxcnc-uspace), the
+#                                outside oracle of tests/oracle (CI installs it;
+#                                without it that test says it is skipped)
 PKGS="build-essential pkg-config check libncurses-dev libmodbus-dev libopencv-dev libcairo2-dev tmux python3 valgrind mbpoll groff-base man-db"
+if [ "$1" = "--oracle" ]; then
+  PKGS="$PKGS linuxcnc-uspace"
+  shift
+fi
 
 missing=""
 if command -v dpkg-query >/dev/null 2>&1; then
