@@ -32,6 +32,7 @@ enum { LX, LZ };                      /* the axes: X (diameter), Z */
 #define LATHE_TRAVEL_X 225000         /* µm of radius either side of machine zero (D-23) */
 #define LATHE_TRAVEL_Z 650000         /* µm either side of machine zero */
 #define LATHE_ARC_TOL 10              /* µm of radius: start and end radii may differ this much (D-32) */
+#define LATHE_PITCH_MAX 40000         /* µm: the longest thread pitch the machine cuts (sec. 1, L110-111) */
 
 /* A tool's correction (the tool table, --tools FILE): tip = slide + d. */
 struct lathe_tool {
@@ -57,6 +58,8 @@ struct lathe {
   int coolant;
   double feed;                        /* the last feed move's effective speed, mm/min of the path */
   double rpm_now;                     /* the spindle's speed at the end of the last call (css varies it) */
+  double f_canon;                     /* the F of the last feed move, the canon's feed rate (0 after a
+                                         G94/G95 switch): a thread's STRAIGHT_FEED keeps it (added) */
   /* a warning the machine raises (a feed cut to the axes' limits, an S
    * clamped to the range): the text, for the host; NULL ignores them */
   void (*warn)(void *ctx, const char *msg);
