@@ -9,9 +9,10 @@
  * diameter): an optional sign, up to 4 digits, an optional point and up to
  * 3 decimals (a µm is the smallest step: more decimals are refused, never
  * rounded).  An axis not given is 0.  Letters in either case; spaces and
- * tabs between and inside words (`X -12.5`, `X-12.5`, `T 1`); CR LF line
- * ends.  A tool given twice, a NUL byte, anything else is an error.  The
- * table replaces the one before only when the whole text is good. */
+ * tabs between a letter and its number (`X -12.5`, `X-12.5`, `T 1`) but
+ * not inside a number (`X - 5` is refused); CR LF line ends.  A tool given
+ * twice, a NUL byte, anything else is an error.  The table replaces the
+ * one before only when the whole text is good. */
 #include "lathe.h"
 #include <stdarg.h>
 #include <stdio.h>
@@ -130,8 +131,7 @@ static int correction(struct cur *c, char axis, int64_t *um)
   int neg = 0;
   if (at(c) == '+' || at(c) == '-') {
     neg = at(c) == '-';
-    c->i++;
-    blanks(c);
+    c->i++;   /* the digits follow the sign at once */
   }
   int64_t whole = 0, frac = 0;
   int id = 0, fd = 0;
@@ -152,6 +152,8 @@ static int correction(struct cur *c, char axis, int64_t *um)
   }
   if (!id && !fd) {
     char b[40];
+    if (c->i != s)   /* a sign or a point alone */
+      return fail(c, s, "expected digits in the %c correction", axis);
     return fail(c, s, "expected a number in mm after %c, found %s", axis, shown(c, b, sizeof b));
   }
   for (int k = fd; k < DEC_DIGITS; k++)
