@@ -32,6 +32,7 @@ enum { LX, LZ };                      /* the axes: X (diameter), Z */
 #define LATHE_TRAVEL_X 225000         /* µm of radius either side of machine zero (D-23) */
 #define LATHE_TRAVEL_Z 650000         /* µm either side of machine zero */
 #define LATHE_ARC_TOL 10              /* µm of radius: start and end radii may differ this much (D-32) */
+#define LATHE_PITCH_MAX 40000         /* µm: the longest thread pitch the machine cuts (sec. 1, L110-111) */
 
 /* A tool's correction (the tool table, --tools FILE): tip = slide + d. */
 struct lathe_tool {
@@ -57,6 +58,8 @@ struct lathe {
   int coolant;
   double feed;                        /* the last feed move's effective speed, mm/min of the path */
   double rpm_now;                     /* the spindle's speed at the end of the last call (css varies it) */
+  double f_canon;                     /* the F of the last feed move, the canon's feed rate (0 after a
+                                         G94/G95 switch): a thread's STRAIGHT_FEED keeps it (added) */
   /* a warning the machine raises (a feed cut to the axes' limits, an S
    * clamped to the range): the text, for the host; NULL ignores them */
   void (*warn)(void *ctx, const char *msg);
@@ -99,17 +102,23 @@ int lathe_feed_line(struct lathe *l, const int64_t to[2], double f, char *msg, s
 int lathe_feed_arc(struct lathe *l, const int64_t to[2], const int64_t c[2], int cw, double f, char *msg, size_t n);
 /* G33: a thread to `to`, pitch k µm of Z per revolution (taper: X changes
  * with it); the spindle must turn and Z speed = k * rpm must stay within
- * LATHE_FEED_Z (E-THREAD). */
+ * LATHE_FEED_Z (E-THREAD).  Also E-THREAD (added): k not in
+ * (0, LATHE_PITCH_MAX], no Z move, a taper whose X slide would pass
+ * LATHE_FEED_X.  Under G96 the rpm is taken piece by piece along it. */
 int lathe_thread(struct lathe *l, const int64_t to[2], double k, char *msg, size_t n);
 /* DWELL: sec of simulated time. */
 void lathe_dwell(struct lathe *l, double sec);
 /* The spindle: dir 1 CW, -1 CCW, 0 stop. */
 void lathe_spindle(struct lathe *l, int dir);
 /* S: rpm (G97) or m/min (G96), clamped to the range in force with a
- * warning (D-10); M38/M39 (lathe_range) re-clamp it. */
+ * warning (D-10); M38/M39 (lathe_range) re-clamp it.  S0 is 0 rpm, no
+ * warning; under G96 S is not clamped (the rpm it gives is, at each
+ * diameter).  A negative or non-finite S, a range not 0..2, a T not
+ * 0..99 are refused with a warning, changing nothing (added). */
 void lathe_speed(struct lathe *l, double s);
 void lathe_range(struct lathe *l, int range);
-/* G96 on / G97 off. */
+/* G96 on / G97 off; G97 re-clamps the S in force as rpm.  The front end
+ * calls it before lathe_speed when a block has both (G96 S...). */
 void lathe_css(struct lathe *l, int on);
 /* G94 / G95 (SET_FEED_MODE). */
 void lathe_feed_mode(struct lathe *l, int per_rev);
@@ -122,6 +131,8 @@ void lathe_end(struct lathe *l);
 /* The tool table (--tools FILE), in the text format README documents:
  *   ; comment
  *   T1  X -12.50  Z 40.00      the corrections in mm, X as a diameter
+ * (the format in full: tools.c's head comment).  The table replaces the
+ * one before only when the whole text is good.
  * 0, or -1 with "FILE:LINE:COL: message" in err. */
 int lathe_tools_parse(struct lathe *l, const char *text, size_t len, const char *file, char *err, size_t n);
 
