@@ -25,6 +25,6 @@ $(BUILD)/gen/dialects.c: $(BUILD)/gen/dialects.stamp scripts/gen-dialects.sh
 $(BUILD)/gen/dialects.o: $(BUILD)/gen/dialects.c
 	$(CC) $(CPPFLAGS) -Isrc/core -Ivm $(WARN) $(CFLAGS) -c -o $@ $<
 # What a test or a tool built outside these folders sees: all of it.
-ALL_INC := $(HOST_INC)
+ALL_INC := $(HOST_INC) -Isrc/machine/lathe -Isrc/dialect/2u22
 LDLIBS += -ldl
 -include $(BUILD)/gen/dialects.d

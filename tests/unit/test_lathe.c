@@ -8,7 +8,7 @@
 #include "errors.h"
 /* the unit tests' include path is the hosts' (src/host/module.mk), which
  * does not have the lathe's folder yet */
-#include "../../src/machine/lathe/lathe.h"
+#include "lathe.h"
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>

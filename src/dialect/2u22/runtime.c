@@ -1,0 +1,437 @@
+/* The 2У22 runtime on the neutral runner (src/core/mrun.h): what a block
+ * means to the 16Б16Ф3 lathe, as its canonical calls (src/machine/lathe).
+ *
+ * A block runs in the order of D-11: the tool, the spindle's range, speed
+ * and direction, coolant and the modal G changes first; then the motion;
+ * then G04's dwell; then the stops and the end.  A block is a transaction
+ * (D-33): it runs on a copy of the state, with the machine's canonical
+ * calls and warnings held back, and only a block that succeeds keeps its
+ * changes and lets them out. */
+#include "u22.h"
+#include "canon.h"
+#include "errors.h"
+#include "lathe.h"
+#include "mrun.h"
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define HELD_CALLS 16
+#define HELD_WARNS 8
+
+struct u22_state {
+  struct lathe l;
+  int motion;          /* group 1: UG01, UG02, UG03 or UG33 */
+  int incremental;     /* G91 */
+  double f;            /* the F in force as written (0: none, or cancelled by G94 <-> G95) */
+  int f_override, s_override;   /* G20, G21 (D-6) */
+  /* the last block, for its row */
+  const char *what;    /* its motion's name (contracts.md sec. 8) */
+  double feed;         /* its effective speed, mm/min */
+};
+
+/* What one block holds back until it succeeds. */
+struct held {
+  struct canon_call call[HELD_CALLS];
+  int ncall, lost;
+  char warn[HELD_WARNS][160];
+  int nwarn;
+};
+
+static void hold_call(void *ctx, const struct canon_call *c)
+{
+  struct held *h = ctx;
+  if (h->ncall < HELD_CALLS)
+    h->call[h->ncall++] = *c;
+  else
+    h->lost++;
+}
+
+static void hold_warn(void *ctx, const char *msg)
+{
+  struct held *h = ctx;
+  if (h->nwarn < HELD_WARNS)
+    snprintf(h->warn[h->nwarn++], sizeof h->warn[0], "%s", msg);
+}
+
+/* The state and the copy a block runs on. */
+struct u22_rt {
+  struct u22_state cur, tmp;
+};
+
+static struct u22_state *state(const struct mrun *r) { return &((struct u22_rt *)r->st)->cur; }
+
+static void reset(struct mrun *r)
+{
+  struct u22_state *s = state(r);
+  lathe_init(&s->l);
+  s->motion = UG01;    /* D-7: G01 G23 G90 G94 G97 */
+  s->what = "none";
+}
+
+static int skippable(const struct mrun *r, uint32_t b)
+{
+  return u22_attr(r->p, b)->skip;
+}
+
+#define HAS_G(a, n) (((a)->g >> (n)) & 1)
+#define HAS_M(a, n) (((a)->m >> (n)) & 1)
+#define HAS_W(a, n) (((a)->words >> (n)) & 1)
+
+/* A word's value in µm (X Z I K in the program's unit). */
+static int64_t um(const struct mrun *r, int slot)
+{
+  double unit = ((const struct u22_ext *)r->p->ext)->unit;
+  return (int64_t)llround(r->vm.w[slot] * unit * 1000.0);
+}
+
+static int fail(struct mrun *r, int code, const char *msg)
+{
+  mrun_fail(r, code, "%s", msg);
+  return -1;
+}
+
+/* The block's work on s (a copy); 0, 1 for a programmed stop, -1 failed. */
+static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
+{
+  struct lathe *l = &s->l;
+  char msg[200];
+  int e;
+  s->what = "none";
+  s->feed = 0;
+
+  /* the tool, the spindle, coolant (D-11) */
+  if (HAS_W(a, U22_T)) {
+    double t = r->vm.w[U22_T];
+    if (!(t >= 0 && t < LATHE_TOOLS)) {
+      snprintf(msg, sizeof msg, "T%.0f: the turret's tools are T0..T%d", t, LATHE_TOOLS - 1);
+      return fail(r, S42_E_RANGE, msg);
+    }
+    lathe_tool(l, (int)t);
+  }
+  if (HAS_M(a, UM38))
+    lathe_range(l, 1);
+  if (HAS_M(a, UM39))
+    lathe_range(l, 2);
+  /* modal G changes before the motion */
+  if (HAS_G(a, UG90))
+    s->incremental = 0;
+  if (HAS_G(a, UG91))
+    s->incremental = 1;
+  if (HAS_G(a, UG94) || HAS_G(a, UG95)) {
+    int per_rev = HAS_G(a, UG95);
+    if (per_rev != l->per_rev)
+      s->f = 0;        /* a switch cancels F (L672); the same mode again keeps it (D-30) */
+    lathe_feed_mode(l, per_rev);
+  }
+  if (HAS_G(a, UG96))
+    lathe_css(l, 1);
+  if (HAS_G(a, UG97))
+    lathe_css(l, 0);
+  if (HAS_W(a, U22_S))
+    lathe_speed(l, r->vm.w[U22_S]);
+  if (HAS_M(a, UM03))
+    lathe_spindle(l, 1);
+  if (HAS_M(a, UM04))
+    lathe_spindle(l, -1);
+  if (HAS_M(a, UM05))
+    lathe_spindle(l, 0);
+  if (HAS_M(a, UM08))
+    lathe_coolant(l, 1);
+  if (HAS_M(a, UM09))
+    lathe_coolant(l, 0);
+  if (HAS_G(a, UG20))
+    s->f_override = 1;
+  if (HAS_G(a, UG21))
+    s->s_override = 1;
+  if (HAS_G(a, UG23))
+    s->f_override = s->s_override = 0;
+  if (HAS_W(a, U22_F))
+    s->f = r->vm.w[U22_F];
+  static const int group1[] = {UG01, UG02, UG03, UG33};
+  for (size_t i = 0; i < sizeof group1 / sizeof group1[0]; i++)
+    if (HAS_G(a, group1[i]))
+      s->motion = group1[i];
+
+  /* the motion */
+  double f = l->per_rev ? s->f / 100.0 : s->f;   /* G95: F in 0.01 mm/rev */
+  if (HAS_G(a, UG25)) {
+    unsigned mask = (a->home & 1 ? 1u << LX : 0) | (a->home & 2 ? 1u << LZ : 0);
+    if ((e = lathe_home(l, mask, msg, sizeof msg)))
+      return fail(r, e, msg);
+    s->what = "home";
+    s->feed = l->feed;
+  } else if (HAS_W(a, U22_X) || HAS_W(a, U22_Z)) {
+    int64_t to[2] = {lathe_pos(l, LX), lathe_pos(l, LZ)};
+    if (HAS_W(a, U22_X))
+      to[LX] = s->incremental ? to[LX] + um(r, U22_X) : um(r, U22_X);
+    if (HAS_W(a, U22_Z))
+      to[LZ] = s->incremental ? to[LZ] + um(r, U22_Z) : um(r, U22_Z);
+    switch (s->motion) {
+    case UG02:
+    case UG03: {
+      /* absolute: I K are the centre; incremental: from the start
+       * (L598-606); a centre word not written: the start's (offset 0) */
+      int64_t c[2];
+      static const int slot[2] = {U22_I, U22_K};
+      for (int ax = LX; ax <= LZ; ax++) {
+        int64_t v = HAS_W(a, slot[ax]) ? um(r, slot[ax]) : 0;
+        c[ax] = s->incremental || !HAS_W(a, slot[ax]) ? lathe_pos(l, ax) + v : v;
+      }
+      if (f <= 0)
+        return fail(r, S42_E_FEED, s->f == 0 && l->per_rev ? "an arc with no F: the G94/G95 switch cancelled it"
+                                                           : "an arc with F0");
+      if ((e = lathe_feed_arc(l, to, c, s->motion == UG02, f, msg, sizeof msg)))
+        return fail(r, e, msg);
+      s->what = s->motion == UG02 ? "arc_cw" : "arc_ccw";
+      break;
+    }
+    case UG33: {
+      if (!HAS_W(a, U22_K))
+        return fail(r, S42_E_THREAD, "G33 needs the pitch K (µm per revolution)");
+      /* K under G33 is µm as written (Table 1.1), whatever the resolution */
+      if ((e = lathe_thread(l, to, r->vm.w[U22_K], msg, sizeof msg)))
+        return fail(r, e, msg);
+      s->what = "thread";
+      break;
+    }
+    default:
+      if (f <= 0)
+        return fail(r, S42_E_FEED, s->f == 0 && l->per_rev != 0 ? "a move with no F: G95 cancelled it (L672)"
+                                                                : "a move with no F (F0 or none given)");
+      if ((e = lathe_feed_line(l, to, f, msg, sizeof msg)))
+        return fail(r, e, msg);
+      s->what = "line";
+      break;
+    }
+    s->feed = l->feed;
+  }
+  /* after the motion: the dwell, the stops, the end */
+  if (HAS_G(a, UG04)) {
+    double sec = HAS_W(a, U22_E) ? r->vm.w[U22_E] / 10.0 : 0;
+    if (sec > 0)
+      lathe_dwell(l, sec);
+    if (!strcmp(s->what, "none"))
+      s->what = "dwell";
+  }
+  if (HAS_M(a, UM02) || HAS_M(a, UM30))
+    lathe_end(l);
+  if (HAS_M(a, UM00))
+    return 1;
+  if (HAS_M(a, UM01) && r->optstop)
+    return 1;
+  return 0;
+}
+
+static int block(struct mrun *r)
+{
+  struct u22_state *s = state(r);
+  const struct u22_attr *a = u22_attr(r->p, r->vm.cur);
+  struct u22_state *tmp = &((struct u22_rt *)r->st)->tmp;
+  struct held h;
+  h.ncall = h.lost = h.nwarn = 0;
+  *tmp = *s;
+  tmp->l.canon = hold_call;
+  tmp->l.canon_ctx = &h;
+  tmp->l.warn = hold_warn;
+  tmp->l.warn_ctx = &h;
+  int st = work(r, tmp, a);
+  if (st < 0)
+    return -1;
+  *s = *tmp;
+  s->l.canon = NULL;   /* the holders lived in this call only */
+  s->l.warn = NULL;
+  for (int i = 0; i < h.nwarn; i++)
+    mrun_warn(r, "%s", h.warn[i]);
+  if (r->cfg.canon)
+    for (int i = 0; i < h.ncall; i++)
+      r->cfg.canon(r->cfg.ctx, &h.call[i]);
+  return st;
+}
+
+/* mm from µm, as JSON: no trailing zeros */
+static void mm(FILE *out, int64_t v)
+{
+  char b[32];
+  snprintf(b, sizeof b, "%.3f", (double)v / 1000.0);
+  char *e = b + strlen(b);
+  while (e[-1] == '0')
+    *--e = 0;
+  if (e[-1] == '.')
+    *--e = 0;
+  fputs(strcmp(b, "-0") ? b : "0", out);
+}
+
+static void num(FILE *out, double v)
+{
+  fprintf(out, "%.10g", fabs(v) < 5e-11 ? 0.0 : v);
+}
+
+static void pos_json(const struct lathe *l, FILE *out)
+{
+  fputs("\"pos\":{\"x\":", out);
+  mm(out, lathe_pos(l, LX));
+  fputs(",\"z\":", out);
+  mm(out, lathe_pos(l, LZ));
+  fputc('}', out);
+}
+
+static void row_json(const struct mrun *r, FILE *out)
+{
+  const struct u22_state *s = state(r);
+  fprintf(out, ",\"motion\":\"%s\",", s->what);
+  pos_json(&s->l, out);
+  fputs(",\"feed\":", out);
+  num(out, s->feed);
+  fputs(",\"t\":", out);
+  num(out, s->l.t);
+  fputs(",\"s\":", out);
+  num(out, lathe_rpm(&s->l, lathe_pos(&s->l, LX)));
+  fprintf(out, ",\"tool\":%d", s->l.tool);
+}
+
+static void row_text(const struct mrun *r, FILE *out)
+{
+  const struct u22_state *s = state(r);
+  fprintf(out, " %-7s X%10.3f Z%10.3f F%8.1f S%5.0f T%-2d t %.4f", s->what, (double)lathe_pos(&s->l, LX) / 1000.0,
+          (double)lathe_pos(&s->l, LZ) / 1000.0, s->feed, lathe_rpm(&s->l, lathe_pos(&s->l, LX)), s->l.tool,
+          s->l.t);
+}
+
+static void dump_json(const struct mrun *r, FILE *out)
+{
+  const struct u22_state *s = state(r);
+  const struct lathe *l = &s->l;
+  fputs(",\"time\":", out);
+  num(out, l->t);
+  fputc(',', out);
+  pos_json(l, out);
+  fputs(",\"r\":[", out);
+  for (int i = 0; i < 10; i++) {
+    if (i)
+      fputc(',', out);
+    num(out, r->vm.reg[i]);
+  }
+  fprintf(out, "],\"tool\":%d,\"spindle\":{\"dir\":\"%s\",\"rpm\":", l->tool,
+          l->dir > 0 ? "cw" : l->dir < 0 ? "ccw" : "off");
+  num(out, lathe_rpm(l, lathe_pos(l, LX)));
+  fprintf(out, ",\"range\":%d},\"feed_mode\":\"%s\",\"css\":%s,\"coolant\":%s,\"zero\":{\"x\":", l->range,
+          l->per_rev ? "mm/rev" : "mm/min", l->css ? "true" : "false", l->coolant ? "true" : "false");
+  mm(out, l->zero[LX]);
+  fputs(",\"z\":", out);
+  mm(out, l->zero[LZ]);
+  fputs("},\"machine\":{\"x\":", out);
+  mm(out, l->slide[LX]);
+  fputs(",\"z\":", out);
+  mm(out, l->slide[LZ]);
+  fputc('}', out);
+}
+
+static int zero(struct mrun *r, const double *v, int n, char *why, size_t nwhy)
+{
+  struct lathe *l = &state(r)->l;
+  int64_t z[2] = {l->zero[LX], l->zero[LZ]};
+  for (int i = 0; i < n && i < 2; i++) {
+    if (isnan(v[i]))
+      continue;
+    if (!(fabs(v[i]) <= 10000)) {
+      snprintf(why, nwhy, "a part zero of %g mm is off the machine", v[i]);
+      return -1;
+    }
+    z[i] = (int64_t)llround(v[i] * 1000.0);
+  }
+  lathe_set_zero(l, z[LX], z[LZ]);
+  return 0;
+}
+
+static double time_of(const struct mrun *r) { return state(r)->l.t; }
+
+static int load(struct mrun *r, const char *what, const char *text, size_t len, const char *file, char *err,
+                size_t nerr)
+{
+  if (strcmp(what, "tools")) {
+    snprintf(err, nerr, "%s: the lathe reads no %s file", file, what);
+    return -1;
+  }
+  return lathe_tools_parse(&state(r)->l, text, len, file, err, nerr);
+}
+
+/* A new cycle (Пуск after M02): the slides, the tool table, the part zero
+ * and the time stay; the language's modal state is at power-on (D-7). */
+static void renew(struct mrun *r)
+{
+  struct u22_state *s = state(r);
+  struct lathe keep = s->l;
+  reset(r);
+  keep.per_rev = 0;    /* G94 G97 again (D-7): a switch the next block's calls report */
+  keep.css = 0;
+  s->l = keep;
+}
+
+static const char *const pages[] = {"DG", "DI", NULL};
+
+static void mm_text(FILE *out, const char *name, int64_t v)
+{
+  fprintf(out, "%-3s %+11.3f\n", name, (double)v / 1000.0);
+}
+
+/* DG: where the tool is (part coordinates, X a diameter), the following
+ * error (none in a simulation), the part zero and the slides; DI: the
+ * mode, the block, F S G, the tool and its corrections (L130-490). */
+static void page(const struct mrun *r, int k, FILE *out)
+{
+  const struct u22_state *s = state(r);
+  const struct lathe *l = &s->l;
+  if (k == 0) {
+    fputs("DG  position (X a diameter)\n", out);
+    mm_text(out, "X", lathe_pos(l, LX));
+    mm_text(out, "Z", lathe_pos(l, LZ));
+    fputs("following error\n", out);
+    mm_text(out, "ΔX", 0);
+    mm_text(out, "ΔZ", 0);
+    fputs("part zero\n", out);
+    mm_text(out, "OX", l->zero[LX]);
+    mm_text(out, "OZ", l->zero[LZ]);
+    fputs("machine (slides)\n", out);
+    mm_text(out, "MX", l->slide[LX]);
+    mm_text(out, "MZ", l->slide[LZ]);
+    return;
+  }
+  int n = r->p->nblocks ? mrun_block_number(r) : -1;
+  fprintf(out, "DI  %s%s%s%s\n", r->single ? "П/АВТ" : "АВТ", r->optstop ? " ST" : "", r->skip ? " U/" : "",
+          r->state == MR_WAIT ? "  waits: Пуск" : "");
+  if (n >= 0)
+    fprintf(out, "N%05d\n", n);
+  else
+    fputs("N-----\n", out);
+  static const char *const g1[] = {[UG01] = "G01", [UG02] = "G02", [UG03] = "G03", [UG33] = "G33"};
+  fprintf(out, "G %s %s %s %s %s\n", g1[s->motion], s->incremental ? "G91" : "G90",
+          s->f_override && s->s_override ? "G20 G21" : s->f_override ? "G20" : s->s_override ? "G21" : "G23",
+          l->per_rev ? "G95" : "G94", l->css ? "G96" : "G97");
+  fprintf(out, "F %-7.0f %s\n", s->f, l->per_rev ? "0.01 mm/rev" : "mm/min");
+  fprintf(out, "S %-7.0f %s  range %d\n", l->s, l->css ? "m/min" : "rpm", l->range);
+  fprintf(out, "spindle %s  %.0f rpm\n", l->dir > 0 ? "M03" : l->dir < 0 ? "M04" : "M05",
+          lathe_rpm(l, lathe_pos(l, LX)));
+  fprintf(out, "coolant %s\n", l->coolant ? "M08" : "M09");
+  const struct lathe_tool *t = &l->tools[l->tool];
+  fprintf(out, "T%02d  KX %+9.3f  KZ %+9.3f\n", l->tool, (double)t->d[LX] / 1000.0, (double)t->d[LZ] / 1000.0);
+  fprintf(out, "R0-R4 %g %g %g %g %g\n", r->vm.reg[0], r->vm.reg[1], r->vm.reg[2], r->vm.reg[3], r->vm.reg[4]);
+  fprintf(out, "R5-R9 %g %g %g %g %g\n", r->vm.reg[5], r->vm.reg[6], r->vm.reg[7], r->vm.reg[8], r->vm.reg[9]);
+  fprintf(out, "t %.1f s\n", l->t);
+}
+
+const struct mrun_rt u22_runtime = {
+  .renew = renew,
+  .pages = pages,
+  .page = page,
+  .size = sizeof(struct u22_rt),
+  .reset = reset,
+  .skippable = skippable,
+  .block = block,
+  .row_json = row_json,
+  .row_text = row_text,
+  .dump_json = dump_json,
+  .zero = zero,
+  .time = time_of,
+  .load = load,
+};
