@@ -44,7 +44,7 @@ static const struct optinfo {
 } optinfo[] = {
   {"--operator", "FILE", C_RUN | C_PLOT, "operator actions for a headless run"},
   {"--tool", "FILE", C_RUN | C_TUI | C_PLOT, "tool model for tooth-step search (G10/G11)"},
-  {"--tools", "FILE", C_RUN | C_TUI | C_PLOT, "a lathe's tool table: each tool's X and Z corrections (2У22)"},
+  {"--tools", "FILE", C_RUN | C_TUI | C_PLOT, "a lathe's tool table: each tool's X and Z corrections (2У22; --tool too)"},
   {"--dump-images", "DIR", C_RUN | C_TUI | C_PLOT, "write the probe images of each search there, plain and annotated"},
   {"--trace", NULL, C_RUN | C_PLOT, "one line per executed block on stdout"},
   {"--trace=json", NULL, C_RUN | C_PLOT, "the same as JSON Lines (--trace=text: as --trace)"},
@@ -1155,7 +1155,7 @@ static int refused_for_2c42(const struct opscript *ops, const char *file)
 static int run_machine(const struct opts *o, struct program *p, struct diag_list *d, struct plot *plot)
 {
   const char *no = plot ? "plot" : o->modbus ? "--modbus" : o->state ? "--state" : o->restart ? "--restart"
-                   : o->tool ? "--tool" : o->machine ? "--machine" : o->screen ? "--screen"
+                   : o->tool && o->tools ? "--tool with --tools" : o->machine ? "--machine" : o->screen ? "--screen"
                    : o->realtime ? "--realtime" : o->dump_images ? "--dump-images" : NULL;
   if (no) {
     fprintf(stderr, "s42: %s: %s is not there yet for the %s dialect (%s)\n", o->program, no,
@@ -1166,7 +1166,7 @@ static int run_machine(const struct opts *o, struct program *p, struct diag_list
   memset(&m, 0, sizeof m);
   m.program = o->program;
   m.operator_file = o->operator_file;
-  m.tools = o->tools;
+  m.tools = o->tools ? o->tools : o->tool;   /* a lathe's tool is its table (the runner's tool.txt) */
   m.trace = o->trace;
   m.json = o->json;
   m.canon = o->canon;

@@ -23,6 +23,15 @@ expect.json, whose keys are all optional:
   arrays      [{"ptr":..,"len":..,"cells":[...]}, ...] (keys given only)
   screen_has  strings that must each appear in the --screen output
   stderr_has  strings that must appear on stderr
+For a case of another dialect (contracts.md sec. 8) the program is
+program.EXT (any extension) and these keys apply too:
+  dialect     e.g. "2u22": passed as --dialect
+  at          list of {"n":N, "x":.., "z":..} matched in order against the
+              trace rows with that n, comparing their "pos" (mm)
+  dump        {"key": value, ...} other members of the dump, compared exactly
+              (numbers with close(); a nested object by its given keys)
+  canon_has   lines that must appear, in this order, in --trace=canon output
+              (a second run); each is compared after collapsing spaces
 Prints one line per case and ends with 'N passed, N failed'.
 """
 import json, os, subprocess, sys
@@ -52,9 +61,38 @@ def match_seq(trace, wants, what):
                 errs.append(f"{what}: N{n} run #{k+1}: {key}={row.get(key)!r}, want {val!r}")
     return errs
 
+def program_of(case):
+    if os.path.exists(os.path.join(case, "program.kp")):
+        return os.path.join(case, "program.kp")
+    for f in sorted(os.listdir(case)):
+        if f.startswith("program."):
+            return os.path.join(case, f)
+    return os.path.join(case, "program.kp")
+
+def sub_match(got, want, where):
+    errs = []
+    if isinstance(want, dict):
+        if not isinstance(got, dict):
+            return [f"{where} = {got!r}, want an object"]
+        for k, v in want.items():
+            errs += sub_match(got.get(k), v, f"{where}.{k}")
+    elif not close(got, want):
+        errs.append(f"{where} = {got!r}, want {want!r}")
+    return errs
+
+def canon_lines(s42, cmd):
+    c = [a for a in cmd if a not in ("--trace=json", "--dump")] + ["--trace=canon"]
+    try:
+        pr = subprocess.run(c, capture_output=True, text=True, timeout=60)
+    except (subprocess.TimeoutExpired, OSError) as e:
+        return None, str(e)
+    return [" ".join(l.split()) for l in pr.stdout.splitlines()], None
+
 def run_case(s42, case):
     exp = json.load(open(os.path.join(case, "expect.json")))
-    cmd = [s42, "run", os.path.join(case, "program.kp"), "--trace=json", "--dump"]
+    cmd = [s42, "run", program_of(case), "--trace=json", "--dump"]
+    if exp.get("dialect"):
+        cmd += ["--dialect", exp["dialect"]]
     if exp.get("screen_has"):
         cmd.append("--screen")
     for opt, name in (("--operator", "operator.txt"), ("--tool", "tool.txt")):
@@ -124,6 +162,33 @@ def run_case(s42, case):
         for k, v in want.items():
             if got.get(k) != v:
                 errs.append(f"array {i+1} {k} = {got.get(k)}, want {v}")
+    seen = {}
+    for w in exp.get("at", []):
+        rows = [t for t in trace if t.get("n") == w["n"]]
+        k = seen.get(w["n"], 0)
+        seen[w["n"]] = k + 1
+        if k >= len(rows):
+            errs.append(f"at: no run #{k+1} of block N{w['n']}")
+            continue
+        for key, val in w.items():
+            if key != "n":
+                errs += sub_match((rows[k].get("pos") or {}).get(key), val, f"at N{w['n']} run #{k+1} {key}")
+    for k, v in exp.get("dump", {}).items():
+        errs += sub_match(dump.get(k), v, k)
+    if exp.get("canon_has"):
+        lines, why = canon_lines(s42, cmd)
+        if lines is None:
+            errs.append(f"--trace=canon failed: {why}")
+        else:
+            i = 0
+            for want in exp["canon_has"]:
+                want = " ".join(want.split())
+                while i < len(lines) and lines[i] != want:
+                    i += 1
+                if i == len(lines):
+                    errs.append(f"canon lacks (in order) {want!r}")
+                    break
+                i += 1
     scr = "\n".join(screen)
     for s in exp.get("screen_has", []):
         if s not in scr:

@@ -267,6 +267,14 @@ static void num(FILE *out, double v)
   fprintf(out, "%.10g", fabs(v) < 5e-11 ? 0.0 : v);
 }
 
+/* The spindle's speed as the panel shows it: the S in force (G97, also
+ * while stopped: the S stays programmed), or under G96 the speed the
+ * cutting speed gives where the tool is. */
+static double speed(const struct lathe *l)
+{
+  return l->css ? lathe_rpm(l, lathe_pos(l, LX)) : l->s;
+}
+
 static void pos_json(const struct lathe *l, FILE *out)
 {
   fputs("\"pos\":{\"x\":", out);
@@ -286,7 +294,7 @@ static void row_json(const struct mrun *r, FILE *out)
   fputs(",\"t\":", out);
   num(out, s->l.t);
   fputs(",\"s\":", out);
-  num(out, lathe_rpm(&s->l, lathe_pos(&s->l, LX)));
+  num(out, speed(&s->l));
   fprintf(out, ",\"tool\":%d", s->l.tool);
 }
 
@@ -294,7 +302,7 @@ static void row_text(const struct mrun *r, FILE *out)
 {
   const struct u22_state *s = state(r);
   fprintf(out, " %-7s X%10.3f Z%10.3f F%8.1f S%5.0f T%-2d t %.4f", s->what, (double)lathe_pos(&s->l, LX) / 1000.0,
-          (double)lathe_pos(&s->l, LZ) / 1000.0, s->feed, lathe_rpm(&s->l, lathe_pos(&s->l, LX)), s->l.tool,
+          (double)lathe_pos(&s->l, LZ) / 1000.0, s->feed, speed(&s->l), s->l.tool,
           s->l.t);
 }
 
@@ -314,7 +322,7 @@ static void dump_json(const struct mrun *r, FILE *out)
   }
   fprintf(out, "],\"tool\":%d,\"spindle\":{\"dir\":\"%s\",\"rpm\":", l->tool,
           l->dir > 0 ? "cw" : l->dir < 0 ? "ccw" : "off");
-  num(out, lathe_rpm(l, lathe_pos(l, LX)));
+  num(out, speed(l));
   fprintf(out, ",\"range\":%d},\"feed_mode\":\"%s\",\"css\":%s,\"coolant\":%s,\"zero\":{\"x\":", l->range,
           l->per_rev ? "mm/rev" : "mm/min", l->css ? "true" : "false", l->coolant ? "true" : "false");
   mm(out, l->zero[LX]);
