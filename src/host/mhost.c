@@ -28,8 +28,15 @@ struct mhost {
 static void warn(void *ctx, const struct mrun *r, const char *msg)
 {
   struct mhost *h = ctx;
-  char nb[16];
-  fprintf(stderr, "%s: %s: warning: %s\n", h->o->program, diag_block(mrun_block_number(r), nb), msg);
+  const struct prog_block *b = &r->p->blocks[r->vm.cur];
+  int n = mrun_block_number(r);
+  /* FILE:LINE:COL: warning: N<n>: MESSAGE, as contracts.md sec. 1 and the 2С42's */
+  fprintf(stderr, "%s:%u:%u: warning: N", h->o->program, b->line, b->col);
+  if (n >= 0)
+    fprintf(stderr, "%d", n);
+  else
+    fputc('-', stderr);
+  fprintf(stderr, ": %s\n", msg);
 }
 
 static void canon_line(void *ctx, const char *text)
