@@ -145,8 +145,8 @@ static size_t end_mark(const unsigned char *s, size_t left)
 /* One line [s, e) of a program into the characters of its block (out,
  * CH_KEEP at most kept; *count gets them all).  0, or -1 after an error
  * was reported (the line then holds no block). */
-static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e, unsigned line, struct ch *out,
-                    size_t *count)
+static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e, unsigned line, int number,
+                    struct ch *out, size_t *count)
 {
   unsigned col = 1, mark_col = 0;
   size_t n = 0;
@@ -165,7 +165,7 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
       unsigned qc = col + 1;
       for (;;) {
         if (q >= e) {
-          err(c, S42_E_SYNTAX, line, open, -1, "comment not closed: ')' missing before the end of the line");
+          err(c, S42_E_SYNTAX, line, open, number, "comment not closed: ')' missing before the end of the line");
           return -1;
         }
         size_t ql, ml = end_mark(q, (size_t)(e - q));
@@ -173,7 +173,7 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
         if (k == ')')
           break;
         if (k == '%' || k == ':' || ml) {
-          err(c, S42_E_SYNTAX, line, qc, -1, "a comment may not hold %s (L500: no %%, : or ПС in a comment)",
+          err(c, S42_E_SYNTAX, line, qc, number, "a comment may not hold %s (L500: no %%, : or ПС in a comment)",
               ml ? "the end mark ПС" : k == '%' ? "'%'" : "':'");
           return -1;
         }
@@ -193,12 +193,12 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
       continue;
     }
     if (mark_col) {
-      err(c, S42_E_SYNTAX, line, col, -1, "%s after the end mark ПС (column %u): one block per line", show(ch, b1),
+      err(c, S42_E_SYNTAX, line, col, number, "%s after the end mark ПС (column %u): one block per line", show(ch, b1),
           mark_col);
       return -1;
     }
     if (ch == ')') {
-      err(c, S42_E_SYNTAX, line, col, -1, "')' without '('");
+      err(c, S42_E_SYNTAX, line, col, number, "')' without '('");
       return -1;
     }
     if (n < CH_KEEP)
@@ -209,6 +209,21 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
   }
   *count = n;
   return 0;
+}
+
+/* The number of the block a line holds, for the lexer's messages: N and
+ * its digits at its start (after blanks and '/'); -1 none. */
+static int line_number(const unsigned char *s, const unsigned char *e)
+{
+  while (s < e && (blank(*s) || *s == '/'))
+    s++;
+  if (s >= e || *s != 'N')
+    return -1;
+  long x = 0;
+  int nd = 0;
+  for (s++; s < e && *s >= '0' && *s <= '9' && nd < 6; s++, nd++)
+    x = x * 10 + (*s - '0');
+  return nd && nd <= 5 ? (int)x : -1;
 }
 
 /* --------------------------------------------------------------- parsing */
@@ -360,10 +375,10 @@ static void salvage_ends(struct blk *b, const struct ch *v, size_t n)
 static int parse_value(struct cc *c, struct blk *b, const struct ch *v, size_t *i, size_t n, int32_t a,
                        struct word *w)
 {
-  int sign = 0;
+  unsigned sign = 0;
   w->r1 = w->r2 = -1;
   if (*i < n && (v[*i].c == '+' || v[*i].c == '-')) {
-    sign = 1;
+    sign = v[*i].col;
     w->neg = v[*i].c == '-';
     (*i)++;
   }
@@ -382,8 +397,7 @@ static int parse_value(struct cc *c, struct blk *b, const struct ch *v, size_t *
     w->bare = 1;
     return 0;
   } else {
-    BERR(S42_E_SYNTAX, *i < n ? v[*i].col : v[*i - 1].col + 1, "%c: a sign without a number or R0..R9 after it",
-         (char)a);
+    BERR(S42_E_SYNTAX, sign, "%c: a sign without a number or R0..R9 after it", (char)a);
     return -1;
   }
   if (*i < n && v[*i].c == '.') {
@@ -401,7 +415,7 @@ static int parse_value(struct cc *c, struct blk *b, const struct ch *v, size_t *
       }
       w->r2 = v[*i].c - '0';
       (*i)++;
-      if (*i < n && (v[*i].c == '+' || v[*i].c == '-' || v[*i].c == '.' || v[*i].c == 'R' || isdig(v, *i, n))) {
+      if (*i < n && (v[*i].c == '+' || v[*i].c == '-' || v[*i].c == '.' || isdig(v, *i, n))) {
         BERR(S42_E_SYNTAX, v[*i].col, "%c: a value is [sign] number-or-R [sign R]: nothing more may follow (D-19)",
              (char)a);
         return -1;
@@ -411,7 +425,8 @@ static int parse_value(struct cc *c, struct blk *b, const struct ch *v, size_t *
       return -1;
     }
   }
-  if (*i < n && (v[*i].c == 'R' || isdig(v, *i, n))) {
+  /* an R here starts the next word, an assignment (X+R1 R1+5: spaces do not count) */
+  if (w->r1 >= 0 && isdig(v, *i, n)) {
     BERR(S42_E_SYNTAX, v[*i].col, "%c: a parameter is R0..R9, one digit", (char)a);
     return -1;
   }
@@ -422,11 +437,11 @@ static int parse_value(struct cc *c, struct blk *b, const struct ch *v, size_t *
 static int plain(struct cc *c, struct blk *b, const struct ch *v, size_t *i, size_t n, int32_t a, unsigned col,
                  long long *val)
 {
-  if (*i < n && (v[*i].c == '+' || v[*i].c == '-')) {
+  if (*i < n && (v[*i].c == '+' || v[*i].c == '-') && !(*i + 1 < n && v[*i + 1].c == 'R')) {
     BERR(S42_E_SYNTAX, v[*i].col, "%c takes no sign", (char)a);
     return -1;
   }
-  if (*i < n && v[*i].c == 'R') {
+  if (*i < n && (v[*i].c == 'R' || v[*i].c == '+' || v[*i].c == '-')) {
     BERR(S42_E_SYNTAX, v[*i].col, "a parameter may not stand under %c (L746: not under L, M, N, G, H)", (char)a);
     return -1;
   }
@@ -710,11 +725,9 @@ static void parse_block(struct cc *c, struct blk *b, const struct ch *v, size_t 
       return;
     }
     b->number = (int)x;
-    if (sub_area && nd != 5) {
+    if (sub_area && nd != 5)   /* reported, and read on as the sub number/1000's block */
       BERR(S42_E_SUB, col, "a block of the sub area needs a 5-digit N ssbbb (N02001: sub 02, block 001), not %d "
            "digit%s (D-29)", nd, nd == 1 ? "" : "s");
-      return;
-    }
   } else if (i < n && v[i].c == ':') {
     unsigned col = v[i].col;
     i++;
@@ -727,10 +740,8 @@ static void parse_block(struct cc *c, struct blk *b, const struct ch *v, size_t 
     }
     b->ndig = nd;
     b->number = nd ? (int)x : -1;
-    if (sub_area) {
+    if (sub_area)
       BERR(S42_E_SUB, col, "':' in the sub area: its blocks need a 5-digit N ssbbb (D-29)");
-      return;
-    }
   } else {
     unsigned col = i < n ? v[i].col : v[0].col;
     if (i < n && v[i].c == '%')
@@ -791,7 +802,7 @@ static void structure(struct cc *c, struct st *t, long bi)
     if (ends)
       err(c, S42_E_SUB, b->line, b->mcol[has_m(b, UM02) ? UM02 : UM30] ? b->mcol[has_m(b, UM02) ? UM02 : UM30] : b->col,
           b->number, "M%02d in a subprogram: a subprogram ends with M17", has_m(b, UM02) ? 2 : 30);
-    if (b->number >= 0 && b->ndig == 5) {
+    if (b->number >= 0) {
       int ss = b->number / 1000;
       if (!t->open) {
         t->open = 1;
@@ -838,6 +849,7 @@ static void structure(struct cc *c, struct st *t, long bi)
       err(c, S42_E_SUB, b->line, b->mcol[UM20], b->number,
           "M20 with M%02d: the repeat's range would hold the end of the %s (D-12)", m17 ? 17 : has_m(b, UM02) ? 2 : 30,
           m17 ? "subprogram" : "program");
+      t->nh--;
     } else {
       struct blk *h = &c->b[t->hs[--t->nh]];
       b->hreg = h->hreg;
@@ -847,6 +859,8 @@ static void structure(struct cc *c, struct st *t, long bi)
   } else if (b->h) {
     if (t->nh >= 2) {
       err(c, S42_E_NEST, b->line, b->hcol, b->number, "a third H inside two open repeats: H nests two levels (L699)");
+      if (t->nh < 3)   /* kept open, so that its M20 is not reported too */
+        t->hs[t->nh++] = (int)bi;
     } else {
       if (!t->hbase) {
         if (t->unit == 0) {
@@ -1087,7 +1101,7 @@ int u22_compile(const char *src, size_t n, struct diag_list *d, struct program *
       if (q < le && *q == '%') {
         started = 1;
         size_t cnt = 0;
-        if (lex_line(&c, q + 1, le, line, v, &cnt) == 0 && cnt) {
+        if (lex_line(&c, q + 1, le, line, -1, v, &cnt) == 0 && cnt) {
           /* columns of the rest of the line: lex_line counted from the % */
           unsigned base = 1;
           for (const unsigned char *r = ls; r <= q; r++)
@@ -1100,7 +1114,7 @@ int u22_compile(const char *src, size_t n, struct diag_list *d, struct program *
       continue;
     }
     size_t cnt = 0;
-    if (lex_line(&c, ls, le, line, v, &cnt))
+    if (lex_line(&c, ls, le, line, line_number(ls, le), v, &cnt))
       continue;
     if (!cnt)
       continue;   /* blank, or a comment only: no block (D-26) */
