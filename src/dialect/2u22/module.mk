@@ -7,3 +7,5 @@ U22_SRCS := $(wildcard src/dialect/2u22/*.c)
 U22_INC  := -Isrc/dialect/2u22 -Isrc/core -Isrc/machine/lathe -Ivm
 $(U22_SRCS:%.c=$(BUILD)/%.o): MOD_CPPFLAGS = $(U22_INC)
 DIALECT_SRCS += $(U22_SRCS)
+# registered: the build's dialect list names dialect_2u22
+DIALECTS += 2u22

@@ -9,7 +9,10 @@
  * its machine work and its row); COMMIT; then the block's structure -- an
  * L call (CALL, the count rr), an H repeat's counter and M20's jump back,
  * M17 (RET), M02/M30 (END).  Registers: R0..R9 are the parameters (10, 11:
- * the H counters of the two levels); nothing is saved across calls. */
+ * the H counters of the main program's two levels; a sub with an H repeat
+ * has a pair of its own from 12 up, so that a sub called inside a repeat
+ * cannot disturb its caller's count: u22_attr.hreg); nothing is saved
+ * across calls. */
 #ifndef S42_U22_H
 #define S42_U22_H
 
@@ -36,6 +39,7 @@ struct u22_attr {
   uint8_t sub;       /* L ss: the sub it calls after its own words (0 none) */
   uint8_t runs;      /* L ss rr: rr (1 when written L ss) */
   uint16_t h;        /* H n given: 1 + n (0: no H) */
+  uint8_t hreg;      /* H or M20: the register of that repeat's counter (0: neither) */
 };
 
 struct u22_ext {
