@@ -78,7 +78,17 @@ check: deps
 	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) -Otarget test
 
 # The tests themselves, once everything is built (the longest first).
-test: modbus tutorial toothsearch tui plot restart plugins conformance errors realtime limits regress unit programs guide cli shared dialect canon
+test: modbus tutorial toothsearch tui plot restart plugins conformance errors realtime limits regress unit programs guide cli shared dialect canon u22 oracle
+
+# The 2У22: its golden cases (tests/conformance/2u22*) and programs/2u22
+u22: $(S42)
+	$(PYTHON) tests/conformance/run.py --s42 $(S42) $(wildcard tests/conformance/2u22 tests/conformance/2u22-check)
+	sh programs/2u22/run.sh $(S42) tests/conformance/run.py
+
+# LinuxCNC's rs274 on the NGC twins of programs/2u22 against --trace=canon
+# (skipped with a notice without linuxcnc-uspace; CI requires it)
+oracle: $(S42)
+	sh tests/oracle/run.sh $(S42)
 
 # --trace=canon: the calls on the machine, exactly (tests/canon/)
 canon: $(S42)

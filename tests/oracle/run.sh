@@ -13,7 +13,11 @@ if [ $# -ne 1 ]; then
   exit 2
 fi
 if ! t_have rs274; then
-  echo "oracle: skipped: rs274 not installed (Debian linuxcnc-uspace)"
+  if [ -n "${S42_REQUIRE_ORACLE:-}" ]; then
+    echo "oracle: FAIL: rs274 is not installed and S42_REQUIRE_ORACLE is set (sh scripts/deps.sh --oracle)"
+    exit 1
+  fi
+  echo "oracle: skipped: rs274 not installed (Debian linuxcnc-uspace; sh scripts/deps.sh --oracle)"
   exit 0
 fi
 s42=$1
