@@ -14,7 +14,7 @@
 #include "errors.h"
 #include "kp.h"
 #include "pace.h"
-#include "report.h"
+#include "kpreport.h"
 #include "state.h"
 #include "tuitext.h"
 /* curses.h declares its own screen_init (and struct screen only as the
