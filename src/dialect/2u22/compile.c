@@ -144,7 +144,7 @@ static size_t end_mark(const unsigned char *s, size_t left)
 
 /* One line [s, e) of a program into the characters of its block (out,
  * CH_KEEP at most kept; *count gets them all).  0, or -1 after an error
- * was reported (the line then holds no block). */
+ * was reported (*count: the characters kept before it). */
 static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e, unsigned line, int number,
                     struct ch *out, size_t *count)
 {
@@ -166,7 +166,7 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
       for (;;) {
         if (q >= e) {
           err(c, S42_E_SYNTAX, line, open, number, "comment not closed: ')' missing before the end of the line");
-          return -1;
+          goto fail;
         }
         size_t ql, ml = end_mark(q, (size_t)(e - q));
         int32_t k = decode(q, (size_t)(e - q), &ql);
@@ -175,7 +175,7 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
         if (k == '%' || k == ':' || ml) {
           err(c, S42_E_SYNTAX, line, qc, number, "a comment may not hold %s (L500: no %%, : or ПС in a comment)",
               ml ? "the end mark ПС" : k == '%' ? "'%'" : "':'");
-          return -1;
+          goto fail;
         }
         q += ql;
         qc++;
@@ -195,11 +195,11 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
     if (mark_col) {
       err(c, S42_E_SYNTAX, line, col, number, "%s after the end mark ПС (column %u): one block per line", show(ch, b1),
           mark_col);
-      return -1;
+      goto fail;
     }
     if (ch == ')') {
       err(c, S42_E_SYNTAX, line, col, number, "')' without '('");
-      return -1;
+      goto fail;
     }
     if (n < CH_KEEP)
       out[n] = (struct ch){lookalike(ch), col};
@@ -209,6 +209,9 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
   }
   *count = n;
   return 0;
+fail:
+  *count = n < CH_KEEP ? n : CH_KEEP;   /* what came before the error, for salvage_ends */
+  return -1;
 }
 
 /* The number of the block a line holds, for the lexer's messages: N and
@@ -1114,8 +1117,7 @@ int u22_compile(const char *src, size_t n, struct diag_list *d, struct program *
       continue;
     }
     size_t cnt = 0;
-    if (lex_line(&c, ls, le, line, line_number(ls, le), v, &cnt))
-      continue;
+    int lexbad = lex_line(&c, ls, le, line, line_number(ls, le), v, &cnt);
     if (!cnt)
       continue;   /* blank, or a comment only: no block (D-26) */
     if (c.nb == c.capb) {
@@ -1135,19 +1137,19 @@ int u22_compile(const char *src, size_t n, struct diag_list *d, struct program *
     b->col = v[0].col;
     b->number = -1;
     b->back = b->past = -1;
-    if (cnt > U22_BLOCK_MAX) {
-      /* its number, for the message */
-      size_t i = v[0].c == '/';
-      if (i < CH_KEEP && v[i].c == 'N') {
-        long long x = 0;
-        i++;
-        if (digits(v, &i, CH_KEEP, &x) && x <= 99999)
-          b->number = (int)x;
-      }
+    size_t kept = cnt < CH_KEEP ? cnt : CH_KEEP;
+    if (lexbad) {
+      /* reported; its structure as far as it can be seen, so that one bad
+       * comment does not make the program seem to run on */
+      b->number = line_number(ls, le);
+      b->bad = 1;
+      salvage_ends(b, v, kept);
+    } else if (cnt > U22_BLOCK_MAX) {
+      b->number = line_number(ls, le);   /* for the message */
       err(&c, S42_E_BLOCKLEN, line, v[U22_BLOCK_MAX].col, b->number, "the block has %zu characters, at most %d "
           "(L502: spaces, comments and ПС not counted)", cnt, U22_BLOCK_MAX);
       b->bad = 1;
-      salvage_ends(b, v, CH_KEEP);
+      salvage_ends(b, v, kept);
     } else {
       parse_block(&c, b, v, cnt, t.sub_area);
       if (b->bad)
