@@ -13,7 +13,33 @@
  *               then, once every block is read, the calls (E-TARGET) and
  *               their nesting (E-NEST, D-28); and last emit.
  *
- * Decisions of this front end where the spec is silent are marked DEC. */
+ * Decisions of this front end where the spec is silent (DEC):
+ *  - the first line whose first non-blank character is % starts the
+ *    program; after the % only blanks, ПС and comments; a later % is
+ *    E-SYNTAX;
+ *  - ПС/PC (either letter Latin or Cyrillic) ends the block: anything but
+ *    blanks, comments and more marks after it on the line is E-SYNTAX (one
+ *    block per line); inside a comment it is E-SYNTAX, as % and : are;
+ *  - lowercase letters are no addresses (E-SYNTAX); look-alikes map as the
+ *    2С42's do, so Cyrillic Н is H and Р is P (no address);
+ *  - digits are counted as written (leading zeros count: X00000001 is 8);
+ *    G and M 1-2 digits, N 1-5 (exactly 5 in the sub area); T 3 digits
+ *    but T0..T99 (D-27); F S T E H are not negative (E-RANGE for a literal,
+ *    the word's rule at run time for a parameter); G M N L H take no sign;
+ *  - a function written twice is E-GROUP when it has a group, else
+ *    E-BLOCK; M02 M17 M30 count as one group (a block ends one thing);
+ *    G04 without E, and E without G04, are E-SYNTAX; with G25, X and Z are
+ *    bare letters (G25 X100 E-SYNTAX);
+ *  - R assignments take a number only (R1+R2 E-SYNTAX) and run before the
+ *    block's words take their values (see emit_block);
+ *  - one L and one H a block (a second is E-BLOCK); H and M20 in one block,
+ *    and M20 with M02, M30 or M17 (the range would hold the end, and H0
+ *    could not skip it) are E-SUB; M02 or M30 in a sub is E-SUB (a sub ends
+ *    with M17); two subs of one number are E-TARGET;
+ *  - E-NEST at check time follows the calls from the main program whose
+ *    count is not 00; a sub never called is not followed;
+ *  - each sub that has an H repeat gets its own pair of counters (u22.h).
+ */
 #include "u22.h"
 #include "u22c.h"
 #include "errors.h"
