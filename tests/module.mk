@@ -132,7 +132,7 @@ shared: $(S42)
 # that long, from the committed seeds in tests/fuzz/corpus/<harness>/ (new
 # inputs go to $(BUILD)/fuzz/corpus-<harness>/); crashes land in $(BUILD)/fuzz/.
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := compile vm operator toolmodel modbus modbus_conn state
+FUZZ_TARGETS := compile vm operator toolmodel modbus modbus_conn state u22
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined $(ALL_INC) -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)

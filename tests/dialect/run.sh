@@ -24,10 +24,10 @@ printf '; count to 20 by 2\nN10 R1 = 5\nN20 R1 + 2\nN30 IF R1 < 20 GOTO N20\nN40
 printf 'N10 R1 = 9999999\nN20 R1 + 1\nN30 END\n' >"$T/over.fix"
 printf 'N10 R1 = 5\nN20 R12 + 2\nN30 IF R1 ~ 20 GOTO N20\nN40 IF R1 < 3 GOTO N77\nN50 END\n' >"$T/bad.fix"
 
-# the s42 users get: the 2С42 alone; the fixture is not in it
+# the s42 users get: the 2С42 and the 2У22; the fixture is not in it
 expect "s42 dialects" 0 "2c42       .kp    grinder" "$S42" dialects
 if "$S42" dialects | grep -q fixture; then bad "the product lists the fixture"; else ok; fi
-expect "unknown --dialect" 2 "no dialect 'fixture' (2c42)" "$S42" run --dialect fixture "$T/count.fix"
+expect "unknown --dialect" 2 "no dialect 'fixture' (2c42, 2u22)" "$S42" run --dialect fixture "$T/count.fix"
 expect "--dialect 2c42 on any extension" 0 "" "$S42" check --dialect 2c42 programs/drill_point.kp
 cp programs/drill_point.kp "$T/drill.txt"
 expect "an unknown extension is the 2С42's" 0 '"status":"end"' "$S42" run "$T/drill.txt" --dump
@@ -40,7 +40,7 @@ expect "by extension" 0 '"blocks":[10,20,30,20,30,20,30,20,30,20,30,20,30,20,30,
 cp "$T/count.fix" "$T/count.txt"
 expect "by --dialect" 0 '"r":{"1":21}' "$FIX" run --dialect fixture "$T/count.txt" --dump
 expect "--dialect=NAME" 0 '"r":{"1":21}' "$FIX" run "$T/count.txt" --dialect=fixture --dump
-expect "did you mean" 2 "no dialect 'fixtur': did you mean fixture? (2c42, fixture)" "$FIX" check --dialect fixtur "$T/count.fix"
+expect "did you mean" 2 "no dialect 'fixtur': did you mean fixture? (2c42, 2u22, fixture)" "$FIX" check --dialect fixtur "$T/count.fix"
 expect "check" 0 "" "$FIX" check "$T/count.fix"
 expect "disasm" 0 "0002  SETP    r1" "$FIX" disasm "$T/count.fix"
 expect "trace" 0 '{"seq":18,"n":40,"line":5,"depth":0,"motion":"none","pos":{},"feed":0,"t":0}' "$FIX" run "$T/count.fix" --trace=json

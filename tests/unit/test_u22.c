@@ -759,6 +759,13 @@ START_TEST(diagnostics_name_the_block)
   uc(&u, "%\nN1 L01\nN2 G07 M02\nN01001 X1 M17\n");
   ck_assert_uint_eq(tp_count(&u.d, DIAG_ERROR), 1);
   ufree(&u);
+  uc(&u, "%\nN1 L01\nN2 M02 (no end\nN01001 X1 M17\n");
+  ck_assert_uint_eq(tp_count(&u.d, DIAG_ERROR), 1);
+  ck_assert_int_eq(u.d.v[0].number, 2);
+  ufree(&u);
+  uc(&u, "%\nN1 L02\nN2 M02\nN2001 X1 M17\n");   /* a short N in the sub area: read on as sub 02 */
+  ck_assert_uint_eq(tp_count(&u.d, DIAG_ERROR), 1);
+  ufree(&u);
 }
 END_TEST
 

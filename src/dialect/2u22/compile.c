@@ -13,7 +13,33 @@
  *               then, once every block is read, the calls (E-TARGET) and
  *               their nesting (E-NEST, D-28); and last emit.
  *
- * Decisions of this front end where the spec is silent are marked DEC. */
+ * Decisions of this front end where the spec is silent (DEC):
+ *  - the first line whose first non-blank character is % starts the
+ *    program; after the % only blanks, ПС and comments; a later % is
+ *    E-SYNTAX;
+ *  - ПС/PC (either letter Latin or Cyrillic) ends the block: anything but
+ *    blanks, comments and more marks after it on the line is E-SYNTAX (one
+ *    block per line); inside a comment it is E-SYNTAX, as % and : are;
+ *  - lowercase letters are no addresses (E-SYNTAX); look-alikes map as the
+ *    2С42's do, so Cyrillic Н is H and Р is P (no address);
+ *  - digits are counted as written (leading zeros count: X00000001 is 8);
+ *    G and M 1-2 digits, N 1-5 (exactly 5 in the sub area); T 3 digits
+ *    but T0..T99 (D-27); F S T E H are not negative (E-RANGE for a literal,
+ *    the word's rule at run time for a parameter); G M N L H take no sign;
+ *  - a function written twice is E-GROUP when it has a group, else
+ *    E-BLOCK; M02 M17 M30 count as one group (a block ends one thing);
+ *    G04 without E, and E without G04, are E-SYNTAX; with G25, X and Z are
+ *    bare letters (G25 X100 E-SYNTAX);
+ *  - R assignments take a number only (R1+R2 E-SYNTAX) and run before the
+ *    block's words take their values (see emit_block);
+ *  - one L and one H a block (a second is E-BLOCK); H and M20 in one block,
+ *    and M20 with M02, M30 or M17 (the range would hold the end, and H0
+ *    could not skip it) are E-SUB; M02 or M30 in a sub is E-SUB (a sub ends
+ *    with M17); two subs of one number are E-TARGET;
+ *  - E-NEST at check time follows the calls from the main program whose
+ *    count is not 00; a sub never called is not followed;
+ *  - each sub that has an H repeat gets its own pair of counters (u22.h).
+ */
 #include "u22.h"
 #include "u22c.h"
 #include "errors.h"
@@ -144,7 +170,7 @@ static size_t end_mark(const unsigned char *s, size_t left)
 
 /* One line [s, e) of a program into the characters of its block (out,
  * CH_KEEP at most kept; *count gets them all).  0, or -1 after an error
- * was reported (the line then holds no block). */
+ * was reported (*count: the characters kept before it). */
 static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e, unsigned line, int number,
                     struct ch *out, size_t *count)
 {
@@ -166,7 +192,7 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
       for (;;) {
         if (q >= e) {
           err(c, S42_E_SYNTAX, line, open, number, "comment not closed: ')' missing before the end of the line");
-          return -1;
+          goto fail;
         }
         size_t ql, ml = end_mark(q, (size_t)(e - q));
         int32_t k = decode(q, (size_t)(e - q), &ql);
@@ -175,7 +201,7 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
         if (k == '%' || k == ':' || ml) {
           err(c, S42_E_SYNTAX, line, qc, number, "a comment may not hold %s (L500: no %%, : or ПС in a comment)",
               ml ? "the end mark ПС" : k == '%' ? "'%'" : "':'");
-          return -1;
+          goto fail;
         }
         q += ql;
         qc++;
@@ -195,11 +221,11 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
     if (mark_col) {
       err(c, S42_E_SYNTAX, line, col, number, "%s after the end mark ПС (column %u): one block per line", show(ch, b1),
           mark_col);
-      return -1;
+      goto fail;
     }
     if (ch == ')') {
       err(c, S42_E_SYNTAX, line, col, number, "')' without '('");
-      return -1;
+      goto fail;
     }
     if (n < CH_KEEP)
       out[n] = (struct ch){lookalike(ch), col};
@@ -209,6 +235,9 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
   }
   *count = n;
   return 0;
+fail:
+  *count = n < CH_KEEP ? n : CH_KEEP;   /* what came before the error, for salvage_ends */
+  return -1;
 }
 
 /* The number of the block a line holds, for the lexer's messages: N and
@@ -1114,8 +1143,7 @@ int u22_compile(const char *src, size_t n, struct diag_list *d, struct program *
       continue;
     }
     size_t cnt = 0;
-    if (lex_line(&c, ls, le, line, line_number(ls, le), v, &cnt))
-      continue;
+    int lexbad = lex_line(&c, ls, le, line, line_number(ls, le), v, &cnt);
     if (!cnt)
       continue;   /* blank, or a comment only: no block (D-26) */
     if (c.nb == c.capb) {
@@ -1135,19 +1163,19 @@ int u22_compile(const char *src, size_t n, struct diag_list *d, struct program *
     b->col = v[0].col;
     b->number = -1;
     b->back = b->past = -1;
-    if (cnt > U22_BLOCK_MAX) {
-      /* its number, for the message */
-      size_t i = v[0].c == '/';
-      if (i < CH_KEEP && v[i].c == 'N') {
-        long long x = 0;
-        i++;
-        if (digits(v, &i, CH_KEEP, &x) && x <= 99999)
-          b->number = (int)x;
-      }
+    size_t kept = cnt < CH_KEEP ? cnt : CH_KEEP;
+    if (lexbad) {
+      /* reported; its structure as far as it can be seen, so that one bad
+       * comment does not make the program seem to run on */
+      b->number = line_number(ls, le);
+      b->bad = 1;
+      salvage_ends(b, v, kept);
+    } else if (cnt > U22_BLOCK_MAX) {
+      b->number = line_number(ls, le);   /* for the message */
       err(&c, S42_E_BLOCKLEN, line, v[U22_BLOCK_MAX].col, b->number, "the block has %zu characters, at most %d "
           "(L502: spaces, comments and ПС not counted)", cnt, U22_BLOCK_MAX);
       b->bad = 1;
-      salvage_ends(b, v, CH_KEEP);
+      salvage_ends(b, v, kept);
     } else {
       parse_block(&c, b, v, cnt, t.sub_area);
       if (b->bad)
