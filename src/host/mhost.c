@@ -159,6 +159,10 @@ static void print_error(const struct mhost *h, const struct diag_list *d)
   g.number = b && b->number ? (int)b->number : -1;
   snprintf(g.msg, sizeof g.msg, "%s", e->msg);
   diag_print_in(stderr, d, &g);
+  /* the machine's words for it, in its language (--lang; the dialect's table) */
+  char m[200];
+  report_machine_msg(m, sizeof m, h->r.p, e->code, g.number, e->aux, h->o->en);
+  fprintf(stderr, "%s:%u:%u: note: %s\n", h->o->program, g.line, g.col, m);
 }
 
 static int run(struct mhost *h, const struct diag_list *d)
