@@ -2640,8 +2640,11 @@ static void draw_modeline(struct tui *t, int y, int W)
   int x = text(y, 0, W, " ", A_REVERSE, 0);
   x += text(y, x, W - x, modes, A_REVERSE | A_BOLD, 0);
   x += text(y, x, W - x, " ", A_REVERSE, 0);
-  textf(y, x, W - x, A_BOLD, "  %s%s  |  cycle %u  %.2f s  %llu blocks", st, bb, t->m ? tmr_cycles(t->m) : 0,
-        t->m ? tmr_clock(t->m) : 0.0, t->m ? tmr_blocks(t->m) : 0ULL);
+  char cb[24] = "";
+  if (t->m && tmr_cycles(t->m))
+    snprintf(cb, sizeof cb, "cycle %u  ", tmr_cycles(t->m));
+  textf(y, x, W - x, A_BOLD, "  %s%s  |  %s%.2f s  %llu blocks", st, bb, cb, t->m ? tmr_clock(t->m) : 0.0,
+        t->m ? tmr_blocks(t->m) : 0ULL);
 }
 
 static const struct hint help_lathe_panel[] = {
@@ -3209,7 +3212,7 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
   curses_off();
   delscreen(scr);
   signals_off();
-  if (t->run != R_IDLE || t->have_prog)
+  if (t->run != R_IDLE || t->have_prog || t->m)
     end_run(t);
   tui_text_free(&t->text);
   free(t->path);
