@@ -62,7 +62,7 @@ unit-bin: $(MB_CONN_REPLAY)
 # SIGKILL at many points of a cycle with M15, then restart; damaged states,
 # and states edited by hand with a recomputed checksum (tests/restart/forge).
 FORGE := $(BUILD)/tests/restart/forge
-$(FORGE): tests/restart/forge.c src/core/state.h $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
+$(FORGE): tests/restart/forge.c src/dialect/2c42/state.h $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(ALL_INC) $(WARN) $(CFLAGS) $(LDFLAGS) -o $@ $(filter %.c %.o,$^) $(LDLIBS)
 unit-bin: $(FORGE)

@@ -13,8 +13,9 @@
 # Lines starting with # are comments; `@PLUGINDIR@` in an expected line is
 # the installed plugin directory that s42 searches last.  The last
 # command's stderr must name the code of the file's name (e-array-plus.kp:
-# E-ARRAY+), and every code of vm/errors.h must have its program, except
-# those in PENDING.
+# E-ARRAY+), and every code of vm/errors.h must have its program (NAME.kp,
+# or NAME.u22 for a code only the 2У22's lathe raises), except those in
+# PENDING.
 #   sh programs/errors/run.sh ./s42
 S42=$(cd "$(dirname "${1:-./s42}")" && pwd)/$(basename "${1:-./s42}")
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -47,6 +48,7 @@ check_one() {
   rm -rf "$dir"
   mkdir -p "$dir/alone"
   cp "$HERE"/*.kp "$dir/"
+  cp "$HERE"/*.u22 "$dir/" 2>/dev/null
   cp "$HERE"/*.operator "$HERE"/*.tool "$HERE"/*.machine "$dir/" 2>/dev/null
   cp "$S42" "$dir/alone/s42"
   plugindir=$(cd "$dir" && alone/s42 plugins 2>/dev/null | sed -n 's/.*searched: //p')
@@ -128,8 +130,9 @@ EOF
   return $ok
 }
 
-for kp in "$HERE"/*.kp; do
-  name=$(basename "$kp" .kp)
+for kp in "$HERE"/*.kp "$HERE"/*.u22; do
+  [ -f "$kp" ] || continue
+  name=$(basename "$kp"); name=${name%.*}
   if [ ! -f "$HERE/$name.expect" ]; then
     echo "FAIL errors $name: no $name.expect"
     fail=$((fail + 1))
@@ -143,13 +146,14 @@ for kp in "$HERE"/*.kp; do
   esac
 done
 for e in "$HERE"/*.expect; do
-  [ -f "${e%.expect}.kp" ] || { echo "FAIL errors: $(basename "$e") has no program"; fail=$((fail + 1)); }
+  [ -f "${e%.expect}.kp" ] || [ -f "${e%.expect}.u22" ] ||
+    { echo "FAIL errors: $(basename "$e") has no program"; fail=$((fail + 1)); }
 done
 
 # every error class of vm/errors.h has its program (or is pending)
 for code in $(sed -n 's/^ *ERR([A-Z0-9]*, *"\(E-[A-Z0-9+-]*\)".*/\1/p' "$ROOT/vm/errors.h"); do
   f=$(echo "$code" | tr 'A-Z' 'a-z' | sed 's/+$/-plus/; s/\(.\)-$/\1-minus/')
-  if [ -f "$HERE/$f.kp" ]; then continue; fi
+  if [ -f "$HERE/$f.kp" ] || [ -f "$HERE/$f.u22" ]; then continue; fi
   case " $PENDING " in
     *" $code "*) echo "errors: $code has no program yet (pending: the tooth-search work)" ;;
     *) echo "FAIL errors: $code has no program ($f.kp)"; fail=$((fail + 1)) ;;

@@ -1,18 +1,10 @@
-# src/core/: the session (VM stepping, waits, sinks, the plugin host), the
-# plugin loader, the restart state, diagnostics, the trace and the dump.
-# It sees vm/, include/ and display/; and, until the dialect seam is done,
-# the 2С42 front end's headers (the session is its runtime: kp.h) and the
-# grinder's (machine.h).
+# src/core/: what every dialect and host shares and no dialect owns -- the
+# neutral runner (mrun.c: a dialect's runtime on the VM, the waits and
+# switches, the rows), the canonical calls and their LinuxCNC trace
+# (canon.c), the one geometry of arcs and planes (geom.c), diagnostics,
+# the one error record, the dialect registry, JSON and machine messages
+# (report.c), file reading (atomic.c) and "did you mean" (nearest.c).  It
+# sees vm/ and nothing of a dialect or a machine.
 CORE_SRCS := $(wildcard src/core/*.c)
-CORE_INC  := -Isrc/core -Ivm -Iinclude -Idisplay -Isrc/dialect/2c42 -Isrc/machine/grinder
+CORE_INC  := -Isrc/core -Ivm
 $(CORE_SRCS:%.c=$(BUILD)/%.o): MOD_CPPFLAGS = $(CORE_INC)
-# where `make install` puts the plugins: s42 looks there last.  plugin.o is
-# rebuilt when PLUGINDIR changes (make install PREFIX=...): the stamp holds
-# the value it was built with and is rewritten only when it differs.
-$(BUILD)/src/core/plugin.o: CPPFLAGS += -DS42_PLUGINDIR='"$(PLUGINDIR)"'
-$(BUILD)/src/core/plugin.o: $(BUILD)/src/core/plugindir.stamp
-$(BUILD)/src/core/plugindir.stamp: FORCE
-	@mkdir -p $(@D)
-	@echo '$(PLUGINDIR)' | cmp -s - $@ || echo '$(PLUGINDIR)' > $@
-.PHONY: FORCE
-FORCE:

@@ -15,7 +15,7 @@
 #include "pace.h"
 #include "plot.h"
 #include "plugin.h"
-#include "report.h"
+#include "kpreport.h"
 #include "session.h"
 #include "state.h"
 #include "tui.h"

@@ -16,7 +16,7 @@
 #include "kp.h"
 #include "mrun.h"
 #include "pace.h"
-#include "report.h"
+#include "kpreport.h"
 #include "state.h"
 #include "tuitext.h"
 /* curses.h declares its own screen_init (and struct screen only as the

@@ -68,7 +68,7 @@ fi
 
 # another PREFIX is compiled into plugin.o (make -n: nothing is built)
 make -n --no-print-directory install PREFIX=/elsewhere BUILD="$BUILD" S42="$S42" 2>/dev/null >"$tmp/n"
-grep -q "S42_PLUGINDIR='\"/elsewhere/lib/s42/plugins\"'.* -o $BUILD/src/core/plugin.o src/core/plugin.c" "$tmp/n" && ok ||
+grep -q "S42_PLUGINDIR='\"/elsewhere/lib/s42/plugins\"'.* -o $BUILD/src/dialect/2c42/plugin.o src/dialect/2c42/plugin.c" "$tmp/n" && ok ||
   bad "make install PREFIX=/elsewhere would not rebuild plugin.o for that prefix"
 
 t_done
