@@ -260,8 +260,11 @@ void tmr_reset(struct tmr *m)
 
 void tmr_repace(struct tmr *m)
 {
-  if (m->have_run)
-    pace_start(&m->pace, sim_time(m));
+  if (!m->have_run)
+    return;
+  pace_start(&m->pace, sim_time(m));
+  if (m->phase == TMR_HOLD)
+    pace_hold(&m->pace, 1);   /* the hold stands */
 }
 
 int tmr_advance(struct tmr *m, int fast)
