@@ -113,6 +113,7 @@ cli: $(S42)
 # s42 tui in a real terminal: tmux send-keys, capture-pane
 tui: $(S42)
 	sh tests/tui/run.sh $(S42)
+	sh tests/tui/lathe.sh $(S42)
 
 # The Modbus server: a libmodbus client, malformed frames, mbpoll.
 MB_CLIENT := $(BUILD)/tests/modbus/client

@@ -9,10 +9,12 @@
 #define NCURSES_WIDECHAR 1
 #include "tui.h"
 #include "cycle.h"
+#include "dialect.h"
 #include "error.h"
 #include "compile.h"
 #include "errors.h"
 #include "kp.h"
+#include "mrun.h"
 #include "pace.h"
 #include "kpreport.h"
 #include "state.h"
@@ -158,6 +160,11 @@ struct tui {
   char msg[LOGW];           /* the message line */
   int msg_wait;             /* it says what the machine waits for */
   int quit;
+  /* the dialect of the text; a machine on the neutral runner (the 2У22) */
+  const struct dialect *dl;
+  int lathe;                /* dl runs on the neutral runner: its panel, not the 2С42's */
+  struct tmr *m;            /* its machine and run (tui_mrun.c), NULL none */
+  int mpage;                /* the machine's page shown (DG, DI) */
 };
 
 /* ---- terminal restore on every exit path ---- */
@@ -302,7 +309,10 @@ static size_t check(struct tui *t, int loud)
   struct diag_list d;
   prog_init(&p);
   diag_init(&d, t->path ? t->path : "(new)");
-  comp_program_with(src, n, &d, &p, t->o.plugins);
+  if (t->dl && t->dl->run != DIALECT_RUN_SESSION)
+    t->dl->compile(src, n, &d, &p, t->o.plugins);
+  else
+    comp_program_with(src, n, &d, &p, t->o.plugins);
   free(t->mark);
   t->nmark = t->text.n;
   t->mark = calloc(t->nmark ? t->nmark : 1, 1);
@@ -402,6 +412,8 @@ static void end_run(struct tui *t)
   t->run_src = NULL;
   cycle_free(&t->cyc);
   t->run = R_IDLE;
+  tmr_free(t->m);
+  t->m = NULL;
 }
 
 /* The machine's own message for the run's error, on line 16 and below. */
@@ -547,9 +559,16 @@ static const char *wait_hint(const struct session *s)
   }
 }
 
+/* the neutral runner's panel (below, with the panel keys) */
+static int lathe_advance(struct tui *t);
+static void lathe_pusk(struct tui *t);
+static void lathe_stop(struct tui *t);
+
 /* Run blocks while they are due.  Returns the poll timeout, ms (-1 idle). */
 static int advance(struct tui *t)
 {
+  if (t->lathe)
+    return lathe_advance(t);
   if (t->run != R_RUN || t->held || t->ovr_held || t->s.state == SE_WAIT)
     return -1;
   struct timespec t0, now;
@@ -620,6 +639,10 @@ static void sources_busy(struct tui *t)
 
 static void press_pusk(struct tui *t)
 {
+  if (t->lathe) {
+    lathe_pusk(t);
+    return;
+  }
   if (t->run != R_RUN) {
     start_run(t);
     return;
@@ -652,6 +675,10 @@ static void press_pusk(struct tui *t)
 
 static void press_stop(struct tui *t)
 {
+  if (t->lathe) {
+    lathe_stop(t);
+    return;
+  }
   if (t->run != R_RUN) {
     say(t, "Стоп: no cycle is running");
     return;
@@ -672,6 +699,10 @@ static void press_stop(struct tui *t)
 
 static void press_ps(struct tui *t)
 {
+  if (t->lathe) {
+    say(t, "ПС: this panel has no entry that waits for it");
+    return;
+  }
   if (t->run != R_RUN || t->s.state != SE_WAIT) {
     say(t, "ПС: the machine does not wait for it");
     return;
@@ -691,6 +722,10 @@ static void press_ps(struct tui *t)
 
 static void press_exit(struct tui *t)
 {
+  if (t->lathe) {
+    say(t, "Вихід з циклу: the %s has no cycle exit (r resets, Стоп stops)", t->dl->controller);
+    return;
+  }
   if (t->run != R_RUN) {
     say(t, "Вихід з циклу: no cycle is running");
     return;
@@ -888,6 +923,9 @@ static void edited(struct tui *t)
   check(t, 0);
 }
 
+static void set_dialect(struct tui *t, const char *path);
+static void lathe_opened(struct tui *t);
+
 /* A name that is not there yet: an empty text of that name, which the
  * first save creates (as an editor opens a new file). */
 static int new_file(struct tui *t, const char *path)
@@ -908,6 +946,7 @@ static int new_file(struct tui *t, const char *path)
   t->hl_line = -1;
   if (t->run != R_RUN)
     end_run(t);
+  set_dialect(t, path);
   check(t, 0);
   say(t, "%s: a new file (the first save creates it)", path);
   return 0;
@@ -959,7 +998,9 @@ static int load_file(struct tui *t, const char *path)
   t->hl_line = -1;
   if (t->run != R_RUN)
     end_run(t);
+  set_dialect(t, path);
   size_t e = check(t, 0);
+  lathe_opened(t);
   say(t, "%s: %zu lines; %zu error%s", path, t->text.n, e, e == 1 ? "" : "s");
   return 0;
 }
@@ -1314,6 +1355,11 @@ static void pitem(const struct tui *t, int i, char *b, size_t n, int *reg)
 
 static void page_open(struct tui *t)
 {
+  if (t->lathe) {   /* the machine's own pages, in turn */
+    int n = t->m ? tmr_npages(t->m) : 1;
+    t->mpage = (t->mpage + 1) % n;
+    return;
+  }
   if (t->focus == F_PARAMS) {
     t->page = 0;
     t->focus = F_PANEL;
@@ -1478,14 +1524,203 @@ static void edit_key(struct tui *t, int fn, wint_t c)
   }
 }
 
+/* ---- the neutral runner's panel (the 2У22): the run, the keys ---- */
+
+/* The dialect of a file: --dialect's, else its extension's. */
+static void set_dialect(struct tui *t, const char *path)
+{
+  t->dl = t->o.dialect ? t->o.dialect : path ? dialect_by_file(path) : dialect_by_name("2c42");
+  t->lathe = t->dl && t->dl->run == DIALECT_RUN_MACHINE;
+  t->mpage = 0;
+}
+
+static void lathe_said(void *ctx, int log, const char *msg)
+{
+  struct tui *t = ctx;
+  if (log)
+    say(t, "%s", msg);
+  else
+    note(t, "%s", msg);
+}
+
+/* t->run as the 2С42's panel keeps it (the editor, quit, the title ask it). */
+static void lathe_sync(struct tui *t)
+{
+  if (!t->m) {
+    t->run = R_IDLE;
+    return;
+  }
+  switch (tmr_phase(t->m)) {
+  case TMR_RUN: case TMR_HOLD: case TMR_WAIT: t->run = R_RUN; break;
+  case TMR_READY: t->run = R_IDLE; break;
+  default: t->run = R_DONE; break;
+  }
+}
+
+/* The machine for the text as it is now (at power-on): 0, or -1 (the text
+ * has errors, or the runner refused it; said). */
+static int lathe_prepare(struct tui *t)
+{
+  if (!t->lathe)
+    return -1;
+  if (!t->m)
+    t->m = tmr_new(t->o.en, t->o.max_blocks, lathe_said, t);
+  size_t n;
+  char *src = t->m ? tui_text_join(&t->text, &n) : NULL;
+  if (!src) {
+    say(t, "out of memory");
+    return -1;
+  }
+  int bad = tmr_load(t->m, t->dl, src, n, t->path);
+  free(src);
+  t->run_gen = bad ? t->gen - 1 : t->gen;   /* a failed one is tried again at Пуск */
+  lathe_sync(t);
+  return bad ? -1 : 0;
+}
+
+/* After a file was read (or a new one named): its dialect, its machine. */
+static void lathe_opened(struct tui *t)
+{
+  if (t->lathe && t->nerr == 0 && t->text.n)
+    lathe_prepare(t);
+}
+
+static void lathe_pusk(struct tui *t)
+{
+  if (t->run != R_RUN && t->m && t->run_gen != t->gen) {
+    size_t n;
+    char *src = tui_text_join(&t->text, &n);
+    if (src && tmr_same(t->m, src, n))
+      t->run_gen = t->gen;   /* edited back to what the machine has: it stays */
+    free(src);
+  }
+  if (t->run != R_RUN && (!t->m || t->run_gen != t->gen)) {
+    /* a new cycle of the text as it is now: checked, compiled anew */
+    if (!t->text.n) {
+      say(t, "the text is empty: Tab, then i, writes a block");
+      return;
+    }
+    if (check(t, 0)) {
+      check(t, 1);
+      say(t, "the program has %zu error%s: the cycle does not start", t->nerr, t->nerr == 1 ? "" : "s");
+      return;
+    }
+    int had = t->m != NULL && t->run != R_IDLE;
+    if (lathe_prepare(t))
+      return;
+    if (had)
+      say(t, "the text changed: compiled anew, the machine is at power-on");
+  }
+  tmr_pusk(t->m);
+  lathe_sync(t);
+}
+
+static void lathe_stop(struct tui *t)
+{
+  if (!t->m) {
+    say(t, "Стоп: no cycle is running");
+    return;
+  }
+  tmr_stop(t->m);
+  lathe_sync(t);
+}
+
+static int lathe_advance(struct tui *t)
+{
+  if (!t->m)
+    return -1;
+  int ms = tmr_advance(t->m, t->fast);
+  lathe_sync(t);
+  return ms;
+}
+
+static void lathe_switch(struct tui *t, enum tmr_switch w)
+{
+  static const char *const on_text[3] = {
+    "П/АВТ: single block, each block waits for Пуск before it starts",
+    "U/: block skip on, the blocks written with / are passed over",
+    "ST: optional stop on, M01 waits for Пуск",
+  };
+  static const char *const off_text[3] = {
+    "АВТ: automatic, the blocks run on",
+    "U/ off: the blocks written with / run",
+    "ST off: M01 does not stop",
+  };
+  if (!t->m)
+    t->m = tmr_new(t->o.en, t->o.max_blocks, lathe_said, t);
+  if (!t->m) {
+    say(t, "out of memory");
+    return;
+  }
+  int on = !tmr_get(t->m, w);
+  tmr_set(t->m, w, on);
+  say(t, "%s", on ? on_text[w] : off_text[w]);
+}
+
+static void lathe_key(struct tui *t, int fn, wint_t c)
+{
+  if (fn) {
+    if (c == KEY_ENTER)
+      press_ps(t);
+    return;
+  }
+  if (c >= '1' && c <= '9') {   /* a page by its place */
+    int k = (int)(c - '1');
+    if (t->m && k < tmr_npages(t->m))
+      t->mpage = k;
+    return;
+  }
+  switch (c) {
+  case '\r': case '\n': press_ps(t); return;
+  case 'g': lathe_pusk(t); return;
+  case 's': lathe_stop(t); return;
+  case 'e': press_exit(t); return;
+  case 'b': lathe_switch(t, TMR_SINGLE); return;
+  case 'u': lathe_switch(t, TMR_SKIP); return;
+  case 't': lathe_switch(t, TMR_OPTSTOP); return;
+  case 'r':
+    if (t->m && t->run_gen == t->gen)
+      tmr_reset(t->m);
+    else if (t->m)
+      say(t, "reset: the machine is idle; Пуск compiles the text anew and starts the cycle");
+    else
+      say(t, "reset: no machine yet");
+    lathe_sync(t);
+    return;
+  case 'p': page_open(t); return;
+  case 'P': {
+    int n = t->m ? tmr_npages(t->m) : 1;
+    t->mpage = (t->mpage + n - 1) % n;
+    return;
+  }
+  case 'f':
+    t->fast = !t->fast;
+    if (!t->fast && t->m)
+      tmr_repace(t->m);   /* machine speed from here */
+    say(t, t->fast ? "speed: as fast as possible" : "speed: machine speed");
+    return;
+  case 'q': ask_quit(t); return;
+  case 'w': ask_save(t, 0); return;
+  case 'o': ask_open(t); return;
+  case 'c': check(t, 1); return;
+  default: return;
+  }
+}
+
 /* The panel's keys on the 2С42 screen: the running session's, or the idle one's. */
 static int panel_edit(struct tui *t, int op, int arg)
 {
   return t->run != R_IDLE ? sess_panel_edit(&t->s, op, arg) : screen_edit(&t->idle, op, arg);
 }
 
+static void lathe_key(struct tui *t, int fn, wint_t c);
+
 static void panel_key(struct tui *t, int fn, wint_t c)
 {
+  if (t->lathe) {
+    lathe_key(t, fn, c);
+    return;
+  }
   int field = t->run == R_RUN && t->s.state == SE_WAIT && t->s.wait == W_ANSWER;
   const struct screen *sc = t->run != R_IDLE ? &t->s.scr : &t->idle;
   if (fn) {
@@ -1556,7 +1791,7 @@ static void panel_key(struct tui *t, int fn, wint_t c)
   }
 }
 
-static int help_lines(void);
+static int help_lines(const struct tui *t);
 
 /* Tab: the panel and the editor in turn (the parameters page closes) */
 static void focus_next(struct tui *t)
@@ -1569,7 +1804,7 @@ static void key(struct tui *t, int fn, wint_t c)
 {
   if (t->help) {
     /* the arrows scroll a help taller than the terminal; any other key closes it */
-    int rows = LINES - 2, max = help_lines() - rows;
+    int rows = LINES - 2, max = help_lines(t) - rows;
     if (fn && (c == KEY_DOWN || c == KEY_NPAGE) && max > 0) {
       t->help_top += c == KEY_DOWN ? 1 : rows;
       if (t->help_top > max)
@@ -1773,6 +2008,13 @@ static struct layout lay_out(const struct tui *t, int w, int h)
 
 static long run_line(const struct tui *t)
 {
+  if (t->lathe) {
+    int n;
+    unsigned line;
+    if (!t->m || t->run_gen != t->gen || tmr_block(t->m, &n, &line) < 0)
+      return -1;
+    return (long)line - 1;
+  }
   if (t->run == R_IDLE || t->run_gen != t->gen)
     return -1;
   if (t->s.state == SE_ERROR)
@@ -1977,6 +2219,8 @@ static const char *state_text(const struct tui *t, char *b, size_t n)
       return b;
     }
   }
+  if (t->lathe)
+    return t->m ? tmr_state(t->m, b, n) : "no machine: the program must compile";
   if (t->run == R_IDLE)
     return "ready: Пуск starts the cycle";
   if (t->run == R_DONE) {
@@ -2253,14 +2497,49 @@ static const char *const help_full[] = {
   "any key closes this; Up Down scroll it when it is cut",
 };
 
-static int help_lines(void)
+static const char *const help_lathe[] = {
+  "s42 tui: the 2У22 panel (the 16Б16Ф3 lathe)",
+  "",
+  "F5, g         Пуск: start the cycle, go on after a wait or Стоп;",
+  "              after the end (M02, M30) a new cycle from the start",
+  "F6, s         Стоп: the feed stops; again (or in a wait) it ends",
+  "              the cycle",
+  "b             П/АВТ: single block, each block waits for Пуск",
+  "u             U/: block skip, the blocks written with / are passed",
+  "t             ST: optional stop, M01 waits for Пуск",
+  "r             reset: the cycle is abandoned (the slides stay), Пуск",
+  "              starts the program from its first block",
+  "p P, 1 2      the machine's pages in turn, or by place: DG (position",
+  "              X Ø / Z, following error, part zero, slides), DI (the",
+  "              mode, the block, G F S, spindle, T and its corrections,",
+  "              R0-R9)",
+  "F9, f         machine speed / as fast as possible",
+  "Tab           panel / program editor",
+  "editor        Up Down PgUp PgDn Home End: the cursor's line;",
+  "              Left Right: the view across long lines",
+  "              i I insert after/before, Enter e replace, d delete,",
+  "              u undo, c F8 check, w F2 save, W save as, o F3 open",
+  "              / search, n N next / previous match, : go to line",
+  "F4, Ctrl-R    Рус: Cyrillic keyboard mode in the editor",
+  "prompts       typing replaces a name given; Esc cancels",
+  "F10, q        quit (while a cycle runs: q twice)",
+  "",
+  "any key closes this; Up Down scroll it when it is cut",
+};
+
+static const char *const *help_text(const struct tui *t)
 {
-  return (int)(sizeof help_full / sizeof help_full[0]);
+  return t->lathe ? help_lathe : help_full;
+}
+
+static int help_lines(const struct tui *t)
+{
+  return t->lathe ? (int)(sizeof help_lathe / sizeof help_lathe[0]) : (int)(sizeof help_full / sizeof help_full[0]);
 }
 
 static void draw_help(struct tui *t)
 {
-  int n = help_lines(), h = n + 2, w = 72;
+  int n = help_lines(t), h = n + 2, w = 72;
   int H = LINES, W = COLS;
   if (h > H)
     h = H;
@@ -2272,11 +2551,193 @@ static void draw_help(struct tui *t)
     top = 0;
   frame(y, x, h, w, top + h - 2 < n ? "keys (Down: more)" : "keys", A_BOLD);
   for (int i = 0; i < h - 2; i++)
-    text(y + 1 + i, x + 1, w - 2, help_full[top + i], A_NORMAL, 1);
+    text(y + 1 + i, x + 1, w - 2, help_text(t)[top + i], A_NORMAL, 1);
+}
+
+/* ---- the neutral runner's panel (the 2У22): drawing ---- */
+
+#define MPAGE_W (MRUN_PAGE_COLS + 2)   /* the framed machine page */
+
+/* The page's lines (into v, at most max; pointers into text, the newlines
+ * made ends).  Returns how many. */
+static int page_lines(char *text_, char **v, int max)
+{
+  int n = 0;
+  for (char *p = text_; p && *p && n < max;) {
+    char *nl = strchr(p, '\n');
+    v[n++] = p;
+    if (!nl)
+      break;
+    *nl = 0;
+    p = nl + 1;
+  }
+  return n;
+}
+
+/* The machine's page in a frame at y, x (h rows, w columns): its name and
+ * the others' as tabs in the top edge, the one shown in reverse. */
+static void draw_mpage(struct tui *t, int y, int x, int h, int w)
+{
+  frame(y, x, h, w, NULL, A_NORMAL);
+  int np = t->m ? tmr_npages(t->m) : 0;
+  if (t->mpage >= np)
+    t->mpage = 0;
+  int cx = x + 2;
+  if (np == 0)
+    cx += text(y, cx, w - 4, t->dl ? " 2У22 " : " machine ", A_BOLD, 0);
+  for (int k = 0; k < np && cx < x + w - 4; k++) {
+    char b[40];
+    snprintf(b, sizeof b, " %s ", tmr_page_name(t->m, k));
+    cx += text(y, cx, x + w - 2 - cx, b, k == t->mpage ? A_REVERSE | A_BOLD : A_NORMAL, 0);
+    if (k + 1 < np && cx < x + w - 2)
+      cell(y, cx++, 0x2500, A_NORMAL);
+  }
+  int rows = h - 2;
+  if (!t->m) {
+    text(y + 1, x + 1, w - 2, t->nerr ? "(no machine: the program has errors," : "(no machine yet:", A_DIM, 1);
+    if (rows > 1)
+      text(y + 2, x + 1, w - 2, t->nerr ? " F8 lists them)" : " Пуск sets it up)", A_DIM, 1);
+    return;
+  }
+  char *pg = tmr_page(t->m, t->mpage);
+  char *v[64];
+  int n = page_lines(pg, v, 64);
+  for (int r = 0; r < rows; r++)
+    text(y + 1 + r, x + 1, w - 2, r < n ? v[r] : "", r == 0 ? A_BOLD : A_NORMAL, 1);
+  free(pg);
+}
+
+/* The most lines any of the machine's pages has now. */
+static int mpage_rows(const struct tui *t)
+{
+  if (!t->m)
+    return 2;
+  int most = 1;
+  for (int k = 0; k < tmr_npages(t->m); k++) {
+    char *pg = tmr_page(t->m, k), *v[64];
+    int n = page_lines(pg, v, 64);
+    most = n > most ? n : most;
+    free(pg);
+  }
+  return most;
+}
+
+/* The mode line: the modes as the 2У22 names them, what the machine does
+ * or waits for, the block, the time. */
+static void draw_modeline(struct tui *t, int y, int W)
+{
+  char mb[64], sb[300], bb[48] = "", nb[16];
+  const char *modes = "АВТ", *st = "no machine";
+  if (t->m) {
+    modes = tmr_modes(t->m, mb, sizeof mb);
+    st = tmr_state(t->m, sb, sizeof sb);
+    int num;
+    unsigned line;
+    if (tmr_block(t->m, &num, &line) >= 0)
+      snprintf(bb, sizeof bb, "  |  %s line %u", bname(num, nb), line);
+  } else if (t->nerr) {
+    st = "the program has errors: F8 lists them";
+  }
+  int x = text(y, 0, W, " ", A_REVERSE, 0);
+  x += text(y, x, W - x, modes, A_REVERSE | A_BOLD, 0);
+  x += text(y, x, W - x, " ", A_REVERSE, 0);
+  char cb[24] = "";
+  if (t->m && tmr_cycles(t->m))
+    snprintf(cb, sizeof cb, "cycle %u  ", tmr_cycles(t->m));
+  textf(y, x, W - x, A_BOLD, "  %s%s  |  %s%.2f s  %llu blocks", st, bb, cb, t->m ? tmr_clock(t->m) : 0.0,
+        t->m ? tmr_blocks(t->m) : 0ULL);
+}
+
+static const struct hint help_lathe_panel[] = {
+  {"g Пуск", 1}, {"s Стоп", 1}, {"b П/АВТ", 2}, {"u U/", 2}, {"t ST", 2}, {"r reset", 3}, {"p page", 1},
+  {"f speed", 4}, {"Tab editor", 2}, {"F1 keys", 0}, {"q quit", 0}, {NULL, 0},
+};
+
+/* The lathe's terminal: the title; the listing (or the editor) on the
+ * left, the machine's page on the right with the messages under it; the
+ * mode line; the message line; the keys. */
+static void draw_lathe(struct tui *t)
+{
+  int H = LINES, W = COLS;
+  erase();
+  curs_set(0);
+  if (W < MPAGE_W || H < 10) {
+    char m[160];
+    snprintf(m, sizeof m, "the terminal is %dx%d: s42 tui needs at least %dx%d here; q quits", W, H, MPAGE_W, 10);
+    uint32_t cp[160];
+    int st[160], ln[160], n = screen_decode(m, cp, 160), rows = tui_wrap(cp, n, W, st, ln, 160);
+    for (int r = 0, y = H > rows ? (H - rows) / 2 : 0; r < rows && y + r < H; r++)
+      for (int c = 0; c < ln[r]; c++)
+        cell(y + r, c, cp[st[r] + c], A_BOLD);
+    refresh();
+    return;
+  }
+  draw_title(t, W);
+  int ph = H - 4;   /* rows 1 .. H-4 */
+  struct layout l;
+  memset(&l, 0, sizeof l);
+  l.ok = 1;
+  l.py = 1;
+  l.ph = ph;
+  int side = W - MPAGE_W, px = -1, pw = MPAGE_W;
+  if (side >= SIDE_MIN) {
+    l.lw = side;
+    px = side;
+  } else if (t->focus == F_EDIT) {
+    l.lw = W;
+  } else {
+    px = (W - MPAGE_W) / 2;
+  }
+  if (l.lw)
+    draw_listing(t, &l);
+  if (px >= 0) {
+    int want = mpage_rows(t) + 2;
+    int h = want < ph ? want : ph;
+    if (ph - h < 3)
+      h = ph;   /* no room for the messages under it */
+    draw_mpage(t, 1, px, h, pw);
+    if (ph - h >= 3) {
+      l.gx = px;
+      l.gw = pw;
+      l.gy = 1 + h;
+      l.gh = ph - h;
+      l.gframe = l.gh >= 5;
+      draw_log(t, &l, W);
+    }
+  }
+  draw_modeline(t, H - 3, W);
+  int my = H - 2, cy = -1, cx = 0;
+  if (t->input.kind) {
+    int pl = text(my, 0, W, t->input.prompt, A_BOLD, 0);
+    int avail = W - pl - 1;
+    if (avail < 1)
+      avail = 1;
+    int first = t->input.cur > avail ? t->input.cur - avail : 0;
+    for (int i = 0; pl + i < W; i++) {
+      int k = first + i;
+      cell(my, pl + i, k < t->input.n ? t->input.b[k] : ' ', k < t->input.n && t->input.sel ? A_REVERSE : A_NORMAL);
+    }
+    cy = my;
+    cx = pl + t->input.cur - first < W ? pl + t->input.cur - first : W - 1;
+  } else {
+    text(my, 0, W, t->msg, A_NORMAL, 1);
+  }
+  draw_keys(H - 1, W, t->input.kind ? help_input : t->focus == F_EDIT ? help_edit : help_lathe_panel);
+  if (t->help)
+    draw_help(t);
+  if (cy >= 0 && !t->help) {
+    move(cy, cx);
+    curs_set(1);
+  }
+  refresh();
 }
 
 static void draw(struct tui *t)
 {
+  if (t->lathe) {
+    draw_lathe(t);
+    return;
+  }
   int H = LINES, W = COLS;
   if (t->msg_wait) {
     if (t->run == R_RUN && t->s.state == SE_WAIT) {
@@ -2474,6 +2935,8 @@ static void est_read(struct tui *t)
  * whose row comes only when the wait ends. */
 static void watch(struct tui *t)
 {
+  if (t->lathe)
+    return;   /* no estimate for the neutral runner */
   if (t->run == R_RUN && t->s.state == SE_WAIT && sess_pp_jumps(&t->s) != t->pp_seen && t->cur.valid)
     exit_taken(t, t->cur.n, t->cur.line, sess_block_number(&t->s), t->prog.blocks[sess_cur(&t->s)].line);
   if (t->run != R_RUN) {
@@ -2494,6 +2957,15 @@ static void watch(struct tui *t)
 
 void tui_press(struct tui *t, enum tui_key k)
 {
+  if (t->lathe) {
+    if (k == TUI_PUSK)
+      lathe_pusk(t);
+    else if (k == TUI_STOP)
+      lathe_stop(t);
+    else if (k == TUI_RESET)
+      lathe_key(t, 0, 'r');
+    return;
+  }
   switch (k) {
   case TUI_PUSK: press_pusk(t); break;
   case TUI_STOP: press_stop(t); break;
@@ -2541,12 +3013,16 @@ int tui_override_pct(const struct tui *t)
 
 void tui_set_single(struct tui *t, int on)
 {
+  if (t->lathe)
+    return;   /* the 2С42's switches: a source serves that machine */
   if (!on != !t->single)
     set_single(t, on != 0);
 }
 
 void tui_set_break(struct tui *t, int n)
 {
+  if (t->lathe)
+    return;
   char b[16];
   snprintf(b, sizeof b, "%d", n);
   if (n != t->brk)
@@ -2580,7 +3056,7 @@ int tui_override(struct tui *t, int pct)
 
 const struct session *tui_session(const struct tui *t)
 {
-  return t->run == R_IDLE ? NULL : &t->s;
+  return t->run == R_IDLE || t->lathe ? NULL : &t->s;
 }
 
 static int loop(struct tui *t)
@@ -2678,6 +3154,7 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
     /* a name that is not there yet: an empty text that its first save creates */
     t->path = strdup(o->program);
     set_saved(t);
+    set_dialect(t, o->program);
     check(t, 0);
     say(t, "%s: a new file (the first save creates it).  Tab, then i, writes a block; F1 shows the keys",
         o->program);
@@ -2690,10 +3167,13 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
     }
     t->path = strdup(o->program);
     set_saved(t);
+    set_dialect(t, o->program);
     check(t, 0);
+    lathe_opened(t);
     say(t, "%s: %zu lines, %zu error%s, %zu warning%s.  Пуск (F5 or g) starts the cycle; F1 shows the keys",
         o->program, t->text.n, t->nerr, t->nerr == 1 ? "" : "s", t->nwarn, t->nwarn == 1 ? "" : "s");
   } else {
+    set_dialect(t, NULL);
     say(t, "no program: F3 (or o) opens one; Tab, then i, writes one.  F1 shows the keys");
   }
   if (tcgetattr(STDIN_FILENO, &tty0) == 0)
@@ -2733,7 +3213,7 @@ int tui_main(const struct tui_opts *o, const struct tui_source *src, int nsrc)
   curses_off();
   delscreen(scr);
   signals_off();
-  if (t->run != R_IDLE || t->have_prog)
+  if (t->run != R_IDLE || t->have_prog || t->m)
     end_run(t);
   tui_text_free(&t->text);
   free(t->path);

@@ -18,6 +18,11 @@ struct tui_opts {
   unsigned long long max_blocks;
   struct plug_set *plugins;   /* src/core/plugin.h: the functions plugins bring (may be NULL) */
   struct mach_travel travel;  /* --machine FILE: each axis's travel (none: has[] all 0) */
+  /* --dialect: the dialect of every file opened; NULL: each file's by its
+   * extension (dialect_by_file).  A dialect that runs on the neutral
+   * runner (DIALECT_RUN_MACHINE: the 2У22) gets its machine's panel
+   * (tui_mrun.c) instead of the 2С42's. */
+  const struct dialect *dialect;
 };
 
 struct tui;
@@ -74,5 +79,68 @@ int tui_single(const struct tui *t);
 int tui_break(const struct tui *t);
 /* A line in the messages pane, as a source reports. */
 void tui_say(struct tui *t, const char *msg);
+
+/* ---- for tui.c: a program on the neutral runner (tui_mrun.c) ----
+ * The machine of a DIALECT_RUN_MACHINE dialect (src/core/mrun.h) as the
+ * terminal runs it: the compiled program, the run, its pacing at machine
+ * speed (src/host/pace.h: each block's simulated time runs off on the wall
+ * clock before the next block starts) and the operator's switches.  No
+ * curses here: the terminal draws what these give.  Messages go out
+ * through say (log 0: the message line only). */
+struct tmr;
+struct dialect;
+enum tmr_phase {
+  TMR_READY,      /* the machine is there; Пуск starts the cycle */
+  TMR_RUN,        /* the cycle runs */
+  TMR_HOLD,       /* Стоп: the feed stopped mid-cycle; Пуск goes on */
+  TMR_WAIT,       /* the machine waits for Пуск (single block, M00, M01 with ST) */
+  TMR_END,        /* the program ended (M02, M30) */
+  TMR_STOPPED,    /* Стоп ended the cycle */
+  TMR_ERROR       /* the run failed (tmr_error) */
+};
+enum tmr_switch { TMR_SINGLE, TMR_SKIP, TMR_OPTSTOP };
+typedef void (*tmr_say_fn)(void *ctx, int log, const char *msg);
+
+struct tmr *tmr_new(int en, unsigned long long max_blocks, tmr_say_fn say, void *ctx);
+void tmr_free(struct tmr *m);
+/* Compile src with dl and set the machine up at power-on for it: 0, or -1
+ * (it does not compile, or the runner refused it: said). */
+int tmr_load(struct tmr *m, const struct dialect *dl, const char *src, size_t n, const char *path);
+/* Пуск: start the cycle (a new one after the end, a stop or an error: the
+ * machine stays where it is), end a wait or a hold.  0, or -1 (said why). */
+int tmr_pusk(struct tmr *m);
+/* Стоп: a hold while the cycle runs; in a hold or a wait the cycle ends. */
+void tmr_stop(struct tmr *m);
+/* Reset: the cycle is abandoned; the next Пуск starts at the first block. */
+void tmr_reset(struct tmr *m);
+/* Run what is due (fast: as fast as possible, else at machine speed).
+ * Returns the poll timeout, ms (-1: nothing to do until a key). */
+int tmr_advance(struct tmr *m, int fast);
+/* The machine speed goes on from now (after fast). */
+void tmr_repace(struct tmr *m);
+void tmr_set(struct tmr *m, enum tmr_switch w, int on);
+int tmr_get(const struct tmr *m, enum tmr_switch w);
+enum tmr_phase tmr_phase(const struct tmr *m);
+/* The block shown as current (its index in the program, -1 none), its
+ * number as written (-1 none) and line. */
+long tmr_block(const struct tmr *m, int *number, unsigned *line);
+/* The machine's pages (the 2У22's DG, DI): how many, a name, the text of
+ * page k (malloc'd lines, each ended by a newline; NULL out of memory). */
+int tmr_npages(const struct tmr *m);
+const char *tmr_page_name(const struct tmr *m, int k);
+char *tmr_page(const struct tmr *m, int k);
+/* The modes as the 2У22 shows them: "АВТ", "П/АВТ", then "ST", "U/". */
+const char *tmr_modes(const struct tmr *m, char *b, size_t n);
+/* What the machine does or waits for, in a few words ("running",
+ * "N13 waits: single block: Пуск (F5 or g) starts it", "end (M02)"). */
+const char *tmr_state(const struct tmr *m, char *b, size_t n);
+/* Simulated time, s: of the machine; as the clock on the screen shows it
+ * (within a block that runs off at machine speed); blocks run. */
+double tmr_time(const struct tmr *m);
+double tmr_clock(const struct tmr *m);
+unsigned long long tmr_blocks(const struct tmr *m);
+unsigned tmr_cycles(const struct tmr *m);
+/* The machine's program was compiled from exactly these n bytes. */
+int tmr_same(const struct tmr *m, const char *src, size_t n);
 
 #endif
