@@ -1543,6 +1543,19 @@ static int cmd_tui(int argc, char **argv)
   t.en = o.en;
   t.max_blocks = o.max_blocks;
   t.travel = o.travel;
+  t.dialect = cli_dialect;
+  t.tools = o.tools ? o.tools : dl && dl->run == DIALECT_RUN_MACHINE ? o.tool : NULL;
+  if (dl && dl->run == DIALECT_RUN_MACHINE) {
+    const char *no = o.modbus ? "--modbus" : o.state ? "--state" : o.restart ? "--restart"
+                     : o.machine ? "--machine" : o.tool && o.tools ? "--tool with --tools" : NULL;
+    if (no) {
+      fprintf(stderr, "s42: tui: %s is not there yet for the %s dialect (%s)\n", no, dl->name, dl->machine);
+      return EXIT_USAGE;
+    }
+  } else if (o.tools) {
+    fprintf(stderr, "s42: tui: --tools is a lathe's tool table; the 2С42's tooth-search tool model is --tool\n");
+    return EXIT_USAGE;
+  }
   struct tui_source mb;
   if (o.modbus) {
     char err[300];

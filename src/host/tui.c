@@ -1557,6 +1557,16 @@ static void lathe_sync(struct tui *t)
   }
 }
 
+/* The machine of the neutral runner, with its tool table (--tools). */
+static struct tmr *lathe_new(struct tui *t)
+{
+  struct tmr *m = tmr_new(t->o.en, t->o.max_blocks, lathe_said, t);
+  char err[600];
+  if (m && t->o.tools && tmr_tools(m, t->o.tools, err, sizeof err))
+    say(t, "--tools %s", err);
+  return m;
+}
+
 /* The machine for the text as it is now (at power-on): 0, or -1 (the text
  * has errors, or the runner refused it; said). */
 static int lathe_prepare(struct tui *t)
@@ -1564,7 +1574,7 @@ static int lathe_prepare(struct tui *t)
   if (!t->lathe)
     return -1;
   if (!t->m)
-    t->m = tmr_new(t->o.en, t->o.max_blocks, lathe_said, t);
+    t->m = lathe_new(t);
   size_t n;
   char *src = t->m ? tui_text_join(&t->text, &n) : NULL;
   if (!src) {
@@ -1647,7 +1657,7 @@ static void lathe_switch(struct tui *t, enum tmr_switch w)
     "ST off: M01 does not stop",
   };
   if (!t->m)
-    t->m = tmr_new(t->o.en, t->o.max_blocks, lathe_said, t);
+    t->m = lathe_new(t);
   if (!t->m) {
     say(t, "out of memory");
     return;

@@ -23,6 +23,7 @@ struct tui_opts {
    * runner (DIALECT_RUN_MACHINE: the 2У22) gets its machine's panel
    * (tui_mrun.c) instead of the 2С42's. */
   const struct dialect *dialect;
+  const char *tools;          /* --tools FILE: the lathe's tool table (the neutral runner's machine) */
 };
 
 struct tui;
@@ -106,6 +107,9 @@ void tmr_free(struct tmr *m);
 /* Compile src with dl and set the machine up at power-on for it: 0, or -1
  * (it does not compile, or the runner refused it: said). */
 int tmr_load(struct tmr *m, const struct dialect *dl, const char *src, size_t n, const char *path);
+/* The machine's tool table (--tools FILE), read now and given to every
+ * run set up from here on: 0, or -1 with err. */
+int tmr_tools(struct tmr *m, const char *path, char *err, size_t n);
 /* Пуск: start the cycle (a new one after the end, a stop or an error: the
  * machine stays where it is), end a wait or a hold.  0, or -1 (said why). */
 int tmr_pusk(struct tmr *m);

@@ -7,6 +7,7 @@
  * terminal (tui.c) draws the pages this gives and maps the keys to
  * tmr_pusk, tmr_stop, tmr_reset and tmr_set. */
 #include "tui.h"
+#include "atomic.h"
 #include "diag.h"
 #include "dialect.h"
 #include "errors.h"
@@ -40,6 +41,9 @@ struct tmr {
   long cur;                  /* the block shown as current, -1 none */
   long rows;                 /* rows of this cycle */
   unsigned cycles;           /* cycles started */
+  char *tools;               /* the machine's tool table (--tools), its text, or NULL */
+  size_t ntools;
+  char *tools_path;
 };
 
 static void sayf(struct tmr *m, int log, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
@@ -93,6 +97,10 @@ static void drop(struct tmr *m)
 
 void tmr_free(struct tmr *m)
 {
+  if (m) {
+    free(m->tools);
+    free(m->tools_path);
+  }
   if (!m)
     return;
   drop(m);
@@ -149,8 +157,33 @@ int tmr_load(struct tmr *m, const struct dialect *dl, const char *src, size_t n,
     drop(m);
     return -1;
   }
+  if (m->tools && m->r.rt->load) {
+    char err[300];
+    if (m->r.rt->load(&m->r, "tools", m->tools, m->ntools, m->tools_path, err, sizeof err))
+      sayf(m, 1, "%s", err);
+  }
   apply_switches(m);
   m->phase = TMR_READY;
+  return 0;
+}
+
+int tmr_tools(struct tmr *m, const char *path, char *err, size_t n)
+{
+  char *text;
+  size_t len;
+  if (file_read_all(path, FILE_OR_STDIN, (size_t)1 << 20, &text, &len, err, n))
+    return -1;
+  char *p = strdup(path);
+  if (!p) {
+    free(text);
+    snprintf(err, n, "out of memory");
+    return -1;
+  }
+  free(m->tools);
+  free(m->tools_path);
+  m->tools = text;
+  m->ntools = len;
+  m->tools_path = p;
   return 0;
 }
 

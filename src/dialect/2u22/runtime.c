@@ -378,9 +378,10 @@ static void renew(struct mrun *r)
 
 static const char *const pages[] = {"DG", "DI", NULL};
 
+/* name: 3 columns as written (Δ is one column of two bytes) */
 static void mm_text(FILE *out, const char *name, int64_t v)
 {
-  fprintf(out, "%-3s %+11.3f\n", name, (double)v / 1000.0);
+  fprintf(out, "%s %+11.3f\n", name, (double)v / 1000.0);
 }
 
 /* DG: where the tool is (part coordinates, X a diameter), the following
@@ -392,17 +393,17 @@ static void page(const struct mrun *r, int k, FILE *out)
   const struct lathe *l = &s->l;
   if (k == 0) {
     fputs("DG  position (X a diameter)\n", out);
-    mm_text(out, "X", lathe_pos(l, LX));
-    mm_text(out, "Z", lathe_pos(l, LZ));
+    mm_text(out, "X  ", lathe_pos(l, LX));
+    mm_text(out, "Z  ", lathe_pos(l, LZ));
     fputs("following error\n", out);
-    mm_text(out, "ΔX", 0);
-    mm_text(out, "ΔZ", 0);
+    mm_text(out, "ΔX ", 0);
+    mm_text(out, "ΔZ ", 0);
     fputs("part zero\n", out);
-    mm_text(out, "OX", l->zero[LX]);
-    mm_text(out, "OZ", l->zero[LZ]);
+    mm_text(out, "OX ", l->zero[LX]);
+    mm_text(out, "OZ ", l->zero[LZ]);
     fputs("machine (slides)\n", out);
-    mm_text(out, "MX", l->slide[LX]);
-    mm_text(out, "MZ", l->slide[LZ]);
+    mm_text(out, "MX ", l->slide[LX]);
+    mm_text(out, "MZ ", l->slide[LZ]);
     return;
   }
   int n = r->p->nblocks ? mrun_block_number(r) : -1;
