@@ -22,6 +22,7 @@ int main(void)
   srunner_add_suite(sr, suite_param());
   srunner_add_suite(sr, suite_verify());
   srunner_add_suite(sr, suite_words());
+  srunner_add_suite(sr, suite_lplot());
   srunner_run_all(sr, CK_NORMAL);
   int failed = srunner_ntests_failed(sr);
   srunner_free(sr);

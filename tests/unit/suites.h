@@ -29,6 +29,7 @@ Suite *suite_state(void);
 Suite *suite_param(void);
 Suite *suite_verify(void);
 Suite *suite_words(void);
+Suite *suite_lplot(void);
 
 /* A program compiled from a C string, with its diagnostics. */
 struct tprog {
