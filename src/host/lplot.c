@@ -113,6 +113,8 @@ struct lplot {
   double rmin, rmax, zmin, zmax, amax;
   /* the result */
   char status[160];
+  /* the caption as drawn, for the SVG's <title> and <desc> */
+  char cap_title[300], cap_line[600], cap_warn[600];
 };
 
 /* ---- the silhouette ---- */
@@ -916,8 +918,8 @@ static void grid_and_ticks(cairo_t *cr, const struct fit *F)
       cairo_stroke(cr);
       tick_label(lab, sizeof lab, k * zstep, zdec, "");
       double w = text_w(cr, lab, 11, 0);
-      if (x - w / 2 < FX + LBAND - 20 || x + w / 2 > FX + FW - 44)
-        continue;   /* off the frame, or over the axis's name */
+      if (x - w / 2 < FX + LBAND - 20 || x + w / 2 > FX + FW + 16)
+        continue;   /* off the frame */
       rgb(cr, C_TEXT);
       text_at(cr, x, y1 + 15, lab, 11, 0, 0.5);
     }
@@ -1353,13 +1355,18 @@ static int draw_path(cairo_t *cr, const struct lplot *pl, const struct fit *F)
   return part;
 }
 
-enum { LG_LINE, LG_DASH, LG_ZIG, LG_RED, LG_BOX, LG_DASHBOX, LG_HATCH, LG_CENTRE, LG_RING, LG_SQUARE, LG_THRBOX };
+enum { LG_NOTE, LG_LINE, LG_DASH, LG_ZIG, LG_RED, LG_BOX, LG_DASHBOX, LG_HATCH, LG_CENTRE, LG_RING, LG_SQUARE, LG_THRBOX };
 
 static double legend_item(cairo_t *cr, double x, double y, int style, unsigned c, const char *text, int measure)
 {
-  double w = 30 + text_w(cr, text, 11, 0);
+  double w = (style == LG_NOTE ? 0 : 30) + text_w(cr, text, 11, 0);
   if (measure)
     return w;
+  if (style == LG_NOTE) {
+    rgb(cr, C_LABEL);
+    text_at(cr, x, y, text, 11, 0, 0);
+    return w;
+  }
   cairo_new_path(cr);
   double dash[] = {6, 4}, dd[] = {10, 2.5, 2, 2.5};
   switch (style) {
@@ -1470,21 +1477,18 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
     draw_stock(cr, pl, &F, &cutoff, &cut_z);
   centre_line(cr, &F);
   int part = draw_path(cr, pl, &F);
+  rgb(cr, C_TEXT);
+  text_at(cr, FX + FW - 6, PY(&F, 0) - 6, "Z, mm", 11, 1, 1);
   if (!pl->moves) {
     rgb(cr, C_LABEL);
     text_at(cr, FX + LBAND + (FW - LBAND) / 2, FY + 40, "no moves", 16, 1, 0.5);
   }
-  /* the orientation, in the corner */
-  rgb(cr, C_LABEL);
-  text_at(cr, FX + FW - 8, FY + 16,
-          "Z along (the face at Z 0, the chuck to the left), the radius up (labelled as Ø); one scale", 11, 0, 1);
   cairo_restore(cr);
   rgb(cr, C_FRAME);
   cairo_set_line_width(cr, 1);
   cairo_rectangle(cr, FX + LBAND + 0.5, FY + 0.5, FW - LBAND - 1, FH - BBAND - 1);
   cairo_stroke(cr);
   rgb(cr, C_TEXT);
-  text_at(cr, FX + FW, FY + FH - 2, "Z, mm", 11, 1, 1);
   text_at(cr, FX + 2, FY + 12, "Ø, mm", 11, 1, 0);
   legend(cr, pl, cutoff);
 
@@ -1497,6 +1501,17 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
   text_at(cr, FX, 28, title, 19, 1, 0);
   text_at(cr, FX + text_w(cr, title, 19, 1) + 12, 28, "the lathe's tool path and the turned part, s42 (2У22)", 12, 0,
           0);
+  /* the orientation, at the right of the title */
+  {
+    const char *ori = "Z along: the chuck left, the face at Z 0;  the radius up (labelled Ø);  one scale";
+    double used = FX + text_w(cr, title, 19, 1) + 12 +
+                  text_w(cr, "the lathe's tool path and the turned part, s42 (2У22)", 12, 0) + 16;
+    double size = 11;
+    while (size > 7 && FX + FW - text_w(cr, ori, size, 0) < used)
+      size -= 0.5;
+    rgb(cr, C_LABEL);
+    text_at(cr, FX + FW, 28, ori, size, 0, 1);
+  }
   size_t o = 0;
   o += snprintf(line + o, sizeof line - o, "%s", pl->status);
   if (pl->st.has) {
@@ -1514,6 +1529,8 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
   } else
     o += snprintf(line + o, sizeof line - o, "  ·  no moves");
   (void)o;
+  snprintf(pl->cap_title, sizeof pl->cap_title, "%s", title);
+  snprintf(pl->cap_line, sizeof pl->cap_line, "%s", line);
   double lsize = 12;
   while (lsize > 8 && text_w(cr, line, lsize, 0) > FW)
     lsize -= 0.5;
@@ -1551,6 +1568,7 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
   if (part)
     WARN("the path is too dense to draw whole: drawn in part");
 #undef WARN
+  snprintf(pl->cap_warn, sizeof pl->cap_warn, "%s", warn);
   if (warn[0]) {
     double size = 12;
     while (size > 8 && text_w(cr, warn, size, 1) > FW)
@@ -1578,6 +1596,42 @@ static cairo_status_t write_fn(void *closure, const unsigned char *data, unsigne
 {
   FILE *f = closure;
   return fwrite(data, 1, len, f) == len ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
+static void xml_text(FILE *f, const char *s)
+{
+  for (; *s; s++)
+    switch (*s) {
+    case '<': fputs("&lt;", f); break;
+    case '>': fputs("&gt;", f); break;
+    case '&': fputs("&amp;", f); break;
+    default: fputc(*s, f);
+    }
+}
+
+/* The SVG cairo wrote, with <title> and <desc> after the root's tag: 0 or
+ * an errno. */
+static int svg_out(FILE *f, const char *svg, size_t len, const struct lplot *pl)
+{
+  const char *root = svg ? strstr(svg, "<svg") : NULL;
+  const char *gt = root ? strchr(root, '>') : NULL;
+  size_t head = gt ? (size_t)(gt + 1 - svg) : len;
+  if (fwrite(svg, 1, head, f) != head)
+    return errno ? errno : EIO;
+  if (gt) {
+    fputs("\n<title>", f);
+    xml_text(f, pl->cap_title);
+    fputs("</title>\n<desc>", f);
+    xml_text(f, pl->cap_line);
+    if (pl->cap_warn[0]) {
+      fputs("\n", f);
+      xml_text(f, pl->cap_warn);
+    }
+    fputs("</desc>", f);
+  }
+  if (fwrite(svg + head, 1, len - head, f) != len - head || ferror(f))
+    return errno ? errno : EIO;
+  return 0;
 }
 
 int lplot_write(struct lplot *pl, const char *program, const char *path, char *err, size_t n)
@@ -1616,11 +1670,23 @@ int lplot_write(struct lplot *pl, const char *program, const char *path, char *e
     free(tmp);
     return -1;
   }
+  /* an SVG's text is glyphs: its caption goes into <title> and <desc> too,
+   * so it is searchable (the picture is written to memory first) */
+  char *svg = NULL;
+  size_t svg_len = 0;
+  FILE *out = f;
+  if (kind == 1 && !(out = open_memstream(&svg, &svg_len))) {
+    snprintf(err, n, "out of memory");
+    fclose(f);
+    unlink(tmp);
+    free(tmp);
+    return -1;
+  }
   cairo_surface_t *sf;
   if (kind == 0)
     sf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, (int)PW, (int)PH);
   else if (kind == 1)
-    sf = cairo_svg_surface_create_for_stream(write_fn, f, PW, PH);
+    sf = cairo_svg_surface_create_for_stream(write_fn, out, PW, PH);
   else
     sf = cairo_pdf_surface_create_for_stream(write_fn, f, PW, PH);
   cairo_status_t st = cairo_surface_status(sf);
@@ -1640,7 +1706,14 @@ int lplot_write(struct lplot *pl, const char *program, const char *path, char *e
   cairo_surface_destroy(sf);
   cairo_debug_reset_static_data();
   int ioerr = 0;
-  if (fflush(f) != 0 || fsync(fileno(f)) != 0)
+  if (kind == 1) {
+    if (fclose(out) != 0)
+      ioerr = ENOMEM;
+    else if (st == CAIRO_STATUS_SUCCESS)
+      ioerr = svg_out(f, svg, svg_len, pl);
+    free(svg);
+  }
+  if (!ioerr && (fflush(f) != 0 || fsync(fileno(f)) != 0))
     ioerr = errno ? errno : EIO;
   if (fclose(f) != 0 && !ioerr)
     ioerr = errno ? errno : EIO;
