@@ -31,7 +31,10 @@
  * Li Chao tree of linear functions over the boundaries (O(log^2) a line:
  * a million full-length passes take a second or two); a cell's R is the
  * least of its own value and the tree's at its two boundaries.  Arcs are
- * cut as chords within LP_TOL mm of the arc. */
+ * cut as chords within LP_TOL mm of the arc, only where the circle is
+ * within the bar's radius.  Drawing strokes at most INK_BUDGET px of path
+ * per style (moves under a pixel merged, the rest clipped to the frame);
+ * past it the caption says the path is drawn in part. */
 #include "lplot.h"
 #include "canon.h"
 #include "geom.h"
