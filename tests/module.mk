@@ -83,6 +83,7 @@ realtime: $(S42)
 # s42 plot on every bundled program: image size, drawn pixels, valid SVG.
 plot: $(S42)
 	sh tests/plot/run.sh $(S42)
+	sh tests/plot/lathe/run.sh $(S42)
 
 # plugins from the outside: built against the installed header, searched,
 # refused, missing; OpenCV only for programs that search teeth; then

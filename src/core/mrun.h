@@ -73,6 +73,9 @@ struct mrun_rt {
    * MRUN_PAGE_COLS columns, UTF-8, each ended by a newline. */
   const char *const *pages;
   void (*page)(const struct mrun *r, int k, FILE *out);
+  /* where the tool is, as the canonical calls print it: mm (deg) of X Y Z
+   * A, a lathe's X its radius (a plot's starting point) */
+  void (*position)(const struct mrun *r, double pos[4]);
 };
 
 #define MRUN_PAGE_COLS 40

@@ -33,4 +33,22 @@ int lplot_parse_stock(const char *text, struct lplot_stock *s, char *why, size_t
 int lplot_write(struct lplot *pl, const char *program, const char *path, char *err, size_t n);
 void lplot_free(struct lplot *pl);
 
+/* Additions (the host and the tests): */
+/* Where the tool is before the first call (radius and Z, mm); without it
+ * the first call's position: a first call that moves is not drawn. */
+void lplot_at(struct lplot *pl, double r, double z);
+/* Is the output path's extension one we can write (.png .svg .pdf)?  0, or
+ * -1 with err (lplot_write checks it too: for refusing before the run). */
+int lplot_check_path(const char *path, char *err, size_t n);
+/* The silhouette: the part's radius R(z) mm left at z (the silhouette's
+ * cell holding z, 0.01 mm long for a stock up to 200 mm), or -1 without a
+ * stock or for z outside 0 .. -len. */
+double lplot_radius_at(struct lplot *pl, double z);
+/* Did the path cut past the stock's end (z < -len at a radius under d/2)?
+ * 1 and the least such z in *z, else 0. */
+int lplot_chuck(const struct lplot *pl, double *z);
+/* Where the point (radius r, z) lands in the picture lplot_write would
+ * draw now (x right, y down, px of the PNG = pt of the SVG and PDF). */
+int lplot_page_xy(struct lplot *pl, double r, double z, double *x, double *y);
+
 #endif

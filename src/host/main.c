@@ -12,6 +12,7 @@
 #include "nearest.h"
 #include "operator.h"
 #include "mhost.h"
+#include "lplot.h"
 #include "pace.h"
 #include "plot.h"
 #include "plugin.h"
@@ -63,6 +64,7 @@ static const struct optinfo {
   {"--realtime", NULL, C_RUN | C_PLOT, "pace the run at machine speed (Ctrl-C stops it with the dump)"},
   {"--lang", "uk|en", C_RUN | C_TUI | C_PLOT, "language of machine messages (default uk)"},
   {"-o", "FILE", C_PLOT, "the picture to write: .png, .svg or .pdf"},
+  {"--stock", "DxL", C_PLOT, "a lathe's bar: diameter x length in mm, its face at Z 0 (2У22)"},
   {"--json", NULL, C_CHECK | C_PLUGINS, "the output as JSON (check: one object a diagnostic, a line)"},
   {"--plugins", "DIR", C_RUN | C_TUI | C_PLOT | C_CHECK | C_DISASM | C_PLUGINS,
    "where plugins are looked for first (also S42_PLUGIN_PATH)"},
@@ -146,6 +148,7 @@ static int cmd_help(const struct cmdinfo *c)
 struct opts {
   unsigned cmd;              /* C_RUN, C_TUI or C_PLOT: for "did you mean" */
   const char *program, *operator_file, *tool, *tools, *dump_images, *state, *plugins, *modbus, *out, *machine;
+  const char *stock;         /* --stock DxL (a lathe's plot) */
   struct mach_travel travel; /* from --machine FILE (none without it) */
   int trace, json, canon, dump, screen, restart, realtime, en;
   unsigned long long max_blocks;
@@ -236,6 +239,7 @@ static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
     if (strcmp(a, "--operator") == 0) val = &o->operator_file;
     else if (strcmp(a, "--tool") == 0) val = &o->tool;
     else if (strcmp(a, "--tools") == 0) val = &o->tools;
+    else if (strcmp(a, "--stock") == 0) val = &o->stock;
     else if (strcmp(a, "--dump-images") == 0) val = &o->dump_images;
     else if (strcmp(a, "--state") == 0) val = &o->state;
     else if (strcmp(a, "--machine") == 0) val = &o->machine;
@@ -1151,10 +1155,10 @@ static int refused_for_2c42(const struct opscript *ops, const char *file)
   return bad;
 }
 
-/* A dialect on the neutral runner (src/host/mhost.c). */
-static int run_machine(const struct opts *o, struct program *p, struct diag_list *d, struct plot *plot)
+/* A dialect on the neutral runner (src/host/mhost.c); lp: s42 plot's picture. */
+static int run_machine(const struct opts *o, struct program *p, struct diag_list *d, struct lplot *lp)
 {
-  const char *no = plot ? "plot" : o->modbus ? "--modbus" : o->state ? "--state" : o->restart ? "--restart"
+  const char *no = o->modbus ? "--modbus" : o->state ? "--state" : o->restart ? "--restart"
                    : o->tool && o->tools ? "--tool with --tools" : o->machine ? "--machine" : o->screen ? "--screen"
                    : o->realtime ? "--realtime" : o->dump_images ? "--dump-images" : NULL;
   if (no) {
@@ -1173,7 +1177,47 @@ static int run_machine(const struct opts *o, struct program *p, struct diag_list
   m.dump = o->dump;
   m.en = o->en;
   m.max_blocks = o->max_blocks;
+  m.plot = lp;
   return mhost_run(&m, p, d);
+}
+
+/* s42 plot of a dialect on the neutral runner: the lathe's picture (lplot.c). */
+static int plot_machine(const struct opts *o)
+{
+  char err[300];
+  struct lplot_stock stock = {0, 0, 0};
+  if (o->stock && lplot_parse_stock(o->stock, &stock, err, sizeof err)) {
+    fprintf(stderr, "s42: --stock %s: %s\n", o->stock, err);
+    return EXIT_USAGE;
+  }
+  if (lplot_check_path(o->out, err, sizeof err)) {
+    fprintf(stderr, "s42: %s\n", err);
+    return EXIT_USAGE;
+  }
+  struct program p;
+  struct diag_list d;
+  char *src = NULL;
+  size_t n = 0;
+  int rc = load(o->program, &p, &d, &src, &n);
+  struct lplot *lp = lplot_new(&stock);
+  if (!lp) {
+    fprintf(stderr, "s42: out of memory\n");
+    rc = EXIT_IO;
+  } else if (rc == 0) {
+    rc = run_machine(o, &p, &d, lp);
+  } else if (rc == EXIT_PROGRAM) {
+    const struct diag *g = diag_first_error(&d);
+    lplot_result(lp, "error", g ? err_code(g->code) : "E-SYNTAX", g ? g->number : -1);
+  }
+  if (lp && rc != EXIT_USAGE && rc != EXIT_IO && lplot_write(lp, o->program, o->out, err, sizeof err)) {
+    fprintf(stderr, "s42: %s: %s\n", o->out, err);
+    rc = EXIT_IO;
+  }
+  lplot_free(lp);
+  prog_free(&p);
+  diag_free(&d);
+  free(src);
+  return rc;
 }
 
 static int headless(const struct opts *opt, struct plot *plot)
@@ -1205,7 +1249,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   size_t n = 0;
   int rc = load(o.program, &p, &d, &src, &n);
   if (rc == 0 && dialect_of(o.program)->run == DIALECT_RUN_MACHINE) {
-    rc = run_machine(&o, &p, &d, plot);
+    rc = run_machine(&o, &p, &d, NULL);
     prog_free(&p);
     diag_free(&d);
     free(src);
@@ -1489,6 +1533,12 @@ static int cmd_plot(int argc, char **argv)
   plugins_for(&o);
   if (!o.program || !o.out) {
     fprintf(stderr, "usage: s42 plot PROGRAM.kp -o FILE.png|.svg|.pdf [--operator FILE] [options]\n");
+    return EXIT_USAGE;
+  }
+  if (dialect_of(o.program)->run == DIALECT_RUN_MACHINE)
+    return plot_machine(&o);
+  if (o.stock) {
+    fprintf(stderr, "s42: --stock is a lathe's bar; the 2С42's plot has none\n");
     return EXIT_USAGE;
   }
   char err[256];

@@ -14,6 +14,7 @@ struct mhost_opts {
   const char *tools;            /* --tools FILE (the machine's tool table), or NULL */
   int trace, json, canon, dump, en;
   uint64_t max_blocks;
+  struct lplot *plot;           /* s42 plot: the canonical calls and the result go there too, or NULL */
 };
 
 /* Run p (compiled, d its diagnostics); the exit status of contracts.md sec. 1. */

@@ -7,11 +7,11 @@ HOST_MAIN_SRCS := src/host/main.c src/host/tui.c src/host/tui_mrun.c src/host/tu
 HOST_LIB_SRCS  := $(filter-out $(HOST_MAIN_SRCS),$(wildcard src/host/*.c))
 SRC_MAIN_OBJ   := $(HOST_MAIN_SRCS:%.c=$(BUILD)/%.o)
 $(HOST_LIB_SRCS:%.c=$(BUILD)/%.o) $(SRC_MAIN_OBJ): MOD_CPPFLAGS = $(HOST_INC)
-# plot.c draws with cairo (the only part of src/ that needs it)
+# plot.c and lplot.c draw with cairo (the only parts of src/ that need it)
 CAIRO_CFLAGS = $(call pkg,CAIRO_CFLAGS,--cflags cairo)
 # cairo is loaded with dlopen when a plot is drawn (src/host/cairo_dl.c):
 # linking it would load two dozen libraries at every start-up
-$(BUILD)/src/host/plot.o $(BUILD)/src/host/cairo_dl.o: MOD_CPPFLAGS = $(HOST_INC) $(CAIRO_CFLAGS)
+$(BUILD)/src/host/plot.o $(BUILD)/src/host/lplot.o $(BUILD)/src/host/cairo_dl.o: MOD_CPPFLAGS = $(HOST_INC) $(CAIRO_CFLAGS)
 # tui.c draws with ncursesw
 CURSES_CFLAGS = $(call pkg,CURSES_CFLAGS,--cflags ncursesw)
 CURSES_LIBS   = $(call pkg,CURSES_LIBS,--libs ncursesw,-lncursesw)

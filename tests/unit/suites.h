@@ -31,6 +31,7 @@ Suite *suite_verify(void);
 Suite *suite_words(void);
 Suite *suite_lathe(void);
 Suite *suite_u22(void);
+Suite *suite_lplot(void);
 
 /* A program compiled from a C string, with its diagnostics. */
 struct tprog {

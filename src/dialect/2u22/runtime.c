@@ -429,7 +429,16 @@ static void page(const struct mrun *r, int k, FILE *out)
   fprintf(out, "t %.1f s\n", l->t);
 }
 
+static void position(const struct mrun *r, double pos[4])
+{
+  const struct lathe *l = &state(r)->l;
+  pos[0] = (double)lathe_pos(l, LX) / 2000.0;   /* the radius */
+  pos[1] = pos[3] = 0;
+  pos[2] = (double)lathe_pos(l, LZ) / 1000.0;
+}
+
 const struct mrun_rt u22_runtime = {
+  .position = position,
   .renew = renew,
   .pages = pages,
   .page = page,

@@ -1,0 +1,1740 @@
+/* The lathe's plot (src/host/lplot.h): the tool tip's path in the XZ plane
+ * and the turned part's silhouette, drawn with cairo.
+ *
+ * The picture is PW x PH (pixels for PNG, points for SVG and PDF):
+ *   - a title line (the program's name), a line with the run's status, the
+ *     stock and the path's extents, and a line of warnings in red (cuts
+ *     into the chuck side, never touches the stock, material cut off);
+ *   - the drawing, frame FX..FX+FW x FY..FY+FH: Z along (to the right; the
+ *     part's face at Z 0, the chuck on the left at negative Z), the radius
+ *     up, one scale on both axes; the axis of rotation a dash-dot centre
+ *     line at radius 0, the tick labels along it in Z (mm) and up it as
+ *     diameters (Ø, mm: a drawing's dimensions); the part mirrored below
+ *     the axis, pale;
+ *   - a legend.
+ * The stock is a bar Ø d from Z 0 to Z -len held by the chuck beyond (its
+ * jaws drawn hatched).  The silhouette: at each z the remaining radius
+ * R(z) = min(d/2, the least |radius| the tool tip reached at that z), the
+ * tool tip taken as a point (a turning tool at radius r removes all above r
+ * at that z: the part rotates).  Moves at z > 0, at z < -len or at radius
+ * >= d/2 cut nothing; every move cuts, traverses too (a traverse through
+ * the material is the program's fault, and shows); thread moves (between
+ * CANON_SYNCH_START and CANON_SYNCH_STOP) do not lower R (the crests stay)
+ * but hatch the band they cut.  Material beyond (at greater Z than) a z
+ * where the tool reached the axis is cut off from what the chuck holds: a
+ * facing pass's sliver or a parted-off part, drawn pale and named.
+ *
+ * R is kept on NCOL cells of the stock's length (0.01 mm, at most
+ * LP_MAXCOL cells), exactly for lines: a line's least radius over a cell is
+ * at one end of its piece in the cell, so each line sets the cells its
+ * ends fall in directly and, for the cell boundaries it spans, goes into a
+ * Li Chao tree of linear functions over the boundaries (O(log^2) a line:
+ * a million full-length passes take a second or two); a cell's R is the
+ * least of its own value and the tree's at its two boundaries.  Arcs are
+ * cut as chords within LP_TOL mm of the arc, only where the circle is
+ * within the bar's radius.  Drawing strokes at most INK_BUDGET px of path
+ * per style (moves under a pixel merged, the rest clipped to the frame);
+ * past it the caption says the path is drawn in part. */
+#include "lplot.h"
+#include "canon.h"
+#include "geom.h"
+#include "cairo_dl.h"
+#include <errno.h>
+#include <fcntl.h>
+#include <float.h>
+#include <locale.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define PW 1000.0
+#define PH 600.0
+/* the drawing's frame, and in it the bands for the tick labels */
+#define FX 20.0
+#define FY 76.0
+#define FW 960.0
+#define FH 462.0
+#define LBAND 58.0
+#define BBAND 26.0
+#define PAD 14.0
+
+#define LP_CELL 0.01      /* mm: the silhouette's cell */
+#define LP_MAXCOL 20000   /* cells at most (a longer stock gets longer cells) */
+#define LP_TOL 0.002      /* mm: an arc's chords stay this close to it */
+#define LP_MAXCHORD 512
+
+enum { MV_JUMP, MV_LINE, MV_ARC, MV_TRAV };
+enum { MF_THREAD = 1, MF_CHUCK = 2 };   /* a thread; cuts past the stock's end */
+
+struct mv {
+  double r, z;          /* the end, mm (the start: the record before) */
+  double cr, cz;        /* arc: the centre */
+  float sweep;          /* arc: radians, + turning from X towards Z (G02) */
+  uint8_t kind, flags;
+};
+
+struct lc {             /* a Li Chao tree node: r = a * j + b over boundaries j */
+  double a, b;
+  int has;
+};
+
+struct lplot {
+  struct lplot_stock st;
+  struct mv *v;
+  size_t n, cap;
+  int oom;
+  int have_pos;
+  double cur_r, cur_z;  /* where the tool is */
+  double last_r, last_z;/* where the last record ends */
+  int thread;
+  double pitch;
+  unsigned long long calls, moves, threads;
+  /* the silhouette */
+  int ncol;
+  double dz, half;
+  double *direct;       /* ncol: the least radius set in the cell directly */
+  struct lc *lc;        /* 4 (ncol + 1) */
+  double *R;            /* ncol, computed from the above when dirty */
+  int dirty;
+  double *thr;          /* thread bands: ncol, the least thread radius, +inf none */
+  int any_thread_band;
+  /* chuck */
+  int chuck;
+  double chuck_z;
+  unsigned long long chuck_hits;
+  /* extents of the path */
+  int ext;
+  double rmin, rmax, zmin, zmax, amax;
+  /* the result */
+  char status[160];
+  /* the caption as drawn, for the SVG's <title> and <desc> */
+  char cap_title[300], cap_line[600], cap_warn[600];
+};
+
+/* ---- the silhouette ---- */
+
+static void lc_add(struct lc *t, int node, int lo, int hi, double a, double b)
+{
+  for (;;) {
+    struct lc *c = &t[node];
+    if (!c->has) {
+      c->a = a;
+      c->b = b;
+      c->has = 1;
+      return;
+    }
+    int mid = lo + (hi - lo) / 2;
+    if (a * mid + b < c->a * mid + c->b) {
+      double ta = c->a, tb = c->b;
+      c->a = a;
+      c->b = b;
+      a = ta;
+      b = tb;
+    }
+    if (lo == hi)
+      return;
+    if (a * lo + b < c->a * lo + c->b) {
+      node = 2 * node;
+      hi = mid;
+    } else if (a * hi + b < c->a * hi + c->b) {
+      node = 2 * node + 1;
+      lo = mid + 1;
+    } else
+      return;
+  }
+}
+
+static void lc_insert(struct lc *t, int node, int lo, int hi, int l, int r, double a, double b)
+{
+  if (r < lo || hi < l)
+    return;
+  if (l <= lo && hi <= r) {
+    lc_add(t, node, lo, hi, a, b);
+    return;
+  }
+  int mid = lo + (hi - lo) / 2;
+  lc_insert(t, 2 * node, lo, mid, l, r, a, b);
+  lc_insert(t, 2 * node + 1, mid + 1, hi, l, r, a, b);
+}
+
+static double lc_query(const struct lc *t, int hi, int j)
+{
+  int node = 1, lo = 0;
+  double v = INFINITY;
+  for (;;) {
+    const struct lc *c = &t[node];
+    if (c->has) {
+      double f = c->a * j + c->b;
+      if (f < v)
+        v = f;
+    }
+    if (lo == hi)
+      return v;
+    int mid = lo + (hi - lo) / 2;
+    if (j <= mid) {
+      node = 2 * node;
+      hi = mid;
+    } else {
+      node = 2 * node + 1;
+      lo = mid + 1;
+    }
+  }
+}
+
+static int cell_of(const struct lplot *pl, double z)
+{
+  double t = (z + pl->st.len) / pl->dz;
+  int i = t <= 0 ? 0 : t >= pl->ncol ? pl->ncol - 1 : (int)floor(t);
+  return i;
+}
+
+static void set_min(double *v, double x)
+{
+  if (x < *v)
+    *v = x;
+}
+
+/* The tool tip went from (ra, za) to (rb, zb), ra, rb >= 0, za <= zb, the
+ * radius linear in z, all within the stock's length. */
+static void cut_piece(struct lplot *pl, double ra, double za, double rb, double zb)
+{
+  if (ra >= pl->half && rb >= pl->half)
+    return;
+  pl->dirty = 1;
+  set_min(&pl->direct[cell_of(pl, za)], ra);
+  set_min(&pl->direct[cell_of(pl, zb)], rb);
+  double zs = -pl->st.len, tl = (za - zs) / pl->dz, th = (zb - zs) / pl->dz;
+  double jl = ceil(tl - 1e-7), jh = floor(th + 1e-7);
+  if (jl < 0) jl = 0;
+  if (jh > pl->ncol) jh = pl->ncol;
+  if (jl > jh)
+    return;
+  double a, b;
+  if (zb - za < 1e-9) {
+    a = 0;
+    b = fmin(ra, rb);
+  } else {
+    double k = (rb - ra) / (zb - za);
+    a = k * pl->dz;
+    b = ra + k * (zs - za);
+  }
+  if (jh - jl < 16) {
+    /* a short piece: its boundaries' values straight into their cells */
+    for (int j = (int)jl; j <= (int)jh; j++) {
+      double v = a * j + b;
+      if (j > 0)
+        set_min(&pl->direct[j - 1], v);
+      if (j < pl->ncol)
+        set_min(&pl->direct[j], v);
+    }
+    return;
+  }
+  lc_insert(pl->lc, 1, 0, pl->ncol, (int)jl, (int)jh, a, b);
+}
+
+/* A thread's band: the least radius of the thread at the cells it spans. */
+static void thread_piece(struct lplot *pl, double ra, double za, double rb, double zb)
+{
+  if (ra >= pl->half && rb >= pl->half)
+    return;
+  int i0 = cell_of(pl, za), i1 = cell_of(pl, zb);
+  for (int i = i0; i <= i1; i++) {
+    double zc = -pl->st.len + (i + 0.5) * pl->dz;
+    double r = zb - za < 1e-9 ? fmin(ra, rb) : ra + (rb - ra) * (fmin(fmax(zc, za), zb) - za) / (zb - za);
+    set_min(&pl->thr[i], r);
+    pl->any_thread_band = 1;
+  }
+}
+
+/* |r| linear: split at r = 0, clip to the stock's length, cut. */
+static void cut_line(struct lplot *pl, double r0, double z0, double r1, double z1, int thread)
+{
+  if (!pl->st.has)
+    return;
+  /* the chuck side: z < -len with |r| < d/2 (Liang-Barsky on the slab) */
+  double h = pl->half, zs = -pl->st.len, eps = 1e-6;
+  {
+    double t0 = 0, t1 = 1, dr = r1 - r0, dzz = z1 - z0;
+    double p[3] = {dzz, dr, -dr}, q[3] = {zs - eps - z0, h - eps - r0, h - eps + r0};
+    int ok = 1;
+    for (int k = 0; k < 3 && ok; k++) {
+      if (p[k] == 0) {
+        if (q[k] < 0)
+          ok = 0;
+      } else {
+        double t = q[k] / p[k];
+        if (p[k] > 0) {
+          if (t < t1) t1 = t;
+        } else if (t > t0)
+          t0 = t;
+      }
+    }
+    if (ok && t0 <= t1) {
+      double za = z0 + dzz * t0, zb = z0 + dzz * t1, m = fmin(za, zb);
+      if (!pl->chuck || m < pl->chuck_z)
+        pl->chuck_z = m;
+      pl->chuck = 1;
+      pl->chuck_hits++;
+    }
+  }
+  if ((r0 < 0 && r1 > 0) || (r0 > 0 && r1 < 0)) {
+    double t = r0 / (r0 - r1), zc = z0 + (z1 - z0) * t;
+    cut_line(pl, r0, z0, 0, zc, thread);
+    cut_line(pl, 0, zc, r1, z1, thread);
+    return;
+  }
+  r0 = fabs(r0);
+  r1 = fabs(r1);
+  if (z0 > z1) {
+    double t = z0; z0 = z1; z1 = t;
+    t = r0; r0 = r1; r1 = t;
+  }
+  if (z1 < zs || z0 > 0)
+    return;
+  double ra = r0, za = z0, rb = r1, zb = z1;
+  if (z1 - z0 > 0) {
+    if (za < zs) {
+      ra = r0 + (r1 - r0) * (zs - z0) / (z1 - z0);
+      za = zs;
+    }
+    if (zb > 0) {
+      rb = r0 + (r1 - r0) * (0 - z0) / (z1 - z0);
+      zb = 0;
+    }
+  }
+  if (thread)
+    thread_piece(pl, ra, za, rb, zb);
+  else
+    cut_piece(pl, ra, za, rb, zb);
+}
+
+/* The arc's point at share u: radius and angle interpolated (a spiral when
+ * the two radii differ). */
+static void arc_point(double r0, double z0, double cr, double cz, double sweep, double rho1, double u,
+                      double *r, double *z)
+{
+  double rho0 = hypot(r0 - cr, z0 - cz), th0 = atan2(z0 - cz, r0 - cr);
+  double th = th0 + sweep * u, rho = rho0 + (rho1 - rho0) * u;
+  *r = cr + rho * cos(th);
+  *z = cz + rho * sin(th);
+}
+
+static int arc_chords(double rho, double sweep)
+{
+  if (!(rho > LP_TOL))
+    return 1;
+  double dth = 2 * acos(1 - LP_TOL / rho);
+  double n = ceil(fabs(sweep) / (dth > 1e-9 ? dth : 1e-9));
+  return n < 1 ? 1 : n > LP_MAXCHORD ? LP_MAXCHORD : (int)n;
+}
+
+/* Cut along the arc from share u0 to u1 in chords (its points by turning
+ * a unit vector, the radius interpolated: a spiral when the two differ). */
+static void cut_arc_part(struct lplot *pl, double r0, double z0, const struct mv *m, double rho1, double u0,
+                         double u1, int thread)
+{
+  double rho0 = hypot(r0 - m->cr, z0 - m->cz);
+  int n = arc_chords(fmax(rho0, rho1), m->sweep * (u1 - u0));
+  double th = atan2(z0 - m->cz, r0 - m->cr) + m->sweep * u0;
+  double er = cos(th), ez = sin(th), d = m->sweep * (u1 - u0) / n, cd = cos(d), sd = sin(d);
+  double rho = rho0 + (rho1 - rho0) * u0;
+  double pr = m->cr + rho * er, pz = m->cz + rho * ez;
+  for (int i = 1; i <= n; i++) {
+    double r, z, u = u0 + (u1 - u0) * i / n;
+    double t = er * cd - ez * sd;
+    ez = er * sd + ez * cd;
+    er = t;
+    if (u >= 1) {
+      r = m->r;
+      z = m->z;
+    } else {
+      rho = rho0 + (rho1 - rho0) * u;
+      r = m->cr + rho * er;
+      z = m->cz + rho * ez;
+    }
+    cut_line(pl, pr, pz, r, z, thread);
+    pr = r;
+    pz = z;
+  }
+}
+
+static void cut_arc(struct lplot *pl, double r0, double z0, const struct mv *m, int thread)
+{
+  if (!pl->st.has)
+    return;
+  double rho0 = hypot(r0 - m->cr, z0 - m->cz), rho1 = hypot(m->r - m->cr, m->z - m->cz);
+  double rho = fmax(rho0, rho1), h = pl->half;
+  /* nowhere near the stock or the chuck side: nothing to cut */
+  if (!(rho > 0) || m->cz - rho > 0 || fabs(m->cr) - rho >= h)
+    return;
+  if (fabs(rho0 - rho1) > 1e-6 * rho + 0.01) {
+    cut_arc_part(pl, r0, z0, m, rho1, 0, 1, thread);   /* a spiral: all of it */
+    return;
+  }
+  /* only where the circle is within the bar's radius, |r| < d/2: where
+   * cos(th) is in [c1, c2], th in [a, b] or [-b, -a] */
+  double c1 = fmax(-1, (-h - m->cr) / rho), c2 = fmin(1, (h - m->cr) / rho);
+  if (!(c1 < c2))
+    return;
+  double a = acos(c2), b = acos(c1), th0 = atan2(z0 - m->cz, r0 - m->cr), s = m->sweep;
+  double lo = fmin(th0, th0 + s), hi = fmax(th0, th0 + s);
+  double iv[2][2] = {{a, b}, {-b, -a}};
+  for (int q = 0; q < 2; q++)
+    for (int k = -3; k <= 3; k++) {
+      double ia = iv[q][0] + 2 * M_PI * k, ib = iv[q][1] + 2 * M_PI * k;
+      double x0 = fmax(ia, lo), x1 = fmin(ib, hi);
+      if (!(x0 <= x1) || s == 0)
+        continue;
+      double u0 = (x0 - th0) / s, u1 = (x1 - th0) / s;
+      if (u0 > u1) {
+        double t = u0; u0 = u1; u1 = t;
+      }
+      cut_arc_part(pl, r0, z0, m, rho1, fmax(0, u0), fmin(1, u1), thread);
+    }
+}
+
+static void compute_R(struct lplot *pl)
+{
+  if (!pl->st.has || !pl->dirty)
+    return;
+  double gprev = lc_query(pl->lc, pl->ncol, 0);
+  for (int i = 0; i < pl->ncol; i++) {
+    double g = lc_query(pl->lc, pl->ncol, i + 1);
+    double r = fmin(pl->half, fmin(pl->direct[i], fmin(gprev, g)));
+    pl->R[i] = r < 0 ? 0 : r;
+    gprev = g;
+  }
+  pl->dirty = 0;
+}
+
+/* The first cell (from the chuck) where the tool reached the axis: what is
+ * beyond it is cut off; ncol: none. */
+static int cutoff_cell(const struct lplot *pl)
+{
+  for (int i = 0; i < pl->ncol; i++)
+    if (pl->R[i] <= 1e-6)
+      return i;
+  return pl->ncol;
+}
+
+double lplot_radius_at(struct lplot *pl, double z)
+{
+  if (!pl || !pl->st.has || !(z >= -pl->st.len && z <= 0))
+    return -1;
+  compute_R(pl);
+  return pl->R[cell_of(pl, z)];
+}
+
+int lplot_chuck(const struct lplot *pl, double *z)
+{
+  if (!pl || !pl->chuck)
+    return 0;
+  if (z)
+    *z = pl->chuck_z;
+  return 1;
+}
+
+/* ---- the calls ---- */
+
+struct lplot *lplot_new(const struct lplot_stock *stock)
+{
+  struct lplot *pl = calloc(1, sizeof *pl);
+  if (!pl)
+    return NULL;
+  snprintf(pl->status, sizeof pl->status, "run not finished");
+  if (stock && stock->has && stock->d > 0 && stock->len > 0 && isfinite(stock->d) && isfinite(stock->len)) {
+    pl->st = *stock;
+    pl->half = stock->d / 2;
+    double nc = ceil(stock->len / LP_CELL - 1e-9);
+    pl->ncol = nc < 1 ? 1 : nc > LP_MAXCOL ? LP_MAXCOL : (int)nc;
+    pl->dz = stock->len / pl->ncol;
+    pl->direct = malloc(sizeof(double) * (size_t)pl->ncol);
+    pl->R = malloc(sizeof(double) * (size_t)pl->ncol);
+    pl->thr = malloc(sizeof(double) * (size_t)pl->ncol);
+    pl->lc = calloc(4 * ((size_t)pl->ncol + 1), sizeof *pl->lc);
+    if (!pl->direct || !pl->R || !pl->thr || !pl->lc) {
+      lplot_free(pl);
+      return NULL;
+    }
+    for (int i = 0; i < pl->ncol; i++) {
+      pl->direct[i] = INFINITY;
+      pl->thr[i] = INFINITY;
+    }
+    pl->dirty = 1;
+    compute_R(pl);
+  }
+  return pl;
+}
+
+void lplot_free(struct lplot *pl)
+{
+  if (!pl)
+    return;
+  free(pl->v);
+  free(pl->direct);
+  free(pl->R);
+  free(pl->thr);
+  free(pl->lc);
+  free(pl);
+}
+
+static double mm_of(const struct canon_call *c, int axis, int64_t v)
+{
+  return (double)v * (c->mm ? c->mm[axis] : 0.001);
+}
+
+static int push(struct lplot *pl, struct mv m)
+{
+  if (pl->oom)
+    return -1;
+  if (pl->n == pl->cap) {
+    size_t nc = pl->cap ? pl->cap * 2 : 1024;
+    struct mv *nv = realloc(pl->v, nc * sizeof *nv);
+    if (!nv) {
+      pl->oom = 1;
+      return -1;
+    }
+    pl->v = nv;
+    pl->cap = nc;
+  }
+  pl->v[pl->n++] = m;
+  pl->last_r = m.r;
+  pl->last_z = m.z;
+  return 0;
+}
+
+static void extent(struct lplot *pl, double r, double z)
+{
+  if (!pl->ext) {
+    pl->rmin = pl->rmax = r;
+    pl->zmin = pl->zmax = z;
+    pl->amax = fabs(r);
+    pl->ext = 1;
+    return;
+  }
+  if (r < pl->rmin) pl->rmin = r;
+  if (r > pl->rmax) pl->rmax = r;
+  if (z < pl->zmin) pl->zmin = z;
+  if (z > pl->zmax) pl->zmax = z;
+  if (fabs(r) > pl->amax) pl->amax = fabs(r);
+}
+
+void lplot_at(struct lplot *pl, double r, double z)
+{
+  if (!pl || !isfinite(r) || !isfinite(z))
+    return;
+  pl->cur_r = r;
+  pl->cur_z = z;
+  pl->have_pos = 1;
+}
+
+void lplot_call(struct lplot *pl, const struct canon_call *c)
+{
+  if (!pl || !c)
+    return;
+  pl->calls++;
+  double r = mm_of(c, 0, c->pos[0]), z = mm_of(c, 2, c->pos[2]);
+  if (!isfinite(r) || !isfinite(z))
+    return;
+  int move = c->kind == CANON_FEED_LINE || c->kind == CANON_FEED_ARC || c->kind == CANON_TRAVERSE;
+  if (c->kind == CANON_SYNCH_START) {
+    pl->thread = 1;
+    pl->pitch = isfinite(c->v) && c->v > 0 ? c->v : 0;
+  } else if (c->kind == CANON_SYNCH_STOP)
+    pl->thread = 0;
+  if (!move || !pl->have_pos) {
+    /* the first call says where the tool is: a move before any says only
+     * where it went */
+    pl->cur_r = r;
+    pl->cur_z = z;
+    pl->have_pos = 1;
+    if (move)
+      extent(pl, r, z);
+    return;
+  }
+  double r0 = pl->cur_r, z0 = pl->cur_z;
+  pl->cur_r = r;
+  pl->cur_z = z;
+  struct mv m = {r, z, 0, 0, 0, 0, 0};
+  m.kind = c->kind == CANON_TRAVERSE ? MV_TRAV : MV_LINE;
+  int thread = pl->thread && c->kind != CANON_TRAVERSE;
+  if (thread)
+    m.flags |= MF_THREAD;
+  if (c->kind == CANON_FEED_ARC && c->plane == GEOM_XZ) {
+    double cr = mm_of(c, 0, c->centre[0]), cz = mm_of(c, 2, c->centre[1]);
+    if (isfinite(cr) && isfinite(cz) && (cr != r0 || cz != z0)) {
+      struct geom_arc a = {r - r0, z - z0, cr - r0, cz - z0, c->ccw ? 1 : 0};
+      double sw = geom_arc_sweep(&a);
+      m.kind = MV_ARC;
+      m.cr = cr;
+      m.cz = cz;
+      m.sweep = (float)(c->ccw ? sw : -sw);
+    }
+  }
+  if (m.kind != MV_ARC && r == r0 && z == z0)
+    return;   /* nowhere */
+  pl->moves++;
+  if (thread)
+    pl->threads++;
+  if (pl->n == 0 || pl->last_r != r0 || pl->last_z != z0) {
+    struct mv j = {r0, z0, 0, 0, 0, MV_JUMP, 0};
+    push(pl, j);
+  }
+  int kept = push(pl, m) == 0;
+  extent(pl, r0, z0);
+  extent(pl, r, z);
+  unsigned long long hits = pl->chuck_hits;
+  if (m.kind == MV_ARC) {
+    double rho = hypot(r0 - m.cr, z0 - m.cz);
+    double t0 = atan2(z0 - m.cz, r0 - m.cr);
+    for (int k = 0; k < 4; k++) {
+      double th = k * M_PI / 2;
+      if (geom_in_sweep(t0, m.sweep, th))
+        extent(pl, m.cr + rho * cos(th), m.cz + rho * sin(th));
+    }
+    cut_arc(pl, r0, z0, &m, thread);
+  } else
+    cut_line(pl, r0, z0, r, z, thread);
+  if (kept && pl->chuck_hits != hits)
+    pl->v[pl->n - 1].flags |= MF_CHUCK;
+}
+
+void lplot_result(struct lplot *pl, const char *status, const char *code, int n)
+{
+  if (!pl)
+    return;
+  char at[32] = "";
+  if (n >= 0)
+    snprintf(at, sizeof at, " at N%d", n);
+  if (status && !strcmp(status, "end") && !code)
+    snprintf(pl->status, sizeof pl->status, "end");
+  else if (code && *code)
+    snprintf(pl->status, sizeof pl->status, "%s: %s%s", status && *status ? status : "stopped", code, at);
+  else
+    snprintf(pl->status, sizeof pl->status, "%s%s", status && *status ? status : "stopped", at);
+}
+
+/* ---- the stock ---- */
+
+static int parse_mm(const char *s, const char **end, double *v)
+{
+  /* digits with at most one '.', no sign, no exponent, no locale */
+  const char *p = s;
+  double x = 0, scale = 0;
+  int digits = 0;
+  for (; *p; p++) {
+    if (*p >= '0' && *p <= '9') {
+      if (digits < 30) {
+        if (scale == 0)
+          x = x * 10 + (*p - '0');
+        else {
+          x += (*p - '0') * scale;
+          scale /= 10;
+        }
+      }
+      digits++;
+    } else if (*p == '.' && scale == 0)
+      scale = 0.1;
+    else
+      break;
+  }
+  *end = p;
+  *v = x;
+  return digits > 0 && digits < 30 ? 0 : -1;
+}
+
+int lplot_parse_stock(const char *text, struct lplot_stock *s, char *why, size_t n)
+{
+  struct lplot_stock z = {0, 0, 0};
+  if (s)
+    *s = z;
+  const char *p = text ? text : "", *e;
+  double d, len;
+  if (parse_mm(p, &e, &d) || (*e != 'x' && *e != 'X')) {
+    snprintf(why, n, "--stock '%s': expected DIAMETERxLENGTH in mm, e.g. 40x100", text ? text : "");
+    return -1;
+  }
+  if (parse_mm(e + 1, &e, &len) || *e) {
+    snprintf(why, n, "--stock '%s': expected DIAMETERxLENGTH in mm, e.g. 40x100 (the length is not a number)",
+             text);
+    return -1;
+  }
+  if (!(d > 0) || !(len > 0)) {
+    snprintf(why, n, "--stock '%s': the diameter and the length must be more than 0", text);
+    return -1;
+  }
+  if (d > 10000 || len > 10000) {
+    snprintf(why, n, "--stock '%s': a stock over 10000 mm is not a lathe's", text);
+    return -1;
+  }
+  if (s) {
+    s->has = 1;
+    s->d = d;
+    s->len = len;
+  }
+  return 0;
+}
+
+/* ---- the fit ---- */
+
+struct fit {
+  double s;             /* px per mm */
+  double zc, rc;        /* mm at the centre of the inner area */
+  double ix, iy, iw, ih;/* the inner area */
+  double zlo, zhi, rlo, rhi;  /* the box fitted */
+  double jaw_l, jaw_h;  /* the chuck's jaws, mm */
+};
+
+static void make_fit(const struct lplot *pl, struct fit *F)
+{
+  double zlo, zhi, rlo, rhi;
+  int have = 0;
+  F->jaw_l = F->jaw_h = 0;
+  if (pl->st.has) {
+    F->jaw_l = fmin(fmax(pl->st.len * 0.12, pl->st.d * 0.3), pl->st.len * 0.5 + pl->st.d);
+    F->jaw_h = fmax(pl->half * 0.35, 2);
+    zlo = -pl->st.len - F->jaw_l;
+    zhi = 0;
+    rhi = pl->half + F->jaw_h;
+    rlo = -rhi;
+    have = 1;
+  } else {
+    zlo = zhi = rlo = rhi = 0;
+  }
+  if (pl->ext) {
+    if (!have) {
+      zlo = pl->zmin;
+      zhi = pl->zmax;
+      rlo = pl->rmin;
+      rhi = pl->rmax;
+    }
+    zlo = fmin(zlo, pl->zmin);
+    zhi = fmax(zhi, pl->zmax);
+    rlo = fmin(rlo, fmin(0, pl->rmin));
+    rhi = fmax(rhi, pl->rmax);
+    have = 1;
+  }
+  if (!have) {
+    zlo = -10;
+    zhi = 0;
+    rlo = -5;
+    rhi = 5;
+  }
+  /* never zoom in further than 1 mm across */
+  if (zhi - zlo < 1) {
+    double c = (zhi + zlo) / 2;
+    zlo = c - 0.5;
+    zhi = c + 0.5;
+  }
+  if (rhi - rlo < 1) {
+    double c = (rhi + rlo) / 2;
+    rlo = c - 0.5;
+    rhi = c + 0.5;
+  }
+  F->zlo = zlo;
+  F->zhi = zhi;
+  F->rlo = rlo;
+  F->rhi = rhi;
+  F->ix = FX + LBAND + PAD;
+  F->iy = FY + PAD + 6;
+  F->iw = FW - LBAND - 2 * PAD;
+  F->ih = FH - BBAND - 2 * PAD - 6;
+  F->s = fmin(F->iw / (zhi - zlo), F->ih / (rhi - rlo));
+  F->zc = (zlo + zhi) / 2;
+  F->rc = (rlo + rhi) / 2;
+}
+
+static double PX(const struct fit *F, double z)
+{
+  return F->ix + F->iw / 2 + (z - F->zc) * F->s;
+}
+
+static double PY(const struct fit *F, double r)
+{
+  return F->iy + F->ih / 2 - (r - F->rc) * F->s;
+}
+
+int lplot_page_xy(struct lplot *pl, double r, double z, double *x, double *y)
+{
+  if (!pl)
+    return -1;
+  struct fit F;
+  make_fit(pl, &F);
+  *x = PX(&F, z);
+  *y = PY(&F, r);
+  return 0;
+}
+
+/* ---- drawing ---- */
+
+#define C_FEED 0x1f4db3u
+#define C_TRAV 0x4d6680u
+#define C_THREAD 0xbf1a99u
+#define C_CHUCKCUT 0xd91a1au
+#define C_REMOVED 0xf5a04bu    /* orange: the material the path removed */
+#define C_PART 0x8fa8c2u       /* steel blue-grey: the part */
+#define C_PARTPALE 0xd3dde8u
+#define C_CUTOFF 0xe2e2e2u
+#define C_STOCK 0x333333u
+#define C_JAW 0x7a7a7au
+#define C_CENTRE 0x444444u
+#define C_GRID 0xececec
+#define C_TEXT 0x222222u
+#define C_LABEL 0x595959u
+#define C_FRAME 0x8c8c8cu
+#define C_WARN 0xb3000fu
+#define C_START 0x1a9933u
+#define C_END 0x222222u
+#define CHUNK 128
+
+static void rgb(cairo_t *cr, unsigned c)
+{
+  cairo_set_source_rgb(cr, ((c >> 16) & 255) / 255.0, ((c >> 8) & 255) / 255.0, (c & 255) / 255.0);
+}
+
+static void rgba(cairo_t *cr, unsigned c, double a)
+{
+  cairo_set_source_rgba(cr, ((c >> 16) & 255) / 255.0, ((c >> 8) & 255) / 255.0, (c & 255) / 255.0, a);
+}
+
+static void font(cairo_t *cr, double size, int bold)
+{
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
+                         bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, size);
+}
+
+static double text_w(cairo_t *cr, const char *s, double size, int bold)
+{
+  font(cr, size, bold);
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, s, &e);
+  return e.x_advance;
+}
+
+static void text_at(cairo_t *cr, double x, double y, const char *s, double size, int bold, double align)
+{
+  double w = text_w(cr, s, size, bold);
+  cairo_move_to(cr, x - align * w, y);
+  cairo_show_text(cr, s);
+}
+
+static void fix_point(char *s)
+{
+  const char *dp = localeconv()->decimal_point;
+  if (!dp || !strcmp(dp, "."))
+    return;
+  size_t l = strlen(dp);
+  char *p = strstr(s, dp);
+  if (p) {
+    *p = '.';
+    memmove(p + 1, p + l, strlen(p + l) + 1);
+  }
+}
+
+/* v with dec decimals; trim: trailing zeros dropped. */
+static void fmt_num(char *buf, size_t n, double v, int dec, int trim)
+{
+  if (fabs(v) < 0.5 * pow(10, -dec))
+    v = 0;
+  snprintf(buf, n, "%.*f", dec, v);
+  fix_point(buf);
+  if (trim && strchr(buf, '.')) {
+    char *e = buf + strlen(buf) - 1;
+    while (*e == '0')
+      *e-- = 0;
+    if (*e == '.')
+      *e = 0;
+  }
+}
+
+static double nice_step(double x, int *dec)
+{
+  if (!(x > 0) || !isfinite(x))
+    x = 1;
+  double e = floor(log10(x)), b = pow(10, e), m = x / b;
+  double s = m >= 5 ? 5 : m >= 2 ? 2 : 1;
+  double st = s * b;
+  if (dec)
+    *dec = st >= 1 ? 0 : (int)ceil(-log10(st) - 1e-9);
+  return st;
+}
+
+/* A tick's label: v with dec decimals, or %g when it is huge. */
+static void tick_label(char *buf, size_t n, double v, int dec, const char *prefix)
+{
+  char t[48];
+  if (fabs(v) >= 1e7)
+    snprintf(t, sizeof t, "%.3g", v);
+  else
+    fmt_num(t, sizeof t, v, dec, 0);
+  fix_point(t);
+  snprintf(buf, n, "%s%s", prefix, t);
+}
+
+/* The next round step above s (1, 2, 5 x 10^k). */
+static double step_up(double s, int *dec)
+{
+  return nice_step(s * 2.01, dec);
+}
+
+static void grid_and_ticks(cairo_t *cr, const struct fit *F)
+{
+  int zdec, rdec;
+  double x0 = FX + LBAND, x1 = FX + FW, y0 = FY, y1 = FY + FH - BBAND;
+  double zl = F->zc - (PX(F, F->zc) - x0) / F->s, zh = F->zc + (x1 - PX(F, F->zc)) / F->s;
+  double rl = F->rc - (y1 - PY(F, F->rc)) / F->s, rh = F->rc + (PY(F, F->rc) - y0) / F->s;
+  char lab[48];
+  /* along: a round step whose labels do not touch */
+  double zstep = nice_step(70 / F->s, &zdec);
+  for (int tries = 0; tries < 40; tries++) {
+    double w = 0;
+    tick_label(lab, sizeof lab, zl, zdec, "");
+    w = fmax(w, text_w(cr, lab, 11, 0));
+    tick_label(lab, sizeof lab, zh, zdec, "");
+    w = fmax(w, text_w(cr, lab, 11, 0));
+    if (zstep * F->s >= w + 14)
+      break;
+    zstep = step_up(zstep, &zdec);
+  }
+  /* up: diameters at a round step; the lines at half of it in radius */
+  double dstep = nice_step(2 * 40 / F->s, &rdec);
+  for (int tries = 0; tries < 40 && dstep / 2 * F->s < 18; tries++)
+    dstep = step_up(dstep, &rdec);
+  double rstep = dstep / 2;
+  cairo_set_line_width(cr, 1);
+  if (zh - zl > 0 && (zh - zl) / zstep < 400) {
+    for (double k = ceil(zl / zstep); k <= floor(zh / zstep); k++) {
+      double x = floor(PX(F, k * zstep)) + 0.5;
+      rgb(cr, C_GRID);
+      cairo_move_to(cr, x, y0);
+      cairo_line_to(cr, x, y1);
+      cairo_stroke(cr);
+      tick_label(lab, sizeof lab, k * zstep, zdec, "");
+      double w = text_w(cr, lab, 11, 0);
+      if (x - w / 2 < FX + LBAND - 20 || x + w / 2 > FX + FW + 16)
+        continue;   /* off the frame */
+      rgb(cr, C_TEXT);
+      text_at(cr, x, y1 + 15, lab, 11, 0, 0.5);
+    }
+  }
+  if (rh - rl > 0 && (rh - rl) / rstep < 400) {
+    for (double k = ceil(rl / rstep); k <= floor(rh / rstep); k++) {
+      double y = floor(PY(F, k * rstep)) + 0.5;
+      rgb(cr, C_GRID);
+      cairo_move_to(cr, x0, y);
+      cairo_line_to(cr, x1, y);
+      cairo_stroke(cr);
+      if (y < FY + 22 || y > y1 - 2)
+        continue;   /* under the axis's name, or off the frame */
+      if (k == 0)
+        snprintf(lab, sizeof lab, "0");
+      else
+        tick_label(lab, sizeof lab, fabs(k) * dstep, rdec, "Ø");
+      double size = 11;
+      while (size > 7 && text_w(cr, lab, size, 0) > LBAND - 8)
+        size -= 0.5;
+      rgb(cr, C_TEXT);
+      text_at(cr, x0 - 5, y + 4, lab, size, 0, 1);
+    }
+  }
+}
+
+/* The silhouette's columns: one a pixel (or a cell when cells are wider),
+ * the least R over the cells in it. */
+struct colv {
+  double z, r, thr;
+  int off;              /* cut off from what the chuck holds */
+};
+
+static struct colv *columns(struct lplot *pl, const struct fit *F, int *nc)
+{
+  compute_R(pl);
+  double px = pl->st.len * F->s;
+  int n = (int)ceil(px);
+  if (n > pl->ncol) n = pl->ncol;
+  if (n < 1) n = 1;
+  if (n > 8000) n = 8000;
+  struct colv *c = malloc(sizeof *c * (size_t)n);
+  if (!c)
+    return NULL;
+  int cut = cutoff_cell(pl);
+  for (int k = 0; k < n; k++) {
+    int i0 = (int)((long long)k * pl->ncol / n), i1 = (int)((long long)(k + 1) * pl->ncol / n) - 1;
+    if (i1 < i0) i1 = i0;
+    double r = INFINITY, t = INFINITY;
+    for (int i = i0; i <= i1; i++) {
+      set_min(&r, pl->R[i]);
+      set_min(&t, pl->thr[i]);
+    }
+    c[k].z = -pl->st.len + pl->st.len * (k + 0.5) / n;
+    c[k].r = r;
+    c[k].thr = t;
+    c[k].off = i0 > cut;
+  }
+  *nc = n;
+  return c;
+}
+
+/* The outline of the part (sign +1 above the axis, -1 below) over the
+ * columns [a, b), from the axis and back. */
+static void part_path(cairo_t *cr, const struct fit *F, const struct colv *c, int a, int b, double z0, double z1,
+                      int sign)
+{
+  cairo_move_to(cr, PX(F, z0), PY(F, 0));
+  cairo_line_to(cr, PX(F, z0), PY(F, sign * c[a].r));
+  for (int k = a; k < b; k++)
+    cairo_line_to(cr, PX(F, c[k].z), PY(F, sign * c[k].r));
+  cairo_line_to(cr, PX(F, z1), PY(F, sign * c[b - 1].r));
+  cairo_line_to(cr, PX(F, z1), PY(F, 0));
+  cairo_close_path(cr);
+}
+
+static void hatch(cairo_t *cr, double x0, double y0, double x1, double y1, double step)
+{
+  for (double x = x0 - (y1 - y0); x < x1; x += step) {
+    cairo_move_to(cr, x, y1);
+    cairo_line_to(cr, x + (y1 - y0), y0);
+  }
+  cairo_stroke(cr);
+}
+
+static void draw_stock(cairo_t *cr, struct lplot *pl, const struct fit *F, int *cutoff, double *cut_z)
+{
+  double L = pl->st.len, h = pl->half;
+  double zs = -L;
+  *cutoff = 0;
+  /* the chuck: the bar held in it, the jaws above and below */
+  rgb(cr, 0xeeeeee);
+  cairo_rectangle(cr, PX(F, zs - F->jaw_l), PY(F, h), F->jaw_l * F->s, 2 * h * F->s);
+  cairo_fill(cr);
+  for (int sgn = -1; sgn <= 1; sgn += 2) {
+    double ya = PY(F, sgn * h), yb = PY(F, sgn * (h + F->jaw_h));
+    double xa = PX(F, zs - F->jaw_l), xb = PX(F, zs);
+    double top = fmin(ya, yb), bot = fmax(ya, yb);
+    cairo_save(cr);
+    cairo_rectangle(cr, xa, top, xb - xa, bot - top);
+    rgb(cr, 0xdadada);
+    cairo_fill_preserve(cr);
+    cairo_clip(cr);
+    rgb(cr, C_JAW);
+    cairo_set_line_width(cr, 0.8);
+    hatch(cr, xa, top, xb, bot, 5);
+    cairo_restore(cr);
+    cairo_rectangle(cr, xa + 0.5, top + 0.5, xb - xa - 1, bot - top - 1);
+    rgb(cr, C_JAW);
+    cairo_set_line_width(cr, 1);
+    cairo_stroke(cr);
+  }
+  rgb(cr, C_LABEL);
+  text_at(cr, PX(F, zs - F->jaw_l / 2), PY(F, h + F->jaw_h) - 5, "chuck", 11, 0, 0.5);
+
+  int n;
+  struct colv *c = columns(pl, F, &n);
+  if (c) {
+    /* the removed material: between R and d/2, above the axis */
+    rgb(cr, C_REMOVED);
+    cairo_move_to(cr, PX(F, zs), PY(F, h));
+    cairo_line_to(cr, PX(F, zs), PY(F, c[0].r));
+    for (int k = 0; k < n; k++)
+      cairo_line_to(cr, PX(F, c[k].z), PY(F, c[k].r));
+    cairo_line_to(cr, PX(F, 0), PY(F, c[n - 1].r));
+    cairo_line_to(cr, PX(F, 0), PY(F, h));
+    cairo_close_path(cr);
+    cairo_fill(cr);
+    /* the part: held by the chuck, and what is cut off */
+    int a = 0;
+    while (a < n && !c[a].off)
+      a++;
+    double zcut = a < n ? c[a].z - (pl->st.len / n) / 2 : 0;
+    for (int sgn = 1; sgn >= -1; sgn -= 2) {
+      if (a > 0) {
+        part_path(cr, F, c, 0, a, zs, a < n ? zcut : 0, sgn);
+        rgb(cr, sgn > 0 ? C_PART : C_PARTPALE);
+        cairo_fill(cr);
+      }
+      if (a < n) {
+        part_path(cr, F, c, a, n, zcut, 0, sgn);
+        rgb(cr, C_CUTOFF);
+        cairo_fill_preserve(cr);
+        cairo_save(cr);
+        cairo_clip(cr);
+        rgb(cr, 0xa0a0a0);
+        cairo_set_line_width(cr, 0.7);
+        hatch(cr, PX(F, zcut), PY(F, h), PX(F, 0), PY(F, -h), 4);
+        cairo_restore(cr);
+      }
+    }
+    if (a < n) {
+      /* the cut-off column itself: where the tool reached the axis */
+      int cc = cutoff_cell(pl);
+      *cutoff = 1;
+      *cut_z = -pl->st.len + (cc + 0.5) * pl->dz;
+    }
+    /* thread bands: hatched between the thread's least radius and R */
+    if (pl->any_thread_band) {
+      cairo_save(cr);
+      cairo_new_path(cr);
+      for (int k = 0; k < n; k++) {
+        if (!isfinite(c[k].thr) || c[k].thr >= c[k].r)
+          continue;
+        double w = pl->st.len / n;
+        double xa = PX(F, c[k].z - w / 2), xb = PX(F, c[k].z + w / 2);
+        cairo_rectangle(cr, xa, PY(F, c[k].r), xb - xa, (c[k].r - c[k].thr) * F->s);
+      }
+      cairo_clip(cr);
+      rgba(cr, C_THREAD, 0.18);
+      cairo_paint(cr);
+      rgb(cr, C_THREAD);
+      cairo_set_line_width(cr, 0.8);
+      hatch(cr, PX(F, zs), PY(F, h), PX(F, 0), PY(F, 0), 3.5);
+      cairo_restore(cr);
+    }
+    /* the part's outline, above and below */
+    cairo_set_line_width(cr, 1.2);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_MITER);
+    for (int sgn = 1; sgn >= -1; sgn -= 2) {
+      rgb(cr, sgn > 0 ? 0x33475c : 0x8a9aab);
+      cairo_move_to(cr, PX(F, zs), PY(F, sgn * c[0].r));
+      for (int k = 0; k < n; k++)
+        cairo_line_to(cr, PX(F, c[k].z), PY(F, sgn * c[k].r));
+      cairo_line_to(cr, PX(F, 0), PY(F, sgn * c[n - 1].r));
+      cairo_line_to(cr, PX(F, 0), PY(F, 0));
+      cairo_stroke(cr);
+    }
+    free(c);
+  }
+  /* the stock's outline */
+  rgb(cr, C_STOCK);
+  cairo_set_line_width(cr, 1.2);
+  double dash[] = {7, 3};
+  cairo_set_dash(cr, dash, 2, 0);
+  cairo_rectangle(cr, PX(F, zs), PY(F, h), L * F->s, 2 * h * F->s);
+  cairo_stroke(cr);
+  cairo_set_dash(cr, NULL, 0, 0);
+}
+
+static void centre_line(cairo_t *cr, const struct fit *F)
+{
+  double y = PY(F, 0);
+  double dd[] = {14, 3, 2, 3};
+  rgb(cr, C_CENTRE);
+  cairo_set_line_width(cr, 0.9);
+  cairo_set_dash(cr, dd, 4, 0);
+  cairo_move_to(cr, FX + LBAND, y);
+  cairo_line_to(cr, FX + FW, y);
+  cairo_stroke(cr);
+  cairo_set_dash(cr, NULL, 0, 0);
+}
+
+/* The zig-zag of a thread from (x0,y0) to (x1,y1): a tooth at the pitch. */
+static void zigzag(cairo_t *cr, double x0, double y0, double x1, double y1, double period)
+{
+  double L = hypot(x1 - x0, y1 - y0);
+  cairo_move_to(cr, x0, y0);
+  if (L < 1e-9) return;
+  double ux = (x1 - x0) / L, uy = (y1 - y0) / L, amp = 3;
+  if (period < 5) period = 5;
+  double halves = floor(2 * L / period);
+  if (halves > 4000) halves = 4000;
+  for (int k = 1; k < halves; k++) {
+    double t = k * L / halves, s = (k & 1) ? amp : -amp;
+    cairo_line_to(cr, x0 + ux * t - uy * s, y0 + uy * t + ux * s);
+  }
+  cairo_line_to(cr, x1, y1);
+}
+
+/* The pen of a style's strokes: where the path is (page), and how many
+ * pieces since the last stroke. */
+struct pen {
+  int have;
+  double x, y;
+  size_t k;
+  double ink;           /* page length drawn */
+};
+
+/* The page length of strokes drawn at most (about 15 times over the
+ * frame): past it the path is too dense to see and takes cairo long. */
+#define INK_BUDGET 6e6
+
+static void pen_to(cairo_t *cr, struct pen *p, double x0, double y0, double x1, double y1)
+{
+  if (!p->have || fabs(x0 - p->x) > 0.05 || fabs(y0 - p->y) > 0.05) {
+    cairo_move_to(cr, x0, y0);
+    p->have = 1;
+    p->x = x0;
+    p->y = y0;
+  }
+  if (fabs(x1 - p->x) < 0.4 && fabs(y1 - p->y) < 0.4)
+    return;   /* under a pixel: the next piece goes on from here */
+  cairo_line_to(cr, x1, y1);
+  p->ink += hypot(x1 - p->x, y1 - p->y);
+  p->x = x1;
+  p->y = y1;
+  p->k++;
+}
+
+/* Clip the page segment to the frame (a little outside it): 0 nothing left. */
+static int clip_page(double *x0, double *y0, double *x1, double *y1)
+{
+  const double xa = FX - 20, xb = FX + FW + 20, ya = FY - 20, yb = FY + FH + 20;
+  double t0 = 0, t1 = 1, dx = *x1 - *x0, dy = *y1 - *y0;
+  double p[4] = {-dx, dx, -dy, dy}, q[4] = {*x0 - xa, xb - *x0, *y0 - ya, yb - *y0};
+  for (int k = 0; k < 4; k++) {
+    if (p[k] == 0) {
+      if (q[k] < 0)
+        return 0;
+      continue;
+    }
+    double t = q[k] / p[k];
+    if (p[k] < 0) {
+      if (t > t1) return 0;
+      if (t > t0) t0 = t;
+    } else {
+      if (t < t0) return 0;
+      if (t < t1) t1 = t;
+    }
+  }
+  double ax = *x0 + dx * t0, ay = *y0 + dy * t0;
+  *x1 = *x0 + dx * t1;
+  *y1 = *y0 + dy * t1;
+  *x0 = ax;
+  *y0 = ay;
+  return 1;
+}
+
+static void line_piece(cairo_t *cr, struct pen *p, double x0, double y0, double x1, double y1, int thread,
+                       double period)
+{
+  if (!isfinite(x0) || !isfinite(y0) || !isfinite(x1) || !isfinite(y1) || !clip_page(&x0, &y0, &x1, &y1))
+    return;
+  if (thread && hypot(x1 - x0, y1 - y0) > 3) {
+    zigzag(cr, x0, y0, x1, y1, period);
+    p->ink += 2 * hypot(x1 - x0, y1 - y0);
+    p->have = 1;
+    p->x = x1;
+    p->y = y1;
+    p->k += 8;
+    return;
+  }
+  pen_to(cr, p, x0, y0, x1, y1);
+}
+
+/* Add the move from (r0, z0) to the path. */
+static void move_path(cairo_t *cr, struct pen *p, const struct fit *F, const struct mv *m, double r0, double z0,
+                      double pitch)
+{
+  double x0 = PX(F, z0), y0 = PY(F, r0), x1 = PX(F, m->z), y1 = PY(F, m->r);
+  int thread = (m->flags & MF_THREAD) != 0;
+  if (m->kind != MV_ARC) {
+    line_piece(cr, p, x0, y0, x1, y1, thread, pitch * F->s);
+    return;
+  }
+  double rho0 = hypot(r0 - m->cr, z0 - m->cz), rho1 = hypot(m->r - m->cr, m->z - m->cz);
+  double R = fmax(rho0, rho1) * F->s, cx = PX(F, m->cz), cy = PY(F, m->cr);
+  if (!isfinite(R) || cx + R < FX || cx - R > FX + FW || cy + R < FY || cy - R > FY + FH)
+    return;   /* not in the picture */
+  if (R * fabs(m->sweep) < 1) {
+    line_piece(cr, p, x0, y0, x1, y1, 0, 0);
+    return;
+  }
+  if (fabs(rho0 - rho1) <= 1e-3 * fmax(rho0, 1e-3) && R < 2e4) {
+    /* the page's angle is the arc's (from X towards Z) less 90 degrees,
+     * and grows the same way: G02 (+) clockwise on the page, cairo_arc */
+    double th0 = atan2(z0 - m->cz, r0 - m->cr), phi0 = th0 - M_PI / 2;
+    if (!p->have || fabs(x0 - p->x) > 0.05 || fabs(y0 - p->y) > 0.05)
+      cairo_move_to(cr, x0, y0);
+    if (m->sweep > 0)
+      cairo_arc(cr, cx, cy, rho0 * F->s, phi0, phi0 + m->sweep);
+    else
+      cairo_arc_negative(cr, cx, cy, rho0 * F->s, phi0, phi0 + m->sweep);
+    cairo_line_to(cr, x1, y1);
+    p->ink += R * fabs(m->sweep);
+    p->have = 1;
+    p->x = x1;
+    p->y = y1;
+    p->k += 4;
+    return;
+  }
+  /* a spiral, or a circle too big for the page: in pieces */
+  int k = (int)ceil(fabs(m->sweep) * R / 3);
+  if (k < 8) k = 8;
+  if (k > 256) k = 256;
+  double pr = r0, pz = z0;
+  for (int i = 1; i <= k; i++) {
+    double r, z;
+    if (i == k) {
+      r = m->r;
+      z = m->z;
+    } else
+      arc_point(r0, z0, m->cr, m->cz, m->sweep, rho1, (double)i / k, &r, &z);
+    line_piece(cr, p, PX(F, pz), PY(F, pr), PX(F, z), PY(F, r), 0, 0);
+    pr = r;
+    pz = z;
+  }
+}
+
+/* Stroke the moves of one style: feed (0), traverse (1), thread (2); or
+ * (style 3) those that cut past the stock's end. */
+static int draw_moves(cairo_t *cr, const struct lplot *pl, const struct fit *F, int style, double budget)
+{
+  double r0 = 0, z0 = 0;
+  struct pen p = {0, 0, 0, 0, 0};
+  size_t i;
+  for (i = 0; i < pl->n && p.ink < budget; i++) {
+    const struct mv *m = &pl->v[i];
+    if (m->kind != MV_JUMP) {
+      int st = m->kind == MV_TRAV ? 1 : (m->flags & MF_THREAD) ? 2 : 0;
+      if (style == 3 ? (m->flags & MF_CHUCK) != 0 : st == style) {
+        move_path(cr, &p, F, m, r0, z0, pl->pitch);
+        if (p.k >= CHUNK) {
+          cairo_stroke(cr);
+          p.k = 0;
+          p.have = 0;
+        }
+      }
+    }
+    r0 = m->r;
+    z0 = m->z;
+  }
+  cairo_stroke(cr);
+  return i < pl->n;   /* the budget ran out */
+}
+
+/* 1: the path is too dense to draw whole (drawn in part). */
+static int draw_path(cairo_t *cr, const struct lplot *pl, const struct fit *F)
+{
+  int part = 0;
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  double dash[] = {6, 4};
+  rgb(cr, C_TRAV);
+  cairo_set_line_width(cr, 1.1);
+  cairo_set_dash(cr, dash, 2, 0);
+  part |= draw_moves(cr, pl, F, 1, INK_BUDGET / 4);
+  cairo_set_dash(cr, NULL, 0, 0);
+  rgb(cr, C_FEED);
+  cairo_set_line_width(cr, 1.5);
+  part |= draw_moves(cr, pl, F, 0, INK_BUDGET);
+  rgb(cr, C_THREAD);
+  cairo_set_line_width(cr, 1.2);
+  part |= draw_moves(cr, pl, F, 2, INK_BUDGET / 4);
+  if (pl->chuck) {
+    /* over it all, in red where the path cuts past the stock's end */
+    cairo_save(cr);
+    double x0 = FX + LBAND, xe = PX(F, -pl->st.len);
+    cairo_rectangle(cr, x0, PY(F, pl->half), xe - x0, 2 * pl->half * F->s);
+    cairo_clip(cr);
+    rgb(cr, C_CHUCKCUT);
+    cairo_set_line_width(cr, 3);
+    part |= draw_moves(cr, pl, F, 3, INK_BUDGET / 4);
+    cairo_restore(cr);
+  }
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+  /* the start: a ring; the end: a square */
+  for (size_t i = 0; i < pl->n; i++)
+    if (pl->v[i].kind == MV_JUMP) {
+      rgb(cr, C_START);
+      cairo_set_line_width(cr, 2);
+      cairo_new_path(cr);
+      cairo_arc(cr, PX(F, pl->v[i].z), PY(F, pl->v[i].r), 5, 0, 2 * M_PI);
+      cairo_stroke(cr);
+      break;
+    }
+  if (pl->n) {
+    rgb(cr, C_END);
+    cairo_rectangle(cr, PX(F, pl->last_z) - 3.5, PY(F, pl->last_r) - 3.5, 7, 7);
+    cairo_fill(cr);
+  }
+  return part;
+}
+
+enum { LG_NOTE, LG_LINE, LG_DASH, LG_ZIG, LG_RED, LG_BOX, LG_DASHBOX, LG_HATCH, LG_CENTRE, LG_RING, LG_SQUARE, LG_THRBOX };
+
+static double legend_item(cairo_t *cr, double x, double y, int style, unsigned c, const char *text, int measure)
+{
+  double w = (style == LG_NOTE ? 0 : 30) + text_w(cr, text, 11, 0);
+  if (measure)
+    return w;
+  if (style == LG_NOTE) {
+    rgb(cr, C_LABEL);
+    text_at(cr, x, y, text, 11, 0, 0);
+    return w;
+  }
+  cairo_new_path(cr);
+  double dash[] = {6, 4}, dd[] = {10, 2.5, 2, 2.5};
+  switch (style) {
+  case LG_LINE: case LG_DASH: case LG_RED: case LG_CENTRE:
+    rgb(cr, c);
+    cairo_set_line_width(cr, style == LG_RED ? 3 : style == LG_CENTRE ? 0.9 : 1.5);
+    if (style == LG_DASH) cairo_set_dash(cr, dash, 2, 0);
+    if (style == LG_CENTRE) cairo_set_dash(cr, dd, 4, 0);
+    cairo_move_to(cr, x, y - 4);
+    cairo_line_to(cr, x + 24, y - 4);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, NULL, 0, 0);
+    break;
+  case LG_ZIG:
+    rgb(cr, c);
+    cairo_set_line_width(cr, 1.2);
+    zigzag(cr, x, y - 4, x + 24, y - 4, 6);
+    cairo_stroke(cr);
+    break;
+  case LG_BOX: case LG_DASHBOX: case LG_HATCH: case LG_THRBOX:
+    cairo_rectangle(cr, x + 2, y - 10, 20, 11);
+    if (style == LG_DASHBOX) {
+      rgb(cr, c);
+      cairo_set_line_width(cr, 1.2);
+      cairo_set_dash(cr, dash, 2, 0);
+      cairo_stroke(cr);
+      cairo_set_dash(cr, NULL, 0, 0);
+      break;
+    }
+    rgb(cr, style == LG_THRBOX ? 0xf2d4ea : c);
+    cairo_fill_preserve(cr);
+    if (style == LG_HATCH || style == LG_THRBOX) {
+      cairo_save(cr);
+      cairo_clip(cr);
+      rgb(cr, style == LG_THRBOX ? C_THREAD : 0xa0a0a0);
+      cairo_set_line_width(cr, 0.7);
+      hatch(cr, x + 2, y - 10, x + 22, y + 1, 4);
+      cairo_restore(cr);
+    }
+    cairo_new_path(cr);
+    break;
+  case LG_RING:
+    rgb(cr, c);
+    cairo_set_line_width(cr, 2);
+    cairo_arc(cr, x + 12, y - 4, 5, 0, 2 * M_PI);
+    cairo_stroke(cr);
+    break;
+  case LG_SQUARE:
+    rgb(cr, c);
+    cairo_rectangle(cr, x + 8.5, y - 7.5, 7, 7);
+    cairo_fill(cr);
+    break;
+  }
+  rgb(cr, C_TEXT);
+  text_at(cr, x + 30, y, text, 11, 0, 0);
+  return w;
+}
+
+static void legend(cairo_t *cr, const struct lplot *pl, int cutoff)
+{
+  struct { int style; unsigned c; const char *text; int show; } it[] = {
+    {LG_LINE, C_FEED, "feed move (arcs as arcs)", 1},
+    {LG_DASH, C_TRAV, "traverse", 1},
+    {LG_ZIG, C_THREAD, "thread (G33)", 1},
+    {LG_THRBOX, C_THREAD, "thread's cut", pl->any_thread_band},
+    {LG_RED, C_CHUCKCUT, "cut past the stock's end", pl->st.has},
+    {LG_RING, C_START, "start", 1},
+    {LG_SQUARE, C_END, "end", 1},
+    {LG_DASHBOX, C_STOCK, "stock", pl->st.has},
+    {LG_BOX, C_REMOVED, "material removed", pl->st.has},
+    {LG_BOX, C_PART, "the part (below the axis: mirrored)", pl->st.has},
+    {LG_HATCH, C_CUTOFF, "cut off", cutoff},
+    {LG_CENTRE, C_CENTRE, "axis of rotation", 1},
+  };
+  size_t k = sizeof it / sizeof it[0];
+  double x = FX, y = FY + FH + 22, gap = 18;
+  for (size_t i = 0; i < k; i++) {
+    if (!it[i].show)
+      continue;
+    double w = legend_item(cr, x, y, it[i].style, it[i].c, it[i].text, 1);
+    if (x + w > FX + FW && x > FX) {
+      x = FX;
+      y += 20;
+    }
+    legend_item(cr, x, y, it[i].style, it[i].c, it[i].text, 0);
+    x += w + gap;
+  }
+}
+
+static void draw(cairo_t *cr, struct lplot *pl, const char *program)
+{
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  struct fit F;
+  make_fit(pl, &F);
+  /* the grid and the ticks in the frame, the drawing clipped to its area */
+  cairo_save(cr);
+  cairo_rectangle(cr, FX, FY, FW, FH);
+  cairo_clip(cr);
+  grid_and_ticks(cr, &F);
+  cairo_restore(cr);
+  cairo_save(cr);
+  cairo_rectangle(cr, FX + LBAND, FY, FW - LBAND, FH - BBAND);
+  cairo_clip(cr);
+  int cutoff = 0;
+  double cut_z = 0;
+  if (pl->st.has)
+    draw_stock(cr, pl, &F, &cutoff, &cut_z);
+  centre_line(cr, &F);
+  int part = draw_path(cr, pl, &F);
+  rgb(cr, C_TEXT);
+  text_at(cr, FX + FW - 6, PY(&F, 0) - 6, "Z, mm", 11, 1, 1);
+  if (!pl->moves) {
+    rgb(cr, C_LABEL);
+    text_at(cr, FX + LBAND + (FW - LBAND) / 2, FY + 40, "no moves", 16, 1, 0.5);
+  }
+  cairo_restore(cr);
+  rgb(cr, C_FRAME);
+  cairo_set_line_width(cr, 1);
+  cairo_rectangle(cr, FX + LBAND + 0.5, FY + 0.5, FW - LBAND - 1, FH - BBAND - 1);
+  cairo_stroke(cr);
+  rgb(cr, C_TEXT);
+  text_at(cr, FX + 2, FY + 12, "Ø, mm", 11, 1, 0);
+  legend(cr, pl, cutoff);
+
+  /* the title, the status, the stock and the extents */
+  const char *base = strrchr(program ? program : "", '/');
+  base = base ? base + 1 : program ? program : "";
+  char title[300], line[600], a[40], b[40], c[40];
+  snprintf(title, sizeof title, "%s", base);
+  rgb(cr, C_TEXT);
+  text_at(cr, FX, 28, title, 19, 1, 0);
+  text_at(cr, FX + text_w(cr, title, 19, 1) + 12, 28, "the lathe's tool path and the turned part, s42 (2У22)", 12, 0,
+          0);
+  /* the orientation, at the right of the title */
+  {
+    const char *ori = "Z along: the chuck left, the face at Z 0;  the radius up (labelled Ø);  one scale";
+    double used = FX + text_w(cr, title, 19, 1) + 12 +
+                  text_w(cr, "the lathe's tool path and the turned part, s42 (2У22)", 12, 0) + 16;
+    double size = 11;
+    while (size > 7 && FX + FW - text_w(cr, ori, size, 0) < used)
+      size -= 0.5;
+    rgb(cr, C_LABEL);
+    text_at(cr, FX + FW, 28, ori, size, 0, 1);
+  }
+  size_t o = 0;
+  o += snprintf(line + o, sizeof line - o, "%s", pl->status);
+  if (pl->st.has) {
+    fmt_num(a, sizeof a, pl->st.d, 2, 1);
+    fmt_num(b, sizeof b, pl->st.len, 2, 1);
+    o += snprintf(line + o, sizeof line - o, "  ·  stock Ø%s × %s mm, face at Z 0", a, b);
+  } else
+    o += snprintf(line + o, sizeof line - o, "  ·  no stock given (--stock DxL)");
+  if (pl->ext && pl->moves) {
+    fmt_num(a, sizeof a, 2 * pl->amax, 2, 0);
+    fmt_num(b, sizeof b, pl->zmin, 2, 0);
+    fmt_num(c, sizeof c, pl->zmax, 2, 0);
+    o += snprintf(line + o, sizeof line - o, "  ·  path: max Ø%s, Z %s .. %s  ·  %llu move%s", a, b, c,
+                  pl->moves, pl->moves == 1 ? "" : "s");
+  } else
+    o += snprintf(line + o, sizeof line - o, "  ·  no moves");
+  (void)o;
+  snprintf(pl->cap_title, sizeof pl->cap_title, "%s", title);
+  snprintf(pl->cap_line, sizeof pl->cap_line, "%s", line);
+  double lsize = 12;
+  while (lsize > 8 && text_w(cr, line, lsize, 0) > FW)
+    lsize -= 0.5;
+  rgb(cr, C_LABEL);
+  text_at(cr, FX, 48, line, lsize, 0, 0);
+  /* warnings */
+  char warn[600] = "";
+  size_t w = 0;
+#define WARN(...) do { \
+    if (w < sizeof warn) \
+      w += snprintf(warn + w, sizeof warn - w, "%s", w ? ";  " : ""); \
+    if (w < sizeof warn) \
+      w += snprintf(warn + w, sizeof warn - w, __VA_ARGS__); \
+  } while (0)
+  if (pl->chuck) {
+    fmt_num(a, sizeof a, pl->chuck_z, 2, 0);
+    fmt_num(b, sizeof b, -pl->st.len, 2, 0);
+    WARN("cuts into the chuck side at Z %s (the stock ends at Z %s)", a, b);
+  }
+  if (pl->st.has && pl->moves) {
+    compute_R(pl);
+    int touched = 0;
+    for (int i = 0; i < pl->ncol && !touched; i++)
+      if (pl->R[i] < pl->half - 1e-9 || pl->thr[i] < pl->half - 1e-9)
+        touched = 1;
+    if (!touched)
+      WARN("the path never touches the stock");
+  }
+  if (cutoff) {
+    fmt_num(a, sizeof a, cut_z, 2, 0);
+    WARN("the tool reached the axis at Z %s: what is beyond it is cut off (hatched)", a);
+  }
+  if (pl->oom)
+    WARN("out of memory: the path is cut short");
+  if (part)
+    WARN("the path is too dense to draw whole: drawn in part");
+#undef WARN
+  snprintf(pl->cap_warn, sizeof pl->cap_warn, "%s", warn);
+  if (warn[0]) {
+    double size = 12;
+    while (size > 8 && text_w(cr, warn, size, 1) > FW)
+      size -= 0.5;
+    rgb(cr, C_WARN);
+    text_at(cr, FX, 66, warn, size, 1, 0);
+  }
+}
+
+/* ---- output ---- */
+
+int lplot_check_path(const char *path, char *err, size_t n)
+{
+  const char *dot = path ? strrchr(path, '.') : NULL;
+  const char *slash = path ? strrchr(path, '/') : NULL;
+  if (dot && (!slash || dot > slash + 1) &&
+      (!strcasecmp(dot, ".png") || !strcasecmp(dot, ".svg") || !strcasecmp(dot, ".pdf")))
+    return 0;
+  snprintf(err, n, "cannot tell the picture format of '%s': the output file must end in .png, .svg or .pdf",
+           path ? path : "");
+  return -1;
+}
+
+static cairo_status_t write_fn(void *closure, const unsigned char *data, unsigned int len)
+{
+  FILE *f = closure;
+  return fwrite(data, 1, len, f) == len ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+
+static void xml_text(FILE *f, const char *s)
+{
+  for (; *s; s++)
+    switch (*s) {
+    case '<': fputs("&lt;", f); break;
+    case '>': fputs("&gt;", f); break;
+    case '&': fputs("&amp;", f); break;
+    default: fputc(*s, f);
+    }
+}
+
+/* The SVG cairo wrote, with <title> and <desc> after the root's tag: 0 or
+ * an errno. */
+static int svg_out(FILE *f, const char *svg, size_t len, const struct lplot *pl)
+{
+  const char *root = svg ? strstr(svg, "<svg") : NULL;
+  const char *gt = root ? strchr(root, '>') : NULL;
+  size_t head = gt ? (size_t)(gt + 1 - svg) : len;
+  if (fwrite(svg, 1, head, f) != head)
+    return errno ? errno : EIO;
+  if (gt) {
+    fputs("\n<title>", f);
+    xml_text(f, pl->cap_title);
+    fputs("</title>\n<desc>", f);
+    xml_text(f, pl->cap_line);
+    if (pl->cap_warn[0]) {
+      fputs("\n", f);
+      xml_text(f, pl->cap_warn);
+    }
+    fputs("</desc>", f);
+  }
+  if (fwrite(svg + head, 1, len - head, f) != len - head || ferror(f))
+    return errno ? errno : EIO;
+  return 0;
+}
+
+int lplot_write(struct lplot *pl, const char *program, const char *path, char *err, size_t n)
+{
+  if (!pl) {
+    snprintf(err, n, "no plot");
+    return -1;
+  }
+  if (lplot_check_path(path, err, n) || s42_cairo_load(err, n))
+    return -1;
+  const char *ext = strrchr(path, '.');
+  int kind = !strcasecmp(ext, ".png") ? 0 : !strcasecmp(ext, ".svg") ? 1 : 2;
+  size_t len = strlen(path);
+  char *tmp = malloc(len + 16);
+  if (!tmp) {
+    snprintf(err, n, "out of memory");
+    return -1;
+  }
+  snprintf(tmp, len + 16, "%s.tmpXXXXXX", path);
+  int fd = mkstemp(tmp);
+  if (fd < 0) {
+    snprintf(err, n, "cannot write '%s': %s", path, strerror(errno));
+    free(tmp);
+    return -1;
+  }
+  mode_t um = umask(0);
+  umask(um);
+  if (fchmod(fd, 0666 & ~um) != 0) {
+    /* not fatal: the file keeps mkstemp's 0600 */
+  }
+  FILE *f = fdopen(fd, "wb");
+  if (!f) {
+    snprintf(err, n, "cannot write '%s': %s", path, strerror(errno));
+    close(fd);
+    unlink(tmp);
+    free(tmp);
+    return -1;
+  }
+  /* an SVG's text is glyphs: its caption goes into <title> and <desc> too,
+   * so it is searchable (the picture is written to memory first) */
+  char *svg = NULL;
+  size_t svg_len = 0;
+  FILE *out = f;
+  if (kind == 1 && !(out = open_memstream(&svg, &svg_len))) {
+    snprintf(err, n, "out of memory");
+    fclose(f);
+    unlink(tmp);
+    free(tmp);
+    return -1;
+  }
+  cairo_surface_t *sf;
+  if (kind == 0)
+    sf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, (int)PW, (int)PH);
+  else if (kind == 1)
+    sf = cairo_svg_surface_create_for_stream(write_fn, out, PW, PH);
+  else
+    sf = cairo_pdf_surface_create_for_stream(write_fn, f, PW, PH);
+  cairo_status_t st = cairo_surface_status(sf);
+  if (st == CAIRO_STATUS_SUCCESS) {
+    if (kind == 2)
+      cairo_pdf_surface_set_metadata(sf, CAIRO_PDF_METADATA_TITLE, program ? program : "");
+    cairo_t *cr = cairo_create(sf);
+    draw(cr, pl, program);
+    st = cairo_status(cr);
+    cairo_destroy(cr);
+    if (st == CAIRO_STATUS_SUCCESS && kind == 0)
+      st = cairo_surface_write_to_png_stream(sf, write_fn, f);
+    cairo_surface_finish(sf);
+    if (st == CAIRO_STATUS_SUCCESS)
+      st = cairo_surface_status(sf);
+  }
+  cairo_surface_destroy(sf);
+  cairo_debug_reset_static_data();
+  int ioerr = 0;
+  if (kind == 1) {
+    if (fclose(out) != 0)
+      ioerr = ENOMEM;
+    else if (st == CAIRO_STATUS_SUCCESS)
+      ioerr = svg_out(f, svg, svg_len, pl);
+    free(svg);
+  }
+  if (!ioerr && (fflush(f) != 0 || fsync(fileno(f)) != 0))
+    ioerr = errno ? errno : EIO;
+  if (fclose(f) != 0 && !ioerr)
+    ioerr = errno ? errno : EIO;
+  if (st != CAIRO_STATUS_SUCCESS || ioerr) {
+    if (st != CAIRO_STATUS_SUCCESS)
+      snprintf(err, n, "cairo: %s", cairo_status_to_string(st));
+    else
+      snprintf(err, n, "cannot write '%s': %s", path, strerror(ioerr));
+    unlink(tmp);
+    free(tmp);
+    return -1;
+  }
+  if (rename(tmp, path) != 0) {
+    snprintf(err, n, "cannot rename the finished picture into place: %s", strerror(errno));
+    unlink(tmp);
+    free(tmp);
+    return -1;
+  }
+  free(tmp);
+  return 0;
+}
