@@ -8,17 +8,19 @@ _s42()
   prev=${COMP_WORDS[COMP_CWORD-1]}
   cmd=${COMP_WORDS[1]}
   if [ "$COMP_CWORD" -eq 1 ]; then
-    COMPREPLY=($(compgen -W "run tui check disasm plot plugins help --help --version" -- "$cur"))
+    COMPREPLY=($(compgen -W "run tui check disasm plot plugins dialects help --help --version" -- "$cur"))
     return
   fi
   case $prev in
-    --operator|--tool|--state|-o)
+    --operator|--tool|--tools|--state|-o)
       COMPREPLY=($(compgen -f -- "$cur")); return ;;
     --plugins|--dump-images)
       COMPREPLY=($(compgen -d -- "$cur")); return ;;
     --lang)
       COMPREPLY=($(compgen -W "uk en" -- "$cur")); return ;;
-    --max-blocks|--modbus-max-clients|--modbus-idle|--modbus-allow)
+    --dialect)
+      COMPREPLY=($(compgen -W "$("${COMP_WORDS[0]}" dialects 2>/dev/null | awk 'NR>1{print $1}')" -- "$cur")); return ;;
+    --max-blocks|--modbus-max-clients|--modbus-idle|--modbus-allow|--stock)
       return ;;
   esac
   if [ "$cmd" = help ]; then
