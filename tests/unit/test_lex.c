@@ -2,6 +2,7 @@
  * it notes. */
 #include "suites.h"
 #include "lex.h"
+#include "utf8.h"
 #include <string.h>
 
 static struct diag_list d;
@@ -345,16 +346,16 @@ START_TEST(skip_block)
 }
 END_TEST
 
-START_TEST(utf8_encode)
+START_TEST(utf8_encoding)
 {
   char b[4];
-  ck_assert_int_eq(lex_utf8('A', b), 1);
+  ck_assert_int_eq(utf8_encode('A', b), 1);
   ck_assert_int_eq(b[0], 'A');
-  ck_assert_int_eq(lex_utf8(0x0416, b), 2);
+  ck_assert_int_eq(utf8_encode(0x0416, b), 2);
   ck_assert_mem_eq(b, "Ж", 2);
-  ck_assert_int_eq(lex_utf8(0x2116, b), 3);
+  ck_assert_int_eq(utf8_encode(0x2116, b), 3);
   ck_assert_mem_eq(b, "№", 3);
-  ck_assert_int_eq(lex_utf8(0x1F600, b), 4);
+  ck_assert_int_eq(utf8_encode(0x1F600, b), 4);
   ck_assert_mem_eq(b, "\xF0\x9F\x98\x80", 4);
 }
 END_TEST
@@ -401,7 +402,7 @@ Suite *suite_lex(void)
   tcase_add_test(tc, skip_block);
   tcase_add_test(tc, cr_only_line_ends);
   tcase_add_test(tc, cr_lf_file_has_no_cr_note);
-  tcase_add_test(tc, utf8_encode);
+  tcase_add_test(tc, utf8_encoding);
   tcase_add_test(tc, numero_sign_passes_through);
   suite_add_tcase(s, tc);
   return s;

@@ -56,7 +56,5 @@ void lex_reset(struct lex *l, struct lex_mark m);
  * ("cp1251", "koi8-u", "cp866") the text reads best in, or NULL for a
  * stray byte. */
 int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col, unsigned *byte, const char **enc);
-/* Encode a code point as UTF-8 into buf (4 bytes max); returns length. */
-int lex_utf8(int32_t c, char *buf);
 
 #endif

@@ -3,6 +3,7 @@
  * (longjmp to parse_block); the next block is parsed as usual, so one run
  * reports the mistakes of every block. */
 #include "parse.h"
+#include "utf8.h"
 #include "plugin.h"
 #include "errors.h"
 #include "opcodes.h"
@@ -102,7 +103,7 @@ static const char *show(int32_t c, char *buf)
     return buf;
   }
   buf[0] = '\'';
-  int n = lex_utf8(c, buf + 1);
+  int n = utf8_encode(c, buf + 1);
   buf[n + 1] = '\'';
   buf[n + 2] = 0;
   return buf;
@@ -543,7 +544,7 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
       fail(s, S42_E_TEXT, col, "%s: text holds %s", fn, c ? "invalid UTF-8" : "a NUL byte");
     }
     char u[4];
-    int k = lex_utf8(c, u);
+    int k = utf8_encode(c, u);
     if (n + (size_t)k < sizeof buf - 1) {
       memcpy(buf + n, u, (size_t)k);
       n += (size_t)k;

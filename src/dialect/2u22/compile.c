@@ -41,6 +41,7 @@
  *  - each sub that has an H repeat gets its own pair of counters (u22.h).
  */
 #include "u22.h"
+#include "utf8.h"
 #include "u22c.h"
 #include "errors.h"
 #include "opcodes.h"
@@ -61,52 +62,13 @@ struct ch {
 
 #define CH_KEEP (U22_BLOCK_MAX + 2)   /* characters kept of a block; more is E-BLOCKLEN anyway */
 
-/* A code point at s (left bytes); *len its length.  Invalid UTF-8 is one
- * byte of U+FFFD, which no word accepts. */
-static int32_t decode(const unsigned char *s, size_t left, size_t *len)
-{
-  unsigned char b = s[0];
-  *len = 1;
-  if (b < 0x80)
-    return b;
-  int need;
-  int32_t c;
-  if ((b & 0xE0) == 0xC0) { need = 1; c = b & 0x1F; }
-  else if ((b & 0xF0) == 0xE0) { need = 2; c = b & 0x0F; }
-  else if ((b & 0xF8) == 0xF0) { need = 3; c = b & 0x07; }
-  else return 0xFFFD;
-  if ((size_t)need >= left)
-    return 0xFFFD;
-  for (int i = 1; i <= need; i++) {
-    if ((s[i] & 0xC0) != 0x80)
-      return 0xFFFD;
-    c = (c << 6) | (s[i] & 0x3F);
-  }
-  if ((need == 1 && c < 0x80) || (need == 2 && c < 0x800) || (need == 3 && c < 0x10000) || c > 0x10FFFF ||
-      (c >= 0xD800 && c <= 0xDFFF))
-    return 0xFFFD;
-  *len = (size_t)need + 1;
-  return c;
-}
 
 /* Cyrillic capitals that look like Latin ones: А В С Е Н К М О Р Т Х (as
  * the 2С42 lexer maps them). */
 static int32_t lookalike(int32_t c)
 {
-  switch (c) {
-  case 0x0410: return 'A';
-  case 0x0412: return 'B';
-  case 0x0421: return 'C';
-  case 0x0415: return 'E';
-  case 0x041D: return 'H';
-  case 0x041A: return 'K';
-  case 0x041C: return 'M';
-  case 0x041E: return 'O';
-  case 0x0420: return 'P';
-  case 0x0422: return 'T';
-  case 0x0425: return 'X';
-  default: return c;
-  }
+  int l = utf8_latin_lookalike(c);
+  return l ? l : c;
 }
 
 static int blank(int32_t c)
@@ -119,7 +81,7 @@ static const char *show(int32_t c, char buf[32])
 {
   if (c > 0x20 && c < 0x7F)
     snprintf(buf, 32, "'%c'", (char)c);
-  else if (c == 0xFFFD)
+  else if (c == UTF8_BAD)
     snprintf(buf, 32, "a byte that is not UTF-8");
   else
     snprintf(buf, 32, "U+%04X", (unsigned)c);
@@ -157,12 +119,12 @@ static size_t end_mark(const unsigned char *s, size_t left)
   size_t l1, l2;
   if (!left)
     return 0;
-  int32_t a = decode(s, left, &l1);
+  int32_t a = utf8_decode(s, left, &l1);
   if (a != 0x041F && a != 'P' && a != 0x0420)
     return 0;
   if (l1 >= left)
     return 0;
-  int32_t b = decode(s + l1, left - l1, &l2);
+  int32_t b = utf8_decode(s + l1, left - l1, &l2);
   if (b != 0x0421 && b != 'C')
     return 0;
   return l1 + l2;
@@ -179,7 +141,7 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
   char b1[32];
   while (s < e) {
     size_t len;
-    int32_t ch = decode(s, (size_t)(e - s), &len);
+    int32_t ch = utf8_decode(s, (size_t)(e - s), &len);
     if (blank(ch)) {
       s += len;
       col++;
@@ -195,7 +157,7 @@ static int lex_line(struct cc *c, const unsigned char *s, const unsigned char *e
           goto fail;
         }
         size_t ql, ml = end_mark(q, (size_t)(e - q));
-        int32_t k = decode(q, (size_t)(e - q), &ql);
+        int32_t k = utf8_decode(q, (size_t)(e - q), &ql);
         if (k == ')')
           break;
         if (k == '%' || k == ':' || ml) {
