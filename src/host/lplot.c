@@ -36,6 +36,7 @@
  * per style (moves under a pixel merged, the rest clipped to the frame);
  * past it the caption says the path is drawn in part. */
 #include "lplot.h"
+#include "picture.h"
 #include "canon.h"
 #include "geom.h"
 #include "cairo_dl.h"
@@ -1585,21 +1586,9 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
 
 int lplot_check_path(const char *path, char *err, size_t n)
 {
-  const char *dot = path ? strrchr(path, '.') : NULL;
-  const char *slash = path ? strrchr(path, '/') : NULL;
-  if (dot && (!slash || dot > slash + 1) &&
-      (!strcasecmp(dot, ".png") || !strcasecmp(dot, ".svg") || !strcasecmp(dot, ".pdf")))
-    return 0;
-  snprintf(err, n, "cannot tell the picture format of '%s': the output file must end in .png, .svg or .pdf",
-           path ? path : "");
-  return -1;
+  return picture_check_path(path, err, n);
 }
 
-static cairo_status_t write_fn(void *closure, const unsigned char *data, unsigned int len)
-{
-  FILE *f = closure;
-  return fwrite(data, 1, len, f) == len ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
-}
 
 static void xml_text(FILE *f, const char *s)
 {
@@ -1612,29 +1601,39 @@ static void xml_text(FILE *f, const char *s)
     }
 }
 
-/* The SVG cairo wrote, with <title> and <desc> after the root's tag: 0 or
- * an errno. */
-static int svg_out(FILE *f, const char *svg, size_t len, const struct lplot *pl)
+
+struct drawing { struct lplot *pl; const char *program; };
+
+static void draw_picture(cairo_t *cr, void *ctx)
 {
-  const char *root = svg ? strstr(svg, "<svg") : NULL;
-  const char *gt = root ? strchr(root, '>') : NULL;
-  size_t head = gt ? (size_t)(gt + 1 - svg) : len;
-  if (fwrite(svg, 1, head, f) != head)
-    return errno ? errno : EIO;
-  if (gt) {
-    fputs("\n<title>", f);
-    xml_text(f, pl->cap_title);
-    fputs("</title>\n<desc>", f);
-    xml_text(f, pl->cap_line);
-    if (pl->cap_warn[0]) {
-      fputs("\n", f);
-      xml_text(f, pl->cap_warn);
-    }
-    fputs("</desc>", f);
+  struct drawing *d = ctx;
+  draw(cr, d->pl, d->program);
+}
+
+/* The SVG's <title> and <desc>: the caption, searchable (cairo writes the
+ * picture's text as glyphs). */
+static char *svg_head(void *ctx)
+{
+  const struct lplot *pl = ((struct drawing *)ctx)->pl;
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *f = open_memstream(&buf, &len);
+  if (!f)
+    return NULL;
+  fputs("\n<title>", f);
+  xml_text(f, pl->cap_title);
+  fputs("</title>\n<desc>", f);
+  xml_text(f, pl->cap_line);
+  if (pl->cap_warn[0]) {
+    fputs("\n", f);
+    xml_text(f, pl->cap_warn);
   }
-  if (fwrite(svg + head, 1, len - head, f) != len - head || ferror(f))
-    return errno ? errno : EIO;
-  return 0;
+  fputs("</desc>", f);
+  if (fclose(f) != 0) {
+    free(buf);
+    return NULL;
+  }
+  return buf;
 }
 
 int lplot_write(struct lplot *pl, const char *program, const char *path, char *err, size_t n)
@@ -1643,98 +1642,8 @@ int lplot_write(struct lplot *pl, const char *program, const char *path, char *e
     snprintf(err, n, "no plot");
     return -1;
   }
-  if (lplot_check_path(path, err, n) || s42_cairo_load(err, n))
+  if (lplot_check_path(path, err, n))
     return -1;
-  const char *ext = strrchr(path, '.');
-  int kind = !strcasecmp(ext, ".png") ? 0 : !strcasecmp(ext, ".svg") ? 1 : 2;
-  size_t len = strlen(path);
-  char *tmp = malloc(len + 16);
-  if (!tmp) {
-    snprintf(err, n, "out of memory");
-    return -1;
-  }
-  snprintf(tmp, len + 16, "%s.tmpXXXXXX", path);
-  int fd = mkstemp(tmp);
-  if (fd < 0) {
-    snprintf(err, n, "cannot write '%s': %s", path, strerror(errno));
-    free(tmp);
-    return -1;
-  }
-  mode_t um = umask(0);
-  umask(um);
-  if (fchmod(fd, 0666 & ~um) != 0) {
-    /* not fatal: the file keeps mkstemp's 0600 */
-  }
-  FILE *f = fdopen(fd, "wb");
-  if (!f) {
-    snprintf(err, n, "cannot write '%s': %s", path, strerror(errno));
-    close(fd);
-    unlink(tmp);
-    free(tmp);
-    return -1;
-  }
-  /* an SVG's text is glyphs: its caption goes into <title> and <desc> too,
-   * so it is searchable (the picture is written to memory first) */
-  char *svg = NULL;
-  size_t svg_len = 0;
-  FILE *out = f;
-  if (kind == 1 && !(out = open_memstream(&svg, &svg_len))) {
-    snprintf(err, n, "out of memory");
-    fclose(f);
-    unlink(tmp);
-    free(tmp);
-    return -1;
-  }
-  cairo_surface_t *sf;
-  if (kind == 0)
-    sf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, (int)PW, (int)PH);
-  else if (kind == 1)
-    sf = cairo_svg_surface_create_for_stream(write_fn, out, PW, PH);
-  else
-    sf = cairo_pdf_surface_create_for_stream(write_fn, f, PW, PH);
-  cairo_status_t st = cairo_surface_status(sf);
-  if (st == CAIRO_STATUS_SUCCESS) {
-    if (kind == 2)
-      cairo_pdf_surface_set_metadata(sf, CAIRO_PDF_METADATA_TITLE, program ? program : "");
-    cairo_t *cr = cairo_create(sf);
-    draw(cr, pl, program);
-    st = cairo_status(cr);
-    cairo_destroy(cr);
-    if (st == CAIRO_STATUS_SUCCESS && kind == 0)
-      st = cairo_surface_write_to_png_stream(sf, write_fn, f);
-    cairo_surface_finish(sf);
-    if (st == CAIRO_STATUS_SUCCESS)
-      st = cairo_surface_status(sf);
-  }
-  cairo_surface_destroy(sf);
-  cairo_debug_reset_static_data();
-  int ioerr = 0;
-  if (kind == 1) {
-    if (fclose(out) != 0)
-      ioerr = ENOMEM;
-    else if (st == CAIRO_STATUS_SUCCESS)
-      ioerr = svg_out(f, svg, svg_len, pl);
-    free(svg);
-  }
-  if (!ioerr && (fflush(f) != 0 || fsync(fileno(f)) != 0))
-    ioerr = errno ? errno : EIO;
-  if (fclose(f) != 0 && !ioerr)
-    ioerr = errno ? errno : EIO;
-  if (st != CAIRO_STATUS_SUCCESS || ioerr) {
-    if (st != CAIRO_STATUS_SUCCESS)
-      snprintf(err, n, "cairo: %s", cairo_status_to_string(st));
-    else
-      snprintf(err, n, "cannot write '%s': %s", path, strerror(ioerr));
-    unlink(tmp);
-    free(tmp);
-    return -1;
-  }
-  if (rename(tmp, path) != 0) {
-    snprintf(err, n, "cannot rename the finished picture into place: %s", strerror(errno));
-    unlink(tmp);
-    free(tmp);
-    return -1;
-  }
-  free(tmp);
-  return 0;
+  struct drawing d = {pl, program};
+  return picture_write(path, PW, PH, program, draw_picture, svg_head, &d, err, n);
 }

@@ -11,7 +11,7 @@ $(HOST_LIB_SRCS:%.c=$(BUILD)/%.o) $(SRC_MAIN_OBJ): MOD_CPPFLAGS = $(HOST_INC)
 CAIRO_CFLAGS = $(call pkg,CAIRO_CFLAGS,--cflags cairo)
 # cairo is loaded with dlopen when a plot is drawn (src/host/cairo_dl.c):
 # linking it would load two dozen libraries at every start-up
-$(BUILD)/src/host/plot.o $(BUILD)/src/host/lplot.o $(BUILD)/src/host/cairo_dl.o: MOD_CPPFLAGS = $(HOST_INC) $(CAIRO_CFLAGS)
+$(BUILD)/src/host/plot.o $(BUILD)/src/host/lplot.o $(BUILD)/src/host/picture.o $(BUILD)/src/host/cairo_dl.o: MOD_CPPFLAGS = $(HOST_INC) $(CAIRO_CFLAGS)
 # tui.c draws with ncursesw
 CURSES_CFLAGS = $(call pkg,CURSES_CFLAGS,--cflags ncursesw)
 CURSES_LIBS   = $(call pkg,CURSES_LIBS,--libs ncursesw,-lncursesw)

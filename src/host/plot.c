@@ -28,6 +28,7 @@
  * Every row that moves is kept as one struct seg (about 100 bytes), so
  * 100,000 blocks take about 10 MB. */
 #include "plot.h"
+#include "picture.h"
 #include "geom.h"
 #include "machine.h"
 #include "cairo_dl.h"
@@ -267,14 +268,7 @@ static void final_pos(const struct plot *pl, double at[4], double con[4])
 
 int plot_check_path(const char *path, char *err, size_t n)
 {
-  const char *dot = path ? strrchr(path, '.') : NULL;
-  const char *slash = path ? strrchr(path, '/') : NULL;
-  if (dot && (!slash || dot > slash + 1) &&
-      (!strcasecmp(dot, ".png") || !strcasecmp(dot, ".svg") || !strcasecmp(dot, ".pdf")))
-    return 0;
-  snprintf(err, n, "cannot tell the picture format of '%s': the output file must end in .png, .svg or .pdf",
-           path ? path : "");
-  return -1;
+  return picture_check_path(path, err, n);
 }
 
 /* ---- numbers, always with a decimal point ---- */
@@ -1332,93 +1326,21 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
 
 /* ---- output ---- */
 
-static cairo_status_t write_fn(void *closure, const unsigned char *data, unsigned int len)
+
+struct drawing { struct plot *pl; const char *program; };
+
+static void draw_picture(cairo_t *cr, void *ctx)
 {
-  FILE *f = closure;
-  return fwrite(data, 1, len, f) == len ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+  struct drawing *d = ctx;
+  draw(cr, d->pl, d->program);
 }
 
 int plot_write(struct plot *pl, const char *program, const char *path, char *err, size_t n)
 {
-  if (plot_check_path(path, err, n) || s42_cairo_load(err, n))
-    return -1;
-  const char *ext = strrchr(path, '.');
-  int kind = !strcasecmp(ext, ".png") ? 0 : !strcasecmp(ext, ".svg") ? 1 : 2;
-  size_t pl_len = strlen(path);
-  char *tmp = malloc(pl_len + 16);
-  if (!tmp) {
-    snprintf(err, n, "out of memory");
-    return -1;
+  if (!pl->retimed) {
+    osc_retime(pl);
+    pl->retimed = 1;
   }
-  snprintf(tmp, pl_len + 16, "%s.tmpXXXXXX", path);
-  int fd = mkstemp(tmp);
-  if (fd < 0) {
-    snprintf(err, n, "cannot create a file next to it: %s", strerror(errno));
-    free(tmp);
-    return -1;
-  }
-  mode_t um = umask(0);
-  umask(um);
-  if (fchmod(fd, 0666 & ~um) != 0) {
-    /* not fatal: the file keeps mkstemp's 0600 */
-  }
-  FILE *f = fdopen(fd, "wb");
-  if (!f) {
-    snprintf(err, n, "%s", strerror(errno));
-    close(fd);
-    unlink(tmp);
-    free(tmp);
-    return -1;
-  }
-  cairo_surface_t *sf;
-  if (kind == 0)
-    sf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, (int)PW, (int)PH);
-  else if (kind == 1)
-    sf = cairo_svg_surface_create_for_stream(write_fn, f, PW, PH);
-  else
-    sf = cairo_pdf_surface_create_for_stream(write_fn, f, PW, PH);
-  cairo_status_t st = cairo_surface_status(sf);
-  if (st == CAIRO_STATUS_SUCCESS) {
-    if (kind == 2)
-      cairo_pdf_surface_set_metadata(sf, CAIRO_PDF_METADATA_TITLE, program);
-    cairo_t *cr = cairo_create(sf);
-    if (!pl->retimed) {
-      osc_retime(pl);
-      pl->retimed = 1;
-    }
-    draw(cr, pl, program);
-    st = cairo_status(cr);
-    cairo_destroy(cr);
-    if (st == CAIRO_STATUS_SUCCESS && kind == 0)
-      st = cairo_surface_write_to_png_stream(sf, write_fn, f);
-    cairo_surface_finish(sf);
-    if (st == CAIRO_STATUS_SUCCESS)
-      st = cairo_surface_status(sf);
-  }
-  cairo_surface_destroy(sf);
-  /* nothing of cairo is left: let it drop its font caches (leak checkers
-   * would count them) */
-  cairo_debug_reset_static_data();
-  int ioerr = 0;
-  if (fflush(f) != 0 || fsync(fileno(f)) != 0)
-    ioerr = errno ? errno : EIO;
-  if (fclose(f) != 0 && !ioerr)
-    ioerr = errno ? errno : EIO;
-  if (st != CAIRO_STATUS_SUCCESS || ioerr) {
-    if (st != CAIRO_STATUS_SUCCESS)
-      snprintf(err, n, "cairo: %s", cairo_status_to_string(st));
-    else
-      snprintf(err, n, "%s", strerror(ioerr));
-    unlink(tmp);
-    free(tmp);
-    return -1;
-  }
-  if (rename(tmp, path) != 0) {
-    snprintf(err, n, "cannot rename the finished picture into place: %s", strerror(errno));
-    unlink(tmp);
-    free(tmp);
-    return -1;
-  }
-  free(tmp);
-  return 0;
+  struct drawing d = {pl, program};
+  return picture_write(path, PW, PH, program, draw_picture, NULL, &d, err, n);
 }

@@ -1,0 +1,23 @@
+/* Writing a picture for the plots (plot.c, the grinder's; lplot.c, the
+ * lathe's): its format by the file's extension (.png, .svg, .pdf), drawn
+ * with cairo (loaded at the first picture, cairo_dl.h) into a temporary
+ * file beside the target, synced and renamed into place, so a failed or
+ * interrupted plot never leaves half a picture under the name. */
+#ifndef S42_PICTURE_H
+#define S42_PICTURE_H
+
+#include <stddef.h>
+
+typedef struct _cairo cairo_t;
+
+/* Does the path end in .png, .svg or .pdf?  0, or -1 with err. */
+int picture_check_path(const char *path, char *err, size_t n);
+/* Draw a w x h picture (px of the PNG, pt of the SVG and PDF) into path:
+ * draw(cr, ctx) paints it; title: the PDF's title; svg_head, or NULL: after
+ * the drawing, the text (malloc'd; NULL out of memory) to put right after
+ * an SVG's root tag -- its <title> and <desc>, since cairo writes the
+ * picture's text as glyphs.  0, or -1 with err. */
+int picture_write(const char *path, double w, double h, const char *title, void (*draw)(cairo_t *cr, void *ctx),
+                  char *(*svg_head)(void *ctx), void *ctx, char *err, size_t n);
+
+#endif
