@@ -22,6 +22,10 @@ struct dialect {
   int (*compile)(const char *src, size_t n, struct diag_list *d, struct program *p, const struct plug_set *plugins);
   /* How its programs run (enum dialect_run). */
   int run;
+  /* DIALECT_RUN_MACHINE: the runtime its programs carry (a struct
+   * mrun_rt), for the machine at power-on when a program does not compile
+   * (the dump of a check-time error); NULL otherwise */
+  const void *runtime;
 };
 
 enum dialect_run {

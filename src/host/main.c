@@ -1280,7 +1280,11 @@ static int headless(const struct opts *opt, struct plot *plot)
       const struct diag *g = diag_first_error(&d);
       struct s42_error de;
       s42_error_of_diag(&de, g);
-      report_dump(stdout, "error", &de, &p, o.en, NULL);
+      const struct dialect *dl = dialect_of(o.program);
+      if (dl->run == DIALECT_RUN_MACHINE)
+        mhost_dump_refused(dl->runtime, &de);
+      else
+        report_dump(stdout, "error", &de, &p, o.en, NULL);
     }
     prog_free(&p);
     diag_free(&d);

@@ -2,6 +2,7 @@
 #include "mhost.h"
 #include "atomic.h"
 #include "canon.h"
+#include "error.h"
 #include "errors.h"
 #include "lplot.h"
 #include "mrun.h"
@@ -147,6 +148,31 @@ static void error_json(const struct mrun *r)
   printf(",\"line\":%u,\"col\":%u,\"message\":", b ? b->line : 1, e->col ? e->col : b ? b->col : 1);
   json_string(stdout, e->msg);
   putchar('}');
+}
+
+void mhost_dump_refused(const struct mrun_rt *rt, const struct s42_error *e)
+{
+  printf("{\"status\":\"error\",\"error\":{\"code\":\"%s\",\"n\":", err_code(e->code));
+  if (e->number >= 0)
+    printf("%d", e->number);
+  else
+    fputs("null", stdout);
+  printf(",\"line\":%u,\"col\":%u,\"message\":", e->line, e->col);
+  json_string(stdout, e->msg);
+  fputs("},\"blocks\":0", stdout);
+  /* the machine at power-on: a runner with no program, its state reset */
+  struct mrun r;
+  memset(&r, 0, sizeof r);
+  r.rt = rt;
+  r.st = rt ? calloc(1, rt->size ? rt->size : 1) : NULL;
+  if (r.st && rt->reset && rt->dump_json) {
+    rt->reset(&r);
+    rt->dump_json(&r, stdout);
+  } else {
+    fputs(",\"time\":0,\"pos\":{}", stdout);
+  }
+  free(r.st);
+  puts("}");
 }
 
 static void print_error(const struct mhost *h, const struct diag_list *d)

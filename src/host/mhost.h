@@ -17,6 +17,11 @@ struct mhost_opts {
   struct lplot *plot;           /* s42 plot: the canonical calls and the result go there too, or NULL */
 };
 
+/* The dump of a program that did not compile (e: its first error): the
+ * machine rt drives, at power-on, nothing run. */
+struct s42_error;
+struct mrun_rt;
+void mhost_dump_refused(const struct mrun_rt *rt, const struct s42_error *e);
 /* Run p (compiled, d its diagnostics); the exit status of contracts.md sec. 1. */
 int mhost_run(const struct mhost_opts *o, const struct program *p, const struct diag_list *d);
 

@@ -1,6 +1,7 @@
 /* The 2У22 (16Б16Ф3 lathe) as a dialect of the registry (src/core/dialect.h). */
 #include "dialect.h"
 #include "u22c.h"
+#include "u22.h"
 
 static int compile(const char *src, size_t n, struct diag_list *d, struct program *p, const struct plug_set *plugins)
 {
@@ -15,4 +16,5 @@ const struct dialect dialect_2u22 = {
   .machine = "lathe",
   .compile = compile,
   .run = DIALECT_RUN_MACHINE,
+  .runtime = &u22_runtime,
 };
