@@ -1155,6 +1155,11 @@ static int refused_for_2c42(const struct opscript *ops, const char *file)
   return bad;
 }
 
+/* The lathe's plot watching a run on the neutral runner. */
+static void plot_start(void *ctx, const double pos[4]) { lplot_at(ctx, pos[0], pos[2]); }
+static void plot_call(void *ctx, const struct canon_call *c) { lplot_call(ctx, c); }
+static void plot_end(void *ctx, const char *status, const char *code, int n) { lplot_result(ctx, status, code, n); }
+
 /* A dialect on the neutral runner (src/host/mhost.c); lp: s42 plot's picture. */
 static int run_machine(const struct opts *o, struct program *p, struct diag_list *d, struct lplot *lp)
 {
@@ -1177,7 +1182,12 @@ static int run_machine(const struct opts *o, struct program *p, struct diag_list
   m.dump = o->dump;
   m.en = o->en;
   m.max_blocks = o->max_blocks;
-  m.plot = lp;
+  if (lp) {
+    m.watch.ctx = lp;
+    m.watch.start = plot_start;
+    m.watch.call = plot_call;
+    m.watch.result = plot_end;
+  }
   return mhost_run(&m, p, d);
 }
 

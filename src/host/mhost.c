@@ -4,7 +4,6 @@
 #include "canon.h"
 #include "error.h"
 #include "errors.h"
-#include "lplot.h"
 #include "mrun.h"
 #include "operator.h"
 #include "report.h"
@@ -52,8 +51,8 @@ static void canon_call(void *ctx, const struct canon_call *c)
   struct mhost *h = ctx;
   if (h->o->canon)
     canon_trace_call(&h->canon, c);
-  if (h->o->plot)
-    lplot_call(h->o->plot, c);
+  if (h->o->watch.call)
+    h->o->watch.call(h->o->watch.ctx, c);
 }
 
 /* The actions that do not fit this machine: refused before the run. */
@@ -199,10 +198,10 @@ static int run(struct mhost *h, const struct diag_list *d)
   struct mrun *r = &h->r;
   const struct mhost_opts *o = h->o;
   boundary(h);
-  if (o->plot && r->rt->position) {   /* where the tool starts (after a `zero` at the head of the script) */
+  if (o->watch.start && r->rt->position) {   /* where the tool starts (after a `zero` at the head of the script) */
     double pos[4];
     r->rt->position(r, pos);
-    lplot_at(o->plot, pos[0], pos[2]);
+    o->watch.start(o->watch.ctx, pos);
   }
   for (;;) {
     enum mrun_ev ev = mrun_run(r);
@@ -322,14 +321,14 @@ int mhost_run(const struct mhost_opts *o, const struct program *p, const struct 
   }
   if (rc == EXIT_END) {
     rc = run(&h, d);
-    if (o->plot) {
+    if (o->watch.result) {
       int n = -1;
       if (rc == EXIT_PROGRAM) {
         uint32_t b = h.r.vm.err.block;
         n = b < p->nblocks && p->blocks[b].number ? (int)p->blocks[b].number : -1;
       }
-      lplot_result(o->plot, rc == EXIT_END ? "end" : rc == EXIT_PROGRAM ? "error" : "stopped",
-                   rc == EXIT_PROGRAM ? err_code(h.r.vm.err.code) : NULL, n);
+      o->watch.result(o->watch.ctx, rc == EXIT_END ? "end" : rc == EXIT_PROGRAM ? "error" : "stopped",
+                      rc == EXIT_PROGRAM ? err_code(h.r.vm.err.code) : NULL, n);
     }
     if (o->dump) {
       const char *status = rc == EXIT_END ? "end" : rc == EXIT_PROGRAM ? "error" : "stopped";

@@ -8,13 +8,23 @@
 #include "program.h"
 #include <stdint.h>
 
+struct canon_call;
+
 struct mhost_opts {
   const char *program;          /* for messages */
   const char *operator_file;    /* --operator, or NULL */
   const char *tools;            /* --tools FILE (the machine's tool table), or NULL */
   int trace, json, canon, dump, en;
   uint64_t max_blocks;
-  struct lplot *plot;           /* s42 plot: the canonical calls and the result go there too, or NULL */
+  /* s42 plot: an observer of the run (lplot.c) -- where the tool starts
+   * (mm as the canonical calls print them), each canonical call, how the
+   * run ended; NULL members are not called */
+  struct mhost_watch {
+    void *ctx;
+    void (*start)(void *ctx, const double pos[4]);
+    void (*call)(void *ctx, const struct canon_call *c);
+    void (*result)(void *ctx, const char *status, const char *code, int n);
+  } watch;
 };
 
 /* The dump of a program that did not compile (e: its first error): the
