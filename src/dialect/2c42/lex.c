@@ -248,6 +248,12 @@ int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col,
   *enc = NULL;
   size_t bad = n, highs = 0, len;
   for (size_t p = l.pos; p < n; p += len) {
+    /* ASCII, eight bytes at a time: most programs are nothing else */
+    uint64_t w8;
+    while (p + 8 <= n && (memcpy(&w8, text + p, 8), !(w8 & 0x8080808080808080ull)))
+      p += 8;
+    if (p >= n)
+      break;
     int32_t c = decode(&l, p, &len);
     if (c == 0xFFFD && len == 1) {   /* a U+FFFD written as such is a character */
       if (bad == n)
