@@ -1158,6 +1158,97 @@ static void ext_free(void *v)
   free(x);
 }
 
+/* The units that can call themselves, directly or through others: those
+ * on a cycle of the call graph (the calls of reachable blocks), found as
+ * its strongly connected components (Tarjan's, without recursion): linear
+ * in units and calls.  cyc[u] is 1 for such a unit; NULL when out of memory. */
+static char *calls_itself(size_t n, const struct summ *S, const int *first, const int *unit, const char *reach,
+                          int nu)
+{
+  size_t ne = 0;
+  for (size_t i = 0; i < n; i++)
+    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
+      ne++;
+  size_t *off = calloc((size_t)nu + 1, sizeof *off);
+  int *dst = malloc((ne ? ne : 1) * sizeof *dst);
+  int *idx = malloc((size_t)nu * sizeof *idx), *low = malloc((size_t)nu * sizeof *low);
+  int *stk = malloc((size_t)nu * sizeof *stk), *path = malloc((size_t)nu * sizeof *path);
+  size_t *it = malloc((size_t)nu * sizeof *it);
+  char *on = calloc((size_t)nu, 1), *cyc = calloc((size_t)nu, 1);
+  if (!off || !dst || !idx || !low || !stk || !path || !it || !on || !cyc) {
+    free(cyc);
+    cyc = NULL;
+    goto out;
+  }
+  /* the calls by caller (counting sort) */
+  for (size_t i = 0; i < n; i++)
+    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
+      off[unit[i] + 1]++;
+  for (int u = 0; u < nu; u++)
+    off[u + 1] += off[u];
+  for (int u = 0; u < nu; u++)
+    it[u] = off[u];
+  for (size_t i = 0; i < n; i++)
+    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i]) {
+      int from = unit[i], to = unit[first[S[i].L]];
+      dst[it[from]++] = to;
+      if (from == to)
+        cyc[from] = 1;   /* calls itself directly */
+    }
+  for (int u = 0; u < nu; u++)
+    idx[u] = -1;
+  int next = 0, nstk = 0;
+  for (int r = 0; r < nu; r++) {
+    if (idx[r] >= 0)
+      continue;
+    int depth = 0;
+    path[depth++] = r;
+    idx[r] = low[r] = next++;
+    it[r] = off[r];
+    stk[nstk++] = r;
+    on[r] = 1;
+    while (depth) {
+      int u = path[depth - 1];
+      if (it[u] < off[u + 1]) {
+        int v = dst[it[u]++];
+        if (idx[v] < 0) {
+          idx[v] = low[v] = next++;
+          it[v] = off[v];
+          stk[nstk++] = v;
+          on[v] = 1;
+          path[depth++] = v;
+        } else if (on[v] && idx[v] < low[u]) {
+          low[u] = idx[v];
+        }
+        continue;
+      }
+      depth--;
+      if (depth && low[u] < low[path[depth - 1]])
+        low[path[depth - 1]] = low[u];
+      if (low[u] == idx[u]) {   /* u roots a component: pop it */
+        int size = 0, top = nstk;
+        do {
+          on[stk[--nstk]] = 0;
+          size++;
+        } while (stk[nstk] != u);
+        if (size > 1)
+          for (int k = nstk; k < top; k++)
+            cyc[stk[k]] = 1;
+      }
+    }
+  }
+out:
+  free(off);
+  free(dst);
+  free(idx);
+  free(low);
+  free(stk);
+  free(path);
+  free(it);
+  free(on);
+  return cyc;
+}
+
 static void structure(struct comp *c)
 {
   size_t n = c->ns;
@@ -1322,23 +1413,13 @@ static void structure(struct comp *c)
         i = j;
       }
     /* recursion: a sub that can call itself, directly or through others */
-    int nu = nsub + 1;
-    char *calls = calloc((size_t)nu * (size_t)nu, 1);
-    if (calls) {
+    char *cyc = calls_itself(n, S, first, unit, reach, nsub + 1);
+    if (cyc) {
       for (size_t i = 0; i < n; i++)
-        if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
-          calls[unit[i] * nu + unit[first[S[i].L]]] = 1;
-      for (int k = 0; k < nu; k++)
-        for (int i = 0; i < nu; i++)
-          if (calls[i * nu + k])
-            for (int j = 0; j < nu; j++)
-              if (calls[k * nu + j])
-                calls[i * nu + j] = 1;
-      for (size_t i = 0; i < n; i++)
-        if (start[i] && unit[i] > 0 && calls[unit[i] * nu + unit[i]])
+        if (start[i] && unit[i] > 0 && cyc[unit[i]])
           serr(c, i, 0, 0, "sub %d can call itself: more than 8 nested calls stop the run with E-NEST",
                B[i].number);
-      free(calls);
+      free(cyc);
     }
   }
   free(reach);
