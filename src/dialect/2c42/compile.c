@@ -44,6 +44,7 @@ struct comp {
   struct summ *s;
   size_t ns, caps;
   int oom;
+  int toolong;             /* the code reached the VM's 24-bit operand space (said at the block) */
   int seen_g34;            /* text order: a G34 came before */
   int prev_g27;            /* the previous block had G27 */
   /* within a block: which slots are given, with known constant values */
@@ -123,8 +124,15 @@ static void warn(struct comp *c, unsigned col, const char *fmt, ...)
 static long emit(struct comp *c, int op, uint32_t a, unsigned col)
 {
   long i = prog_emit(c->p, INS(op, a), col);
-  if (i < 0)
+  if (i < 0) {
+    if (c->p->ncode >= INS_AMAX && !c->toolong) {
+      /* not memory: a jump's operand reaches no further (vm/opcodes.h) */
+      c->toolong = 1;
+      diag_add(c->d, DIAG_ERROR, S42_E_LIMIT, c->b->line, c->b->col, c->b->number,
+               "more than %u instructions: the program is too long", INS_AMAX);
+    }
     c->oom = 1;
+  }
   return i;
 }
 
@@ -1524,8 +1532,8 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   if (c.x->uses_tk && !c.x->has_m10)
     diag_add(d, DIAG_WARNING, 0, c.x->tk_line, c.x->tk_col, c.x->tk_number,
              "TK and UG are set only by a tooth-step search with M10, and this program has none: they read 0");
-  if (c.oom)
-    diag_add(d, DIAG_ERROR, S42_E_LIMIT, 1, 1, -1, "out of memory, or the program exceeds 16 million instructions");
+  if (c.oom && !c.toolong)
+    diag_add(d, DIAG_ERROR, S42_E_LIMIT, 1, 1, -1, "out of memory");
   free(c.s);
   free(c.b);
   diag_sort(d);
