@@ -44,6 +44,7 @@ struct comp {
   struct summ *s;
   size_t ns, caps;
   int oom;
+  int toolong;             /* the code reached the VM's 24-bit operand space (said at the block) */
   int seen_g34;            /* text order: a G34 came before */
   int prev_g27;            /* the previous block had G27 */
   /* within a block: which slots are given, with known constant values */
@@ -55,8 +56,15 @@ struct comp {
   uint32_t plugmask;       /* plugins the current block calls */
   int plug_g;              /* a group-1 G of a plugin that is not the language's, 0 none */
   size_t bstart;           /* the current block's first instruction */
-#define RCACHE 16
+  /* the current block's words, indexed once (index_words): the first word
+   * filling each slot and its column, the first word of each kind, the last F */
+  uint16_t wslots;
+  unsigned slotcol[SL__COUNT];
+  const struct word *wfirst[WK_PP + 1];
+  const struct word *wF;
+#define RCACHE 64          /* a power of two, well over the rules a program has */
   struct rcache { const char *name; double lo, hi; int round, clamp, code; uint32_t idx; } rcache[RCACHE];
+  int nrcache;
 };
 
 static uint16_t col16(unsigned col)
@@ -116,8 +124,15 @@ static void warn(struct comp *c, unsigned col, const char *fmt, ...)
 static long emit(struct comp *c, int op, uint32_t a, unsigned col)
 {
   long i = prog_emit(c->p, INS(op, a), col);
-  if (i < 0)
+  if (i < 0) {
+    if (c->p->ncode >= INS_AMAX && !c->toolong) {
+      /* not memory: a jump's operand reaches no further (vm/opcodes.h) */
+      c->toolong = 1;
+      diag_add(c->d, DIAG_ERROR, S42_E_LIMIT, c->b->line, c->b->col, c->b->number,
+               "more than %u instructions: the program is too long", INS_AMAX);
+    }
     c->oom = 1;
+  }
   return i;
 }
 
@@ -330,13 +345,20 @@ static void gen(struct comp *c, const struct expr *e)
 
 static uint32_t rule(struct comp *c, const char *name, double lo, double hi, int round_, int clamp, int code)
 {
-  /* Every axis word asks for its rule: remember the last answer for each
-   * name (the names are string literals) instead of searching and
-   * formatting again. */
-  struct rcache *rc = &c->rcache[((uintptr_t)name >> 3) % RCACHE];
-  if (rc->name == name && rc->lo == lo && rc->hi == hi && rc->round == round_ && rc->clamp == clamp &&
-      rc->code == code)
-    return rc->idx;
+  /* Every axis word asks for its rule: remember each answer by name (the
+   * names are string literals) and limits instead of searching and
+   * formatting again -- open addressing, so that no two names share a
+   * slot and miss in turn. */
+  unsigned h = (unsigned)(((uintptr_t)name * 0x9E3779B97F4A7C15ull) >> 58) % RCACHE;
+  struct rcache *rc;
+  for (;; h = (h + 1) % RCACHE) {
+    rc = &c->rcache[h];
+    if (!rc->name)
+      break;
+    if (rc->name == name && rc->lo == lo && rc->hi == hi && rc->round == round_ && rc->clamp == clamp &&
+        rc->code == code)
+      return rc->idx;
+  }
   struct prog_rule r;
   memset(&r, 0, sizeof r);
   r.lo = lo;
@@ -350,6 +372,12 @@ static uint32_t rule(struct comp *c, const char *name, double lo, double hi, int
     c->oom = 1;
     return 0;
   }
+  if (c->nrcache >= RCACHE / 2) {   /* never full: the probe always ends */
+    memset(c->rcache, 0, sizeof c->rcache);
+    c->nrcache = 0;
+    rc = &c->rcache[((uintptr_t)name * 0x9E3779B97F4A7C15ull) >> 58];
+  }
+  c->nrcache++;
   *rc = (struct rcache){name, lo, hi, round_, clamp, code, (uint32_t)i};
   return (uint32_t)i;
 }
@@ -431,23 +459,40 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
 #define G(n) ((b->g >> (n)) & 1)
 #define M(n) ((b->m >> (n)) & 1)
 
-static int slot_word(const struct block *b, int slot, unsigned *col)
+/* One pass over the block's words for the questions the checks and the
+ * emitter ask of them many times. */
+static void index_words(struct comp *c)
 {
-  for (int i = 0; i < b->nw; i++)
-    if (b->w[i].kind == WK_SLOT && (int)b->w[i].idx == slot) {
-      if (col)
-        *col = b->w[i].col;
-      return 1;
+  const struct block *b = c->b;
+  c->wslots = 0;
+  c->wF = NULL;
+  memset(c->wfirst, 0, sizeof c->wfirst);
+  for (int i = 0; i < b->nw; i++) {
+    const struct word *w = &b->w[i];
+    if (w->kind == WK_SLOT && w->idx < SL__COUNT && !(c->wslots & (1u << w->idx))) {
+      c->wslots |= (uint16_t)(1u << w->idx);
+      c->slotcol[w->idx] = w->col;
     }
-  return 0;
+    if (w->kind <= WK_PP && !c->wfirst[w->kind])
+      c->wfirst[w->kind] = w;
+    if (w->kind == WK_REG && w->letter == 'F')
+      c->wF = w;
+  }
 }
 
-static const struct word *find_word(const struct block *b, int kind)
+/* Is there a word for slot (the first one's column in *col)? */
+static int slot_word(const struct comp *c, int slot, unsigned *col)
 {
-  for (int i = 0; i < b->nw; i++)
-    if (b->w[i].kind == kind)
-      return &b->w[i];
-  return NULL;
+  if (!(c->wslots & (1u << slot)))
+    return 0;
+  if (col)
+    *col = c->slotcol[slot];
+  return 1;
+}
+
+static const struct word *find_word(const struct comp *c, int kind)
+{
+  return c->wfirst[kind];
 }
 
 /* The block's motion (words.h): the first G in number order that is a
@@ -642,8 +687,10 @@ static void plugin_function(struct comp *c, char kind, int n, unsigned col, int 
 {
   const struct block *b = c->b;
   const struct s42_function *fn = NULL;
-  int i = plug_find(c->plugins, kind, n, &fn);
   const struct kp_word *kw = kp_word(kind, n);
+  if (kw && !kw->owner)
+    return;   /* the core's own: no plugin has it (plug_find says -1) */
+  int i = plug_find(c->plugins, kind, n, &fn);
   if (i < 0) {
     if (kw && kw->owner) {
       char msg[600];
@@ -695,9 +742,9 @@ static void check_block(struct comp *c)
   int naxis = 0, ncentre = 0;
   unsigned axcol = 0, cecol = 0;
   for (int s = SL_X; s <= SL_A; s++)
-    if (slot_word(b, s, &col)) { naxis++; if (!axcol) axcol = col; }
+    if (slot_word(c, s, &col)) { naxis++; if (!axcol) axcol = col; }
   for (int s = SL_I; s <= SL_K; s++)
-    if (slot_word(b, s, &col)) { ncentre++; if (!cecol) cecol = col; }
+    if (slot_word(c, s, &col)) { ncentre++; if (!cecol) cecol = col; }
   /* a dialog or display function (group 4) stands with no function of
    * groups 1-3 and no axis or centre word: only assignments, array
    * operations and M functions beside it (language.md sec. 8) */
@@ -719,12 +766,9 @@ static void check_block(struct comp *c)
           "G%02d (dialog and display, group 4) stands without axis or centre words", seen[4]);
     }
   }
-  const struct word *F = NULL;
-  for (int i = 0; i < b->nw; i++)
-    if (b->w[i].kind == WK_REG && b->w[i].letter == 'F')
-      F = &b->w[i];
-  const struct word *L = find_word(b, WK_L), *P = find_word(b, WK_P), *PC = find_word(b, WK_PCOND),
-                    *PP = find_word(b, WK_PP);
+  const struct word *F = c->wF;
+  const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PC = find_word(c, WK_PCOND),
+                    *PP = find_word(c, WK_PP);
   int arc = first_g(b, KP_ARC);   /* its G, or -1 */
   char list[80];
 
@@ -739,7 +783,7 @@ static void check_block(struct comp *c)
       else if (!F)
         err(c, S42_E_OSC, b->gcol[7], "G07 needs F, the oscillation speed");
     } else if (g == 4) {
-      if (!slot_word(b, SL_X, NULL))
+      if (!slot_word(c, SL_X, NULL))
         err(c, S42_E_BLOCK, b->gcol[4], "G04 needs X, the dwell in 0.1 s (G04 X+20 = 2 s)");
       if (naxis > 1 || ncentre)
         err(c, S42_E_BLOCK, b->gcol[4], "G04 stands in a separate block: only X (the dwell) beside it");
@@ -765,7 +809,7 @@ static void check_block(struct comp *c)
       plane_axes(plane, &p, &q);
       int outside = 0;
       for (int s = SL_X; s <= SL_A; s++) {
-        if (s == p || s == q || !slot_word(b, s, &col))
+        if (s == p || s == q || !slot_word(c, s, &col))
           continue;
         outside++;
         if (!helix)
@@ -775,7 +819,7 @@ static void check_block(struct comp *c)
       if (helix && outside > 1)
         err(c, S42_E_PLANE, b->gcol[g], "G%d: only one axis outside the G%d plane may move along the helix", g, plane);
       for (int s = SL_I; s <= SL_K; s++)
-        if (s - SL_I != p && s - SL_I != q && slot_word(b, s, &col))
+        if (s - SL_I != p && s - SL_I != q && slot_word(c, s, &col))
           err(c, S42_E_PLANE, col, "centre word %s is not in the G%d plane (%s%s)", slot_name(s), plane,
               slot_name(p), slot_name(q));
     }
@@ -811,7 +855,7 @@ static void check_block(struct comp *c)
     err(c, S42_E_BLOCK, b->mcol[21], "M21 is not allowed in a block with G%02d", dg);
   if ((M(10) || M(12)) && !(G(10) || G(11)))
     err(c, S42_E_BLOCK, b->mcol[M(10) ? 10 : 12], "M%d belongs to a tooth-step search (G10 or G11)", M(10) ? 10 : 12);
-  if (slot_word(b, SL_H, &col) && !L)
+  if (slot_word(c, SL_H, &col) && !L)
     err(c, S42_E_BLOCK, col, "H (repeat count) without L (sub call)");
   if (L && (L->num < 2 || L->num > 999))
     err(c, S42_E_RANGE, L->col, "L%d: a sub's first block is 2..999", L->num);
@@ -866,12 +910,14 @@ static void check_block(struct comp *c)
   /* functions that plugins implement */
   c->plugmask = 0;
   c->plug_g = 0;
-  for (int n = 0; n < 64; n++)
-    if (G(n))
-      plugin_function(c, 'G', n, b->gcol[n], naxis + ncentre, plane);
-  for (int n = 0; n < 32; n++)
-    if (M(n))
-      plugin_function(c, 'M', n, b->mcol[n], naxis + ncentre, plane);
+  for (uint64_t bits = b->g; bits;) {
+    int n = take_low(&bits);
+    plugin_function(c, 'G', n, b->gcol[n], naxis + ncentre, plane);
+  }
+  for (uint64_t bits = b->m; bits;) {
+    int n = take_low(&bits);
+    plugin_function(c, 'M', n, b->mcol[n], naxis + ncentre, plane);
+  }
 }
 
 /* ---- one block ---- */
@@ -890,6 +936,7 @@ static uint32_t add_str(struct comp *c, const struct text *t)
 static void compile_block(struct comp *c)
 {
   struct block *b = c->b;
+  index_words(c);
   check_block(c);
 
   struct prog_block pb = {0};
@@ -995,7 +1042,7 @@ static void compile_block(struct comp *c)
   int arc = first_g(b, KP_ARC);
   if (arc >= 0 && at->plane)
     check_arc_const(c, at->plane, b->gcol[arc]);
-  const struct word *PC = find_word(b, WK_PCOND);
+  const struct word *PC = find_word(c, WK_PCOND);
   if (b->cond && PC && !b->bad) {
     gen(c, b->cond);
     size_t last = c->p->ncode - 1;
@@ -1012,7 +1059,7 @@ static void compile_block(struct comp *c)
   for (int i = 0; i < b->nm20; i++)
     emit(c, OP_TRUNC, b->m20[i], b->m20col[i]);
   emit(c, OP_COMMIT, 0, b->col);
-  const struct word *L = find_word(b, WK_L), *P = find_word(b, WK_P), *PP = find_word(b, WK_PP);
+  const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PP = find_word(c, WK_PP);
   if (L) {
     if (c->given & (1u << SL_H))
       emit(c, OP_WORD, SL_H, L->col);
@@ -1117,6 +1164,97 @@ static void ext_free(void *v)
   free(x->lines);
   free(x->m16);
   free(x);
+}
+
+/* The units that can call themselves, directly or through others: those
+ * on a cycle of the call graph (the calls of reachable blocks), found as
+ * its strongly connected components (Tarjan's, without recursion): linear
+ * in units and calls.  cyc[u] is 1 for such a unit; NULL when out of memory. */
+static char *calls_itself(size_t n, const struct summ *S, const int *first, const int *unit, const char *reach,
+                          int nu)
+{
+  size_t ne = 0;
+  for (size_t i = 0; i < n; i++)
+    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
+      ne++;
+  size_t *off = calloc((size_t)nu + 1, sizeof *off);
+  int *dst = malloc((ne ? ne : 1) * sizeof *dst);
+  int *idx = malloc((size_t)nu * sizeof *idx), *low = malloc((size_t)nu * sizeof *low);
+  int *stk = malloc((size_t)nu * sizeof *stk), *path = malloc((size_t)nu * sizeof *path);
+  size_t *it = malloc((size_t)nu * sizeof *it);
+  char *on = calloc((size_t)nu, 1), *cyc = calloc((size_t)nu, 1);
+  if (!off || !dst || !idx || !low || !stk || !path || !it || !on || !cyc) {
+    free(cyc);
+    cyc = NULL;
+    goto out;
+  }
+  /* the calls by caller (counting sort) */
+  for (size_t i = 0; i < n; i++)
+    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
+      off[unit[i] + 1]++;
+  for (int u = 0; u < nu; u++)
+    off[u + 1] += off[u];
+  for (int u = 0; u < nu; u++)
+    it[u] = off[u];
+  for (size_t i = 0; i < n; i++)
+    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i]) {
+      int from = unit[i], to = unit[first[S[i].L]];
+      dst[it[from]++] = to;
+      if (from == to)
+        cyc[from] = 1;   /* calls itself directly */
+    }
+  for (int u = 0; u < nu; u++)
+    idx[u] = -1;
+  int next = 0, nstk = 0;
+  for (int r = 0; r < nu; r++) {
+    if (idx[r] >= 0)
+      continue;
+    int depth = 0;
+    path[depth++] = r;
+    idx[r] = low[r] = next++;
+    it[r] = off[r];
+    stk[nstk++] = r;
+    on[r] = 1;
+    while (depth) {
+      int u = path[depth - 1];
+      if (it[u] < off[u + 1]) {
+        int v = dst[it[u]++];
+        if (idx[v] < 0) {
+          idx[v] = low[v] = next++;
+          it[v] = off[v];
+          stk[nstk++] = v;
+          on[v] = 1;
+          path[depth++] = v;
+        } else if (on[v] && idx[v] < low[u]) {
+          low[u] = idx[v];
+        }
+        continue;
+      }
+      depth--;
+      if (depth && low[u] < low[path[depth - 1]])
+        low[path[depth - 1]] = low[u];
+      if (low[u] == idx[u]) {   /* u roots a component: pop it */
+        int size = 0, top = nstk;
+        do {
+          on[stk[--nstk]] = 0;
+          size++;
+        } while (stk[nstk] != u);
+        if (size > 1)
+          for (int k = nstk; k < top; k++)
+            cyc[stk[k]] = 1;
+      }
+    }
+  }
+out:
+  free(off);
+  free(dst);
+  free(idx);
+  free(low);
+  free(stk);
+  free(path);
+  free(it);
+  free(on);
+  return cyc;
 }
 
 static void structure(struct comp *c)
@@ -1283,23 +1421,13 @@ static void structure(struct comp *c)
         i = j;
       }
     /* recursion: a sub that can call itself, directly or through others */
-    int nu = nsub + 1;
-    char *calls = calloc((size_t)nu * (size_t)nu, 1);
-    if (calls) {
+    char *cyc = calls_itself(n, S, first, unit, reach, nsub + 1);
+    if (cyc) {
       for (size_t i = 0; i < n; i++)
-        if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
-          calls[unit[i] * nu + unit[first[S[i].L]]] = 1;
-      for (int k = 0; k < nu; k++)
-        for (int i = 0; i < nu; i++)
-          if (calls[i * nu + k])
-            for (int j = 0; j < nu; j++)
-              if (calls[k * nu + j])
-                calls[i * nu + j] = 1;
-      for (size_t i = 0; i < n; i++)
-        if (start[i] && unit[i] > 0 && calls[unit[i] * nu + unit[i]])
+        if (start[i] && unit[i] > 0 && cyc[unit[i]])
           serr(c, i, 0, 0, "sub %d can call itself: more than 8 nested calls stop the run with E-NEST",
                B[i].number);
-      free(calls);
+      free(cyc);
     }
   }
   free(reach);
@@ -1404,8 +1532,8 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   if (c.x->uses_tk && !c.x->has_m10)
     diag_add(d, DIAG_WARNING, 0, c.x->tk_line, c.x->tk_col, c.x->tk_number,
              "TK and UG are set only by a tooth-step search with M10, and this program has none: they read 0");
-  if (c.oom)
-    diag_add(d, DIAG_ERROR, S42_E_LIMIT, 1, 1, -1, "out of memory, or the program exceeds 16 million instructions");
+  if (c.oom && !c.toolong)
+    diag_add(d, DIAG_ERROR, S42_E_LIMIT, 1, 1, -1, "out of memory");
   free(c.s);
   free(c.b);
   diag_sort(d);

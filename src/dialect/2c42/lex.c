@@ -50,11 +50,25 @@ static void step(struct lex *l, size_t len, int32_t c)
   }
 }
 
-int32_t lex_peek(struct lex *l)
+/* Every ASCII byte but whitespace, ';' '^' CR LF stands for itself. */
+const uint8_t lex_plain[256] = {
+  /* 0x00..0x1F: controls are characters (which no word accepts), but TAB
+   * LF VT FF CR are whitespace or line ends */
+  1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 0, 1, 1,
+  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
+  /* ' ' is whitespace (lex_peek skips it itself), ';' a comment, '^' an end */
+  0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
+  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1,
+  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
+  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1,
+  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
+  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
+  /* 0x80..0xFF: UTF-8, decoded by lex_peek_slow */
+};
+
+int32_t lex_peek_slow(struct lex *l)
 {
-  /* the parser peeks the same character many times: answer from the cache
-   * while the cursor has not moved */
-  if (l->peeked)   /* cleared by everything that moves the cursor */
+  if (l->peeked)
     return l->c;
   l->peeked = 1;
   for (;;) {
@@ -124,16 +138,6 @@ int32_t lex_peek(struct lex *l)
     }
     return l->c;
   }
-}
-
-void lex_adv(struct lex *l)
-{
-  l->peeked = 0;
-  if (l->c != LX_EOB && l->c != LX_EOF)
-    l->blen++;
-  l->pos = l->cnext;
-  l->line = l->cnline;
-  l->col = l->cncol;
 }
 
 int32_t lex_raw_peek(struct lex *l)
@@ -248,6 +252,12 @@ int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col,
   *enc = NULL;
   size_t bad = n, highs = 0, len;
   for (size_t p = l.pos; p < n; p += len) {
+    /* ASCII, eight bytes at a time: most programs are nothing else */
+    uint64_t w8;
+    while (p + 8 <= n && (memcpy(&w8, text + p, 8), !(w8 & 0x8080808080808080ull)))
+      p += 8;
+    if (p >= n)
+      break;
     int32_t c = decode(&l, p, &len);
     if (c == 0xFFFD && len == 1) {   /* a U+FFFD written as such is a character */
       if (bad == n)

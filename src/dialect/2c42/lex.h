@@ -34,10 +34,70 @@ struct lex {
 struct lex_mark { size_t pos; unsigned line, col, blen; };
 
 void lex_init(struct lex *l, const char *s, size_t n, struct diag_list *d);
+
+/* lex_peek's fast path, over bytes with no call: 1 for an ASCII byte that
+ * is a character of its own -- not whitespace, not ';' '^' CR LF (which
+ * lex_peek_slow reads: comments, line ends, UTF-8, the look-alikes, ПС). */
+extern const uint8_t lex_plain[256];
+int32_t lex_peek_slow(struct lex *l);
+
 /* The next significant character (mapped), LX_EOB or LX_EOF; not consumed. */
-int32_t lex_peek(struct lex *l);
+static inline int32_t lex_peek(struct lex *l)
+{
+  /* the parser peeks the same character many times: answer from the cache
+   * while the cursor has not moved */
+  if (l->peeked)   /* cleared by everything that moves the cursor */
+    return l->c;
+  size_t pos = l->pos;
+  unsigned col = l->col;
+  while (pos < l->n) {
+    unsigned char b = (unsigned char)l->s[pos];
+    if (b == ' ') {   /* the space between words: a column, nothing else */
+      pos++;
+      col++;
+      continue;
+    }
+    if (!lex_plain[b])
+      break;
+    l->pos = l->cpos = pos;
+    l->col = l->ccol = col;
+    l->cnext = pos + 1;
+    l->cline = l->cnline = l->line;
+    l->cncol = col + 1;
+    l->peeked = 1;
+    return l->c = b;
+  }
+  l->pos = pos;
+  l->col = col;
+  return lex_peek_slow(l);
+}
+
 /* Consume what lex_peek returned (a whole ПС for LX_EOB); counts it. */
-void lex_adv(struct lex *l);
+static inline void lex_adv(struct lex *l)
+{
+  l->peeked = 0;
+  if (l->c != LX_EOB && l->c != LX_EOF)
+    l->blen++;
+  l->pos = l->cnext;
+  l->line = l->cnline;
+  l->col = l->cncol;
+}
+/* After a lex_peek that returned a digit: consume the ASCII digits that
+ * follow one another from there, as lex_peek and lex_adv would one by one;
+ * *t gets the first, the count is returned (at least 1). */
+static inline size_t lex_digit_run(struct lex *l, const char **t)
+{
+  size_t p = l->pos;   /* the digit peeked: pos is its place */
+  while (p < l->n && l->s[p] >= '0' && l->s[p] <= '9')
+    p++;
+  size_t k = p - l->pos;
+  *t = l->s + l->pos;
+  l->peeked = 0;
+  l->blen += (unsigned)k;
+  l->col += (unsigned)k;
+  l->pos = p;
+  return k;
+}
 /* Raw access inside text: the next character as written, or LX_EOB at a
  * newline or ^ (which end the block even inside text), LX_EOF at the end. */
 int32_t lex_raw_peek(struct lex *l);

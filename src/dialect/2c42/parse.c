@@ -109,9 +109,11 @@ static const char *show(int32_t c, char *buf)
   return buf;
 }
 
-static int32_t peek(struct pstate *s) { return lex_peek(&s->p->lx); }
-static unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return s->p->lx.ccol; }
-static void adv(struct pstate *s) { lex_peek(&s->p->lx); lex_adv(&s->p->lx); }
+/* Inline everywhere: the cached peek is a load and a compare. */
+#define HOT static inline __attribute__((always_inline))
+HOT int32_t peek(struct pstate *s) { return lex_peek(&s->p->lx); }
+HOT unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return s->p->lx.ccol; }
+HOT void adv(struct pstate *s) { lex_peek(&s->p->lx); lex_adv(&s->p->lx); }
 
 static void expect(struct pstate *s, int32_t c, const char *what)
 {
@@ -156,13 +158,19 @@ static long number(struct pstate *s, int maxdig, const char *what)
   long v = 0;
   int nd = 0;
   while (isdig(peek(s))) {
-    int dig = peek(s) - '0';
-    if (nd || dig) {
-      if (nd < 12)
-        v = v * 10 + dig;
-      nd++;
+    /* the digits written together, straight from the bytes (what a peek
+     * and an advance would do for each); a space between digits comes
+     * back here through peek */
+    const char *t;
+    size_t k = lex_digit_run(&s->p->lx, &t);
+    for (size_t i = 0; i < k; i++) {
+      int dig = t[i] - '0';
+      if (nd || dig) {
+        if (nd < 12)
+          v = v * 10 + dig;
+        nd++;
+      }
     }
-    adv(s);
   }
   if (nd > maxdig)
     fail(s, S42_E_RANGE, col, "%s has %d digits; at most %d are allowed", what, nd, maxdig);
@@ -926,6 +934,17 @@ static void clear_block(struct block *b)
   b->nm20 = 0;
 }
 
+/* The first character of the next non-empty block, or LX_EOF. */
+static int32_t first_char(struct lex *l)
+{
+  for (;;) {
+    int32_t c = lex_peek(l);
+    if (c != LX_EOB)
+      return c;
+    lex_adv(l);
+  }
+}
+
 int parse_block(struct parser *p, struct block *b)
 {
   struct lex *l = &p->lx;
@@ -935,17 +954,11 @@ int parse_block(struct parser *p, struct block *b)
   arena_reset(&p->ar);
   clear_block(b);
   p->nodes = 0;
-  int32_t c;
   l->number = -1;   /* before the first peek: a note there is this block's */
   l->note_here = 0;
-  for (;;) {
-    c = lex_peek(l);
-    if (c == LX_EOF)
-      return 0;
-    if (c != LX_EOB)
-      break;
-    lex_adv(l);
-  }
+  const int32_t c = first_char(l);   /* set once, before the setjmp */
+  if (c == LX_EOF)
+    return 0;
   l->blen = 0;
   b->line = l->cline;
   b->col = l->ccol;
@@ -984,8 +997,8 @@ int parse_block(struct parser *p, struct block *b)
       lex_set_number(l, (int)n);
     }
     for (;;) {
-      c = lex_peek(l);
-      if (c == LX_EOB || c == LX_EOF)
+      int32_t w = lex_peek(l);   /* not c: nothing set after the setjmp is read after a longjmp */
+      if (w == LX_EOB || w == LX_EOF)
         break;
       word(&s);
     }

@@ -15,8 +15,8 @@
 #define M_ROW(...) ROW('M', __VA_ARGS__)
 #define SKIP(...)
 
-static const struct kp_word gwords[64] = {KP_WORDS(G_ROW, SKIP)};
-static const struct kp_word mwords[32] = {KP_WORDS(SKIP, M_ROW)};
+const struct kp_word kp_gwords[64] = {KP_WORDS(G_ROW, SKIP)};
+const struct kp_word kp_mwords[32] = {KP_WORDS(SKIP, M_ROW)};
 
 /* The names of the motions, in enum order: the codes of the OWN rows. */
 #define NAME_OWN(code) #code,
@@ -31,21 +31,6 @@ const char *const kp_motion_name[MO__COUNT] = {"none", KP_WORDS(NAME, NAME) "dia
 #define FLAGS_DIALOG(code, flags)
 #define FLAGS(n, code, group, flags, plane, motion, ...) FLAGS_##motion(code, flags)
 static const uint8_t motion_flags[MO__COUNT] = {KP_WORDS(FLAGS, FLAGS)};
-
-const struct kp_word *kp_g(int n)
-{
-  return n >= 0 && n < 64 && gwords[n].kind ? &gwords[n] : NULL;
-}
-
-const struct kp_word *kp_m(int n)
-{
-  return n >= 0 && n < 32 && mwords[n].kind ? &mwords[n] : NULL;
-}
-
-const struct kp_word *kp_word(char kind, int n)
-{
-  return kind == 'G' ? kp_g(n) : kind == 'M' ? kp_m(n) : NULL;
-}
 
 const char *kp_codes(char *buf, size_t n, int (*pick)(const struct kp_word *w))
 {

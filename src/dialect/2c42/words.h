@@ -115,9 +115,19 @@ struct kp_word {
 
 /* The row of Gn / Mn, or NULL when the 2С42 has no such function (a
  * plugin's G50, any n outside 0..99). */
-const struct kp_word *kp_g(int n);
-const struct kp_word *kp_m(int n);
-const struct kp_word *kp_word(char kind, int n);
+extern const struct kp_word kp_gwords[64], kp_mwords[32];   /* indexed by number (words.c) */
+static inline const struct kp_word *kp_g(int n)
+{
+  return n >= 0 && n < 64 && kp_gwords[n].kind ? &kp_gwords[n] : NULL;
+}
+static inline const struct kp_word *kp_m(int n)
+{
+  return n >= 0 && n < 32 && kp_mwords[n].kind ? &kp_mwords[n] : NULL;
+}
+static inline const struct kp_word *kp_word(char kind, int n)
+{
+  return kind == 'G' ? kp_g(n) : kind == 'M' ? kp_m(n) : NULL;
+}
 
 /* The codes of the rows `pick` selects, G then M in number order, joined
  * by spaces ("G02 G03 G12 G13"), in buf; returns buf. */
