@@ -66,6 +66,12 @@ static void remove_stale(const char *dir, const char *base)
 int atomic_write(const char *path, const char *shown, mode_t mode, const struct iovec *v, int nv, char *err,
                  size_t n)
 {
+  return atomic_write_flags(path, shown, mode, v, nv, 0, err, n);
+}
+
+int atomic_write_flags(const char *path, const char *shown, mode_t mode, const struct iovec *v, int nv, int flags,
+                       char *err, size_t n)
+{
   size_t tl = strlen(path) + 16;
   char *tmp = malloc(tl), *dir = strdup(path), *base = strdup(path);
   if (!tmp || !dir || !base) {
@@ -92,6 +98,10 @@ int atomic_write(const char *path, const char *shown, mode_t mode, const struct 
   bad = fchmod(fd, mode) != 0;
   for (int i = 0; i < nv && !bad; i++)
     bad = write_all(fd, v[i].iov_base, v[i].iov_len) != 0;
+  struct stat old;
+  /* ATOMIC_DIRSYNC_NEW: is there a name to replace?  (lstat: a symbolic
+   * link is replaced by the rename, not followed) */
+  int is_new = !(flags & ATOMIC_DIRSYNC_NEW) || lstat(path, &old) != 0;
   if (bad || fsync(fd)) {
     snprintf(err, n, "%s: %s", tmp, strerror(errno));
     unlink(tmp);
@@ -99,11 +109,14 @@ int atomic_write(const char *path, const char *shown, mode_t mode, const struct 
     snprintf(err, n, "%s: %s", shown, strerror(errno));
     unlink(tmp);
   } else {
-    /* the rename itself must reach the disk */
-    int dfd = open(dname, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dfd >= 0) {
-      fsync(dfd);
-      close(dfd);
+    /* the rename itself must reach the disk -- unless the caller settles
+     * for the old whole file after a power cut when a name is replaced */
+    if (is_new) {
+      int dfd = open(dname, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      if (dfd >= 0) {
+        fsync(dfd);
+        close(dfd);
+      }
     }
     rc = 0;
   }

@@ -1,6 +1,7 @@
 /* Whole files, written and read safely.  Writing: a crash never leaves a
  * file half written -- the bytes go to a temporary file beside it, which is
- * synced, renamed over the old file, and the directory synced; the
+ * synced, renamed over the old file, and the directory synced (with
+ * ATOMIC_DIRSYNC_NEW only when the name is new); the
  * temporary file a killed writer left is removed by the next write.  Used
  * by the M15 state and the TUI's editor.  Reading: only a regular file (or,
  * when the caller allows it, a pipe that is s42's own standard input), so a
@@ -16,6 +17,19 @@
  * Messages name `shown` (the name the user gave).  0, or -1 with err. */
 int atomic_write(const char *path, const char *shown, mode_t mode, const struct iovec *v, int nv, char *err,
                  size_t n);
+/* The same with flags.  ATOMIC_DIRSYNC_NEW: sync the directory only when
+ * the rename makes a new name there; one that replaces an existing file
+ * syncs only the file.  The rename is atomic either way: a SIGKILL or a
+ * crash of the process leaves the old or the new file, whole (the kernel
+ * keeps what was written).  After a power cut the directory may still
+ * name the old file -- whole, as its own write synced it -- until the
+ * file system commits the rename (ext4: within its commit interval, or at
+ * any later fsync, such as the next write's).  For a file rewritten often
+ * whose previous version is an acceptable fallback (the M15 restart
+ * state: the previous restart point). */
+enum { ATOMIC_DIRSYNC_NEW = 1 };
+int atomic_write_flags(const char *path, const char *shown, mode_t mode, const struct iovec *v, int nv, int flags,
+                       char *err, size_t n);
 
 /* What may be read: a regular file only, or also a pipe that is standard
  * input (`s42 run /dev/stdin`, `--operator /dev/stdin` at the end of a

@@ -352,13 +352,52 @@ static void bb_add(struct bbox *b, const double p[4])
   }
 }
 
+/* Where along an arc (fractions u in (0, 1), in the order the arc reaches
+ * them) a coordinate of its plane turns: the start angle th0 plus the
+ * sweep passes a multiple of pi/2 -- the first axis (which 0) at 0 and pi,
+ * the second (1) at pi/2 and 3 pi/2, either (2) at all four.  At most 5
+ * for a sweep of up to 2 pi; returns how many. */
+static int arc_turns(double th0, double sweep, int which, double u[8])
+{
+  int n = 0;
+  if (sweep == 0)
+    return 0;
+  const double h = M_PI / 2;
+  double dir = sweep > 0 ? 1 : -1;
+  /* the first multiple of pi/2 strictly past th0 in the arc's sense */
+  double k = dir > 0 ? floor(th0 / h) + 1 : ceil(th0 / h) - 1;
+  for (int i = 0; i < 6 && n < 8; i++, k += dir) {
+    double f = (k * h - th0) / sweep;
+    if (!(f > 0 && f < 1))
+      break;
+    long kk = (long)k;
+    int odd = (kk % 2 + 2) % 2;   /* 0: a turn of the first axis, 1: of the second */
+    if (which == 2 || which == odd)
+      u[n++] = f;
+  }
+  return n;
+}
+
+/* An arc's start angle in its plane (the start relative to the centre). */
+static double arc_th0(const struct seg *g)
+{
+  return atan2(-(double)g->cq, -(double)g->cp);
+}
+
+/* The box of a segment's part: its ends and, for an arc, the points where
+ * a coordinate turns (the extent exactly, without sampling the curve: on a
+ * helix the linear axis turns only at the ends). */
 static void bb_curve(struct bbox *b, const struct seg *g, int teach)
 {
-  double pt[4];
+  double pt[4], u[8];
   int curve = teach ? (g->flags & F_TEACH_ARC) : g->kind == K_ARC;
-  int k = curve ? (int)ceil(fabs(g->sweep) / (M_PI / 36)) + 1 : 1;
-  for (int i = 0; i <= k; i++) {
-    seg_point(g, (double)i / k, teach, pt);
+  seg_point(g, 0, teach, pt);
+  bb_add(b, pt);
+  seg_point(g, 1, teach, pt);
+  bb_add(b, pt);
+  int k = curve ? arc_turns(arc_th0(g), g->sweep, 2, u) : 0;
+  for (int i = 0; i < k; i++) {
+    seg_point(g, u[i], teach, pt);
     bb_add(b, pt);
   }
 }
@@ -461,6 +500,18 @@ static void path_seg(cairo_t *cr, const struct panel *P, const struct seg *g, in
       cairo_arc_negative(cr, cx, cy, r, -th0, -th0 - g->sweep);
     else
       cairo_arc(cr, cx, cy, r, -th0, -th0 - g->sweep);
+    cairo_line_to(cr, x1, y1);
+  } else if (curve && (teach ? g->jog : g->d)[P->u != p && P->u != q ? P->u : P->v] == 0) {
+    /* the panel's other axis does not move: the arc projects to a line
+     * along the plane's axis in the panel, drawn to where that coordinate
+     * turns and on to the end (not point by point) */
+    double u[8], pt[4], x, y;
+    int k = arc_turns(arc_th0(g), g->sweep, P->u == p || P->v == p ? 0 : 1, u);
+    for (int i = 0; i < k; i++) {
+      seg_point(g, u[i], teach, pt);
+      pmap(P, pt[P->u], pt[P->v], &x, &y);
+      cairo_line_to(cr, x, y);
+    }
     cairo_line_to(cr, x1, y1);
   } else if (curve) {
     double r = hypot(g->cp, g->cq) / 1000.0 * P->s;

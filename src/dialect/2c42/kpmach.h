@@ -23,8 +23,9 @@ struct kp_block {
 /* The plane of G17 G18 G19 (enum geom_plane). */
 int kp_plane(int g);
 /* The block's contour path (G01, G02, G03; the arcs G12 G13 too, for their
- * travel): 1 with it in *pa, 0 when the block has none. */
-int kp_path(const struct machine *m, const struct kp_block *b, struct mach_path *pa);
+ * travel) from the position pos (discretes): 1 with it in *pa, 0 when the
+ * block has none. */
+int kp_path(const int64_t pos[4], const struct kp_block *b, struct mach_path *pa);
 /* Check the block against the machine's state; nothing changes.  0, or an
  * error code (vm/errors.h) with the message in msg. */
 int kp_mach_check(const struct machine *m, const struct kp_block *b, char *msg, size_t n);

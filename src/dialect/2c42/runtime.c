@@ -239,6 +239,10 @@ static int exec_block(struct session *s)
   kp_mach_motion(&s->m, &s->mb, &s->mo);
   s->run_next = 0;
   s->resumed = 0;
+  if (!(at->plugins | s->every)) {   /* what sess_run_plugins does without plugins */
+    s->plug_wait = 0;
+    return after_motion(s);
+  }
   return sess_run_plugins(s);
 }
 
@@ -279,7 +283,43 @@ static int after_motion(struct session *s)
 /* A contour move, the core's or a plugin's, waits at a feed override of 0 %. */
 static int held(const struct session *s)
 {
+  int mo = s->mb.motion;   /* a block without a motion is no contour move: no call */
+  if (mo != MO_G01 && mo != MO_G02 && mo != MO_G03 && mo != MO_G12 && mo != MO_G13 && mo != MO_PLUGIN)
+    return 0;
   return sess_contour_block(s) && mach_held(&s->m, kp_mach_moves(&s->mb));
+}
+
+/* The M words whose machine work is a switch (kp_mach_modal), a mark or
+ * the VM's alone (M2, M17, M20's TRUNC). */
+#define LEAN_M (1u << 2 | 1u << 3 | 1u << 4 | 1u << 5 | 1u << 15 | 1u << 17 | 1u << 20 | 1u << 22 | 1u << 23 | \
+                1u << 25 | 1u << 26)
+
+/* A block with no motion, no plugin, no wait, no window, no M16, M18 or
+ * M21: what is left of exec_block, after_motion and finish_block for it is
+ * lean_rest, so that such a block (an M word, a sub's M17) costs a few
+ * stores more than one that does not come to the host (issue 18). */
+static inline int lean_block(const struct session *s, const struct kp_attr *at)
+{
+  return at->motion == MO_NONE && !(at->m & ~LEAN_M) && !(at->plugins | s->every) && !at->nm16 && !at->m18;
+}
+
+static int lean_rest(struct session *s, const struct kp_attr *at)
+{
+  memset(s->jogs, 0, sizeof s->jogs);
+  s->has_jogs = 0;
+  memcpy(s->start, s->m.pos, sizeof s->start);
+  kp_mach_modal(&s->m, &s->mb);
+  memset(&s->mo, 0, sizeof s->mo);   /* kp_mach_motion without a motion */
+  s->run_next = 0;
+  s->resumed = 0;
+  s->plug_wait = 0;
+  if (BIT(at->m, 15))
+    s->m15_seen = 1;
+  sess_emit_row(s);                  /* finish_block without M16 */
+  s->wait = W_NONE;
+  s->state = SE_START;
+  s->scr.mode = SCR_AUTO;
+  return -1;
 }
 
 /* A VM_EV_BLOCK: do the block's machine work.  Returns the session event
@@ -288,7 +328,8 @@ static int do_block(struct session *s)
 {
   const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
   char msg[200];
-  s->scr.block = sess_block_number(s);
+  uint32_t number = s->p->blocks[s->vm.cur].number;
+  s->scr.block = number ? (int)number : -1;   /* sess_block_number */
   if (s->vm.clamped) {
     const struct prog_rule *ru = &s->p->rules[s->vm.clamped - 1];
     sess_warn(s, "%s%.10g is over %.0f: clamped to %.0f", ru->name, s->vm.clamped_from, ru->hi, ru->hi);
@@ -297,7 +338,8 @@ static int do_block(struct session *s)
   /* a G20, M19 or dialog block opens M16's correction window as it starts:
    * at its VM_EV_START when the host acted there (an `at` correction is
    * in the window), else here; a PP jump opens none (language.md sec. 14) */
-  if (window_block(at) && !s->window_opened)
+  int lean = lean_block(s, at);   /* no window_block among them */
+  if (!lean && window_block(at) && !s->window_opened)
     memset(s->m.corr, 0, sizeof s->m.corr);
   s->window_opened = 0;
   struct kp_block *b = &s->mb;
@@ -305,9 +347,13 @@ static int do_block(struct session *s)
   b->plane = at->plane;
   b->g = at->g;
   b->m = at->m;
+  /* the words the block has, 0 the rest: only the previous block's words
+   * can be non-zero there (this is the only place mb is written) */
+  for (uint32_t sl = b->given & ~at->slots; sl; sl &= sl - 1)
+    b->w[__builtin_ctz(sl)] = 0.0;
+  for (uint32_t sl = at->slots; sl; sl &= sl - 1)
+    b->w[__builtin_ctz(sl)] = s->vm.w[__builtin_ctz(sl)];
   b->given = at->slots;
-  for (int i = 0; i < SL__COUNT; i++)
-    b->w[i] = BIT(at->slots, i) ? s->vm.w[i] : 0.0;
   b->f = s->vm.reg[REG_F];
   b->d1 = s->vm.reg[REG_D1];
   int e = kp_mach_check(&s->m, b, msg, sizeof msg);
@@ -315,6 +361,8 @@ static int do_block(struct session *s)
     vm_fail(&s->vm, e, "%s", msg);
     return SE_ERROR;
   }
+  if (lean)
+    return lean_rest(s, at);
   if (at->plugins | s->every) {
     if (sess_plug_start_block(s, at->plugins) || sess_plug_phase(s, at->plugins | s->every, 0))
       return SE_ERROR;

@@ -147,12 +147,21 @@ void sess_warn(struct session *s, const char *fmt, ...)
 
 void sess_emit_row(struct session *s)
 {
+  ++s->seq;
+  /* the plugins' members: the hosts read them after the block too
+   * (sess_oscillating); nothing to do when no plugin has started */
+  if (s->started)
+    sess_plugin_json(s, S42_DESCRIBE_TRACE, s->extra, sizeof s->extra);
+  else
+    s->extra[0] = 0;
+  if (!s->sink.row)
+    return;   /* nothing watches: no row is built */
   const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  struct sess_row r;
-  memset(&r, 0, sizeof r);
-  r.seq = ++s->seq;
-  r.n = sess_block_number(s);
-  r.line = s->p->blocks[s->vm.cur].line;
+  const struct prog_block *pb = &s->p->blocks[s->vm.cur];
+  struct sess_row r;   /* every member set below: no memset of the whole */
+  r.seq = s->seq;
+  r.n = pb->number ? (int)pb->number : -1;
+  r.line = pb->line;
   r.depth = s->vm.depth;
   r.motion = kp_motion_name[at->motion];
   memcpy(r.d, s->mo.d, sizeof r.d);
@@ -161,7 +170,6 @@ void sess_emit_row(struct session *s)
   r.t = s->m.t;
   r.v = s->mo.v;
   r.has_v = s->mo.has_v;
-  sess_plugin_json(s, S42_DESCRIBE_TRACE, s->extra, sizeof s->extra);
   r.extra = s->extra;
   if (at->motion == MO_PLUGIN) {
     snprintf(s->gname, sizeof s->gname, "G%02d", at->plug_g % 100);
@@ -171,22 +179,27 @@ void sess_emit_row(struct session *s)
   memcpy(r.jogs, s->jogs, sizeof r.jogs);
   r.has_jogs = s->has_jogs;
   memcpy(r.start, s->start, sizeof r.start);
-  struct machine at_start = s->m;
-  memcpy(at_start.pos, s->start, sizeof at_start.pos);
-  struct kp_block b = s->mb;
   r.teach = at->motion == MO_M19;
-  if (r.teach && (BIT(at->g, 2) || BIT(at->g, 3)))
+  if (r.teach && (BIT(at->g, 2) || BIT(at->g, 3))) {
+    struct kp_block b = s->mb;
     b.motion = BIT(at->g, 2) ? MO_G02 : MO_G03;   /* teach-in along an arc */
-  r.has_path = kp_path(&at_start, &b, &r.path);
-  if (s->sink.row)
-    s->sink.row(s->sink.ctx, s, &r);
+    r.has_path = kp_path(s->start, &b, &r.path);
+  } else {
+    r.has_path = kp_path(s->start, &s->mb, &r.path);
+  }
+  if (!r.has_path)
+    memset(&r.path, 0, sizeof r.path);
+  s->sink.row(s->sink.ctx, s, &r);
 }
 
 
 /* ---- plugins: the host services (include/s42_plugin.h) ---- */
 
 #define PLUG(b) (&(b)->s->plugins->v[(b)->plug])
-#define EACH_PLUGIN(mask, i) for (int i = 0; i < PLUG_MAX; i++) if (((mask) >> i) & 1)
+/* The plugins of mask (bit i: plugin i), in index order: the work is the
+ * plugins in use, not PLUG_MAX. */
+#define EACH_PLUGIN(mask, i) \
+  for (uint32_t each_ = (mask), i = 0; each_ && (i = (uint32_t)__builtin_ctz(each_), 1); each_ &= each_ - 1)
 
 static const struct kp_attr *cur_attr(const struct session *s)
 {
@@ -309,7 +322,7 @@ static int h_move(struct s42_block *b, const struct s42_move *mv)
   double lim = mv->limit < MACH_AXIS_MAX ? mv->limit : MACH_AXIS_MAX;
   struct kp_block arc = s->mb;   /* a helix follows the block's arc (G12, G13): the trace says so */
   struct mach_path pa;
-  int along = (arc.motion == MO_G12 || arc.motion == MO_G13) && kp_path(&s->m, &arc, &pa) && pa.arc;
+  int along = (arc.motion == MO_G12 || arc.motion == MO_G13) && kp_path(s->m.pos, &arc, &pa) && pa.arc;
   mach_move_along(&s->m, along ? &pa : NULL, mv->d, mv->length, lim, s->mb.f, &o);
   for (int a = 0; a < 4; a++)
     s->mo.d[a] += o.d[a];
@@ -626,9 +639,9 @@ void sess_plugin_json(const struct session *s, int what, char *buf, size_t n)
 int sess_run_plugins(struct session *s)
 {
   const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
-  for (int i = s->run_next; i < PLUG_MAX; i++) {
-    if (!((at->plugins >> i) & 1))
-      continue;
+  /* the block's plugins from run_next on, in index order */
+  for (uint32_t todo = at->plugins & ~((1u << s->run_next) - 1); todo; todo &= todo - 1) {
+    int i = __builtin_ctz(todo);
     struct plug *pl = &s->plugins->v[i];
     if (!pl->d->run || (at->motion == MO_M19 && i == sess_motion_plugin(s)))
       continue;   /* under M19 the operator's jogs make the move */
@@ -647,7 +660,7 @@ int sess_run_plugins(struct session *s)
   }
   s->plug_wait = 0;
   s->run_next = 0;
-  if (sess_plug_phase(s, at->plugins | s->every, 2))
+  if ((at->plugins | s->every) && sess_plug_phase(s, at->plugins | s->every, 2))
     return SE_ERROR;
   return s->rt->after(s);
 }

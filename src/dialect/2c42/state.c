@@ -115,7 +115,11 @@ int state_save(const struct session *s, const char *path, uint64_t prog_hash, ch
   h.sum = state_hash(pl, sizeof *pl);
 
   struct iovec v[2] = {{&h, sizeof h}, {pl, sizeof *pl}};
-  int rc = atomic_write(path, path, 0644, v, 2, err, n);
+  /* one fsync a save (the file's); the directory's only when the save
+   * makes the name (the first save into a new file): a later save that
+   * the power cut takes back leaves the previous save's whole state, the
+   * previous restart point (src/core/atomic.h) */
+  int rc = atomic_write_flags(path, path, 0644, v, 2, ATOMIC_DIRSYNC_NEW, err, n);
   free(pl);
   return rc;
 }
