@@ -1349,7 +1349,8 @@ static int headless(const struct opts *opt, struct plot *plot)
   cfg.travel = o.travel;
   cfg.plugins = plugins_init(NULL);
   cfg.sink.ctx = &bs;
-  cfg.sink.row = row_sink;
+  /* rows only for what reads them: a run with none builds none */
+  cfg.sink.row = o.trace || plot || o.realtime || o.modbus ? row_sink : NULL;
   cfg.sink.warn = sink_warn;
   cfg.sink.log = sink_log;
   cfg.sink.moved = sink_moved;

@@ -237,7 +237,7 @@ START_TEST(disasm_arrays_pp_m20)
     "\n"
     "; N2 line 2: N2 PP3 M20/R1R7/\n"
     "0013  BLOCK   1\n"
-    "0014  MACH\n"
+    "0014  SYNC\n"      /* M20 alone is the VM's (TRUNC): nothing for the machine */
     "0015  TRUNC   r1\n"
     "0016  TRUNC   r7\n"
     "0017  COMMIT\n"

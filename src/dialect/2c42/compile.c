@@ -1053,8 +1053,10 @@ static void compile_block(struct comp *c)
       emit(c, OP_COND, 0, PC->col);
   }
   /* Blocks with anything for the machine or the display always yield;
-   * the rest only when the host watches every block (trace, operator). */
-  int machine = mo != MO_NONE || b->m || at->has_f || b->g;
+   * the rest only when the host watches every block (trace, operator).
+   * M17 and M20 are the VM's alone (RET, the counter's TRUNC): a block
+   * with no other word is nothing to the machine. */
+  int machine = mo != MO_NONE || (b->m & ~(1u << 17 | 1u << 20)) || at->has_f || b->g;
   emit(c, machine ? OP_MACH : OP_SYNC, 0, b->col);
   for (int i = 0; i < b->nm20; i++)
     emit(c, OP_TRUNC, b->m20[i], b->m20col[i]);
