@@ -1,4 +1,4 @@
--- bench: the twin of loop.kp in Lua 5.4; the registers are a table
+-- bench: the twin of loop.kp in Lua 5.4 and LuaJIT (-joff); the registers are a table
 local R = {}
 for i = 0, 113 do R[i] = 0 end
 R[1] = 0 R[2] = 0

@@ -1,4 +1,4 @@
--- bench: the twin of trig.kp in Lua 5.4 (angles in 0.001 degree)
+-- bench: the twin of trig.kp in Lua 5.4 and LuaJIT (-joff) (angles in 0.001 degree)
 local R = {}
 for i = 0, 113 do R[i] = 0 end
 local deg = math.pi / 180000
