@@ -46,7 +46,7 @@ include bench/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: canon dialect all check check-switch test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli
+.PHONY: canon dialect all check check-switch test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli load
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -78,7 +78,12 @@ check: deps
 	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) -Otarget test
 
 # The tests themselves, once everything is built (the longest first).
-test: modbus tutorial toothsearch tui plot restart plugins conformance errors realtime limits regress unit programs guide cli shared dialect canon u22 oracle
+test: modbus tutorial toothsearch tui plot restart plugins conformance errors realtime limits regress unit programs guide cli shared dialect canon u22 oracle load
+
+# What s42 maps: s42 run none of the libraries of tui, --modbus, plot and
+# the tooth search, which load theirs with dlopen (tests/load/run.sh)
+load: $(S42)
+	sh tests/load/run.sh $(S42)
 
 # The 2У22: its golden cases (tests/conformance/2u22*) and programs/2u22
 u22: $(S42)

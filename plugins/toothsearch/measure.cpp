@@ -8,7 +8,6 @@
 #include "render.h"
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -491,7 +490,7 @@ int tool_frame(std::vector<shot> &shots, std::vector<std::vector<double>> &psi)
 
 // One search: one revolution, TS_SHOTS images.
 search_out run_search(const tm_model *m, double x, double a0, double mount, int section,
-                      uint32_t shot0, const char *dump, const std::string &tag, bool &io_fail)
+                      uint32_t shot0, const char *dump, ts_png_fn png, const std::string &tag, bool &io_fail)
 {
   const int N = m->image, K = TS_SHOTS;
   std::vector<shot> shots(K);
@@ -630,13 +629,17 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
     out.shot_faces.push_back(f);
   }
 
-  if (dump) {
-    // the annotated copy is colour: zlib's best halves it
-    const std::vector<int> png9 = {cv::IMWRITE_PNG_COMPRESSION, 9};
+  if (dump && !png)
+    io_fail = true;
+  else if (dump) {
+    // through png (tscv.h: imgcodecs is loaded for --dump-images alone)
+    auto write = [&](const std::string &path, const cv::Mat &img, int compression) {
+      if (png(path.c_str(), img.rows, img.cols, img.channels(), img.ptr(), img.step, compression) != 0)
+        io_fail = true;
+    };
     for (int i = 0; i < K; i++) {
       std::string base = std::string(dump) + "/" + tag + "_shot" + std::to_string(i + 1);
-      if (!cv::imwrite(base + ".png", shots[i].img8))
-        io_fail = true;
+      write(base + ".png", shots[i].img8, -1);
       cv::Mat col;
       cv::cvtColor(shots[i].img8, col, cv::COLOR_GRAY2BGR);
       auto at = [&](double r, double deg) {
@@ -681,8 +684,8 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
       std::snprintf(head, sizeof head, "axis (%.2f, %.2f) px", c.x, c.y);
       cv::putText(col, head, cv::Point(6, (int)std::lround(60 * fs)), cv::FONT_HERSHEY_SIMPLEX, fs,
                   cv::Scalar(0, 255, 0), 1, cv::LINE_AA);
-      if (!cv::imwrite(base + "_annotated.png", col, png9))
-        io_fail = true;
+      // the annotated copy is colour: zlib's best halves it
+      write(base + "_annotated.png", col, 9);
     }
   }
   return out;
@@ -790,13 +793,13 @@ extern "C" int ts_search_pass(const struct tm_model *m, const struct ts_request 
     double a0;
     if (which == 0) {
       a0 = rq->a1_deg;
-      s = run_search(m, rq->x1_um, a0, mount, 0, 0, rq->dump_dir, pre + "section1", io_fail);
+      s = run_search(m, rq->x1_um, a0, mount, 0, 0, rq->dump_dir, rq->write_png, pre + "section1", io_fail);
     } else if (m10) {
       a0 = rq->a2_deg;
-      s = run_search(m, rq->x2_um, a0, mount, 1, 0, rq->dump_dir, pre + "section2", io_fail);
+      s = run_search(m, rq->x2_um, a0, mount, 1, 0, rq->dump_dir, rq->write_png, pre + "section2", io_fail);
     } else {
       a0 = rq->a1_deg + 360.0;      // the second revolution follows the first
-      s = run_search(m, rq->x1_um, a0, mount, 0, TS_SHOTS, rq->dump_dir, pre + "section1_search2", io_fail);
+      s = run_search(m, rq->x1_um, a0, mount, 0, TS_SHOTS, rq->dump_dir, rq->write_png, pre + "section1_search2", io_fail);
     }
     out->teeth = s.teeth;
     out->a0_deg = a0;

@@ -1,10 +1,15 @@
 # plugins/toothsearch/: the tooth-step search of G10/G11 (C++17, OpenCV 4).
-# Two shared objects (tscv.h):
+# Three shared objects (tscv.h):
 #   $(BUILD)/plugins/toothsearch.so     the plugin s42 loads: descriptor,
 #       operator flow, tool model (plugin.c, toolmodel.c); plain C, no OpenCV
 #   $(BUILD)/plugins/toothsearch/toothsearch-cv.so   what its init() dlopens:
-#       libtoothsearch.a (render, measure; C++17 and OpenCV) behind one C
-#       entry (cventry.c).  In a subfolder, so the plugin scan never sees it.
+#       libtoothsearch.a (render, measure; C++17 and OpenCV's core and
+#       imgproc) behind one C entry (cventry.c).  In a subfolder, so the
+#       plugin scan never sees it.
+#   $(BUILD)/plugins/toothsearch/toothsearch-png.so  what init() dlopens for
+#       --dump-images alone: the PNG writer (png.cpp), the one user of
+#       OpenCV's imgcodecs, whose dependencies (some 120 libraries) took
+#       most of a searching run's time to load.
 # ./s42 itself never links either (nor OpenCV).  The tool-model parser is
 # plain C and also goes into the unit tests and the fuzzer.
 #   make toothsearch        the accuracy test set (part of make check)
@@ -12,7 +17,9 @@
 TS_DIR        := plugins/toothsearch
 OPENCV_CFLAGS = $(call pkg,OPENCV_CFLAGS,--cflags opencv4)
 OPENCV_LIBS_L = $(call pkg,OPENCV_LIBS_L,--libs-only-L opencv4)
-OPENCV_LIBS   = $(OPENCV_LIBS_L) -lopencv_imgcodecs -lopencv_imgproc -lopencv_core
+# the measurement needs core and imgproc alone; imgcodecs only the writer
+OPENCV_LIBS   = $(OPENCV_LIBS_L) -lopencv_imgproc -lopencv_core
+OPENCV_PNG_LIBS = $(OPENCV_LIBS_L) -lopencv_imgcodecs -lopencv_core
 TS_CXXWARN    := -std=c++17 -Wall -Wextra -Wshadow -Wformat=2
 TS_C_OBJS     := $(BUILD)/$(TS_DIR)/toolmodel.o
 TS_CXX_OBJS   := $(BUILD)/$(TS_DIR)/render.o $(BUILD)/$(TS_DIR)/measure.o
@@ -23,7 +30,7 @@ TS_BENCH      := $(BUILD)/$(TS_DIR)/bench
 $(TS_C_OBJS): MOD_CPPFLAGS := -I$(TS_DIR) -fPIC
 $(BUILD)/$(TS_DIR)/%.o: $(TS_DIR)/%.cpp
 	@mkdir -p $(@D)
-	$(CXX) $(CPPFLAGS) -I$(TS_DIR) $(OPENCV_CFLAGS) $(TS_CXXWARN) $(CFLAGS) -fPIC -c -o $@ $<
+	$(CXX) $(CPPFLAGS) -I$(TS_DIR) $(OPENCV_CFLAGS) $(TS_CXXWARN) $(CFLAGS) $(TS_CXXVIS) -fPIC -c -o $@ $<
 
 $(TS_LIB): $(TS_C_OBJS) $(TS_CXX_OBJS)
 	@mkdir -p $(@D)
@@ -34,9 +41,11 @@ $(TS_LIB): $(TS_C_OBJS) $(TS_CXX_OBJS)
 TS_PLUGIN := $(BUILD)/plugins/toothsearch.so
 TS_CV_SO  := $(BUILD)/plugins/toothsearch/toothsearch-cv.so
 TS_CV_OBJ := $(BUILD)/$(TS_DIR)/cventry.o
+TS_PNG_SO  := $(BUILD)/plugins/toothsearch/toothsearch-png.so
+TS_PNG_OBJ := $(BUILD)/$(TS_DIR)/png.o
 PLUGIN_SOS += $(TS_PLUGIN)
 $(TS_PLUGIN): $(TS_DIR)/plugin.c $(TS_DIR)/toolmodel.c $(TS_DIR)/toolmodel.h $(TS_DIR)/tscv.h \
-              $(TS_DIR)/toothsearch.h include/s42_plugin.h | $(TS_CV_SO)
+              $(TS_DIR)/toothsearch.h include/s42_plugin.h | $(TS_CV_SO) $(TS_PNG_SO)
 	@mkdir -p $(@D)
 	$(CC) -D_GNU_SOURCE $(WARN) $(CFLAGS) $(PLUGIN_FLAGS) -I$(TS_DIR) $(LDFLAGS) -o $@ $(filter %.c,$^) -ldl -lm
 $(TS_CV_OBJ): $(TS_DIR)/cventry.c
@@ -47,16 +56,23 @@ $(TS_CV_OBJ): $(TS_DIR)/cventry.c
 $(TS_CV_SO): $(TS_CV_OBJ) $(TS_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(CFLAGS) $(LDFLAGS) -shared -Wl,--exclude-libs,ALL -o $@ $^ $(OPENCV_LIBS) -lm
+# png.o (from png.cpp by the rule above) exports ts_png_write alone
+$(TS_PNG_SO): $(TS_PNG_OBJ)
+	@mkdir -p $(@D)
+	$(CXX) $(CFLAGS) $(LDFLAGS) -shared -o $@ $^ $(OPENCV_PNG_LIBS)
+$(TS_PNG_OBJ): TS_CXXVIS := -fvisibility=hidden
 
 .PHONY: install-toothsearch
 install: install-toothsearch
-install-toothsearch: $(TS_CV_SO)
+install-toothsearch: $(TS_CV_SO) $(TS_PNG_SO)
 	install -d $(DESTDIR)$(PLUGINDIR)/toothsearch
 	install -m 644 $(TS_CV_SO) $(DESTDIR)$(PLUGINDIR)/toothsearch/toothsearch-cv.so
+	install -m 644 $(TS_PNG_SO) $(DESTDIR)$(PLUGINDIR)/toothsearch/toothsearch-png.so
 
 $(BUILD)/tests/toothsearch/%.o $(BUILD)/$(TS_DIR)/bench.o: MOD_CPPFLAGS := -I$(TS_DIR)
-$(TS_TEST): $(BUILD)/tests/toothsearch/accuracy.o $(TS_LIB)
-	$(CXX) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(OPENCV_LIBS) -lm
+# the accuracy test writes a dump too: png.o, with imgcodecs
+$(TS_TEST): $(BUILD)/tests/toothsearch/accuracy.o $(TS_LIB) $(TS_PNG_OBJ)
+	$(CXX) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(OPENCV_PNG_LIBS) $(OPENCV_LIBS) -lm
 $(TS_BENCH): $(BUILD)/$(TS_DIR)/bench.o $(TS_LIB)
 	$(CXX) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(OPENCV_LIBS) -lm
 
@@ -72,4 +88,4 @@ toothsearch: $(TS_TEST) $(S42) $(PLUGIN_SOS)
 toothsearch-bench: $(TS_BENCH)
 	$(TS_BENCH) tests/toothsearch/t004_reamer_seed.tool tests/toothsearch/t150_saw_fine.tool
 
--include $(TS_C_OBJS:.o=.d) $(TS_CXX_OBJS:.o=.d) $(TS_CV_OBJ:.o=.d) $(BUILD)/tests/toothsearch/accuracy.d $(BUILD)/$(TS_DIR)/bench.d
+-include $(TS_C_OBJS:.o=.d) $(TS_CXX_OBJS:.o=.d) $(TS_CV_OBJ:.o=.d) $(TS_PNG_OBJ:.o=.d) $(BUILD)/tests/toothsearch/accuracy.d $(BUILD)/$(TS_DIR)/bench.d

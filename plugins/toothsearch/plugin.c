@@ -5,7 +5,8 @@
  * This library is light: the descriptor, the operator's flow and the tool
  * model (toolmodel.c), no OpenCV.  init() reads --tool, then dlopens the
  * heavy part, toothsearch/toothsearch-cv.so beside this file (tscv.h), which
- * renders the probe camera's images and measures them.
+ * renders the probe camera's images and measures them, and with
+ * --dump-images toothsearch/toothsearch-png.so, which writes them.
  *
  * The flow of one G10 block, each step a call of run() (host->resumed()
  * counts the calls after waits):
@@ -48,6 +49,8 @@ struct ts {
   const char *dump;          /* --dump-images, or NULL */
   void *cv_handle;
   const struct ts_cv *cv;
+  void *png_handle;          /* --dump-images: the PNG writer (tscv.h) */
+  ts_png_fn png;
   /* the block in progress */
   int stage;
   int m10;
@@ -124,6 +127,28 @@ static int init(const struct s42_host *h, const char *dir, void **self)
     free(t);
     return S42_FAIL;
   }
+  /* --dump-images: OpenCV's imgcodecs comes with the writer, and only then */
+  if (t->dump) {
+    if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, TS_PNG_FILE) >= sizeof path) {
+      h->error(NULL, "E-PLUGIN", "its directory's name is too long");
+      dlclose(t->cv_handle);
+      free(t);
+      return S42_FAIL;
+    }
+    dlerror();
+    t->png_handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    sym = t->png_handle ? dlsym(t->png_handle, TS_PNG_ENTRY) : NULL;
+    if (!sym) {
+      const char *e = dlerror();
+      h->error(NULL, "E-PLUGIN", "no PNG writer for --dump-images: %s", e ? e : path);
+      if (t->png_handle)
+        dlclose(t->png_handle);
+      dlclose(t->cv_handle);
+      free(t);
+      return S42_FAIL;
+    }
+    memcpy(&t->png, &sym, sizeof t->png);
+  }
   *self = t;
   return S42_OK;
 }
@@ -133,6 +158,8 @@ static void fini(void *self)
   struct ts *t = self;
   if (!t)
     return;
+  if (t->png_handle)
+    dlclose(t->png_handle);
   if (t->cv_handle)
     dlclose(t->cv_handle);
   free(t);
@@ -305,6 +332,7 @@ static int run(void *self, struct s42_block *b)
     t->rq.speed_deg_min = host->has_m(b, 12) ? host->word(b, 'F') : 0;
     t->rq.x2_um = NAN;
     t->rq.dump_dir = t->dump;
+    t->rq.write_png = t->png;
     if (host->number(b) > 0)
       snprintf(t->prefix, sizeof t->prefix, "N%d_", host->number(b));
     else

@@ -22,6 +22,17 @@ extern "C" {
 /* Images the camera takes during one revolution, at evenly spaced A. */
 #define TS_SHOTS 4
 
+/* Write one 8-bit image as a PNG: rows x cols pixels of channels (1 grey,
+ * 3 BGR) bytes, rows step bytes apart; compression 0-9, -1 the default.
+ * 0, or -1 when it was not written. */
+typedef int (*ts_png_fn)(const char *path, int rows, int cols, int channels, const unsigned char *data,
+                         size_t step, int compression);
+/* The one ts_png_fn, with OpenCV's imgcodecs (png.cpp): the whole of
+ * toothsearch/toothsearch-png.so, which the plugin dlopens for
+ * --dump-images; a program may link png.cpp itself (the accuracy test). */
+int ts_png_write(const char *path, int rows, int cols, int channels, const unsigned char *data, size_t step,
+                 int compression);
+
 enum ts_status {
   TS_OK = 0,
   TS_E_TEETH = 1,      /* no tooth found, more than 150, or no consistent count */
@@ -41,6 +52,10 @@ struct ts_request {
   double speed_deg_min;  /* M12 with F; <= 0: TS_DEFAULT_SPEED */
   const char *dump_dir;  /* NULL, or a directory for the images (PNG) */
   const char *dump_prefix; /* NULL, or the start of their names ("N10_") */
+  /* What writes the images of dump_dir (OpenCV's imgcodecs, which loads
+   * some 120 libraries, lives apart: tscv.h); NULL with dump_dir: the
+   * images are not written (TS_E_IO). */
+  ts_png_fn write_png;
 };
 
 struct ts_result {

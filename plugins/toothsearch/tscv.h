@@ -7,7 +7,14 @@
  * probe camera and the measurement (libtoothsearch.a, C++17 and OpenCV),
  * behind the one C entry below.  So a program that never uses G10/G11
  * never maps OpenCV, and one that does finds out at its start whether the
- * heavy part loads. */
+ * heavy part loads.
+ *
+ * The heavy part needs only OpenCV's core and imgproc (some twenty
+ * libraries).  Writing PNGs needs imgcodecs, which brings some 120 more
+ * (codecs, GDAL, ...) and took most of a searching run's time to load, so
+ * it is a third library, toothsearch/toothsearch-png.so (png.cpp): init()
+ * dlopens it only for --dump-images and hands its one function to the
+ * search as ts_request.write_png. */
 #ifndef S42_TSCV_H
 #define S42_TSCV_H
 
@@ -20,8 +27,10 @@ extern "C" {
 #endif
 
 #define TS_CV_ENTRY "ts_cv_entry"
-#define TS_CV_VERSION 1
+#define TS_CV_VERSION 2   /* 2: ts_request.write_png */
 #define TS_CV_FILE "toothsearch/toothsearch-cv.so"   /* under the plugin's directory */
+#define TS_PNG_ENTRY "ts_png_write"                  /* a ts_png_fn (toothsearch.h) */
+#define TS_PNG_FILE "toothsearch/toothsearch-png.so" /* likewise */
 
 /* toothsearch.h's functions; every one catches every C++ exception. */
 struct ts_cv {

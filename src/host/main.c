@@ -21,6 +21,7 @@
 #include "state.h"
 #include "tui.h"
 #include "tui_modbus.h"
+#include "curses_dl.h"
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
@@ -1620,6 +1621,12 @@ static int cmd_tui(int argc, char **argv)
   } else if (o.tools) {
     fprintf(stderr, "s42: tui: --tools is a lathe's tool table; the 2С42's tooth-search tool model is --tool\n");
     return EXIT_USAGE;
+  }
+  /* ncursesw is loaded for the terminal alone (curses_dl.h) */
+  char lerr[300];
+  if (s42_curses_load(lerr, sizeof lerr)) {
+    fprintf(stderr, "s42 tui: %s\n", lerr);
+    return EXIT_IO;
   }
   struct tui_source mb;
   if (o.modbus) {

@@ -27,6 +27,7 @@
 #include <fcntl.h>
 #include <math.h>
 #include <modbus/modbus.h>
+#include "modbus_dl.h"   /* libmodbus through dlopen, loaded by mb_open */
 #include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -895,6 +896,9 @@ struct mb_server *mb_open(const struct mb_opts *o, char *err, size_t n, int *usa
   }
   freeaddrinfo(ai);
   *usage = 0;
+  /* libmodbus now, not at every start of s42 */
+  if (s42_modbus_load(err, n))
+    return NULL;
   signal(SIGPIPE, SIG_IGN);      /* a client that went away is not our death */
   struct mb_server *mb = calloc(1, sizeof *mb);
   if (!mb) {

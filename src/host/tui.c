@@ -25,6 +25,7 @@
 #define screen_init curses_scr_init_unused
 #include <curses.h>
 #undef screen_init
+#include "curses_dl.h"   /* ncursesw through dlopen: main.c loads it for s42 tui */
 #include <errno.h>
 #include <fcntl.h>
 #include <langinfo.h>

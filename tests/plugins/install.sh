@@ -25,7 +25,8 @@ make --no-print-directory install DESTDIR="$tmp/root" PREFIX="$PREFIX" BUILD="$B
 if grep -q '^cc \|^g++ \|^c++ ' "$tmp/log"; then bad "make install rebuilt something: $(grep '^cc\|^g++\|^c++' "$tmp/log" | head -2)"; else ok; fi
 root=$tmp/root$PREFIX
 for f in bin/s42 lib/s42/plugins/helix.so lib/s42/plugins/oscillation.so lib/s42/plugins/toothsearch.so \
-         lib/s42/plugins/toothsearch/toothsearch-cv.so include/s42_plugin.h share/man/man1/s42.1 \
+         lib/s42/plugins/toothsearch/toothsearch-cv.so lib/s42/plugins/toothsearch/toothsearch-png.so \
+         include/s42_plugin.h share/man/man1/s42.1 \
          share/bash-completion/completions/s42; do
   [ -f "$root/$f" ] && ok || bad "make install did not install $f"
 done
@@ -56,6 +57,12 @@ for n in reamer_rake helical_flute endmill_search; do
   "$tree" run "$@" >"$tmp/$n.tree" 2>/dev/null
   cmp -s "$tmp/$n.installed" "$tmp/$n.tree" && ok || bad "$n: the installed s42's dump differs from the build tree's"
 done
+# the installed tooth search writes its images (its PNG writer beside it)
+"$root/bin/s42" run endmill_search.kp --tool endmill_search.tool --operator endmill_search.operator \
+  --dump-images "$tmp/img" >/dev/null 2>"$tmp/err"
+st=$?
+[ $st -eq 0 ] && [ -s "$tmp/img/N3_section1_shot1.png" ] && ok ||
+  bad "installed s42 run endmill_search --dump-images: status $st: $(head -3 "$tmp/err") $(ls "$tmp/img" 2>&1 | head -2)"
 cd "$src" || exit 1
 
 # the installed man page renders, and its FILES section says where plugins are

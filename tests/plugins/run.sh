@@ -2,8 +2,9 @@
 # Plugins from the outside: the minimal plugin of the README built against
 # the installed header alone; --plugins and S42_PLUGIN_PATH; refused
 # plugins in `s42 plugins`; E-PLUGIN when the plugin directory is missing;
-# and OpenCV never loaded by a program without G10/G11 (LD_DEBUG=files
-# lists every library the dynamic loader maps).
+# and OpenCV never loaded by a program without G10/G11, its imgcodecs by
+# none without --dump-images (LD_DEBUG=files lists every library the
+# dynamic loader maps).
 # usage: tests/plugins/run.sh S42 BUILD
 S42=$1
 BUILD=${2:-build}
@@ -66,6 +67,21 @@ st=$?
 [ $st -eq 0 ] && ok || bad "G10 run: status $st"
 grep -q "libopencv_core" "$tmp/ld" && grep -q "toothsearch/toothsearch-cv.so" "$tmp/ld" && ok ||
   bad "a G10 program did not map OpenCV (LD_DEBUG=files)"
+# the measurement needs OpenCV's core and imgproc; imgcodecs (its some 120
+# libraries) comes with the PNG writer, toothsearch-png.so, for
+# --dump-images alone
+if grep -q "imgcodecs\|toothsearch-png.so" "$tmp/ld"; then
+  bad "a G10 program without --dump-images loaded imgcodecs: $(grep -o 'file=[^ ]*\(imgcodecs\|png\.so\)[^ ]*' "$tmp/ld" | sort -u | tr '\n' ' ')"
+else
+  ok
+fi
+grep -q "libopencv_imgproc" "$tmp/ld" && ok || bad "a G10 program did not map imgproc (the check above proves nothing)"
+LD_DEBUG=files "$S42" run "$tmp/g10.kp" --tool tests/toothsearch/t004_reamer_seed.tool --operator "$tmp/g10.op" \
+  --dump-images "$tmp/img" >/dev/null 2>"$tmp/ld"
+st=$?
+[ $st -eq 0 ] && [ -s "$tmp/img/N1_section1_shot1.png" ] && ok || bad "G10 run with --dump-images: status $st: $(ls "$tmp/img" 2>&1 | head -3)"
+grep -q "libopencv_imgcodecs" "$tmp/ld" && grep -q "toothsearch/toothsearch-png.so" "$tmp/ld" && ok ||
+  bad "a G10 program with --dump-images did not load the PNG writer and imgcodecs"
 
 # the tooth search without its heavy part: the plugin refuses to start with
 # the reason, and the block is E-PLUGIN; programs without G10 are not hurt
@@ -81,6 +97,21 @@ printf '№1 G01 X+10 F100 ^\n№2 M02 ^\n' > "$tmp/plain.kp"
 "$tmp/bin/s42" run "$tmp/plain.kp" --plugins "$tmp/light" --tool tests/toothsearch/t004_reamer_seed.tool >/dev/null 2>"$tmp/err"
 st=$?
 [ $st -eq 0 ] && ok || bad "a program without G10 beside a broken toothsearch: status $st: $(cat "$tmp/err")"
+# the heavy part without the PNG writer: G10 runs; --dump-images is refused
+# at the start with the reason
+mkdir -p "$tmp/nopng/toothsearch"
+cp "$BUILD/plugins/toothsearch.so" "$tmp/nopng/"
+cp "$BUILD/plugins/toothsearch/toothsearch-cv.so" "$tmp/nopng/toothsearch/"
+"$tmp/bin/s42" run "$tmp/g10.kp" --plugins "$tmp/nopng" --tool tests/toothsearch/t004_reamer_seed.tool \
+  --operator "$tmp/g10.op" >/dev/null 2>"$tmp/err"
+st=$?
+[ $st -eq 0 ] && ok || bad "no toothsearch-png.so, no --dump-images: status $st: $(cat "$tmp/err")"
+"$tmp/bin/s42" run "$tmp/g10.kp" --plugins "$tmp/nopng" --tool tests/toothsearch/t004_reamer_seed.tool \
+  --operator "$tmp/g10.op" --dump-images "$tmp/img3" >/dev/null 2>"$tmp/err"
+st=$?
+[ $st -eq 1 ] && ok || bad "no toothsearch-png.so, --dump-images: status $st, want 1"
+grep -q "the toothsearch plugin ($tmp/nopng/toothsearch.so) failed to start: no PNG writer for --dump-images: .*toothsearch/toothsearch-png.so" "$tmp/err" &&
+  ok || bad "no toothsearch-png.so, --dump-images: $(cat "$tmp/err")"
 
 # A plugin file is opened only for a program that needs a function it may
 # provide, and then first in a child (the probe), so a constructor that

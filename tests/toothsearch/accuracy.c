@@ -168,6 +168,10 @@ static int api_checks(const char *path, const struct tm_model *m)
   char dir[] = "/tmp/s42tsXXXXXX";
   if (mkdtemp(dir)) {
     rq.dump_dir = dir;
+    rq.write_png = NULL;     /* no writer: the images are not written */
+    st = ts_search(m, &rq, &r, err, sizeof err);
+    EXPECT(st == TS_E_IO, "dump without write_png: status %d '%s'", st, err);
+    rq.write_png = ts_png_write;
     rq.speed_deg_min = 720;
     st = ts_search(m, &rq, &r, err, sizeof err);
     EXPECT(st == TS_OK, "dump: status %d '%s'", st, err);
