@@ -61,6 +61,7 @@ struct vm {
   unsigned clamped;            /* rule index + 1 of a value clamped in this block, 0 none */
   double clamped_from;         /* the value before clamping */
   struct vm_error err;
+  double rad;                  /* the program's angle unit in radians (vm_init) */
   /* the open block's transaction */
   unsigned nundo;
   unsigned arr_saved;           /* bit k: array k is snapshotted in arr_old[k] */
