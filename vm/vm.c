@@ -277,6 +277,15 @@ static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, doubl
 #define POP() (popped = tos, tos = st[--sp], popped)
 #define PUSH(v) (st[sp++] = tos, tos = (v))
 
+/* Any of the n flags set: a watch array that flags no block watches nothing. */
+static int any_set(const uint8_t *f, size_t n)
+{
+  for (size_t i = 0; i < n; i++)
+    if (f[i])
+      return 1;
+  return 0;
+}
+
 int vm_skip(struct vm *vm)
 {
   const struct program *p = vm->p;
@@ -301,7 +310,11 @@ enum vm_event vm_run(struct vm *vm)
   double a, b, r;
   /* the host sets these only between calls */
   const uint64_t limit = vm->max_blocks ? vm->max_blocks : UINT64_MAX;
-  const int watching = vm->start_all || vm->watch;
+  if (vm->watch != vm->watch_seen) {
+    vm->watch_seen = vm->watch;
+    vm->watch_any = vm->watch && any_set(vm->watch, p->nblocks);
+  }
+  const int watching = vm->start_all || vm->watch_any;
   const int yield_all = vm->yield_all;
   /* the program's parameter range, in locals: a store to a register could
    * alias p->lim for the compiler, and SETP runs in nearly every block */

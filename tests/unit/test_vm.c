@@ -919,6 +919,29 @@ START_TEST(watch_yields_start)
 }
 END_TEST
 
+/* A watch array that flags no block watches nothing (the VM then runs its
+ * plain dispatch table); one handed over anew is read anew. */
+START_TEST(watch_array_read_when_handed_over)
+{
+  load("N1 R1+1\nN2 R2+1\nN3 R3+1\nN4 M2\n");
+  uint8_t none[4] = {0, 0, 0, 0}, third[4] = {0, 0, 1, 0};
+  vm->watch = none;
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);   /* N4 has M2 */
+  ck_assert_double_eq(R(3), 1);
+  load("N1 R1+1\nN2 R2+1\nN3 R3+1\nN4 M2\n");
+  vm->watch = none;
+  none[1] = 1;   /* changed in place before the VM first saw it: read */
+  ck_assert_int_eq(vm_run(vm), VM_EV_START);
+  ck_assert_uint_eq(vm->cur, 1);
+  vm->watch = third;
+  ck_assert_int_eq(vm_run(vm), VM_EV_START);
+  ck_assert_uint_eq(vm->cur, 2);
+  ck_assert_double_eq(R(2), 1);
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);
+  ck_assert_int_eq(vm_run(vm), VM_EV_END);
+}
+END_TEST
+
 START_TEST(start_all_and_yield_all)
 {
   load("N1 R1+1\nN2 R2+1\nN3 M2\n");
@@ -1531,6 +1554,7 @@ Suite *suite_vm(void)
   tcase_add_test(tc, pp_latch_taken_by_next_pp_block);
   tcase_add_test(tc, latch_cleared_at_m2);
   tcase_add_test(tc, watch_yields_start);
+  tcase_add_test(tc, watch_array_read_when_handed_over);
   tcase_add_test(tc, start_all_and_yield_all);
   tcase_add_test(tc, sync_blocks_do_not_yield);
   tcase_add_test(tc, many_vms_one_program);
