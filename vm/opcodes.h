@@ -119,6 +119,13 @@
   OP(RSUBRP, RR,   REG,  0, 0, "parameter register EXT = register A&127 minus register A>>7 (REG; SUBR; SETP)") \
   OP(RMULRP, RR,   REG,  0, 0, "parameter register EXT = register A&127 times register A>>7 (REG; MULR; SETP)") \
   OP(RDIVRP, RR,   REG,  0, 0, "parameter register EXT = register A&127 divided by register A>>7 (REG; DIVR; SETP)") \
+  OP(SINP,   NONE, REG,  1, 0, "sine, into parameter register EXT (SIN; SETP)") \
+  OP(COSP,   NONE, REG,  1, 0, "cosine, into parameter register EXT (COS; SETP)") \
+  OP(ASINP,  NONE, REG,  1, 0, "arcsine, into parameter register EXT (ASIN; SETP)") \
+  OP(ACOSP,  NONE, REG,  1, 0, "arccosine, into parameter register EXT (ACOS; SETP)") \
+  OP(ATANP,  NONE, REG,  1, 0, "arctangent, into parameter register EXT (ATAN; SETP)") \
+  OP(RSIN,   REG,  NONE, 0, 1, "push the sine of register A (REG; SIN)") \
+  OP(RCOS,   REG,  NONE, 0, 1, "push the cosine of register A (REG; COS)") \
   OP(CMPRK,  RELR, KT,   0, 0, "the block's jump condition is the relation A&7 between register A>>3 and constant K[EXT], K[EXT+1] and K[EXT+2] its bounds outside which the relation is plainly < or > (REG; CMPCK)")
 
 enum vm_opd { OPD_NONE, OPD_K, OPD_I, OPD_REG, OPD_SLOT, OPD_SET, OPD_ARR,

@@ -48,17 +48,17 @@ static int may_hold(int op)
   case OP_ADDI: case OP_SUBI: case OP_MULI: case OP_DIVI:
   case OP_ADDK: case OP_SUBK: case OP_MULK: case OP_DIVK:
   case OP_ADDR: case OP_SUBR: case OP_MULR: case OP_DIVR:
-  case OP_SETP: case OP_CMPC: case OP_CMPCK: case OP_CMPCR: case OP_CMPRK:
+  case OP_SETP: case OP_CMPC: case OP_CMPCK: case OP_CMPCR: case OP_CMPRK: case OP_RSIN: case OP_RCOS:
     return 1;
   default:
-    return op >= OP_RADDI && op <= OP_RDIVRP;   /* the register forms compute or store */
+    return op >= OP_RADDI && op <= OP_ATANP;   /* the register forms compute or store */
   }
 }
 
 /* The register forms that store (SETP's fused forms). */
 static int stores_param(int op)
 {
-  return op >= OP_ADDP && op <= OP_RDIVRP;
+  return op >= OP_ADDP && op <= OP_ATANP;
 }
 
 /* A block is a transaction: it closes once, with COMMIT or one of the two

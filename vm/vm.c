@@ -416,6 +416,46 @@ enum vm_event vm_run(struct vm *vm)
       TRIG(ACOS, fabs(tos) <= 1.0, acos(tos) / rad)
       TRIG(ATAN, fabs(tos) <= p->lim.atan_max, atan(tos) / rad)
 #undef TRIG
+      /* REG; SIN and REG; COS: the register read, then exactly SIN or COS */
+#define RTRIG(L, BASE, FN) \
+      vmcase1(L) { \
+        a = vm->reg[INS_A(ins)]; \
+        if (!(fabs(a) <= trig_max)) { \
+          math_at(vm, pc - 1, BASE, a, 0, &out); \
+          RAISED; \
+        } \
+        PUSH(FN(a * rad)); \
+        vmbreak; \
+      }
+      RTRIG(RSIN, OP_SIN, sin)
+      RTRIG(RCOS, OP_COS, cos)
+#undef RTRIG
+      /* SIN; SETP and the like: the function exactly, then SETP exactly
+       * (its error at the EXT word's column) */
+#define TRIGP(L, BASE, DOMAIN, VALUE) \
+      vmcase1(L) { \
+        if (!(DOMAIN)) { \
+          math_at(vm, pc - 1, BASE, tos, 0, &out); \
+          RAISED; \
+        } \
+        r = (VALUE); \
+        uint32_t d = INS_A(code[pc]); \
+        if (!(r >= param_lo && r <= param_hi)) { \
+          param_fail(vm, pc, d, r); \
+          RAISED; \
+        } \
+        tos = st[--sp]; \
+        journal(vm, d); \
+        vm->reg[d] = r; \
+        pc++; \
+        vmbreak; \
+      }
+      TRIGP(SINP, OP_SIN, fabs(tos) <= trig_max, sin(tos * rad))
+      TRIGP(COSP, OP_COS, fabs(tos) <= trig_max, cos(tos * rad))
+      TRIGP(ASINP, OP_ASIN, fabs(tos) <= 1.0, asin(tos) / rad)
+      TRIGP(ACOSP, OP_ACOS, fabs(tos) <= 1.0, acos(tos) / rad)
+      TRIGP(ATANP, OP_ATAN, fabs(tos) <= p->lim.atan_max, atan(tos) / rad)
+#undef TRIGP
       FUNCTION(TAN)
       FUNCTION(LOG)
 #undef FUNCTION

@@ -380,6 +380,8 @@ static struct outcome run_code(const uint32_t (*ins)[3], int n, double a, double
   prog_init(&p);
   p.lim.param_lo = lo;
   p.lim.param_hi = hi;
+  p.lim.angle = 0.001;
+  p.lim.trig_max = 2304000;
   static const double ks[] = {0, 2.5, 1e308, -7, 3, 0.5};
   for (size_t i = 0; i < sizeof ks / sizeof *ks; i++)
     prog_consts(&p, &ks[i], 1);
@@ -465,6 +467,29 @@ START_TEST(register_forms_as_their_parts)
               same_outcome(&x, &y, vm_ops[rstore[kind][op]].name, a, b);
             }
         }
+      }
+  /* RSIN, RCOS against REG; SIN and REG; COS, in their domain and out */
+  static const double angles[] = {0, 30000, -45000, 2304000, -2304000, 2304001, 1e308, INFINITY, NAN, 1234.5};
+  for (size_t i = 0; i < sizeof angles / sizeof *angles; i++)
+    for (int c = 0; c < 2; c++) {
+      uint32_t u[3][3] = {{OP_REG, 1, 10}, {c ? OP_COS : OP_SIN, 0, 20}, {OP_SETP, 3, 30}};
+      uint32_t f[2][3] = {{c ? OP_RCOS : OP_RSIN, 1, 20}, {OP_SETP, 3, 30}};
+      struct outcome x = run_code(u, 3, angles[i], 0, -9999999, 9999999), y = run_code(f, 2, angles[i], 0, -9999999, 9999999);
+      same_outcome(&x, &y, c ? "RCOS" : "RSIN", angles[i], 0);
+    }
+  /* the functions with their store against FN; SETP (ASIN of values out
+   * of its domain, results out of a narrow parameter range) */
+  static const int fns[5][2] = {{OP_SIN, OP_SINP}, {OP_COS, OP_COSP}, {OP_ASIN, OP_ASINP}, {OP_ACOS, OP_ACOSP},
+                                {OP_ATAN, OP_ATANP}};
+  static const double args[] = {0, 0.5, -1, 1, 1.5, 30000, 2304001, 1e7, INFINITY, NAN};
+  for (int fn = 0; fn < 5; fn++)
+    for (size_t i = 0; i < sizeof args / sizeof *args; i++)
+      for (int rg = 0; rg < 2; rg++) {
+        double lo = rg ? -0.25 : -9999999, hi = rg ? 0.25 : 9999999;
+        uint32_t u[3][3] = {{OP_REG, 1, 10}, {(uint32_t)fns[fn][0], 0, 20}, {OP_SETP, 3, 30}};
+        uint32_t f[3][3] = {{OP_REG, 1, 10}, {(uint32_t)fns[fn][1], 0, 20}, {OP_EXT, 3, 30}};
+        struct outcome x = run_code(u, 3, args[i], 0, lo, hi), y = run_code(f, 3, args[i], 0, lo, hi);
+        same_outcome(&x, &y, vm_ops[fns[fn][1]].name, args[i], 0);
       }
   /* CMPRK against REG; CMPCK, every relation, near its constant and far */
   for (uint32_t rel = 0; rel < 8; rel++)

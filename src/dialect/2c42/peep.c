@@ -6,6 +6,8 @@
  *   ADDI x; SETP d               ADDIP x, EXT d
  *   ADD; SETP d                  ADDP, EXT d
  *   REG a; CMPCK rel k           CMPRK rel|a<<3, EXT j   (K[j] K[j+1] K[j+2]: K[k], its bounds)
+ *   REG a; SIN / COS             RSIN a / RCOS a
+ *   SIN; SETP d                  SINP, EXT d             (and COS ASIN ACOS ATAN)
  *
  * Why each is safe: a block's code runs straight through (vm/verify.c), no
  * jump lands inside it, and the parts touch nothing between them that the
@@ -42,6 +44,19 @@ static int arith_stack(unsigned op)
   return op == OP_ADD ? 0 : op == OP_SUB ? 1 : op == OP_MUL ? 2 : op == OP_DIV ? 3 : -1;
 }
 
+/* The function-and-store form of a function, 0 none. */
+static unsigned trig_store(unsigned op)
+{
+  switch (op) {
+  case OP_SIN: return OP_SINP;
+  case OP_COS: return OP_COSP;
+  case OP_ASIN: return OP_ASINP;
+  case OP_ACOS: return OP_ACOSP;
+  case OP_ATAN: return OP_ATANP;
+  default: return 0;
+  }
+}
+
 /* The opcodes, by arithmetic and operand, of each form. */
 static const uint8_t rpush[3][4] = {{OP_RADDI, OP_RSUBI, OP_RMULI, OP_RDIVI},
                                     {OP_RADDK, OP_RSUBK, OP_RMULK, OP_RDIVK},
@@ -75,8 +90,8 @@ int peep_block(struct program *p, size_t from)
   while (i + 1 < n) {
     unsigned op0 = INS_OP(code[i]), op1 = INS_OP(code[i + 1]);
     int row, kind;
-    if ((op0 == OP_REG && (arith_x(op1, &row, &kind) == 0 || op1 == OP_CMPCK)) ||
-        (op1 == OP_SETP && (arith_x(op0, &row, &kind) == 0 || arith_stack(op0) >= 0)))
+    if ((op0 == OP_REG && (arith_x(op1, &row, &kind) == 0 || op1 == OP_CMPCK || op1 == OP_SIN || op1 == OP_COS)) ||
+        (op1 == OP_SETP && (arith_x(op0, &row, &kind) == 0 || arith_stack(op0) >= 0 || trig_store(op0))))
       break;
     i++;
   }
@@ -103,6 +118,13 @@ int peep_block(struct program *p, size_t from)
       }
       continue;
     }
+    if (op0 == OP_REG && (op1 == OP_SIN || op1 == OP_COS)) {
+      /* REG a; SIN */
+      cols[o] = cols[i + 1];
+      code[o++] = INS(op1 == OP_SIN ? OP_RSIN : OP_RCOS, INS_A(w0));
+      i += 2;
+      continue;
+    }
     if (op0 == OP_REG && INS_A(w0) < VM_NREG && op1 == OP_CMPCK && isfinite(p->k[INS_A(w1) >> 3])) {
       /* REG a; CMPCK rel k */
       long j = triplet(p, p->k[INS_A(w1) >> 3]);
@@ -112,6 +134,16 @@ int peep_block(struct program *p, size_t from)
       code[o] = INS(OP_CMPRK, (INS_A(w1) & 7) | INS_A(w0) << 3);
       cols[o++] = c1;
       code[o] = INS(OP_EXT, (uint32_t)j);
+      cols[o++] = c1;
+      i += 2;
+      continue;
+    }
+    if (op1 == OP_SETP && trig_store(op0)) {
+      /* SIN; SETP d */
+      uint16_t c0 = cols[i], c1 = cols[i + 1];
+      code[o] = INS(trig_store(op0), 0);
+      cols[o++] = c0;
+      code[o] = INS(OP_EXT, INS_A(w1));
       cols[o++] = c1;
       i += 2;
       continue;
