@@ -3,15 +3,20 @@
 #include "opcodes.h"
 #include <string.h>
 
-static const char *const opd_names[] = {"", "K", "I", "REG", "SLOT", "SET", "ARR", "MASK", "REL", "RELK", "RELR", "PC", "BLK"};
+static const char *const opd_names[] = {"", "K", "I", "REG", "SLOT", "SET", "ARR", "MASK", "REL", "RELK", "RELR", "PC", "BLK",
+                                        "RI", "RK", "RR", "KT"};
 
-static void operand(FILE *f, const struct program *p, uint32_t ins)
+static double kat(const struct program *p, uint32_t a)
 {
-  uint32_t a = INS_A(ins);
-  int op = (int)INS_OP(ins);
-  switch (vm_ops[op].opd) {
+  return a < p->nk ? p->k[a] : 0.0;
+}
+
+/* The operand a of kind opd. */
+static void operand_of(FILE *f, const struct program *p, int opd, uint32_t a)
+{
+  switch (opd) {
   case OPD_NONE: break;
-  case OPD_K: fprintf(f, "%u\t; %.17g", a, a < p->nk ? p->k[a] : 0.0); break;
+  case OPD_K: fprintf(f, "%u\t; %.17g", a, kat(p, a)); break;
   case OPD_I: fprintf(f, "%u", a); break;
   case OPD_REG: fprintf(f, "r%u", a); break;
   case OPD_SLOT: fprintf(f, "w%u", a); break;
@@ -33,10 +38,10 @@ static void operand(FILE *f, const struct program *p, uint32_t ins)
   case OPD_REL: case OPD_RELK: case OPD_RELR: {
     static const char *const rel[8] = {"never", "<", "=", "<=", ">", "!=", ">=", "always"};
     fprintf(f, "%s", rel[a & 7]);
-    if (vm_ops[op].opd == OPD_RELR)
+    if (opd == OPD_RELR)
       fprintf(f, " r%u", a >> 3);
-    else if (vm_ops[op].opd == OPD_RELK)
-      fprintf(f, " %u\t; %.17g", a >> 3, (a >> 3) < p->nk ? p->k[a >> 3] : 0.0);
+    else if (opd == OPD_RELK)
+      fprintf(f, " %u\t; %.17g", a >> 3, kat(p, a >> 3));
     break;
   }
   case OPD_PC: {
@@ -49,7 +54,18 @@ static void operand(FILE *f, const struct program *p, uint32_t ins)
     break;
   }
   case OPD_BLK: fprintf(f, "%u", a); break;
+  case OPD_RI: fprintf(f, "r%u %u", a & 127, a >> 7); break;
+  case OPD_RK: fprintf(f, "r%u %u\t; %.17g", a & 127, a >> 7, kat(p, a >> 7)); break;
+  case OPD_RR: fprintf(f, "r%u r%u", a & 127, a >> 7); break;
+  case OPD_KT:
+    fprintf(f, "%u\t; %.17g (%.17g..%.17g)", a, kat(p, a), kat(p, a + 1), kat(p, a + 2));
+    break;
   }
+}
+
+static void operand(FILE *f, const struct program *p, uint32_t ins)
+{
+  operand_of(f, p, vm_ops[INS_OP(ins)].opd, INS_A(ins));
 }
 
 static void source_line(FILE *f, const char *src, size_t n, unsigned line)
@@ -75,6 +91,7 @@ void vm_disasm(FILE *f, const struct program *p, const char *src, size_t n)
 {
   fprintf(f, "; %zu blocks, %zu instructions, %zu constants, entry %04u\n", p->nblocks, p->ncode, p->nk, p->entry);
   size_t b = 0;
+  int owner = -1;   /* the two-word instruction whose EXT word comes next */
   for (uint32_t pc = 0; pc < p->ncode; pc++) {
     while (b < p->nblocks && p->blocks[b].code == pc) {
       const struct prog_block *pb = &p->blocks[b];
@@ -92,14 +109,23 @@ void vm_disasm(FILE *f, const struct program *p, const char *src, size_t n)
     int op = (int)INS_OP(ins);
     if (op >= OP__COUNT) {
       fprintf(f, "%04u  ??? %08x\n", pc, ins);
+      owner = -1;
       continue;
     }
-    if (vm_ops[op].opd == OPD_NONE) {
+    if (op == OP_EXT && owner >= 0) {
+      fprintf(f, "%04u  %-8s", pc, vm_ops[op].name);
+      operand_of(f, p, vm_ops[owner].ext, INS_A(ins));
+      owner = -1;
+    } else if (op == OP_EXT) {
+      fprintf(f, "%04u  %-8s%u", pc, vm_ops[op].name, INS_A(ins));
+    } else if (vm_ops[op].opd == OPD_NONE) {
       fprintf(f, "%04u  %s", pc, vm_ops[op].name);
     } else {
       fprintf(f, "%04u  %-8s", pc, vm_ops[op].name);
       operand(f, p, ins);
     }
+    if (op != OP_EXT)
+      owner = vm_op_len((unsigned)op) == 2 ? op : -1;
     fputc('\n', f);
   }
 }
@@ -108,8 +134,10 @@ void vm_opcodes_md(FILE *f)
 {
   fprintf(f, "# s42 bytecode\n\nGenerated from `vm/opcodes.h` (`make docs`); do not edit.\n\n"
              "Every instruction is one 32-bit word: the opcode in the low 8 bits, the operand A in the high 24.\n\n"
-             "| opcode | operand | pops | pushes | meaning |\n|---|---|---|---|---|\n");
+             "An instruction with an EXT operand is two words: an `EXT` word follows it, whose A is that operand "
+             "and whose entry in the column map is the column of the instruction's last part (the store).\n\n"
+             "| opcode | operand | EXT operand | pops | pushes | meaning |\n|---|---|---|---|---|---|\n");
   for (int i = 0; i < OP__COUNT; i++)
-    fprintf(f, "| `%s` | %s | %d | %d | %s |\n", vm_ops[i].name, opd_names[vm_ops[i].opd], vm_ops[i].pop,
-            vm_ops[i].push, vm_ops[i].doc);
+    fprintf(f, "| `%s` | %s | %s | %d | %d | %s |\n", vm_ops[i].name, opd_names[vm_ops[i].opd],
+            opd_names[vm_ops[i].ext], vm_ops[i].pop, vm_ops[i].push, vm_ops[i].doc);
 }

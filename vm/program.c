@@ -75,6 +75,15 @@ long prog_const(struct program *p, double v)
   return (long)p->nk++;
 }
 
+long prog_consts(struct program *p, const double *v, size_t n)
+{
+  if (p->nk + n > INS_AMAX || grow((void **)&p->k, &p->capk, p->nk + n, sizeof *p->k))
+    return -1;
+  memcpy(p->k + p->nk, v, n * sizeof *v);
+  p->nk += n;
+  return (long)(p->nk - n);
+}
+
 long prog_rule(struct program *p, const struct prog_rule *r)
 {
   for (size_t i = 0; i < p->nrules; i++)

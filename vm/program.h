@@ -86,6 +86,8 @@ static inline long prog_emit(struct program *p, uint32_t ins, unsigned col)
   return (long)p->ncode++;
 }
 long prog_const(struct program *p, double v);
+/* n constants in a row, none reused; the index of the first, or -1. */
+long prog_consts(struct program *p, const double *v, size_t n);
 long prog_rule(struct program *p, const struct prog_rule *r);
 long prog_block_add(struct program *p, const struct prog_block *b);
 /* Index of the block whose code contains pc (binary search). */

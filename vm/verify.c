@@ -8,6 +8,7 @@
 #include "errors.h"
 #include "msgs.h"
 #include "opcodes.h"
+#include "vmmath.h"
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -47,11 +48,17 @@ static int may_hold(int op)
   case OP_ADDI: case OP_SUBI: case OP_MULI: case OP_DIVI:
   case OP_ADDK: case OP_SUBK: case OP_MULK: case OP_DIVK:
   case OP_ADDR: case OP_SUBR: case OP_MULR: case OP_DIVR:
-  case OP_SETP: case OP_CMPC: case OP_CMPCK: case OP_CMPCR:
+  case OP_SETP: case OP_CMPC: case OP_CMPCK: case OP_CMPCR: case OP_CMPRK: case OP_RSIN: case OP_RCOS:
     return 1;
   default:
-    return 0;
+    return op >= OP_RADDI && op <= OP_ATANP;   /* the register forms compute or store */
   }
+}
+
+/* The register forms that store (SETP's fused forms). */
+static int stores_param(int op)
+{
+  return op >= OP_ADDP && op <= OP_ATANP;
 }
 
 /* A block is a transaction: it closes once, with COMMIT or one of the two
@@ -77,7 +84,7 @@ static int works(int op)
   case OP_TRUNC: case OP_MACH: case OP_SYNC:
     return 1;
   default:
-    return 0;
+    return stores_param(op);
   }
 }
 
@@ -110,13 +117,13 @@ static const char *what(const struct program *p, uint32_t pc, char *buf, size_t 
   return buf;
 }
 
-static int operand(const struct program *p, uint32_t pc, char *msg, size_t n)
+/* The operand a, of kind kind, of the instruction op at pc (or of its EXT
+ * word there). */
+static int operand_of(const struct program *p, uint32_t pc, int op, int kind, uint32_t a, char *msg, size_t n)
 {
-  uint32_t ins = p->code[pc], a = INS_A(ins);
-  int op = (int)INS_OP(ins);
   const char *name = vm_ops[op].name;
   char buf[40];
-  switch (vm_ops[op].opd) {
+  switch (kind) {
   case OPD_NONE:
     if (a)
       return bad(msg, n, "pc %u: %s takes no operand but has %u", pc, name, a);
@@ -185,10 +192,40 @@ static int operand(const struct program *p, uint32_t pc, char *msg, size_t n)
     if (p->blocks[a].code != pc)
       return bad(msg, n, "pc %u: %s %u but block %u starts at pc %u", pc, name, a, a, p->blocks[a].code);
     return 0;
-  default:
-    return bad(msg, n, "pc %u: %s has operand kind %d, which the verifier does not know", pc, name,
-               vm_ops[op].opd);
+  case OPD_RI:
+    return 0;
+  case OPD_RK:
+    if ((a >> 7) >= p->nk)
+      return bad(msg, n, "pc %u: %s r%u %u but the program has %zu constant%s", pc, name, a & 127, a >> 7, p->nk,
+                 plural(p->nk));
+    return 0;
+  case OPD_RR:
+    if ((a >> 7) >= VM_NREG)
+      return bad(msg, n, "pc %u: %s r%u r%u but there are %d registers", pc, name, a & 127, a >> 7, VM_NREG);
+    return 0;
+  case OPD_KT: {
+    double lo, hi;
+    if (p->nk < 3 || a > p->nk - 3)
+      return bad(msg, n, "pc %u: %s constants %u..%u but the program has %zu constant%s", pc, name, a, a + 2, p->nk,
+                 plural(p->nk));
+    if (!isfinite(p->k[a]))
+      return bad(msg, n, "pc %u: %s with constant %u = %.17g, not a finite number", pc, name, a, p->k[a]);
+    vm_rel_bounds(p->k[a], &lo, &hi);
+    if (memcmp(&lo, &p->k[a + 1], sizeof lo) || memcmp(&hi, &p->k[a + 2], sizeof hi))
+      return bad(msg, n, "pc %u: %s with constant %u = %.17g: its bounds are %.17g..%.17g, not %.17g..%.17g", pc,
+                 name, a, p->k[a], p->k[a + 1], p->k[a + 2], lo, hi);
+    return 0;
   }
+  default:
+    return bad(msg, n, "pc %u: %s has operand kind %d, which the verifier does not know", pc, name, kind);
+  }
+}
+
+static int operand(const struct program *p, uint32_t pc, char *msg, size_t n)
+{
+  uint32_t ins = p->code[pc];
+  int op = (int)INS_OP(ins);
+  return operand_of(p, pc, op, vm_ops[op].opd, INS_A(ins), msg, n);
 }
 
 /* lo..hi a range (not NaN, lo <= hi). */
@@ -290,9 +327,18 @@ int prog_verify_need(const struct program *p, uint32_t *need, char *msg, size_t 
       unsigned op = INS_OP(p->code[pc]);
       if (op >= OP__COUNT)
         return bad(msg, n, "pc %u: opcode %u is no instruction (there are %d)", pc, op, OP__COUNT);
+      if (op == OP_EXT)
+        return bad(msg, n, "pc %u: EXT after no two-word instruction (block %zu): it only follows one", pc, b);
       if (operand(p, pc, msg, n))
         return -1;
       const struct vm_opinfo *o = &vm_ops[op];
+      if (o->ext != OPD_NONE) {
+        /* two words: the EXT word is this instruction's, and never runs */
+        if (pc + 1 >= to || INS_OP(p->code[pc + 1]) != OP_EXT)
+          return bad(msg, n, "pc %u: %s is two words but no EXT word follows it (block %zu)", pc, o->name, b);
+        if (operand_of(p, pc + 1, (int)op, o->ext, INS_A(p->code[pc + 1]), msg, n))
+          return -1;
+      }
       if (depth < (uint32_t)o->pop)
         return bad(msg, n, "pc %u: %s pops %d value%s but the stack holds %u (block %zu)", pc, o->name, o->pop,
                    plural((size_t)o->pop), depth, b);
@@ -317,6 +363,8 @@ int prog_verify_need(const struct program *p, uint32_t *need, char *msg, size_t 
         if (need)
           *need = max;
       }
+      if (o->ext != OPD_NONE)
+        pc++;   /* its EXT word, checked above */
     }
     if (depth)
       return bad(msg, n, "pc %u: block %zu ends with %u value%s left on the stack", to - 1, b, depth, plural(depth));

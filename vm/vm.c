@@ -8,6 +8,7 @@
 #include "msgs.h"
 #include "opcodes.h"
 #include "vmmath.h"
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -15,7 +16,7 @@
 #include <string.h>
 
 const struct vm_opinfo vm_ops[OP__COUNT] = {
-#define OP_INFO(name, opd, pop, push, doc) {#name, OPD_##opd, pop, push, doc},
+#define OP_INFO(name, opd, ext, pop, push, doc) {#name, OPD_##opd, OPD_##ext, pop, push, doc},
   S42_OPCODES(OP_INFO)
 #undef OP_INFO
 };
@@ -47,6 +48,8 @@ int vm_init(struct vm *vm, const struct program *p)
     return refuse(vm, VMSG_DEPTH, p->lim.depth, VM_DEPTH_MAX);
   if (p->lim.arrays > VM_ARRAYS_MAX || p->lim.cells > VM_CELLS_MAX)
     return refuse(vm, VMSG_ARRAYS, p->lim.arrays, p->lim.cells, VM_ARRAYS_MAX, VM_CELLS_MAX);
+  /* one angle unit in radians, as vm_math computes it (to the bit) */
+  vm->rad = M_PI / (180.0 / p->lim.angle);
   return 0;
 }
 
@@ -231,6 +234,15 @@ static int arr_pos(struct vm *vm, uint32_t pc, uint32_t a, int *idx)
   return 0;
 }
 
+/* SETP's range error (and the fused forms' SETP part), raised at pc. */
+static __attribute__((noinline, cold)) void param_fail(struct vm *vm, uint32_t pc, uint32_t reg, double v)
+{
+  char b1[32], b2[32], b3[32];
+  const struct program *p = vm->p;
+  raise_msg(vm, pc, S42_E_RANGE, VMSG_PARAM, reg, num(b1, sizeof b1, v), num(b2, sizeof b2, p->lim.param_lo),
+            num(b3, sizeof b3, p->lim.param_hi));
+}
+
 /* Arithmetic that failed (or may fail): take the message from vm_math. */
 static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, double *out)
 {
@@ -242,6 +254,7 @@ static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, doubl
 }
 
 #if defined(__GNUC__) && !defined(S42_SWITCH_DISPATCH)
+#define VM_GOTO 1
 #define vmdispatch(o) goto *disp[o];
 #define vmcase(l) L_##l:
 #define vmbreak do { ins = code[pc++]; goto *disp[INS_OP(ins)]; } while (0)
@@ -252,11 +265,26 @@ static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, doubl
 #endif
 
 #define RAISED goto fail
+/* An opcode whose plain-table entry is its one handler. */
+#ifdef VM_GOTO
+#define vmcase1(l) L_##l: LP_##l:
+#else
+#define vmcase1(l) vmcase(l)
+#endif
 /* The top of the stack lives in a local (tos), the rest in st[]: most
  * instructions then never touch memory for their operands.  st[0] is a
  * scratch cell that takes the undefined tos of an empty stack. */
 #define POP() (popped = tos, tos = st[--sp], popped)
 #define PUSH(v) (st[sp++] = tos, tos = (v))
+
+/* Any of the n flags set: a watch array that flags no block watches nothing. */
+static int any_set(const uint8_t *f, size_t n)
+{
+  for (size_t i = 0; i < n; i++)
+    if (f[i])
+      return 1;
+  return 0;
+}
 
 int vm_skip(struct vm *vm)
 {
@@ -282,21 +310,37 @@ enum vm_event vm_run(struct vm *vm)
   double a, b, r;
   /* the host sets these only between calls */
   const uint64_t limit = vm->max_blocks ? vm->max_blocks : UINT64_MAX;
-  const int watching = vm->start_all || vm->watch;
+  if (vm->watch != vm->watch_seen) {
+    vm->watch_seen = vm->watch;
+    vm->watch_any = vm->watch && any_set(vm->watch, p->nblocks);
+  }
+  const int watching = vm->start_all || vm->watch_any;
   const int yield_all = vm->yield_all;
   /* the program's parameter range, in locals: a store to a register could
    * alias p->lim for the compiler, and SETP runs in nearly every block */
   const double param_lo = p->lim.param_lo, param_hi = p->lim.param_hi;
+  /* the same range within the finite numbers: a value inside is finite,
+   * so a fused arithmetic-and-store needs one test for both of its checks */
+  const double plo = param_lo < -DBL_MAX ? -DBL_MAX : param_lo, phi = param_hi > DBL_MAX ? DBL_MAX : param_hi;
+  const double rad = vm->rad, trig_max = p->lim.trig_max;
 
   if (vm->done)
     return vm->err.code ? VM_EV_ERROR : VM_EV_END;
 
-#if defined(__GNUC__) && !defined(S42_SWITCH_DISPATCH)
-  static const void *const disp[OP__COUNT] = {
-#define OP_LABEL(name, opd, pop, push, doc) &&L_##name,
+#ifdef VM_GOTO
+  /* Two dispatch tables (Lua's hook trick, decided once a call): when the
+   * host watches nothing, BLOCK and SYNC go to forms that test no switch. */
+  static const void *const disp_watch[OP__COUNT] = {
+#define OP_LABEL(name, opd, ext, pop, push, doc) &&L_##name,
     S42_OPCODES(OP_LABEL)
 #undef OP_LABEL
   };
+  static const void *const disp_plain[OP__COUNT] = {
+#define OP_LABEL(name, opd, ext, pop, push, doc) &&LP_##name,
+    S42_OPCODES(OP_LABEL)
+#undef OP_LABEL
+  };
+  const void *const *const disp = watching || yield_all ? disp_watch : disp_plain;
   vmbreak;
 #else
   for (;;) {
@@ -315,15 +359,26 @@ enum vm_event vm_run(struct vm *vm)
         }
         vmbreak;
       }
-      vmcase(CONST) { PUSH(k[INS_A(ins)]); vmbreak; }
-      vmcase(INT) { PUSH((double)INS_A(ins)); vmbreak; }
-      vmcase(REG) { PUSH(vm->reg[INS_A(ins)]); vmbreak; }
-      vmcase(WORD) { PUSH(vm->w[INS_A(ins)]); vmbreak; }
-      vmcase(NEG) { tos = -tos; vmbreak; }
+#ifdef VM_GOTO
+      LP_BLOCK: {
+        vm->cur = INS_A(ins);
+        if (vm->blocks >= limit) {
+          raise_msg(vm, pc - 1, S42_E_LIMIT, VMSG_BUDGET, (unsigned long long)vm->max_blocks);
+          RAISED;
+        }
+        vmbreak;
+      }
+      LP_SYNC: vmbreak;
+#endif
+      vmcase1(CONST) { PUSH(k[INS_A(ins)]); vmbreak; }
+      vmcase1(INT) { PUSH((double)INS_A(ins)); vmbreak; }
+      vmcase1(REG) { PUSH(vm->reg[INS_A(ins)]); vmbreak; }
+      vmcase1(WORD) { PUSH(vm->w[INS_A(ins)]); vmbreak; }
+      vmcase1(NEG) { tos = -tos; vmbreak; }
       /* a non-finite result or a zero divisor is always an error: vm_math
        * then says which, exactly as constant folding does */
 #define BINARY(L, BASE, OPER, OPERAND) \
-      vmcase(L) { \
+      vmcase1(L) { \
         b = (OPERAND); a = tos; r = a OPER b; \
         if (!isfinite(r) || (BASE == OP_DIV && b == 0.0)) { \
           math_at(vm, pc - 1, BASE, a, b, &out); \
@@ -336,34 +391,86 @@ enum vm_event vm_run(struct vm *vm)
       BINARY(SUB, OP_SUB, -, POP())
       BINARY(MUL, OP_MUL, *, POP())
       BINARY(DIV, OP_DIV, /, POP())
-      vmcase(POW) {
+      vmcase1(POW) {
         b = POP(); a = tos;
         if (math_at(vm, pc - 1, OP_POW, a, b, &out)) RAISED;
         tos = out;
         vmbreak;
       }
 #define FUNCTION(L) \
-      vmcase(L) { if (math_at(vm, pc - 1, OP_##L, tos, 0, &out)) RAISED; tos = out; vmbreak; }
-      FUNCTION(SIN)
-      FUNCTION(COS)
+      vmcase1(L) { if (math_at(vm, pc - 1, OP_##L, tos, 0, &out)) RAISED; tos = out; vmbreak; }
+      /* SIN COS ASIN ACOS ATAN inline, computed as vm_math does (to the
+       * bit); outside its domain vm_math says why */
+#define TRIG(L, DOMAIN, VALUE) \
+      vmcase1(L) { \
+        if (!(DOMAIN)) { \
+          math_at(vm, pc - 1, OP_##L, tos, 0, &out); \
+          RAISED; \
+        } \
+        tos = (VALUE); \
+        vmbreak; \
+      }
+      TRIG(SIN, fabs(tos) <= trig_max, sin(tos * rad))
+      TRIG(COS, fabs(tos) <= trig_max, cos(tos * rad))
+      TRIG(ASIN, fabs(tos) <= 1.0, asin(tos) / rad)
+      TRIG(ACOS, fabs(tos) <= 1.0, acos(tos) / rad)
+      TRIG(ATAN, fabs(tos) <= p->lim.atan_max, atan(tos) / rad)
+#undef TRIG
+      /* REG; SIN and REG; COS: the register read, then exactly SIN or COS */
+#define RTRIG(L, BASE, FN) \
+      vmcase1(L) { \
+        a = vm->reg[INS_A(ins)]; \
+        if (!(fabs(a) <= trig_max)) { \
+          math_at(vm, pc - 1, BASE, a, 0, &out); \
+          RAISED; \
+        } \
+        PUSH(FN(a * rad)); \
+        vmbreak; \
+      }
+      RTRIG(RSIN, OP_SIN, sin)
+      RTRIG(RCOS, OP_COS, cos)
+#undef RTRIG
+      /* SIN; SETP and the like: the function exactly, then SETP exactly
+       * (its error at the EXT word's column) */
+#define TRIGP(L, BASE, DOMAIN, VALUE) \
+      vmcase1(L) { \
+        if (!(DOMAIN)) { \
+          math_at(vm, pc - 1, BASE, tos, 0, &out); \
+          RAISED; \
+        } \
+        r = (VALUE); \
+        uint32_t d = INS_A(code[pc]); \
+        if (!(r >= param_lo && r <= param_hi)) { \
+          param_fail(vm, pc, d, r); \
+          RAISED; \
+        } \
+        tos = st[--sp]; \
+        journal(vm, d); \
+        vm->reg[d] = r; \
+        pc++; \
+        vmbreak; \
+      }
+      TRIGP(SINP, OP_SIN, fabs(tos) <= trig_max, sin(tos * rad))
+      TRIGP(COSP, OP_COS, fabs(tos) <= trig_max, cos(tos * rad))
+      TRIGP(ASINP, OP_ASIN, fabs(tos) <= 1.0, asin(tos) / rad)
+      TRIGP(ACOSP, OP_ACOS, fabs(tos) <= 1.0, acos(tos) / rad)
+      TRIGP(ATANP, OP_ATAN, fabs(tos) <= p->lim.atan_max, atan(tos) / rad)
+#undef TRIGP
       FUNCTION(TAN)
-      FUNCTION(ASIN)
-      FUNCTION(ACOS)
-      FUNCTION(ATAN)
       FUNCTION(LOG)
 #undef FUNCTION
-      vmcase(SET) {
+      vmcase1(SET) {
         if (do_set(vm, pc - 1, INS_A(ins), POP())) RAISED;
         vmbreak;
       }
-      vmcase(ARD) {
+      vmcase1(ARD) {
         int i;
         save_array(vm, INS_A(ins) & 3);
         if (arr_pos(vm, pc - 1, INS_A(ins), &i)) RAISED;
         PUSH(vm->arr[INS_A(ins) & 3].cell[i]);
         vmbreak;
       }
-      vmcase(AWR) {
+      vmcase1(AWR) {
         int i;
         char bv[32], b1[32], b2[32];
         a = POP();
@@ -380,57 +487,57 @@ enum vm_event vm_run(struct vm *vm)
           ar->len = i + 1;
         vmbreak;
       }
-      vmcase(AZERO) {
+      vmcase1(AZERO) {
         save_arrays(vm, INS_A(ins));
         for (uint32_t n = 0; n < p->lim.arrays; n++)
           if (INS_A(ins) & (1u << n))
             memset(&vm->arr[n], 0, used_bytes(vm));
         vmbreak;
       }
-      vmcase(APTR0) {
+      vmcase1(APTR0) {
         save_arrays(vm, INS_A(ins));
         for (uint32_t n = 0; n < p->lim.arrays; n++)
           if (INS_A(ins) & (1u << n))
             vm->arr[n].ptr = 0;
         vmbreak;
       }
-      vmcase(APTREND) {
+      vmcase1(APTREND) {
         save_arrays(vm, INS_A(ins));
         for (uint32_t n = 0; n < p->lim.arrays; n++)
           if (INS_A(ins) & (1u << n))
             vm->arr[n].ptr = vm->arr[n].len;
         vmbreak;
       }
-      vmcase(CMP) {
+      vmcase1(CMP) {
         b = POP(); a = tos;
         tos = vm_rel(a, b, INS_A(ins)) ? 1.0 : 0.0;
         vmbreak;
       }
-      vmcase(AND) { b = POP(); tos = (tos != 0.0 && b != 0.0); vmbreak; }
-      vmcase(OR) { b = POP(); tos = (tos != 0.0 || b != 0.0); vmbreak; }
-      vmcase(COND) { vm->jflag = POP() != 0.0; vmbreak; }
-      vmcase(MACH) {
+      vmcase1(AND) { b = POP(); tos = (tos != 0.0 && b != 0.0); vmbreak; }
+      vmcase1(OR) { b = POP(); tos = (tos != 0.0 || b != 0.0); vmbreak; }
+      vmcase1(COND) { vm->jflag = POP() != 0.0; vmbreak; }
+      vmcase1(MACH) {
         vm->pc = pc;
         return VM_EV_BLOCK;
       }
-      vmcase(SYNC) {
+      vmcase(SYNC) {   /* the plain table's SYNC is above, after BLOCK */
         if (yield_all) {
           vm->pc = pc;
           return VM_EV_BLOCK;
         }
         vmbreak;
       }
-      vmcase(TRUNC) {
+      vmcase1(TRUNC) {
         vm->reg[INS_A(ins)] = trunc(vm->reg[INS_A(ins)]);
         vmbreak;
       }
-      vmcase(COMMIT) {
+      vmcase1(COMMIT) {
         vm->nundo = 0;
         vm->arr_saved = 0;
         vm->blocks++;
         vmbreak;
       }
-      vmcase(CALL) {
+      vmcase1(CALL) {
         uint32_t n = (uint32_t)POP();
         if (n == 0)
           vmbreak;
@@ -448,7 +555,7 @@ enum vm_event vm_run(struct vm *vm)
         pc = INS_A(ins);
         vmbreak;
       }
-      vmcase(PPJ) {
+      vmcase1(PPJ) {
         if (vm->exit_latch) {
           vm->exit_latch = 0;
           vm->pp_jumps++;
@@ -456,13 +563,13 @@ enum vm_event vm_run(struct vm *vm)
         }
         vmbreak;
       }
-      vmcase(JMP) { pc = INS_A(ins); vmbreak; }
-      vmcase(JCOND) {
+      vmcase1(JMP) { pc = INS_A(ins); vmbreak; }
+      vmcase1(JCOND) {
         if (vm->jflag)
           pc = INS_A(ins);
         vmbreak;
       }
-      vmcase(RET) {
+      vmcase1(RET) {
         if (vm->depth == 0) {
           raise_msg(vm, pc - 1, S42_E_SUB, VMSG_RETMAIN);
           RAISED;
@@ -481,14 +588,14 @@ enum vm_event vm_run(struct vm *vm)
         }
         vmbreak;
       }
-      vmcase(END) {
+      vmcase1(END) {
         vm->pc = pc;
         vm->exit_latch = 0;
         vm->done = 1;
         return VM_EV_END;
       }
       /* return when called, end otherwise (Bosch M2, FMS-3000 M99) */
-      vmcase(RETEND) {
+      vmcase1(RETEND) {
         if (vm->depth > 0)
           goto ret;
         vm->pc = pc;
@@ -510,7 +617,7 @@ enum vm_event vm_run(struct vm *vm)
       BINARY(MULR, OP_MUL, *, vm->reg[INS_A(ins)])
       BINARY(DIVR, OP_DIV, /, vm->reg[INS_A(ins)])
 #undef BINARY
-      vmcase(SETP) {
+      vmcase1(SETP) {
         a = POP();
         if (!(a >= param_lo && a <= param_hi)) {
           char b1[32], b2[32], b3[32];
@@ -522,34 +629,101 @@ enum vm_event vm_run(struct vm *vm)
         vm->reg[INS_A(ins)] = a;
         vmbreak;
       }
-      vmcase(CMPC) {
+      vmcase1(CMPC) {
         b = POP(); a = POP();
         vm->jflag = (uint8_t)vm_rel(a, b, INS_A(ins));
         vmbreak;
       }
-      vmcase(CMPCK) {
+      vmcase1(CMPCK) {
         a = POP();
         vm->jflag = (uint8_t)vm_rel(a, k[INS_A(ins) >> 3], INS_A(ins) & 7);
         vmbreak;
       }
-      vmcase(CMPCR) {
+      vmcase1(CMPCR) {
         a = POP();
         vm->jflag = (uint8_t)vm_rel(a, vm->reg[INS_A(ins) >> 3], INS_A(ins) & 7);
         vmbreak;
       }
-      vmcase(CJMP) {
+      vmcase1(CJMP) {
         vm->nundo = 0;
         vm->arr_saved = 0;
         vm->blocks++;
         pc = INS_A(ins);
         vmbreak;
       }
-      vmcase(CJCOND) {
+      vmcase1(CJCOND) {
         vm->nundo = 0;
         vm->arr_saved = 0;
         vm->blocks++;
         if (vm->jflag)
           pc = INS_A(ins);
+        vmbreak;
+      }
+      /* Register forms (src/dialect/2c42/peep.c): exactly what their two or
+       * three instructions did, each error at the pc -- so the column -- of
+       * the part that raised it: the arithmetic at the instruction's own,
+       * the store at its EXT word's.  A result inside plo..phi is finite, so
+       * one test stands for the arithmetic's check and SETP's. */
+      vmcase1(EXT) vmbreak;   /* never reached: the instruction before it steps over it */
+#define RPUSH(L, BASE, OPER, OPERAND) \
+      vmcase1(L) { \
+        a = vm->reg[INS_A(ins) & 127]; b = (OPERAND); r = a OPER b; \
+        if (!isfinite(r) || (BASE == OP_DIV && b == 0.0)) { \
+          math_at(vm, pc - 1, BASE, a, b, &out); \
+          RAISED; \
+        } \
+        PUSH(r); \
+        vmbreak; \
+      }
+#define STOREP(L, BASE, OPER, LEFT, RIGHT) \
+      vmcase1(L) { \
+        RIGHT; LEFT; r = a OPER b; \
+        uint32_t d = INS_A(code[pc]); \
+        if (!(r >= plo && r <= phi)) { \
+          if (!isfinite(r)) \
+            math_at(vm, pc - 1, BASE, a, b, &out); \
+          else \
+            param_fail(vm, pc, d, r); \
+          RAISED; \
+        } \
+        journal(vm, d); \
+        vm->reg[d] = r; \
+        pc++; \
+        vmbreak; \
+      }
+#define RFORMS(OP, OPER) \
+      RPUSH(R##OP##I, OP_##OP, OPER, (double)(INS_A(ins) >> 7)) \
+      RPUSH(R##OP##K, OP_##OP, OPER, k[INS_A(ins) >> 7]) \
+      RPUSH(R##OP##R, OP_##OP, OPER, vm->reg[INS_A(ins) >> 7]) \
+      STOREP(OP##P, OP_##OP, OPER, a = POP(), b = POP()) \
+      STOREP(OP##IP, OP_##OP, OPER, a = POP(), b = (double)INS_A(ins)) \
+      STOREP(OP##KP, OP_##OP, OPER, a = POP(), b = k[INS_A(ins)]) \
+      STOREP(OP##RP, OP_##OP, OPER, a = POP(), b = vm->reg[INS_A(ins)]) \
+      STOREP(R##OP##IP, OP_##OP, OPER, a = vm->reg[INS_A(ins) & 127], b = (double)(INS_A(ins) >> 7)) \
+      STOREP(R##OP##KP, OP_##OP, OPER, a = vm->reg[INS_A(ins) & 127], b = k[INS_A(ins) >> 7]) \
+      STOREP(R##OP##RP, OP_##OP, OPER, a = vm->reg[INS_A(ins) & 127], b = vm->reg[INS_A(ins) >> 7])
+      RFORMS(ADD, +)
+      RFORMS(SUB, -)
+      RFORMS(MUL, *)
+      RFORMS(DIV, /)
+#undef RFORMS
+#undef STOREP
+#undef RPUSH
+      /* a register against a constant: plainly below or above its bounds
+       * (vm_rel_bounds), the relation is < or >; near it, or an infinite
+       * register, the tolerant compare decides */
+      vmcase1(CMPRK) {
+        double x = vm->reg[INS_A(ins) >> 3];
+        const double *kb = &k[INS_A(code[pc])];
+        unsigned got;
+        if (x < kb[1] && x > -HUGE_VAL)
+          got = 1;
+        else if (x > kb[2] && x < HUGE_VAL)
+          got = 4;
+        else
+          got = vm_rel_got(x, kb[0]);
+        vm->jflag = (INS_A(ins) & got) != 0;
+        pc++;
         vmbreak;
       }
     }

@@ -54,13 +54,19 @@ struct vm {
   uint64_t max_blocks;         /* E-LIMIT when reached; 0 = no limit */
   int yield_all;               /* SYNC yields too: the host watches every block */
   int start_all;               /* yield VM_EV_START before every block */
-  const uint8_t *watch;        /* per block: yield VM_EV_START before it runs */
+  const uint8_t *watch;        /* per block: yield VM_EV_START before it runs; read as
+                                  a whole when the VM first sees the pointer (a host
+                                  that changes the flags in place hands it over anew:
+                                  NULL for one vm_run, or another array) */
+  const uint8_t *watch_seen;   /* the watch array last scanned, and whether it flags any */
+  int watch_any;
   int exit_latch;              /* cycle-exit key, taken by the next PP block */
   uint32_t pp_jumps;           /* operational jumps taken */
   int done;                    /* ended or failed: vm_run returns at once */
   unsigned clamped;            /* rule index + 1 of a value clamped in this block, 0 none */
   double clamped_from;         /* the value before clamping */
   struct vm_error err;
+  double rad;                  /* the program's angle unit in radians (vm_init) */
   /* the open block's transaction */
   unsigned nundo;
   unsigned arr_saved;           /* bit k: array k is snapshotted in arr_old[k] */

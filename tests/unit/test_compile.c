@@ -261,36 +261,37 @@ END_TEST
 
 START_TEST(disasm_compare_fused)
 {
-  /* a loop test against a constant and against a register: one instruction */
+  /* a loop test against a constant and against a register: one instruction;
+   * the peephole pass (peep.c) then fuses REG r1; ADDI 1; SETP r1 into
+   * RADDIP and REG r1; CMPCK into CMPRK, the constant with its bounds */
   expect_disasm(
     "N1 R1+R1+1 P(R1:M:1000000)1\n"
     "N2 P(R1:BR:R2)1\n"
     "N3 M2\n",
-    "; 3 blocks, 18 instructions, 1 constants, entry 0000\n"
+    "; 3 blocks, 17 instructions, 4 constants, entry 0000\n"
     "\n"
     "; N1 line 1: N1 R1+R1+1 P(R1:M:1000000)1\n"
     "0000  BLOCK   0\n"
-    "0001  REG     r1\n"
-    "0002  ADDI    1\n"
-    "0003  SETP    r1\n"
-    "0004  REG     r1\n"
-    "0005  CMPCK   < 0\t; 1000000\n"
-    "0006  SYNC\n"
-    "0007  CJCOND  0000\t; N1\n"
+    "0001  RADDIP  r1 1\n"
+    "0002  EXT     r1\n"
+    "0003  CMPRK   < r1\n"
+    "0004  EXT     1\t; 1000000 (999999.99600000004..1000000.004)\n"
+    "0005  SYNC\n"
+    "0006  CJCOND  0000\t; N1\n"
     "\n"
     "; N2 line 2: N2 P(R1:BR:R2)1\n"
-    "0008  BLOCK   1\n"
-    "0009  REG     r1\n"
-    "0010  CMPCR   >= r2\n"
-    "0011  SYNC\n"
-    "0012  CJCOND  0000\t; N1\n"
+    "0007  BLOCK   1\n"
+    "0008  REG     r1\n"
+    "0009  CMPCR   >= r2\n"
+    "0010  SYNC\n"
+    "0011  CJCOND  0000\t; N1\n"
     "\n"
     "; N3 line 3: N3 M2\n"
-    "0013  BLOCK   2\n"
-    "0014  MACH\n"
-    "0015  COMMIT\n"
-    "0016  END\n"
-    "0017  END\n");
+    "0012  BLOCK   2\n"
+    "0013  MACH\n"
+    "0014  COMMIT\n"
+    "0015  END\n"
+    "0016  END\n");
 }
 END_TEST
 
@@ -299,7 +300,8 @@ START_TEST(disasm_registers_and_late_condition)
   expect_disasm(
     "N1 R5+1 D1+60000 X+D1/2 P(R5:BR:X)4 F7000\n"
     "N4 M3 M2\n",
-    "; 2 blocks, 20 instructions, 1 constants, entry 0000\n"
+    /* REG r114; MULK 0 fused by the peephole pass into RMULK */
+    "; 2 blocks, 19 instructions, 1 constants, entry 0000\n"
     "\n"
     "; N1 line 1: N1 R5+1 D1+60000 X+D1/2 P(R5:BR:X)4 F7000\n"
     "0000  BLOCK   0\n"
@@ -307,23 +309,22 @@ START_TEST(disasm_registers_and_late_condition)
     "0002  SETP    r5\n"
     "0003  INT     60000\n"
     "0004  SET     r114\t; D1 0..400000\n"
-    "0005  REG     r114\n"
-    "0006  MULK    0\t; 0.5\n"
-    "0007  SET     w0\t; X -999999..999999 round\n"
-    "0008  INT     7000\n"
-    "0009  SET     r117\t; F 0..6000 round clamp\n"
-    "0010  REG     r5\n"
-    "0011  WORD    w0\n"
-    "0012  CMPC    >=\n"
-    "0013  MACH\n"
-    "0014  CJCOND  0015\t; N4\n"
+    "0005  RMULK   r114 0\t; 0.5\n"
+    "0006  SET     w0\t; X -999999..999999 round\n"
+    "0007  INT     7000\n"
+    "0008  SET     r117\t; F 0..6000 round clamp\n"
+    "0009  REG     r5\n"
+    "0010  WORD    w0\n"
+    "0011  CMPC    >=\n"
+    "0012  MACH\n"
+    "0013  CJCOND  0014\t; N4\n"
     "\n"
     "; N4 line 2: N4 M3 M2\n"
-    "0015  BLOCK   1\n"
-    "0016  MACH\n"
-    "0017  COMMIT\n"
-    "0018  END\n"
-    "0019  END\n");
+    "0014  BLOCK   1\n"
+    "0015  MACH\n"
+    "0016  COMMIT\n"
+    "0017  END\n"
+    "0018  END\n");
 }
 END_TEST
 

@@ -365,6 +365,180 @@ START_TEST(superinstructions_same_errors)
 }
 END_TEST
 
+/* ---- the register forms (src/dialect/2c42/peep.c) against their parts ---- */
+
+/* One block of code (op, operand, column each), COMMIT and END, run on a VM
+ * whose registers r1..r3 are a, b, d: what it ended with. */
+struct outcome { enum vm_event ev; int code; unsigned col; char msg[200]; double reg[4]; uint8_t jflag; };
+
+static struct outcome run_code(const uint32_t (*ins)[3], int n, double a, double b, double lo, double hi)
+{
+  struct program p;
+  struct vm *v = calloc(1, sizeof *v);
+  struct outcome o;
+  char msg[300];
+  prog_init(&p);
+  p.lim.param_lo = lo;
+  p.lim.param_hi = hi;
+  p.lim.angle = 0.001;
+  p.lim.trig_max = 2304000;
+  static const double ks[] = {0, 2.5, 1e308, -7, 3, 0.5};
+  for (size_t i = 0; i < sizeof ks / sizeof *ks; i++)
+    prog_consts(&p, &ks[i], 1);
+  double kt[3] = {1000000};
+  vm_rel_bounds(kt[0], &kt[1], &kt[2]);
+  prog_consts(&p, kt, 3);   /* K[6..8]: CMPRK's */
+  struct prog_block bl = {.code = 0, .line = 1, .number = 1, .col = 1};
+  prog_block_add(&p, &bl);
+  prog_emit(&p, INS(OP_BLOCK, 0), 1);
+  for (int i = 0; i < n; i++)
+    prog_emit(&p, INS(ins[i][0], ins[i][1]), ins[i][2]);
+  prog_emit(&p, INS(OP_COMMIT, 0), 90);
+  prog_emit(&p, INS(OP_END, 0), 91);
+  p.max_stack = VM_STACK;
+  ck_assert_msg(prog_verify(&p, msg, sizeof msg) == 0, "%s", msg);
+  ck_assert_int_eq(vm_init(v, &p), 0);
+  v->reg[1] = a;
+  v->reg[2] = b;
+  v->reg[3] = -1;
+  memset(&o, 0, sizeof o);
+  o.ev = vm_run(v);
+  o.code = v->err.code;
+  o.col = v->err.col;
+  snprintf(o.msg, sizeof o.msg, "%s", v->err.msg);
+  memcpy(o.reg, v->reg, sizeof o.reg);
+  o.jflag = v->jflag;
+  free(v);
+  prog_free(&p);
+  return o;
+}
+
+static void same_outcome(const struct outcome *x, const struct outcome *y, const char *what, double a, double b)
+{
+  ck_assert_msg(x->ev == y->ev && x->code == y->code && x->col == y->col && strcmp(x->msg, y->msg) == 0 &&
+                  memcmp(x->reg, y->reg, sizeof x->reg) == 0 && x->jflag == y->jflag,
+                "%s with r1 = %g, r2 = %g: the parts give event %d, %d at column %u \"%s\", r3 = %g, jflag %d; "
+                "the fused form event %d, %d at column %u \"%s\", r3 = %g, jflag %d",
+                what, a, b, x->ev, x->code, x->col, x->msg, x->reg[3], x->jflag, y->ev, y->code, y->col, y->msg,
+                y->reg[3], y->jflag);
+}
+
+START_TEST(register_forms_as_their_parts)
+{
+  static const double vals[] = {5, 0, -3, 0.5, 9999999, -9999999, 1e308, -1e308, INFINITY, -INFINITY, NAN,
+                                1000000, 999999.999, 1000000.001, 999999.99, 1e-300};
+  static const int base[4] = {OP_ADD, OP_SUB, OP_MUL, OP_DIV};
+  static const int withx[3][4] = {{OP_ADDI, OP_SUBI, OP_MULI, OP_DIVI}, {OP_ADDK, OP_SUBK, OP_MULK, OP_DIVK},
+                                  {OP_ADDR, OP_SUBR, OP_MULR, OP_DIVR}};
+  static const int rpush[3][4] = {{OP_RADDI, OP_RSUBI, OP_RMULI, OP_RDIVI}, {OP_RADDK, OP_RSUBK, OP_RMULK, OP_RDIVK},
+                                  {OP_RADDR, OP_RSUBR, OP_RMULR, OP_RDIVR}};
+  static const int xstore[3][4] = {{OP_ADDIP, OP_SUBIP, OP_MULIP, OP_DIVIP},
+                                   {OP_ADDKP, OP_SUBKP, OP_MULKP, OP_DIVKP},
+                                   {OP_ADDRP, OP_SUBRP, OP_MULRP, OP_DIVRP}};
+  static const int rstore[3][4] = {{OP_RADDIP, OP_RSUBIP, OP_RMULIP, OP_RDIVIP},
+                                   {OP_RADDKP, OP_RSUBKP, OP_RMULKP, OP_RDIVKP},
+                                   {OP_RADDRP, OP_RSUBRP, OP_RMULRP, OP_RDIVRP}};
+  static const uint32_t xs[3][3] = {{0, 3, 131071}, {0, 1, 2}, {2, 1, 3}};   /* integers, constants, registers */
+  static const double ranges[3][2] = {{-9999999, 9999999}, {-DBL_MAX, DBL_MAX}, {-INFINITY, INFINITY}};
+  int n = sizeof vals / sizeof *vals;
+  for (int rg = 0; rg < 3; rg++)
+    for (int i = 0; i < n; i++)
+      for (int j = 0; j < n; j++) {
+        double a = vals[i], b = vals[j], lo = ranges[rg][0], hi = ranges[rg][1];
+        for (int op = 0; op < 4; op++) {
+          /* ADD; SETP against ADDP */
+          uint32_t u0[4][3] = {{OP_REG, 1, 10}, {OP_REG, 2, 15}, {(uint32_t)base[op], 0, 20}, {OP_SETP, 3, 30}};
+          uint32_t f0[4][3] = {{OP_REG, 1, 10}, {OP_REG, 2, 15}, {OP_ADDP + (uint32_t)op, 0, 20}, {OP_EXT, 3, 30}};
+          struct outcome x = run_code(u0, 4, a, b, lo, hi), y = run_code(f0, 4, a, b, lo, hi);
+          same_outcome(&x, &y, vm_ops[OP_ADDP + op].name, a, b);
+          for (int kind = 0; kind < 3; kind++)
+            for (int xi = 0; xi < 3; xi++) {
+              uint32_t xv = xs[kind][xi];
+              uint32_t u[3][3] = {{OP_REG, 1, 10}, {(uint32_t)withx[kind][op], xv, 20}, {OP_SETP, 3, 30}};
+              uint32_t fp[2][3] = {{(uint32_t)rpush[kind][op], 1 | xv << 7, 20}, {OP_SETP, 3, 30}};
+              uint32_t fx[3][3] = {{OP_REG, 1, 10}, {(uint32_t)xstore[kind][op], xv, 20}, {OP_EXT, 3, 30}};
+              uint32_t fr[2][3] = {{(uint32_t)rstore[kind][op], 1 | xv << 7, 20}, {OP_EXT, 3, 30}};
+              x = run_code(u, 3, a, b, lo, hi);
+              y = run_code(fp, 2, a, b, lo, hi);
+              same_outcome(&x, &y, vm_ops[rpush[kind][op]].name, a, b);
+              y = run_code(fx, 3, a, b, lo, hi);
+              same_outcome(&x, &y, vm_ops[xstore[kind][op]].name, a, b);
+              y = run_code(fr, 2, a, b, lo, hi);
+              same_outcome(&x, &y, vm_ops[rstore[kind][op]].name, a, b);
+            }
+        }
+      }
+  /* RSIN, RCOS against REG; SIN and REG; COS, in their domain and out */
+  static const double angles[] = {0, 30000, -45000, 2304000, -2304000, 2304001, 1e308, INFINITY, NAN, 1234.5};
+  for (size_t i = 0; i < sizeof angles / sizeof *angles; i++)
+    for (int c = 0; c < 2; c++) {
+      uint32_t u[3][3] = {{OP_REG, 1, 10}, {c ? OP_COS : OP_SIN, 0, 20}, {OP_SETP, 3, 30}};
+      uint32_t f[2][3] = {{c ? OP_RCOS : OP_RSIN, 1, 20}, {OP_SETP, 3, 30}};
+      struct outcome x = run_code(u, 3, angles[i], 0, -9999999, 9999999), y = run_code(f, 2, angles[i], 0, -9999999, 9999999);
+      same_outcome(&x, &y, c ? "RCOS" : "RSIN", angles[i], 0);
+    }
+  /* the functions with their store against FN; SETP (ASIN of values out
+   * of its domain, results out of a narrow parameter range) */
+  static const int fns[5][2] = {{OP_SIN, OP_SINP}, {OP_COS, OP_COSP}, {OP_ASIN, OP_ASINP}, {OP_ACOS, OP_ACOSP},
+                                {OP_ATAN, OP_ATANP}};
+  static const double args[] = {0, 0.5, -1, 1, 1.5, 30000, 2304001, 1e7, INFINITY, NAN};
+  for (int fn = 0; fn < 5; fn++)
+    for (size_t i = 0; i < sizeof args / sizeof *args; i++)
+      for (int rg = 0; rg < 2; rg++) {
+        double lo = rg ? -0.25 : -9999999, hi = rg ? 0.25 : 9999999;
+        uint32_t u[3][3] = {{OP_REG, 1, 10}, {(uint32_t)fns[fn][0], 0, 20}, {OP_SETP, 3, 30}};
+        uint32_t f[3][3] = {{OP_REG, 1, 10}, {(uint32_t)fns[fn][1], 0, 20}, {OP_EXT, 3, 30}};
+        struct outcome x = run_code(u, 3, args[i], 0, lo, hi), y = run_code(f, 3, args[i], 0, lo, hi);
+        same_outcome(&x, &y, vm_ops[fns[fn][1]].name, args[i], 0);
+      }
+  /* CMPRK against REG; CMPCK, every relation, near its constant and far */
+  for (uint32_t rel = 0; rel < 8; rel++)
+    for (int i = 0; i < n; i++) {
+      uint32_t u[2][3] = {{OP_REG, 1, 10}, {OP_CMPCK, rel | 6 << 3, 20}};
+      uint32_t f[2][3] = {{OP_CMPRK, rel | 1 << 3, 20}, {OP_EXT, 6, 20}};
+      struct outcome x = run_code(u, 2, vals[i], 0, -DBL_MAX, DBL_MAX), y = run_code(f, 2, vals[i], 0, -DBL_MAX, DBL_MAX);
+      same_outcome(&x, &y, "CMPRK", vals[i], 0);
+      /* a walk through the tolerance band, one ulp at a time near its edges */
+      double lo, hi;
+      vm_rel_bounds(1000000, &lo, &hi);
+      double edges[] = {lo, hi, 1000000 - 1e-3, 1000000 + 1e-3, 1000000 - 2e-3, 1000000 + 2e-3};
+      for (size_t e = 0; e < sizeof edges / sizeof *edges; e++) {
+        double v = edges[e];
+        for (int s = 0; s < 8; s++, v = nextafter(v, -INFINITY)) {
+          x = run_code(u, 2, v, 0, -DBL_MAX, DBL_MAX);
+          y = run_code(f, 2, v, 0, -DBL_MAX, DBL_MAX);
+          same_outcome(&x, &y, "CMPRK", v, 0);
+        }
+      }
+    }
+}
+END_TEST
+
+/* vm_rel_bounds: outside the bounds the tolerant compare is plainly < or >,
+ * for constants of every size (the proof in vm/vmmath.h, sampled). */
+START_TEST(rel_bounds_hold)
+{
+  static const double bs[] = {0, 1, -1, 0.5, 1e-12, 1000000, -9999999, 123456.789, 1e15, -1e300, DBL_MAX, -DBL_MAX};
+  for (size_t i = 0; i < sizeof bs / sizeof *bs; i++) {
+    double b = bs[i], lo, hi;
+    vm_rel_bounds(b, &lo, &hi);
+    ck_assert(lo < b && b < hi);
+    /* near +-DBL_MAX a bound overflows to an infinity: no finite number is
+     * beyond it, so the fast path never applies there */
+    double v = lo;
+    for (int s = 0; s < 64 && isfinite(v); s++, v = nextafter(v, -INFINITY))
+      ck_assert_msg(vm_rel_got(v, b) == 1, "%.17g vs %.17g", v, b);
+    v = hi;
+    for (int s = 0; s < 64 && isfinite(v); s++, v = nextafter(v, INFINITY))
+      ck_assert_msg(vm_rel_got(v, b) == 4, "%.17g vs %.17g", v, b);
+    for (double f = 2; f < 1e300; f *= 1e10) {
+      ck_assert(vm_rel_got(lo - f * fabs(lo) - f, b) == 1 || !isfinite(lo - f * fabs(lo) - f));
+      ck_assert(vm_rel_got(hi + f * fabs(hi) + f, b) == 4 || !isfinite(hi + f * fabs(hi) + f));
+    }
+  }
+}
+END_TEST
+
 START_TEST(feed_clamped_at_run_time)
 {
   load("N1 R1+7000 F+R1 X+1\nN2 M2\n");
@@ -766,6 +940,29 @@ START_TEST(watch_yields_start)
   ck_assert_double_eq(R(2), 0);        /* not run yet */
   ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);   /* N3 has M2 */
   ck_assert_double_eq(R(2), 1);
+  ck_assert_int_eq(vm_run(vm), VM_EV_END);
+}
+END_TEST
+
+/* A watch array that flags no block watches nothing (the VM then runs its
+ * plain dispatch table); one handed over anew is read anew. */
+START_TEST(watch_array_read_when_handed_over)
+{
+  load("N1 R1+1\nN2 R2+1\nN3 R3+1\nN4 M2\n");
+  uint8_t none[4] = {0, 0, 0, 0}, third[4] = {0, 0, 1, 0};
+  vm->watch = none;
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);   /* N4 has M2 */
+  ck_assert_double_eq(R(3), 1);
+  load("N1 R1+1\nN2 R2+1\nN3 R3+1\nN4 M2\n");
+  vm->watch = none;
+  none[1] = 1;   /* changed in place before the VM first saw it: read */
+  ck_assert_int_eq(vm_run(vm), VM_EV_START);
+  ck_assert_uint_eq(vm->cur, 1);
+  vm->watch = third;
+  ck_assert_int_eq(vm_run(vm), VM_EV_START);
+  ck_assert_uint_eq(vm->cur, 2);
+  ck_assert_double_eq(R(2), 1);
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);
   ck_assert_int_eq(vm_run(vm), VM_EV_END);
 }
 END_TEST
@@ -1382,10 +1579,13 @@ Suite *suite_vm(void)
   tcase_add_test(tc, pp_latch_taken_by_next_pp_block);
   tcase_add_test(tc, latch_cleared_at_m2);
   tcase_add_test(tc, watch_yields_start);
+  tcase_add_test(tc, watch_array_read_when_handed_over);
   tcase_add_test(tc, start_all_and_yield_all);
   tcase_add_test(tc, sync_blocks_do_not_yield);
   tcase_add_test(tc, many_vms_one_program);
   tcase_add_test(tc, superinstructions_same_errors);
+  tcase_add_test(tc, register_forms_as_their_parts);
+  tcase_add_test(tc, rel_bounds_hold);
   suite_add_tcase(s, tc);
 
   tc = tcase_create("program");

@@ -11,6 +11,7 @@
 #include "kpmsg.h"
 #include "opcodes.h"
 #include "parse.h"
+#include "peep.h"
 #include "plugin.h"
 #include "vmmath.h"
 #include <math.h>
@@ -1058,6 +1059,8 @@ static void compile_block(struct comp *c)
    * with no other word is nothing to the machine. */
   int machine = mo != MO_NONE || (b->m & ~(1u << 17 | 1u << 20)) || at->has_f || b->g;
   emit(c, machine ? OP_MACH : OP_SYNC, 0, b->col);
+  if (peep_block(c->p, c->bstart))   /* the block's work is all emitted: fuse it (peep.c) */
+    c->oom = 1;
   for (int i = 0; i < b->nm20; i++)
     emit(c, OP_TRUNC, b->m20[i], b->m20col[i]);
   emit(c, OP_COMMIT, 0, b->col);

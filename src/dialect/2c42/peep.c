@@ -1,0 +1,166 @@
+/* The 2С42's peephole pass (peep.h): a block's straight-line code, fused
+ * into the VM's register forms (vm/opcodes.h, "register forms").
+ *
+ *   REG a; ADDI x; SETP d        RADDIP a|x<<7, EXT d    (and SUB MUL DIV, I K R)
+ *   REG a; ADDI x                RADDI a|x<<7
+ *   ADDI x; SETP d               ADDIP x, EXT d
+ *   ADD; SETP d                  ADDP, EXT d
+ *   REG a; CMPCK rel k           CMPRK rel|a<<3, EXT j   (K[j] K[j+1] K[j+2]: K[k], its bounds)
+ *   REG a; SIN / COS             RSIN a / RCOS a
+ *   SIN; SETP d                  SINP, EXT d             (and COS ASIN ACOS ATAN)
+ *
+ * Why each is safe: a block's code runs straight through (vm/verify.c), no
+ * jump lands inside it, and the parts touch nothing between them that the
+ * next part reads: the fused instruction reads the same registers in the
+ * same order and stores last, as the parts did.  The arithmetic's column
+ * stays on the first word, the store's goes to the EXT word, so an error
+ * says what and where it said before.  Operands that do not fit (a
+ * register, integer or constant index from 2^17 on) are left unfused. */
+#include "peep.h"
+#include "opcodes.h"
+#include "vmmath.h"
+#include <math.h>
+#include <string.h>
+
+#define XMAX (1u << 17)   /* the x of a|x<<7 */
+
+/* The column of the ops ADDI..DIVR: which arithmetic (0 ADD .. 3 DIV) and
+ * which operand (0 I, 1 K, 2 R), or -1. */
+static int arith_x(unsigned op, int *row, int *kind)
+{
+  static const uint8_t tab[12] = {OP_ADDI, OP_SUBI, OP_MULI, OP_DIVI, OP_ADDK, OP_SUBK,
+                                  OP_MULK, OP_DIVK, OP_ADDR, OP_SUBR, OP_MULR, OP_DIVR};
+  for (int i = 0; i < 12; i++)
+    if (tab[i] == op) {
+      *row = i % 4;
+      *kind = i / 4;
+      return 0;
+    }
+  return -1;
+}
+
+static int arith_stack(unsigned op)
+{
+  return op == OP_ADD ? 0 : op == OP_SUB ? 1 : op == OP_MUL ? 2 : op == OP_DIV ? 3 : -1;
+}
+
+/* The function-and-store form of a function, 0 none. */
+static unsigned trig_store(unsigned op)
+{
+  switch (op) {
+  case OP_SIN: return OP_SINP;
+  case OP_COS: return OP_COSP;
+  case OP_ASIN: return OP_ASINP;
+  case OP_ACOS: return OP_ACOSP;
+  case OP_ATAN: return OP_ATANP;
+  default: return 0;
+  }
+}
+
+/* The opcodes, by arithmetic and operand, of each form. */
+static const uint8_t rpush[3][4] = {{OP_RADDI, OP_RSUBI, OP_RMULI, OP_RDIVI},
+                                    {OP_RADDK, OP_RSUBK, OP_RMULK, OP_RDIVK},
+                                    {OP_RADDR, OP_RSUBR, OP_RMULR, OP_RDIVR}};
+static const uint8_t rstore[3][4] = {{OP_RADDIP, OP_RSUBIP, OP_RMULIP, OP_RDIVIP},
+                                     {OP_RADDKP, OP_RSUBKP, OP_RMULKP, OP_RDIVKP},
+                                     {OP_RADDRP, OP_RSUBRP, OP_RMULRP, OP_RDIVRP}};
+static const uint8_t xstore[3][4] = {{OP_ADDIP, OP_SUBIP, OP_MULIP, OP_DIVIP},
+                                     {OP_ADDKP, OP_SUBKP, OP_MULKP, OP_DIVKP},
+                                     {OP_ADDRP, OP_SUBRP, OP_MULRP, OP_DIVRP}};
+static const uint8_t sstore[4] = {OP_ADDP, OP_SUBP, OP_MULP, OP_DIVP};
+
+/* K[b] with its bounds as three constants in a row (the last three reused
+ * when they are these); the index, or -1. */
+static long triplet(struct program *p, double b)
+{
+  double t[3];
+  t[0] = b;
+  vm_rel_bounds(b, &t[1], &t[2]);
+  if (p->nk >= 3 && memcmp(&p->k[p->nk - 3], t, sizeof t) == 0)
+    return (long)p->nk - 3;
+  return prog_consts(p, t, 3);
+}
+
+int peep_block(struct program *p, size_t from)
+{
+  uint32_t *code = p->code;
+  uint16_t *cols = p->cols;
+  size_t n = p->ncode, o = from + 1, i = from + 1;
+  /* nothing to fuse in most blocks: look before writing */
+  while (i + 1 < n) {
+    unsigned op0 = INS_OP(code[i]), op1 = INS_OP(code[i + 1]);
+    int row, kind;
+    if ((op0 == OP_REG && (arith_x(op1, &row, &kind) == 0 || op1 == OP_CMPCK || op1 == OP_SIN || op1 == OP_COS)) ||
+        (op1 == OP_SETP && (arith_x(op0, &row, &kind) == 0 || arith_stack(op0) >= 0 || trig_store(op0))))
+      break;
+    i++;
+  }
+  o = i;
+  while (i < n) {
+    uint32_t w0 = code[i], w1 = i + 1 < n ? code[i + 1] : 0, w2 = i + 2 < n ? code[i + 2] : 0;
+    unsigned op0 = INS_OP(w0), op1 = i + 1 < n ? INS_OP(w1) : OP__COUNT, op2 = i + 2 < n ? INS_OP(w2) : OP__COUNT;
+    int row, kind;
+    if (op0 == OP_REG && INS_A(w0) < VM_NREG && arith_x(op1, &row, &kind) == 0 && INS_A(w1) < XMAX) {
+      uint32_t a = INS_A(w0) | INS_A(w1) << 7;
+      if (op2 == OP_SETP) {
+        /* REG a; OPx; SETP d */
+        uint16_t c1 = cols[i + 1], c2 = cols[i + 2];
+        code[o] = INS(rstore[kind][row], a);
+        cols[o++] = c1;
+        code[o] = INS(OP_EXT, INS_A(w2));
+        cols[o++] = c2;
+        i += 3;
+      } else {
+        /* REG a; OPx */
+        cols[o] = cols[i + 1];
+        code[o++] = INS(rpush[kind][row], a);
+        i += 2;
+      }
+      continue;
+    }
+    if (op0 == OP_REG && (op1 == OP_SIN || op1 == OP_COS)) {
+      /* REG a; SIN */
+      cols[o] = cols[i + 1];
+      code[o++] = INS(op1 == OP_SIN ? OP_RSIN : OP_RCOS, INS_A(w0));
+      i += 2;
+      continue;
+    }
+    if (op0 == OP_REG && INS_A(w0) < VM_NREG && op1 == OP_CMPCK && isfinite(p->k[INS_A(w1) >> 3])) {
+      /* REG a; CMPCK rel k */
+      long j = triplet(p, p->k[INS_A(w1) >> 3]);
+      if (j < 0)
+        return -1;
+      uint16_t c1 = cols[i + 1];
+      code[o] = INS(OP_CMPRK, (INS_A(w1) & 7) | INS_A(w0) << 3);
+      cols[o++] = c1;
+      code[o] = INS(OP_EXT, (uint32_t)j);
+      cols[o++] = c1;
+      i += 2;
+      continue;
+    }
+    if (op1 == OP_SETP && trig_store(op0)) {
+      /* SIN; SETP d */
+      uint16_t c0 = cols[i], c1 = cols[i + 1];
+      code[o] = INS(trig_store(op0), 0);
+      cols[o++] = c0;
+      code[o] = INS(OP_EXT, INS_A(w1));
+      cols[o++] = c1;
+      i += 2;
+      continue;
+    }
+    if (op1 == OP_SETP && (arith_x(op0, &row, &kind) == 0 || (kind = -1, row = arith_stack(op0)) >= 0)) {
+      /* OPx; SETP d   or   OP; SETP d */
+      uint16_t c0 = cols[i], c1 = cols[i + 1];
+      code[o] = kind < 0 ? INS(sstore[row], 0) : INS(xstore[kind][row], INS_A(w0));
+      cols[o++] = c0;
+      code[o] = INS(OP_EXT, INS_A(w1));
+      cols[o++] = c1;
+      i += 2;
+      continue;
+    }
+    cols[o] = cols[i];
+    code[o++] = code[i++];
+  }
+  p->ncode = o;
+  return 0;
+}
