@@ -1008,7 +1008,7 @@ static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server 
         fprintf(stderr, "%s:%u:%u: note: %s: the program reached M2; Пуск runs it again\n", r->file, b->line,
                 b->col, bname(sess_block_number(&r->s), nb));
       else {
-        const struct vm_error *e = &r->s.vm.err;
+        const struct vm_error *e = sess_vm_error(&r->s);
         b = &r->s.p->blocks[e->block];
         fprintf(stderr, "%s:%u:%u: note: %s: the cycle stopped with %s (%s); reset (coil 4) to start again\n",
                 r->file, b->line, e->col ? e->col : b->col, bname(b->number ? (int)b->number : -1, nb),

@@ -194,14 +194,14 @@ void mb_view_of(struct mb_view *v, const struct mb_machine *m)
     return;                      /* build() shows nothing more */
   v->state = (int)s->state;
   v->wait_feed = s->wait == W_FEED;
-  v->err_code = (int)s->vm.err.code;
+  v->err_code = (int)sess_vm_error(s)->code;
   v->block = sess_block_number(s);
   v->override_eff = sess_override_allowed(s) ? sess_override_pct(s) : 100;
   v->wheel = sess_wheel(s) != WHEEL_OFF;
   v->osc = s->extra[0] && sess_oscillating(s);
-  memcpy(v->pos, s->m.pos, sizeof v->pos);
+  memcpy(v->pos, sess_positions(s), sizeof v->pos);
   v->t = sess_time(s);
-  memcpy(v->reg, s->vm.reg, sizeof v->reg);
+  memcpy(v->reg, sess_regs(s), sizeof v->reg);
 }
 
 static void build(const struct mb_view *v, double now, uint16_t ir[828], uint8_t di[16])

@@ -369,7 +369,7 @@ static void on_row(void *ctx, const struct session *s, const struct sess_row *r)
     exit_taken(t, t->cur.n, t->cur.line, r->n, r->line);
   t->cur.valid = 1;
   memcpy(t->cur.from, r->start, sizeof t->cur.from);
-  memcpy(t->cur.to, s->m.pos, sizeof t->cur.to);
+  memcpy(t->cur.to, sess_positions(s), sizeof t->cur.to);
   t->cur.t0 = t->last_t;
   t->cur.t1 = r->t;
   t->cur.ts = t->cur.t0;
@@ -532,7 +532,7 @@ static void start_run(struct tui *t)
   t->pp_seen = sess_pp_jumps(&t->s);
   if (t->override != 100 && sess_override(&t->s, t->override) == 0)
     say(t, "feed override %d %%", t->override);
-  memcpy(t->regs, t->s.vm.reg, sizeof t->regs);
+  memcpy(t->regs, sess_regs(&t->s), sizeof t->regs);
   t->last_t = t->wait_t = sess_time(&t->s);
   pace_start(&t->pace, sess_time(&t->s));
   say(t, "Пуск: the cycle starts");
@@ -1332,7 +1332,7 @@ static void go_to(struct tui *t, const char *s)
  * the panel, or -1 when it is read-only. */
 static void pitem(const struct tui *t, int i, char *b, size_t n, int *reg)
 {
-  const struct vm *vm = t->run != R_IDLE ? &t->s.vm : NULL;
+  const struct vm *vm = t->run != R_IDLE ? sess_vm(&t->s) : NULL;
   *reg = -1;
   if (i < 114) {
     *reg = i;
@@ -2029,7 +2029,7 @@ static long run_line(const struct tui *t)
   if (t->run == R_IDLE || t->run_gen != t->gen)
     return -1;
   if (t->s.state == SE_ERROR)
-    return t->s.vm.err.block < t->prog.nblocks ? (long)t->prog.blocks[t->s.vm.err.block].line - 1 : -1;
+    return sess_vm_error(&t->s)->block < t->prog.nblocks ? (long)t->prog.blocks[sess_vm_error(&t->s)->block].line - 1 : -1;
   if (t->s.state == SE_WAIT || !t->cur.valid)
     return (long)t->prog.blocks[sess_cur(&t->s)].line - 1;
   return (long)t->cur.line - 1;
@@ -2041,8 +2041,8 @@ static int shown_block(const struct tui *t, unsigned *line)
   *line = 0;
   if (t->run == R_IDLE)
     return -1;
-  if (t->s.state == SE_ERROR && t->s.vm.err.block < t->prog.nblocks) {
-    const struct prog_block *b = &t->prog.blocks[t->s.vm.err.block];
+  if (t->s.state == SE_ERROR && sess_vm_error(&t->s)->block < t->prog.nblocks) {
+    const struct prog_block *b = &t->prog.blocks[sess_vm_error(&t->s)->block];
     *line = b->line;
     return b->number ? (int)b->number : -1;
   }
@@ -2331,7 +2331,7 @@ static void draw_machine(struct tui *t, const struct layout *l)
   static const char *const ax[4] = {"X", "Y", "Z", "A"};
   for (int a = 0; a < 4 && y < end; a++)
     textf(y++, x, w, A_BOLD, wide ? "%s %12.3f %s" : "%s%11.3f %s", ax[a], pos[a] / 1000.0, a == 3 ? "deg" : "mm");
-  const struct machine *m = t->run != R_IDLE ? &t->s.m : NULL;
+  const struct machine *m = t->run != R_IDLE ? sess_machine(&t->s) : NULL;
   double f = t->run != R_IDLE ? sess_reg(&t->s, REG_F) : 0;
   if (y < end) textf(y++, x, w, A_NORMAL, wide ? "F    %8.0f mm/min" : "F   %6.0f mm/min", f);
   if (y < end) textf(y++, x, w, A_NORMAL, wide ? "feed %10.1f mm/min" : "feed %6.1f mm/min", feed);

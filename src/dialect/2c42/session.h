@@ -238,6 +238,14 @@ static inline int sess_override_pct(const struct session *s) { return s->m.overr
 static inline int sess_override_allowed(const struct session *s) { return s->m.override_allowed; }
 static inline int sess_wheel(const struct session *s) { return s->m.wheel; }
 static inline int sess_exit_latched(const struct session *s) { return s->vm.exit_latch; }
+/* ... the run's error as the VM holds it, the parameters, the axes'
+ * positions, and (for the panes that show them whole) the VM and the
+ * machine themselves, read-only. */
+static inline const struct vm_error *sess_vm_error(const struct session *s) { return &s->vm.err; }
+static inline const double *sess_regs(const struct session *s) { return s->vm.reg; }
+static inline const int64_t *sess_positions(const struct session *s) { return s->m.pos; }
+static inline const struct vm *sess_vm(const struct session *s) { return &s->vm; }
+static inline const struct machine *sess_machine(const struct session *s) { return &s->m; }
 /* The run's error (SE_ERROR: the VM raised it, or the host failed or
  * refused the run), located in the program's text. */
 struct s42_error;
