@@ -471,8 +471,15 @@ static double text_w(cairo_t *cr, const char *s, double size, int bold)
  * A long program draws the same few strokes over and over (repeated passes,
  * small infeeds), and short moves far below a pixel; cairo's cost grows with
  * every segment it strokes, seen or not.  So in each panel and style:
- *   - a segment (or arc) is drawn once: one whose ends (and centre) fall on
- *     the same 1/PEN_Q px grid points as one already drawn is left out;
+ *   - a segment (or arc) is drawn once for each chunk of the caller's
+ *     drawing (CHUNK blocks) it is in, up to PEN_LAYERS times, and never
+ *     twice in one chunk: "the same" is ends (and centre) on the same
+ *     1/PEN_Q px grid points.  The old plot stroked each chunk apart, so a
+ *     line drawn again in another chunk inked its antialiased edges again;
+ *     the second and third times are kept aside and stroked over the rest
+ *     (the fourth would add less than 1/30 of the ink: left out);
+ *   - a new chunk starts a new stroke (lines that cross in two chunks
+ *     darken where they cross, as before);
  *   - a polyline's vertices are dropped while the line drawn stays within
  *     PEN_TOL px of every one of them (collinear moves, short moves in a
  *     row: one line), so the cone of directions from the last vertex drawn
@@ -481,8 +488,10 @@ static double text_w(cairo_t *cr, const char *s, double size, int bold)
  *     one column colw px wide are cut to the first, the lowest, the highest
  *     and the last, in their order: a stroke back and forth within the
  *     column covers the same pixels;
- *   - what is left is stroked every PEN_BATCH segments.
- * The picture differs from drawing every segment by less than PEN_TOL px. */
+ *   - a stroke holds at most PEN_BATCH segments.
+ * The picture differs from drawing every segment by less than PEN_TOL px in
+ * its lines and a few levels in the ink of their edges.  SVG and PDF get
+ * the same: each visible line once, arcs as arcs. */
 #define PEN_Q 8.0          /* the duplicate test's grid: 1/8 px */
 #define PEN_TOL 0.0625     /* px: how far a dropped vertex may be off the line */
 #define PEN_BATCH 2048     /* segments a stroke: cairo strokes a huge path slowly */
@@ -942,7 +951,7 @@ static int seg_has_jog(const struct seg *g)
   return g->jog[0] || g->jog[1] || g->jog[2] || g->jog[3];
 }
 
-#define CHUNK 128   /* the old strokes' length: see the pen's layers */
+#define CHUNK 128   /* blocks a chunk (the old plot's strokes): see the pen */
 
 static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
 {
