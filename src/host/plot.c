@@ -325,7 +325,8 @@ static void seg_point(const struct seg *g, double u, int teach, double out[4])
     base[a] = (double)g->start[a] + (teach ? g->d[a] : 0);
     out[a] = base[a] + d[a] * u;
   }
-  if (teach ? (g->flags & F_TEACH_ARC) : g->kind == K_ARC) {
+  if ((teach ? (g->flags & F_TEACH_ARC) : g->kind == K_ARC) && u > 0 && u < 1) {
+    /* (at its ends an arc is where the linear part is, exactly) */
     int p, q;
     geom_plane_axes(g->plane, &p, &q);
     double cp = g->cp, cq = g->cq;
@@ -333,10 +334,6 @@ static void seg_point(const struct seg *g, double u, int teach, double out[4])
     double th = atan2(-cq, -cp) + g->sweep * u, rr = r0 + (r1 - r0) * u;
     out[p] = base[p] + cp + rr * cos(th);
     out[q] = base[q] + cq + rr * sin(th);
-    if (u >= 1) {
-      out[p] = base[p] + d[p];
-      out[q] = base[q] + d[q];
-    }
   }
   for (int a = 0; a < 4; a++)
     out[a] /= 1000.0;
@@ -434,7 +431,6 @@ static void rgb(cairo_t *cr, unsigned c)
   cairo_set_source_rgb(cr, ((c >> 16) & 255) / 255.0, ((c >> 8) & 255) / 255.0, (c & 255) / 255.0);
 }
 
-#define CHUNK 128   /* segments per stroke */
 #define C_PATH 0x1f4db3u
 #define C_JOG 0xe67300u
 #define C_CORR 0xbf1a99u
@@ -470,66 +466,478 @@ static double text_w(cairo_t *cr, const char *s, double size, int bold)
   return e.x_advance;
 }
 
+/* ---- the pen: only what the pixels can show goes to cairo ----
+ *
+ * A long program draws the same few strokes over and over (repeated passes,
+ * small infeeds), and short moves far below a pixel; cairo's cost grows with
+ * every segment it strokes, seen or not.  So in each panel and style:
+ *   - a segment (or arc) is drawn once for each chunk of the caller's
+ *     drawing (CHUNK blocks) it is in, up to PEN_LAYERS times, and never
+ *     twice in one chunk: "the same" is ends (and centre) on the same
+ *     1/PEN_Q px grid points.  The old plot stroked each chunk apart, so a
+ *     line drawn again in another chunk inked its antialiased edges again;
+ *     the second and third times are kept aside and stroked over the rest
+ *     (the fourth would add less than 1/30 of the ink: left out);
+ *   - a new chunk starts a new stroke (lines that cross in two chunks
+ *     darken where they cross, as before);
+ *   - a polyline's vertices are dropped while the line drawn stays within
+ *     PEN_TOL px of every one of them (collinear moves, short moves in a
+ *     row: one line), so the cone of directions from the last vertex drawn
+ *     that passes within PEN_TOL of each dropped point is kept;
+ *   - with colw (the A panel: x is time), the points of a run falling into
+ *     one column colw px wide are cut to the first, the lowest, the highest
+ *     and the last, in their order: a stroke back and forth within the
+ *     column covers the same pixels;
+ *   - a stroke holds at most PEN_BATCH segments.
+ * The picture differs from drawing every segment by less than PEN_TOL px in
+ * its lines and a few levels in the ink of their edges.  SVG and PDF get
+ * the same: each visible line once, arcs as arcs. */
+#define PEN_Q 8.0          /* the duplicate test's grid: 1/8 px */
+#define PEN_TOL 0.0625     /* px: how far a dropped vertex may be off the line */
+#define PEN_BATCH 2048     /* segments a stroke: cairo strokes a huge path slowly */
+#define PEN_SETS 16384     /* the duplicate test's cache: 64 K keys, 1 MiB */
+#define PEN_WAYS 4
+#define PEN_LAYERS 3       /* a line seen in more chunks is drawn up to 3 times */
+
+struct pen_col { double x, y; int i; };
+/* a line or an arc, as pen_line and pen_arc take it */
+struct pen_prim { double x0, y0, x1, y1, cx, cy, r, a0, a1; int arc; };
+struct pen_layer { struct pen_prim *v; size_t n, cap; };
+
+struct pen {
+  cairo_t *cr;
+  int dedupe;                  /* 0 draw all; else the layer: draw what is seen in
+                                  that many chunks, when it is */
+  long chunk;                  /* the caller's chunk of what it draws */
+  struct pen_layer layer[PEN_LAYERS - 1];   /* seen in 2, 3 chunks: drawn over */
+  int maxcount;                /* the most chunks a key was seen in */
+  uint64_t *set;               /* the cache: 2 words a key, {0, 0} empty */
+  size_t used, evicted;        /* keys put in, pushed out */
+  int have;                    /* cairo's current point is (sx, sy) */
+  double sx, sy;
+  int pend;                    /* (ex, ey) is added but not yet drawn */
+  double ex, ey, ed;           /* ... and its distance from (sx, sy) */
+  int cone;                    /* directions from s: ref + [lo, hi] */
+  double ref, lo, hi;
+  long nseg;                   /* in cairo's path since the last stroke */
+  /* the column (colw > 0) */
+  double colw;
+  int ncol;                    /* points in the column: 0 none */
+  long colk;                   /* its index */
+  struct pen_col c_first, c_min, c_max, c_last;
+  long ndrawn, nskipped;       /* for the curious (S42_PLOT_STATS) */
+  int lhave;                   /* pen_moveto, pen_lineto: the producer is at (lx, ly) */
+  double lx, ly;
+};
+
+static void pen_init(struct pen *pn, cairo_t *cr, int dedupe, double colw)
+{
+  memset(pn, 0, sizeof *pn);
+  pn->cr = cr;
+  pn->dedupe = dedupe;
+  pn->colw = colw;
+}
+
+static uint64_t mix64(uint64_t x)
+{
+  x ^= x >> 33;
+  x *= 0xff51afd7ed558ccdULL;
+  x ^= x >> 33;
+  x *= 0xc4ceb9fe1a85ec53ULL;
+  x ^= x >> 33;
+  return x;
+}
+
+static int64_t pen_q(double v)
+{
+  double q = floor(v * PEN_Q + 0.5);
+  if (q != q)
+    return 0;
+  return q > 1e15 ? (int64_t)1e15 : q < -1e15 ? -(int64_t)1e15 : (int64_t)q;
+}
+
+/* The key k[0..n) is seen in chunk pn->chunk: how many chunks it has been
+ * seen in, this one included, when this is the first time in this one;
+ * else 0.  Keys are held as 96 bits of two independent hashes (two keys
+ * that differ collide with odds of 2^-96), with the count and the last
+ * chunk in the rest of the second word, in a cache of PEN_SETS sets of
+ * PEN_WAYS that fits the L2 of a processor: a key forgotten counts from 1
+ * again (drawn again, no worse than without the test), and a huge program
+ * that repeats nothing costs no cache misses. */
+static int pen_count_key(struct pen *pn, const int64_t *k, int n)
+{
+  uint64_t h1 = 0x9e3779b97f4a7c15ULL, h2 = 0x243f6a8885a308d3ULL;
+  for (int i = 0; i < n; i++) {
+    h1 = mix64(h1 ^ (uint64_t)k[i]);
+    h2 = mix64(h2 + (uint64_t)k[i] * 0x9e3779b97f4a7c15ULL);
+  }
+  const uint64_t ID = ~(uint64_t)0 << 32, CH = (1u << 28) - 1;
+  uint64_t chunk = (uint64_t)pn->chunk & CH;
+  h2 &= ID;
+  if (!pn->set) {
+    pn->set = calloc((size_t)PEN_SETS * PEN_WAYS, 2 * sizeof *pn->set);
+    if (!pn->set)
+      return 1;   /* no memory for the test: draw it */
+  }
+  /* two sets it may be in: a key goes where there is room, so that a few
+   * too many in one set (drawn again at every pass) take two full sets */
+  uint64_t *w = pn->set + (h1 >> 40 & (PEN_SETS - 1)) * PEN_WAYS * 2;
+  uint64_t *w2 = pn->set + (h2 >> 40 & (PEN_SETS - 1)) * PEN_WAYS * 2;
+  for (int j = 0; j < 2; j++, w = w2)
+    for (int i = 0; i < PEN_WAYS; i++) {
+      uint64_t *e = w + 2 * i;
+      if (e[0] != h1 || (e[1] & ID) != h2 || !e[1])
+        continue;
+      int cnt = (int)(e[1] >> 28 & 15);
+      if ((e[1] & CH) == chunk)
+        return 0;
+      if (cnt < 15)
+        cnt++;
+      e[1] = h2 | (uint64_t)cnt << 28 | chunk;
+      if (cnt > pn->maxcount)
+        pn->maxcount = cnt;
+      return cnt;
+    }
+  w = pn->set + (h1 >> 40 & (PEN_SETS - 1)) * PEN_WAYS * 2;
+  if (w[2 * (PEN_WAYS - 1) + 1]) {
+    if (!w2[2 * (PEN_WAYS - 1) + 1])
+      w = w2;
+    else
+      pn->evicted++;
+  }
+  /* new: first in its set, the oldest out */
+  memmove(w + 2, w, (PEN_WAYS - 1) * 2 * sizeof *w);
+  w[0] = h1;
+  w[1] = h2 | (uint64_t)1 << 28 | chunk;
+  pn->used++;
+  if (pn->maxcount < 1)
+    pn->maxcount = 1;
+  return 1;
+}
+
+static void pen_stroke(struct pen *pn)
+{
+  cairo_stroke(pn->cr);
+  pn->nseg = 0;
+  if (pn->have)
+    cairo_move_to(pn->cr, pn->sx, pn->sy);
+}
+
+static void pen_emit(struct pen *pn, double x, double y)
+{
+  cairo_line_to(pn->cr, x, y);
+  pn->sx = x;
+  pn->sy = y;
+  pn->pend = pn->cone = 0;
+  pn->ed = 0;
+  pn->ndrawn++;
+  if (++pn->nseg >= PEN_BATCH)
+    pen_stroke(pn);
+}
+
+static double wrap_pi(double a)
+{
+  while (a > M_PI) a -= 2 * M_PI;
+  while (a <= -M_PI) a += 2 * M_PI;
+  return a;
+}
+
+/* The polyline goes on to (x, y): drop the pending vertex when the line
+ * from the last vertex drawn to (x, y) passes within PEN_TOL of it and of
+ * all dropped before it. */
+static void pen_vertex(struct pen *pn, double x, double y)
+{
+  for (int again = 0; again < 2; again++) {
+    double dx = x - pn->sx, dy = y - pn->sy, d = hypot(dx, dy);
+    if (d >= pn->ed) {
+      if (d <= PEN_TOL) {
+        pn->pend = 1, pn->ex = x, pn->ey = y, pn->ed = d;
+        return;
+      }
+      double th = atan2(dy, dx), al = asin(PEN_TOL / d);
+      if (!pn->cone) {
+        pn->cone = 1;
+        pn->ref = th;
+        pn->lo = -al;
+        pn->hi = al;
+        pn->pend = 1, pn->ex = x, pn->ey = y, pn->ed = d;
+        return;
+      }
+      double o = wrap_pi(th - pn->ref);
+      if (o >= pn->lo && o <= pn->hi) {
+        if (o - al > pn->lo) pn->lo = o - al;
+        if (o + al < pn->hi) pn->hi = o + al;
+        pn->pend = 1, pn->ex = x, pn->ey = y, pn->ed = d;
+        return;
+      }
+    }
+    if (!pn->pend)
+      break;
+    pen_emit(pn, pn->ex, pn->ey);   /* and start over from there */
+  }
+  pen_emit(pn, x, y);
+}
+
+static void pen_col_flush(struct pen *pn)
+{
+  if (!pn->ncol)
+    return;
+  struct pen_col c[4] = {pn->c_first, pn->c_min, pn->c_max, pn->c_last};
+  /* in the order they came, each once */
+  if (c[2].i < c[1].i) {
+    struct pen_col t = c[1];
+    c[1] = c[2];
+    c[2] = t;
+  }
+  int last = -1;
+  for (int k = 0; k < 4; k++)
+    if (c[k].i > last) {
+      pen_vertex(pn, c[k].x, c[k].y);
+      last = c[k].i;
+    }
+  pn->ncol = 0;
+}
+
+static void pen_point(struct pen *pn, double x, double y)
+{
+  if (!(pn->colw > 0)) {
+    pen_vertex(pn, x, y);
+    return;
+  }
+  long k = (long)floor(x / pn->colw);
+  if (pn->ncol && k != pn->colk)
+    pen_col_flush(pn);
+  struct pen_col p = {x, y, pn->ncol};
+  if (!pn->ncol) {
+    pn->colk = k;
+    pn->c_first = pn->c_min = pn->c_max = p;
+  }
+  if (y < pn->c_min.y) pn->c_min = p;
+  if (y > pn->c_max.y) pn->c_max = p;
+  pn->c_last = p;
+  pn->ncol++;
+}
+
+/* The end of a polyline: draw what is pending. */
+static void pen_break(struct pen *pn)
+{
+  pen_col_flush(pn);
+  if (pn->pend)
+    pen_emit(pn, pn->ex, pn->ey);
+  pn->have = 0;
+  pn->cone = 0;
+  pn->ed = 0;
+}
+
+/* What follows is in chunk c: a new chunk is a new stroke, as before the
+ * pen (lines that cross in two strokes darken where they cross). */
+static void pen_chunk(struct pen *pn, long c)
+{
+  if (c != pn->chunk && pn->nseg) {
+    pen_col_flush(pn);
+    if (pn->pend)
+      pen_emit(pn, pn->ex, pn->ey);
+    if (pn->nseg)
+      pen_stroke(pn);
+  }
+  pn->chunk = c;
+}
+
+/* The point the polyline is at. */
+static int pen_at(const struct pen *pn, double x, double y)
+{
+  double cx = pn->sx, cy = pn->sy;
+  if (pn->ncol) {
+    cx = pn->c_last.x;
+    cy = pn->c_last.y;
+  } else if (pn->pend) {
+    cx = pn->ex;
+    cy = pn->ey;
+  }
+  return pn->have && fabs(cx - x) < 1e-7 && fabs(cy - y) < 1e-7;
+}
+
+static void pen_start(struct pen *pn, double x, double y)
+{
+  if (pen_at(pn, x, y))
+    return;
+  pen_break(pn);
+  cairo_move_to(pn->cr, x, y);
+  pn->have = 1;
+  pn->sx = x;
+  pn->sy = y;
+}
+
+/* Is this line (arc 0) or arc (1 cairo_arc, 2 cairo_arc_negative; round
+ * (cx, cy), radius r, angles a0 to a1) one to draw now?  Seen again in
+ * another chunk, it goes to the next layer (drawn later, over). */
+static int pen_fresh(struct pen *pn, const struct pen_prim *pr)
+{
+  if (!pn->dedupe)
+    return 1;
+  int64_t k[7] = {pen_q(pr->x0), pen_q(pr->y0), pen_q(pr->x1), pen_q(pr->y1), pr->arc, 0, 0};
+  if (!pr->arc && (k[0] > k[2] || (k[0] == k[2] && k[1] > k[3]))) {
+    /* a line is the same both ways */
+    int64_t t = k[0]; k[0] = k[2]; k[2] = t;
+    t = k[1]; k[1] = k[3]; k[3] = t;
+  }
+  if (pr->arc) {
+    k[5] = pen_q(pr->cx);
+    k[6] = pen_q(pr->cy);
+  }
+  int c = pen_count_key(pn, k, pr->arc ? 7 : 5);
+  if (c == 1)
+    return 1;
+  if (c >= 2 && c <= PEN_LAYERS) {
+    struct pen_layer *L = &pn->layer[c - 2];
+    if (L->n == L->cap) {
+      size_t nc = L->cap ? L->cap * 2 : 256;
+      struct pen_prim *nv = realloc(L->v, nc * sizeof *nv);
+      if (nv) {
+        L->v = nv;
+        L->cap = nc;
+      }
+    }
+    if (L->n < L->cap)
+      L->v[L->n++] = *pr;
+  }
+  pn->nskipped++;
+  pen_break(pn);
+  return 0;
+}
+
+static void pen_draw(struct pen *pn, const struct pen_prim *pr)
+{
+  pen_start(pn, pr->x0, pr->y0);
+  if (!pr->arc) {
+    pen_point(pn, pr->x1, pr->y1);
+    return;
+  }
+  pen_col_flush(pn);
+  if (pn->pend)
+    pen_emit(pn, pn->ex, pn->ey);
+  if (pr->arc == 2)
+    cairo_arc_negative(pn->cr, pr->cx, pr->cy, pr->r, pr->a0, pr->a1);
+  else
+    cairo_arc(pn->cr, pr->cx, pr->cy, pr->r, pr->a0, pr->a1);
+  pn->pend = 0;
+  pn->nseg += 8;
+  pen_emit(pn, pr->x1, pr->y1);
+}
+
+/* A line from (x0, y0) to (x1, y1): on from the point the polyline is at
+ * when it starts there. */
+static void pen_line(struct pen *pn, double x0, double y0, double x1, double y1)
+{
+  struct pen_prim pr = {x0, y0, x1, y1, 0, 0, 0, 0, 0, 0};
+  if (pen_fresh(pn, &pr))
+    pen_draw(pn, &pr);
+}
+
+/* An arc round (cx, cy) of radius r from angle a0 to a1 (cairo's sense:
+ * neg, decreasing), from (x0, y0) to (x1, y1). */
+static void pen_arc(struct pen *pn, double cx, double cy, double r, double a0, double a1, int neg, double x0,
+                    double y0, double x1, double y1)
+{
+  struct pen_prim pr = {x0, y0, x1, y1, cx, cy, r, a0, a1, neg ? 2 : 1};
+  if (pen_fresh(pn, &pr))
+    pen_draw(pn, &pr);
+}
+
+/* Stroke what is left, then the layers over it (each its own strokes, as
+ * the same line stroked again darkens its edges), forget what was drawn. */
+static void pen_done(struct pen *pn)
+{
+  pen_break(pn);
+  if (getenv("S42_PLOT_STATS"))
+    fprintf(stderr, "pen: %ld drawn, %ld duplicates left out (%zu, %zu again), %zu keys, %zu forgotten\n",
+            pn->ndrawn, pn->nskipped, pn->layer[0].n, pn->layer[1].n, pn->used, pn->evicted);
+  cairo_stroke(pn->cr);
+  free(pn->set);
+  pn->set = NULL;
+  pn->used = pn->evicted = 0;
+  pn->nseg = 0;
+  pn->have = 0;
+  for (int l = 0; l < PEN_LAYERS - 1; l++) {
+    struct pen_layer *L = &pn->layer[l];
+    if (L->n) {
+      struct pen sub;
+      pen_init(&sub, pn->cr, 0, 0);
+      for (size_t i = 0; i < L->n; i++)
+        pen_draw(&sub, &L->v[i]);
+      pen_break(&sub);
+      cairo_stroke(pn->cr);
+    }
+    free(L->v);
+    L->v = NULL;
+    L->n = L->cap = 0;
+  }
+}
+
+/* A producer's polyline: to (x, y) with no line, then lines on from there. */
+static void pen_moveto(struct pen *pn, double x, double y)
+{
+  pn->lx = x;
+  pn->ly = y;
+  pn->lhave = 1;
+}
+
+static void pen_lineto(struct pen *pn, double x, double y)
+{
+  if (pn->lhave && (pn->lx != x || pn->ly != y))
+    pen_line(pn, pn->lx, pn->ly, x, y);
+  pen_moveto(pn, x, y);
+}
+
 /* Add the programmed part (teach 0) or the teach-in/jog part (teach 1) of
- * g to the current path in panel P; *have: there is a current point at
- * (*lx, *ly). */
-static void path_seg(cairo_t *cr, const struct panel *P, const struct seg *g, int teach, int *have,
-                     double *lx, double *ly)
+ * g to the pen's path in panel P. */
+static void path_seg(struct pen *pn, const struct panel *P, const struct seg *g, int teach)
 {
   double a[4], b[4], x0, y0, x1, y1;
   seg_point(g, 0, teach, a);
   seg_point(g, 1, teach, b);
-  pmap(P, a[P->u], a[P->v], &x0, &y0);
-  pmap(P, b[P->u], b[P->v], &x1, &y1);
   int curve = teach ? (g->flags & F_TEACH_ARC) : g->kind == K_ARC;
   if (a[P->u] == b[P->u] && a[P->v] == b[P->v] && !curve)
     return;   /* does not move in this panel */
-  if (!*have || *lx != x0 || *ly != y0)
-    cairo_move_to(cr, x0, y0);
+  pmap(P, a[P->u], a[P->v], &x0, &y0);
+  pmap(P, b[P->u], b[P->v], &x1, &y1);
   int p = 0, q = 0;
   if (curve)
     geom_plane_axes(g->plane, &p, &q);
   if (curve && P->u == p && P->v == q) {
-    const int32_t *d = teach ? g->jog : g->d;
     double r = hypot(g->cp, g->cq) / 1000.0 * P->s;
     double cx = x0 + g->cp / 1000.0 * P->s, cy = y0 - g->cq / 1000.0 * P->s;
     double th0 = atan2(-(double)g->cq, -(double)g->cp);
-    (void)d;
     /* page y runs down: a counter-clockwise turn decreases the page angle */
-    if (g->sweep > 0)
-      cairo_arc_negative(cr, cx, cy, r, -th0, -th0 - g->sweep);
-    else
-      cairo_arc(cr, cx, cy, r, -th0, -th0 - g->sweep);
-    cairo_line_to(cr, x1, y1);
+    pen_arc(pn, cx, cy, r, -th0, -th0 - g->sweep, g->sweep > 0, x0, y0, x1, y1);
   } else if (curve && (teach ? g->jog : g->d)[P->u != p && P->u != q ? P->u : P->v] == 0) {
     /* the panel's other axis does not move: the arc projects to a line
      * along the plane's axis in the panel, drawn to where that coordinate
      * turns and on to the end (not point by point) */
     double u[8], pt[4], x, y;
     int k = arc_turns(arc_th0(g), g->sweep, P->u == p || P->v == p ? 0 : 1, u);
+    pen_moveto(pn, x0, y0);
     for (int i = 0; i < k; i++) {
       seg_point(g, u[i], teach, pt);
       pmap(P, pt[P->u], pt[P->v], &x, &y);
-      cairo_line_to(cr, x, y);
+      pen_lineto(pn, x, y);
     }
-    cairo_line_to(cr, x1, y1);
+    pen_lineto(pn, x1, y1);
   } else if (curve) {
     double r = hypot(g->cp, g->cq) / 1000.0 * P->s;
     int k = (int)ceil(fabs(g->sweep) * r / 2.0);
     if (k < 2) k = 2;
     if (k > 360) k = 360;
+    pen_moveto(pn, x0, y0);
     for (int i = 1; i <= k; i++) {
       double pt[4], x, y;
       seg_point(g, (double)i / k, teach, pt);
       pmap(P, pt[P->u], pt[P->v], &x, &y);
-      cairo_line_to(cr, x, y);
+      pen_lineto(pn, x, y);
     }
   } else {
-    cairo_line_to(cr, x1, y1);
+    pen_line(pn, x0, y0, x1, y1);
   }
-  *have = 1;
-  *lx = x1;
-  *ly = y1;
 }
 
 static void end_of(const struct seg *g, double out[4])
@@ -543,39 +951,34 @@ static int seg_has_jog(const struct seg *g)
   return g->jog[0] || g->jog[1] || g->jog[2] || g->jog[3];
 }
 
+#define CHUNK 128   /* blocks a chunk (the old plot's strokes): see the pen */
+
 static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
 {
-  double lx = 0, ly = 0;
-  int have = 0;
-  /* programmed moves: solid.  Stroked in pieces: cairo strokes one huge
-   * path slowly and with much memory. */
+  struct pen pn;
+  /* programmed moves: solid */
   rgb(cr, C_PATH);
   cairo_set_line_width(cr, 1.4);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  pen_init(&pn, cr, 1, 0);
   for (size_t i = 0; i < pl->n; i++) {
-    path_seg(cr, P, &pl->v[i], 0, &have, &lx, &ly);
-    if (i % CHUNK == CHUNK - 1) {
-      cairo_stroke(cr);
-      have = 0;
-    }
+    pen_chunk(&pn, (long)(i / CHUNK));
+    path_seg(&pn, P, &pl->v[i], 0);
   }
-  cairo_stroke(cr);
+  pen_done(&pn);
 
   /* manual moves: dashed */
-  have = 0;
   rgb(cr, C_JOG);
   cairo_set_line_width(cr, 2.0);
   double dash[] = {6.0, 3.5};
   cairo_set_dash(cr, dash, 2, 0);
+  pen_init(&pn, cr, 1, 0);
   for (size_t i = 0, k = 0; i < pl->n; i++)
     if (seg_has_jog(&pl->v[i])) {
-      path_seg(cr, P, &pl->v[i], 1, &have, &lx, &ly);
-      if (++k % CHUNK == 0) {
-        cairo_stroke(cr);
-        have = 0;
-      }
+      pen_chunk(&pn, (long)(k++ / CHUNK));
+      path_seg(&pn, P, &pl->v[i], 1);
     }
-  cairo_stroke(cr);
+  pen_done(&pn);
   cairo_set_dash(cr, NULL, 0, 0);
   /* corrections between blocks: dotted */
   rgb(cr, C_CORR);
@@ -583,8 +986,10 @@ static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
   double dots[] = {1.0, 3.0};
   cairo_set_dash(cr, dots, 2, 0);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  pen_init(&pn, cr, 1, 0);
   double prev[4] = {0, 0, 0, 0};
-  for (size_t i = 0, k = 0; i < pl->n; i++) {
+  size_t k = 0;
+  for (size_t i = 0; i < pl->n; i++) {
     const struct seg *g = &pl->v[i];
     double st[4], x0, y0, x1, y1;
     for (int a = 0; a < 4; a++)
@@ -592,10 +997,9 @@ static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
     if (st[P->u] != prev[P->u] || st[P->v] != prev[P->v]) {
       pmap(P, prev[P->u], prev[P->v], &x0, &y0);
       pmap(P, st[P->u], st[P->v], &x1, &y1);
-      cairo_move_to(cr, x0, y0);
-      cairo_line_to(cr, x1, y1);
-      if (++k % CHUNK == 0)
-        cairo_stroke(cr);
+      pen_break(&pn);   /* each a stroke of its own: the dots start at its start */
+      pen_chunk(&pn, (long)(k++ / CHUNK));
+      pen_line(&pn, x0, y0, x1, y1);
     }
     end_of(g, prev);
   }
@@ -605,10 +1009,10 @@ static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
   if (con[P->u] != prev[P->u] || con[P->v] != prev[P->v]) {
     pmap(P, prev[P->u], prev[P->v], &x0, &y0);
     pmap(P, con[P->u], con[P->v], &x1, &y1);
-    cairo_move_to(cr, x0, y0);
-    cairo_line_to(cr, x1, y1);
+    pen_break(&pn);
+    pen_line(&pn, x0, y0, x1, y1);
   }
-  cairo_stroke(cr);
+  pen_done(&pn);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
   cairo_set_dash(cr, NULL, 0, 0);
 }
@@ -677,6 +1081,8 @@ static void draw_panel_osc(cairo_t *cr, const struct panel *P, const struct plot
     return;
   rgb(cr, C_OSC);
   cairo_set_line_width(cr, 1.0);
+  struct pen pn;
+  pen_init(&pn, cr, 1, 0);
   size_t j = 0;
   for (size_t i = 0; i < pl->nosc; i++) {
     const struct osc_pt *o = &pl->osc[i];
@@ -684,20 +1090,17 @@ static void draw_panel_osc(cairo_t *cr, const struct panel *P, const struct plot
     int steps = osc_steps(pl, i);
     if (o->axis != P->u && o->axis != P->v)
       continue;   /* it would only cover the contour */
+    pen_chunk(&pn, (long)(i / CHUNK));
     for (int k = 1; k <= steps; k++) {
       osc_point(pl, i, k, &j, pt);
       pmap(P, pt[P->u], pt[P->v], &x, &y);
       if (i == 0 || o->start)
-        cairo_move_to(cr, x, y);
+        pen_moveto(&pn, x, y);
       else
-        cairo_line_to(cr, x, y);
-    }
-    if (i % CHUNK == CHUNK - 1) {
-      cairo_stroke(cr);
-      cairo_move_to(cr, x, y);
+        pen_lineto(&pn, x, y);
     }
   }
-  cairo_stroke(cr);
+  pen_done(&pn);
 }
 
 /* Block numbers at block starts, where there is room. */
@@ -705,6 +1108,11 @@ static void draw_labels(cairo_t *cr, struct panel *P, const struct plot *pl)
 {
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, 9.5);
+  /* the numbers' widths, measured once each (block numbers have at most 3
+   * digits): a long program labels few of its blocks but asks about all */
+  double wid[1000];
+  for (int k = 0; k < 1000; k++)
+    wid[k] = -1;
   for (size_t i = 0; i < pl->n && P->nlabels < 400; i++) {
     const struct seg *g = &pl->v[i];
     if (g->n < 0)
@@ -717,11 +1125,17 @@ static void draw_labels(cairo_t *cr, struct panel *P, const struct plot *pl)
     if (fabs(x1 - x0) < 1 && fabs(y1 - y0) < 1 && g->kind != K_ARC)
       continue;   /* the block does not move in this panel */
     char s[16];
-    snprintf(s, sizeof s, "%d", (int)g->n);
-    cairo_text_extents_t e;
-    cairo_text_extents(cr, s, &e);
+    snprintf(s, sizeof s, "%d", (int)g->n);   /* (cheap beside what follows) */
+    double adv = g->n < 1000 ? wid[g->n] : -1;
+    if (adv < 0) {
+      cairo_text_extents_t e;
+      cairo_text_extents(cr, s, &e);
+      adv = e.x_advance;
+      if (g->n < 1000)
+        wid[g->n] = adv;
+    }
     double lx = x0 + 3, ly = y0 - 3;   /* baseline left */
-    double rx0 = lx - 1, ry0 = ly - 10, rx1 = lx + e.x_advance + 1, ry1 = ly + 2;
+    double rx0 = lx - 1, ry0 = ly - 10, rx1 = lx + adv + 1, ry1 = ly + 2;
     if (rx0 < P->rx + 2 || rx1 > P->rx + P->rw - 2 || ry0 < P->ry + 2 || ry1 > P->ry + P->rh - 2)
       continue;
     int c0 = (int)((rx0 - P->x) / 4), c1 = (int)((rx1 - P->x) / 4);
@@ -1149,71 +1563,69 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
   double dots[] = {1.0, 3.0};
   cairo_set_dash(cr, dots, 2, 0);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  struct pen pn;
+  pen_init(&pn, cr, 1, 0);
   a = 0;
-  for (size_t i = 0, k = 0; i < pl->n; i++) {
+  for (size_t i = 0; i < pl->n; i++) {
     const struct seg *g = &pl->v[i];
     double s0 = g->start[3] / 1000.0;
     if (s0 != a) {
-      cairo_move_to(cr, TX(g->t0), AY(a));
-      cairo_line_to(cr, TX(g->t0), AY(s0));
-      if (++k % CHUNK == 0)
-        cairo_stroke(cr);
+      pen_break(&pn);
+      pen_line(&pn, TX(g->t0), AY(a), TX(g->t0), AY(s0));
     }
     a = (g->start[3] + g->d[3] + g->jog[3]) / 1000.0;
   }
   if (con[3] != a) {   /* a correction after the last block */
-    cairo_move_to(cr, TX(t_end), AY(a));
-    cairo_line_to(cr, TX(t_end), AY(con[3]));
+    pen_break(&pn);
+    pen_line(&pn, TX(t_end), AY(a), TX(t_end), AY(con[3]));
   }
-  cairo_stroke(cr);
+  pen_done(&pn);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
   rgb(cr, C_JOG);
   cairo_set_line_width(cr, 2);
   double dash[] = {6.0, 3.5};
   cairo_set_dash(cr, dash, 2, 0);
-  for (size_t i = 0, k = 0; i < pl->n; i++) {
+  pen_init(&pn, cr, 1, 0);
+  for (size_t i = 0; i < pl->n; i++) {
     const struct seg *g = &pl->v[i];
     if (g->jog[3]) {
       double m = (g->start[3] + g->d[3]) / 1000.0;
-      cairo_move_to(cr, TX(g->t1), AY(m));
-      cairo_line_to(cr, TX(g->t1), AY(m + g->jog[3] / 1000.0));
-      if (++k % CHUNK == 0)
-        cairo_stroke(cr);
+      pen_break(&pn);
+      pen_line(&pn, TX(g->t1), AY(m), TX(g->t1), AY(m + g->jog[3] / 1000.0));
     }
   }
-  cairo_stroke(cr);
+  pen_done(&pn);
   cairo_set_dash(cr, NULL, 0, 0);
   rgb(cr, C_PATH);
   cairo_set_line_width(cr, 1.4);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  /* a function of time: many blocks a pixel column, cut to what it shows */
+  pen_init(&pn, cr, 0, 1 / PEN_Q);
   a = 0;
-  cairo_move_to(cr, TX(0), AY(0));
+  pen_moveto(&pn, TX(0), AY(0));
   for (size_t i = 0; i < pl->n; i++) {
     const struct seg *g = &pl->v[i];
     double s0 = g->start[3] / 1000.0, e0 = (g->start[3] + g->d[3]) / 1000.0;
     if (s0 != a)
-      cairo_move_to(cr, TX(g->t0), AY(s0));
+      pen_moveto(&pn, TX(g->t0), AY(s0));
     else
-      cairo_line_to(cr, TX(g->t0), AY(s0));
-    cairo_line_to(cr, TX(g->t1), AY(e0));
+      pen_lineto(&pn, TX(g->t0), AY(s0));
+    pen_lineto(&pn, TX(g->t1), AY(e0));
     a = e0 + g->jog[3] / 1000.0;
-    if (i % CHUNK == CHUNK - 1) {
-      cairo_stroke(cr);
-      cairo_move_to(cr, TX(g->t1), AY(e0));
-    }
     if (g->jog[3])
-      cairo_move_to(cr, TX(g->t1), AY(a));
+      pen_moveto(&pn, TX(g->t1), AY(a));
   }
-  cairo_line_to(cr, TX(tend), AY(a));
+  pen_lineto(&pn, TX(tend), AY(a));
   if (con[3] != a) {
-    cairo_move_to(cr, TX(t_end), AY(con[3]));
-    cairo_line_to(cr, TX(tend), AY(con[3]));
+    pen_moveto(&pn, TX(t_end), AY(con[3]));
+    pen_lineto(&pn, TX(tend), AY(con[3]));
   }
-  cairo_stroke(cr);
+  pen_done(&pn);
   /* A oscillating: the programmed A plus its displacement */
   rgb(cr, C_OSC);
   cairo_set_line_width(cr, 1.0);
   size_t j = 0;
+  pen_init(&pn, cr, 0, 1 / PEN_Q);
   for (size_t i = 0; i < pl->nosc && pl->n; i++) {
     if (pl->osc[i].axis != 3)
       continue;
@@ -1221,11 +1633,11 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
     point_at(pl, pl->osc[i].t, &j, pt);
     double y = AY(pt[3] + pl->osc[i].off / 1000.0), x = TX(pl->osc[i].t);
     if (pl->osc[i].start)
-      cairo_move_to(cr, x, y);
+      pen_moveto(&pn, x, y);
     else
-      cairo_line_to(cr, x, y);
+      pen_lineto(&pn, x, y);
   }
-  cairo_stroke(cr);
+  pen_done(&pn);
   if (!moves) {
     rgb(cr, C_LABEL);
     text_at(cr, X + W / 2, Y + H / 2 - 14, "A does not move", 13, 0, 0.5);
