@@ -313,6 +313,29 @@ int lathe_home(struct lathe *l, unsigned mask, char *msg, size_t n)
   return lathe_traverse(l, mask, to, msg, n);
 }
 
+/* A feed move along path p to the slides s, timed at f: the slides, the
+ * time, the feed and the warning of a cut feed, then the canonical call c
+ * (its kind and its own members set by the caller). */
+static int feed_move(struct lathe *l, double f, const struct path *p, const int64_t s[2], struct canon_call *c,
+                     int kind, char *msg, size_t n)
+{
+  double sec, v;
+  char w[200];
+  int e = feed_time(l, f, p, &sec, &v, w, sizeof w, msg, n);
+  if (e)
+    return e;
+  l->slide[LX] = s[LX];
+  l->slide[LZ] = s[LZ];
+  l->t += sec;
+  l->feed = v;
+  l->f_canon = f;
+  settle(l);
+  warn(l, w);
+  c->f = f;
+  emit_at(l, c, kind);
+  return 0;
+}
+
 int lathe_feed_line(struct lathe *l, const int64_t to[2], double f, char *msg, size_t n)
 {
   int64_t s[2];
@@ -323,23 +346,9 @@ int lathe_feed_line(struct lathe *l, const int64_t to[2], double f, char *msg, s
     return e;
   struct path p;
   line_path(l, s, &p);
-  double sec, v;
-  char w[200];
-  e = feed_time(l, f, &p, &sec, &v, w, sizeof w, msg, n);
-  if (e)
-    return e;
-  l->slide[LX] = s[LX];
-  l->slide[LZ] = s[LZ];
-  l->t += sec;
-  l->feed = v;
-  l->f_canon = f;
-  settle(l);
-  warn(l, w);
   struct canon_call c;
   memset(&c, 0, sizeof c);
-  c.f = f;
-  emit_at(l, &c, CANON_FEED_LINE);
-  return 0;
+  return feed_move(l, f, &p, s, &c, CANON_FEED_LINE, msg, n);
 }
 
 /* The arc in the geometry's terms: radius space (X halved), relative to the
@@ -445,27 +454,13 @@ int lathe_feed_arc(struct lathe *l, const int64_t to[2], const int64_t c[2], int
   }
   struct path p;
   arc_path(l, &g, &p);
-  double sec, v;
-  char w[200];
-  e = feed_time(l, f, &p, &sec, &v, w, sizeof w, msg, n);
-  if (e)
-    return e;
-  l->slide[LX] = s[LX];
-  l->slide[LZ] = s[LZ];
-  l->t += sec;
-  l->feed = v;
-  l->f_canon = f;
-  settle(l);
-  warn(l, w);
   struct canon_call cc;
   memset(&cc, 0, sizeof cc);
-  cc.f = f;
   cc.plane = GEOM_XZ;
   cc.centre[0] = c[LX];
   cc.centre[1] = c[LZ];
   cc.ccw = cw != 0;   /* canon's ccw turns from X to Z: LinuxCNC's G2 in G18 (the sink prints -1) */
-  emit_at(l, &cc, CANON_FEED_ARC);
-  return 0;
+  return feed_move(l, f, &p, s, &cc, CANON_FEED_ARC, msg, n);
 }
 
 int lathe_thread(struct lathe *l, const int64_t to[2], double k, char *msg, size_t n)
