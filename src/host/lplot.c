@@ -829,18 +829,6 @@ static void text_at(cairo_t *cr, double x, double y, const char *s, double size,
   cairo_show_text(cr, s);
 }
 
-static void fix_point(char *s)
-{
-  const char *dp = localeconv()->decimal_point;
-  if (!dp || !strcmp(dp, "."))
-    return;
-  size_t l = strlen(dp);
-  char *p = strstr(s, dp);
-  if (p) {
-    *p = '.';
-    memmove(p + 1, p + l, strlen(p + l) + 1);
-  }
-}
 
 /* v with dec decimals; trim: trailing zeros dropped. */
 static void fmt_num(char *buf, size_t n, double v, int dec, int trim)
@@ -848,7 +836,7 @@ static void fmt_num(char *buf, size_t n, double v, int dec, int trim)
   if (fabs(v) < 0.5 * pow(10, -dec))
     v = 0;
   snprintf(buf, n, "%.*f", dec, v);
-  fix_point(buf);
+  picture_fix_point(buf);
   if (trim && strchr(buf, '.')) {
     char *e = buf + strlen(buf) - 1;
     while (*e == '0')
@@ -878,7 +866,7 @@ static void tick_label(char *buf, size_t n, double v, int dec, const char *prefi
     snprintf(t, sizeof t, "%.3g", v);
   else
     fmt_num(t, sizeof t, v, dec, 0);
-  fix_point(t);
+  picture_fix_point(t);
   snprintf(buf, n, "%s%s", prefix, t);
 }
 

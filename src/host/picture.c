@@ -2,6 +2,7 @@
 #include "picture.h"
 #include "cairo_dl.h"
 #include <errno.h>
+#include <locale.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +20,19 @@ int picture_check_path(const char *path, char *err, size_t n)
   snprintf(err, n, "cannot tell the picture format of '%s': the output file must end in .png, .svg or .pdf",
            path ? path : "");
   return -1;
+}
+
+void picture_fix_point(char *s)
+{
+  const char *dp = localeconv()->decimal_point;
+  if (!dp || !strcmp(dp, "."))
+    return;
+  size_t l = strlen(dp);
+  char *p = strstr(s, dp);
+  if (p) {
+    *p = '.';
+    memmove(p + 1, p + l, strlen(p + l) + 1);
+  }
 }
 
 static cairo_status_t write_fn(void *closure, const unsigned char *data, unsigned int len)

@@ -10,6 +10,9 @@
 
 typedef struct _cairo cairo_t;
 
+/* A number printed with %f in the C locale's decimal point whatever the
+ * locale (the captions' numbers): the locale's point, if another, made '.'. */
+void picture_fix_point(char *s);
 /* Does the path end in .png, .svg or .pdf?  0, or -1 with err. */
 int picture_check_path(const char *path, char *err, size_t n);
 /* Draw a w x h picture (px of the PNG, pt of the SVG and PDF) into path:

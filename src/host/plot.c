@@ -273,18 +273,6 @@ int plot_check_path(const char *path, char *err, size_t n)
 
 /* ---- numbers, always with a decimal point ---- */
 
-static void fix_point(char *s)
-{
-  const char *dp = localeconv()->decimal_point;
-  if (!dp || !strcmp(dp, "."))
-    return;
-  size_t l = strlen(dp);
-  char *p = strstr(s, dp);
-  if (p) {
-    *p = '.';
-    memmove(p + 1, p + l, strlen(p + l) + 1);
-  }
-}
 
 /* v with at most `dec` decimals, trailing zeros dropped. */
 static void fmt_num(char *buf, size_t n, double v, int dec)
@@ -292,7 +280,7 @@ static void fmt_num(char *buf, size_t n, double v, int dec)
   if (fabs(v) < 0.5 * pow(10, -dec))
     v = 0;
   snprintf(buf, n, "%.*f", dec, v);
-  fix_point(buf);
+  picture_fix_point(buf);
   if (strchr(buf, '.')) {
     char *e = buf + strlen(buf) - 1;
     while (*e == '0')
