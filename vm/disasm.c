@@ -4,7 +4,8 @@
 #include <string.h>
 
 static const char *const opd_names[] = {"", "K", "I", "REG", "SLOT", "SET", "ARR", "MASK", "REL", "RELK", "RELR", "PC", "BLK",
-                                        "RI", "RK", "RR", "KT"};
+                                        "RI", "RK", "RR", "KT", "SW"};
+_Static_assert(sizeof opd_names / sizeof *opd_names == OPD_SW + 1, "a name for every operand kind");
 
 static double kat(const struct program *p, uint32_t a)
 {
@@ -60,6 +61,7 @@ static void operand_of(FILE *f, const struct program *p, int opd, uint32_t a)
   case OPD_KT:
     fprintf(f, "%u\t; %.17g (%.17g..%.17g)", a, kat(p, a), kat(p, a + 1), kat(p, a + 2));
     break;
+  case OPD_SW: fprintf(f, "%u %u\t; mask, state", a & 0xfffu, a >> 12); break;
   }
 }
 

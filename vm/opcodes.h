@@ -10,7 +10,8 @@
  * array n, within lim.arrays); REL relation mask (1 <, 2 =, 4 >); PC jump
  * target; BLK block index; RI, RK, RR register A&127 and A>>7 an integer, a
  * constant index or a register; KT a constant K[A] with its tolerance bounds
- * K[A+1], K[A+2] (vm_rel_bounds).  An extension operand kind other than NONE
+ * K[A+1], K[A+2] (vm_rel_bounds); SW a switch test, mask A&0xfff and the
+ * state A>>12 the block sets (bits within the mask).  An extension operand kind other than NONE
  * makes the instruction two words: the second is EXT, its A that operand.  The limits named lim.* are the program's
  * (vm/program.h), the messages its table's (vm/msgs.h). */
 #ifndef S42_OPCODES_H
@@ -126,11 +127,15 @@
   OP(ATANP,  NONE, REG,  1, 0, "arctangent, into parameter register EXT (ATAN; SETP)") \
   OP(RSIN,   REG,  NONE, 0, 1, "push the sine of register A (REG; SIN)") \
   OP(RCOS,   REG,  NONE, 0, 1, "push the cosine of register A (REG; COS)") \
-  OP(CMPRK,  RELR, KT,   0, 0, "the block's jump condition is the relation A&7 between register A>>3 and constant K[EXT], K[EXT+1] and K[EXT+2] its bounds outside which the relation is plainly < or > (REG; CMPCK)")
+  OP(CMPRK,  RELR, KT,   0, 0, "the block's jump condition is the relation A&7 between register A>>3 and constant K[EXT], K[EXT+1] and K[EXT+2] its bounds outside which the relation is plainly < or > (REG; CMPCK)") \
+  /* a block's control in one dispatch (src/dialect/2c42/compile.c) */ \
+  OP(CCALL,  PC,   NONE, 0, 0, "close the block's transaction, then call the sub at A once (COMMIT; INT 1; CALL)") \
+  OP(BLOCKR, BLK,  NONE, 0, 0, "BLOCK A of a block that is SYNC; COMMIT; RET and nothing else (a sub's lone M17): when the host watches neither it nor every block, all four at once") \
+  OP(MACHS,  SW,   NONE, 0, 0, "MACH of a block that only sets the host's switches: runs on as SYNC when the host has published its switches (vm.sw has VM_SW_HELD) and those in mask A&0xfff already stand as A>>12 says")
 
 enum vm_opd { OPD_NONE, OPD_K, OPD_I, OPD_REG, OPD_SLOT, OPD_SET, OPD_ARR,
               OPD_MASK, OPD_REL, OPD_RELK, OPD_RELR, OPD_PC, OPD_BLK,
-              OPD_RI, OPD_RK, OPD_RR, OPD_KT };
+              OPD_RI, OPD_RK, OPD_RR, OPD_KT, OPD_SW };
 
 enum vm_op {
 #define OP_ENUM(name, opd, ext, pop, push, doc) OP_##name,
@@ -144,6 +149,12 @@ _Static_assert(OP__COUNT <= 256, "opcodes must fit in 8 bits");
 #define INS_OP(i) ((i) & 0xffu)
 #define INS_A(i) ((i) >> 8)
 #define INS_AMAX 0xffffffu
+
+/* The opcodes that start a block (a block's first instruction). */
+static inline int vm_op_starts_block(unsigned op)
+{
+  return op == OP_BLOCK || op == OP_BLOCKR;
+}
 
 /* ext: the operand kind of the EXT word that follows, OPD_NONE when the
  * instruction is one word (vm_op_len). */

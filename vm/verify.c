@@ -68,12 +68,12 @@ static int stores_param(int op)
  * machine's turn -- comes before. */
 static int commits(int op)
 {
-  return op == OP_COMMIT || op == OP_CJMP || op == OP_CJCOND;
+  return op == OP_COMMIT || op == OP_CJMP || op == OP_CJCOND || op == OP_CCALL;
 }
 
 static int leaves(int op)
 {
-  return op == OP_CALL || op == OP_PPJ || op == OP_JMP || op == OP_JCOND || op == OP_RET || op == OP_RETEND ||
+  return op == OP_CALL || op == OP_CCALL || op == OP_PPJ || op == OP_JMP || op == OP_JCOND || op == OP_RET || op == OP_RETEND ||
          op == OP_END;
 }
 
@@ -81,7 +81,7 @@ static int works(int op)
 {
   switch (op) {
   case OP_SET: case OP_SETP: case OP_AWR: case OP_ARD: case OP_AZERO: case OP_APTR0: case OP_APTREND:
-  case OP_TRUNC: case OP_MACH: case OP_SYNC:
+  case OP_TRUNC: case OP_MACH: case OP_MACHS: case OP_SYNC:
     return 1;
   default:
     return stores_param(op);
@@ -98,7 +98,7 @@ static int stops(int op)
  * compiler targets nothing else). */
 static int block_start(const struct program *p, uint32_t pc)
 {
-  if (pc >= p->ncode || INS_OP(p->code[pc]) != OP_BLOCK)
+  if (pc >= p->ncode || !vm_op_starts_block(INS_OP(p->code[pc])))
     return 0;
   uint32_t b = INS_A(p->code[pc]);
   return b < p->nblocks && p->blocks[b].code == pc;
@@ -203,6 +203,11 @@ static int operand_of(const struct program *p, uint32_t pc, int op, int kind, ui
     if ((a >> 7) >= VM_NREG)
       return bad(msg, n, "pc %u: %s r%u r%u but there are %d registers", pc, name, a & 127, a >> 7, VM_NREG);
     return 0;
+  case OPD_SW:
+    if (!(a & 0xfffu) || ((a >> 12) & ~a & 0xfffu))
+      return bad(msg, n, "pc %u: %s switches %u state %u: the mask is empty or the state sets a switch outside it", pc,
+                 name, a & 0xfffu, a >> 12);
+    return 0;
   case OPD_KT: {
     double lo, hi;
     if (p->nk < 3 || a > p->nk - 3)
@@ -287,8 +292,13 @@ static int table(const struct program *p, char *msg, size_t n)
     if (c >= p->ncode)
       return bad(msg, n, "block %zu starts at pc %u but the program has %zu instruction%s", b, c, p->ncode,
                  plural(p->ncode));
-    if (p->code[c] != INS(OP_BLOCK, b))
+    if (p->code[c] != INS(OP_BLOCK, b) && p->code[c] != INS(OP_BLOCKR, b))
       return bad(msg, n, "block %zu starts at pc %u with %s, not BLOCK %zu", b, c, what(p, c, buf, sizeof buf), b);
+    /* BLOCKR runs the three after it itself when nothing watches */
+    if (p->code[c] == INS(OP_BLOCKR, b) &&
+        (c + 3 >= p->ncode || (b + 1 < p->nblocks && p->blocks[b + 1].code < c + 4) ||
+         p->code[c + 1] != INS(OP_SYNC, 0) || p->code[c + 2] != INS(OP_COMMIT, 0) || p->code[c + 3] != INS(OP_RET, 0)))
+      return bad(msg, n, "block %zu: BLOCKR at pc %u is not followed by SYNC, COMMIT and RET in its block", b, c);
   }
   if (p->entry >= p->ncode)
     return bad(msg, n, "entry %04u but the program has %zu instruction%s", p->entry, p->ncode, plural(p->ncode));

@@ -306,7 +306,7 @@ enum vm_event vm_run(struct vm *vm)
   double tos = 0.0, popped, out;
   int sp = 0;
   uint32_t pc = vm->pc;
-  uint32_t ins;
+  uint32_t ins, times;
   double a, b, r;
   /* the host sets these only between calls */
   const uint64_t limit = vm->max_blocks ? vm->max_blocks : UINT64_MAX;
@@ -369,7 +369,43 @@ enum vm_event vm_run(struct vm *vm)
         vmbreak;
       }
       LP_SYNC: vmbreak;
+      LP_BLOCKR: {
+        vm->cur = INS_A(ins);
+        if (vm->blocks >= limit) {
+          raise_msg(vm, pc - 1, S42_E_LIMIT, VMSG_BUDGET, (unsigned long long)vm->max_blocks);
+          RAISED;
+        }
+        goto blockr;
+      }
 #endif
+      /* a block of SYNC; COMMIT; RET alone: when neither it nor every
+       * block is watched, its SYNC, COMMIT and RET at once (verify.c
+       * checks that those three follow) */
+      vmcase(BLOCKR) {
+        vm->cur = INS_A(ins);
+        if (vm->blocks >= limit) {
+          raise_msg(vm, pc - 1, S42_E_LIMIT, VMSG_BUDGET, (unsigned long long)vm->max_blocks);
+          RAISED;
+        }
+        if (watching && (vm->start_all || vm->watch[vm->cur])) {
+          vm->pc = pc;
+          return VM_EV_START;
+        }
+        if (yield_all)
+          vmbreak;   /* its SYNC yields: the three run one by one */
+#ifdef VM_GOTO
+      blockr:
+#endif
+        vm->nundo = 0;   /* COMMIT */
+        vm->arr_saved = 0;
+        vm->blocks++;
+        pc += 3;         /* past SYNC, COMMIT, RET: the RET is at pc - 1 */
+        if (vm->depth == 0) {
+          raise_msg(vm, pc - 1, S42_E_SUB, VMSG_RETMAIN);
+          RAISED;
+        }
+        goto ret;
+      }
       vmcase1(CONST) { PUSH(k[INS_A(ins)]); vmbreak; }
       vmcase1(INT) { PUSH((double)INS_A(ins)); vmbreak; }
       vmcase1(REG) { PUSH(vm->reg[INS_A(ins)]); vmbreak; }
@@ -520,6 +556,13 @@ enum vm_event vm_run(struct vm *vm)
         vm->pc = pc;
         return VM_EV_BLOCK;
       }
+      vmcase1(MACHS) {
+        uint32_t sw = INS_A(ins);
+        if (!yield_all && (vm->sw & ((sw & 0xfffu) | VM_SW_HELD)) == ((sw >> 12) | VM_SW_HELD))
+          vmbreak;   /* the switches stand so already: nothing for the host */
+        vm->pc = pc;
+        return VM_EV_BLOCK;
+      }
       vmcase(SYNC) {   /* the plain table's SYNC is above, after BLOCK */
         if (yield_all) {
           vm->pc = pc;
@@ -537,10 +580,18 @@ enum vm_event vm_run(struct vm *vm)
         vm->blocks++;
         vmbreak;
       }
+      vmcase1(CCALL) {   /* COMMIT, then CALL once */
+        vm->nundo = 0;
+        vm->arr_saved = 0;
+        vm->blocks++;
+        times = 1;
+        goto call;
+      }
       vmcase1(CALL) {
-        uint32_t n = (uint32_t)POP();
-        if (n == 0)
+        times = (uint32_t)POP();
+        if (times == 0)
           vmbreak;
+      call:
         if ((uint32_t)vm->depth >= p->lim.depth) {
           raise_msg(vm, pc - 1, S42_E_NEST, VMSG_NEST, vm->depth + 1, (int)p->lim.depth);
           RAISED;
@@ -548,7 +599,7 @@ enum vm_event vm_run(struct vm *vm)
         struct vm_frame *f = &vm->frames[vm->depth++];
         f->ret = pc;
         f->start = INS_A(ins);
-        f->left = n - 1;
+        f->left = times - 1;
         f->block = vm->cur;
         f->saved = p->saved_reg >= 0 ? vm->reg[p->saved_reg] : 0.0;
         f->jflag = vm->jflag;

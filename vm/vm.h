@@ -14,6 +14,9 @@
 #define VM_JOURNAL 512    /* register writes one block can make (a block is <= 320 chars) */
 #define VM_STACK 512      /* values on the evaluation stack (program.max_stack at most) */
 
+/* vm.sw: the host has published its switches (without it MACHS is MACH). */
+#define VM_SW_HELD (1u << 31)
+
 enum vm_event {
   VM_EV_BLOCK,   /* the current block's words are evaluated: do its machine work */
   VM_EV_START,   /* a watched block (vm.watch) is about to run */
@@ -60,6 +63,10 @@ struct vm {
                                   NULL for one vm_run, or another array) */
   const uint8_t *watch_seen;   /* the watch array last scanned, and whether it flags any */
   int watch_any;
+  uint32_t sw;                 /* the host's switches, as it published them before this
+                                  vm_run: VM_SW_HELD and a bit each (their meaning the
+                                  dialect's); a MACHS block whose switches already stand
+                                  so is no work for the host.  0: every MACHS yields */
   int exit_latch;              /* cycle-exit key, taken by the next PP block */
   uint32_t pp_jumps;           /* operational jumps taken */
   int done;                    /* ended or failed: vm_run returns at once */

@@ -32,7 +32,7 @@ static const char rich[] =
 /* its code, as tp_disasm shows it (the pcs the messages below name):
  *  0 BLOCK 0   1 RADDIP r2 1  2 EXT r2  3 RMULI r2 3  4 AWR 1.1
  *  5 SYNC      6 COMMIT
- *  7 BLOCK 1   8 MACH     9 COMMIT  10 RET
+ *  7 BLOCKR 1  8 SYNC     9 COMMIT  10 RET   (a lone M17: BLOCKR)
  * 11 BLOCK 2  12 INT 3   13 SETP r1 14 INT 25000 15 SETP r3 16 CONST 0
  * 17 SETP r4  18 APTR0 3 19 INT 2   20 SET w7   21 SYNC    22 COMMIT
  * 23 WORD w7  24 CALL 0000
@@ -104,9 +104,12 @@ START_TEST(max_stack_known)
   /* nothing on the stack but the values stored one at a time */
   load("N1 G01 X+1000 F500\nN2 M2\n");
   ck_assert_uint_eq(t.p.max_stack, 1);
-  /* a call's count is a value on the stack too */
-  load("N5 M17\nN1 L5\nN2 M2\n");
+  /* a call's count is a value on the stack too; a call without H is
+   * CCALL, which needs none */
+  load("N5 M17\nN1 L5 H2\nN2 M2\n");
   ck_assert_uint_eq(t.p.max_stack, 1);
+  load("N5 M17\nN1 L5\nN2 M2\n");
+  ck_assert_uint_eq(t.p.max_stack, 0);
   /* a chain of fused operands needs one value, products in a sum two */
   load("N1 R1+R2+R3+R4+R5\nN2 M2\n");
   ck_assert_uint_eq(t.p.max_stack, 1);
@@ -290,6 +293,16 @@ START_TEST(operand_out_of_range)
   refused(18, INS(OP_APTR0, 4), "pc 18: APTR0 of arrays 4, not a mask of the 2 arrays (1..3)");
   refused(53, INS(OP_AZERO, 0), "pc 53: AZERO of arrays 0, not a mask of the 2 arrays (1..3)");
   refused(5, INS(OP_SYNC, 1), "pc 5: SYNC takes no operand but has 1");
+  /* MACHS: a mask of switches, and a state within it */
+  load("N1 M23 M26\nN2 M2\n");
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), 0);
+  ck_assert_uint_eq(t.p.code[1], INS(OP_MACHS, 3 | 2 << 12));
+  t.p.code[1] = INS(OP_MACHS, 1 | 2 << 12);
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 1: MACHS switches 1 state 2: the mask is empty or the state sets a switch outside it");
+  t.p.code[1] = INS(OP_MACHS, 0);
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 1: MACHS switches 0 state 0: the mask is empty or the state sets a switch outside it");
   /* a two-word instruction has its EXT word, and an EXT word its instruction */
   refused(27, INS(OP_SYNC, 0), "pc 26: RSUBIP is two words but no EXT word follows it (block 3)");
   refused(26, INS(OP_REG, 1), "pc 27: EXT after no two-word instruction (block 3): it only follows one");
@@ -346,7 +359,24 @@ START_TEST(transaction)
   refused(22, INS(OP_INT, 1), "pc 24: CALL before block 2 is committed: control leaves a block only after its COMMIT");
   refused(31, INS(OP_JCOND, 25), "pc 31: JCOND before block 3 is committed: control leaves a block only after its "
           "COMMIT");
-  refused(9, INS(OP_SYNC, 0), "pc 10: RET before block 1 is committed: control leaves a block only after its COMMIT");
+  refused(9, INS(OP_SYNC, 0), "block 1: BLOCKR at pc 7 is not followed by SYNC, COMMIT and RET in its block");
+  load(rich);
+  t.p.code[7] = INS(OP_BLOCK, 1);   /* the plain BLOCK: the RET's own check */
+  t.p.code[9] = INS(OP_SYNC, 0);
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 10: RET before block 1 is committed: control leaves a block only after its COMMIT");
+  /* BLOCKR only where SYNC, COMMIT and RET follow it in its block */
+  refused(0, INS(OP_BLOCKR, 0), "block 0: BLOCKR at pc 0 is not followed by SYNC, COMMIT and RET in its block");
+  refused(47, INS(OP_BLOCKR, 5), "block 5: BLOCKR at pc 47 is not followed by SYNC, COMMIT and RET in its block");
+  /* CCALL commits: nothing of the block's work after it, once */
+  load("N5 M17\nN1 R1+1 L5\nN2 M2\n");
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), 0);
+  uint32_t cc = t.p.blocks[1].code;
+  while (INS_OP(t.p.code[cc]) != OP_CCALL)
+    cc++;
+  t.p.code[cc - 1] = INS(OP_COMMIT, 0);   /* its SYNC */
+  ck_assert_int_eq(prog_verify(&t.p, msg, sizeof msg), -1);
+  ck_assert_str_eq(msg, "pc 8: CCALL commits block 1 a second time (first at pc 7)");
   /* once */
   refused(45, INS(OP_COMMIT, 0), "pc 46: COMMIT commits block 4 a second time (first at pc 45)");
   refused(6, INS(OP_SYNC, 0), "pc 6: block 0 ends without COMMIT, CJMP or CJCOND: its transaction never closes");

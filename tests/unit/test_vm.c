@@ -862,6 +862,158 @@ START_TEST(nest_ninth_level)
 }
 END_TEST
 
+/* ---- a block's control in one dispatch: MACHS, BLOCKR, CCALL ---- */
+
+/* The opcode of block b's instruction k. */
+static unsigned op_at(size_t b, uint32_t k)
+{
+  return INS_OP(t.p.code[t.p.blocks[b].code + k]);
+}
+
+/* Events until the end, each VM_EV_BLOCK's block number in got[]. */
+static int block_yields(int *got, int max)
+{
+  int n = 0;
+  for (;;) {
+    enum vm_event ev = vm_run(vm);
+    if (ev == VM_EV_BLOCK) {
+      ck_assert_int_lt(n, max);
+      got[n++] = (int)vm_block_number(vm, vm->cur);
+      continue;
+    }
+    ck_assert_int_eq(ev, VM_EV_END);
+    return n;
+  }
+}
+
+START_TEST(switch_block_yields_only_for_a_change)
+{
+  const char *src = "N1 M23\nN2 M22 M26\nN3 R1+R1+1 M23 P(R1:M:3)3\nN4 M23 F100\nN5 M2\n";
+  load(src);
+  ck_assert_uint_eq(op_at(0, 1), OP_MACHS);
+  ck_assert_uint_eq(INS_A(t.p.code[t.p.blocks[0].code + 1]), 1u);              /* CORR, to off */
+  ck_assert_uint_eq(INS_A(t.p.code[t.p.blocks[1].code + 1]), 3u | 3u << 12);   /* both, to on */
+  /* nothing published: every such block is the host's, as MACH */
+  int got[16], n = block_yields(got, 16);
+  int all[] = {1, 2, 3, 3, 3, 4, 5};
+  ck_assert_int_eq(n, 7);
+  for (int i = 0; i < n; i++)
+    ck_assert_int_eq(got[i], all[i]);
+  /* published: a block yields only when a switch it sets stands otherwise;
+   * the host's machine work then turns it, and it publishes the new state */
+  load(src);
+  uint32_t sw = 0;   /* both off at power-on */
+  vm->sw = VM_SW_HELD | sw;
+  int want[] = {2, 3, 4, 5};
+  for (int i = 0; i < 4; i++) {
+    ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);
+    ck_assert_int_eq((int)vm_block_number(vm, vm->cur), want[i]);
+    if (want[i] == 2)
+      sw = 3;
+    if (want[i] == 3)
+      sw &= ~1u;
+    vm->sw = VM_SW_HELD | sw;
+  }
+  ck_assert_int_eq(vm_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 3);
+  ck_assert_uint_eq(vm->blocks, 7);
+  /* every block watched: all of them come back, published or not */
+  load(src);
+  vm->sw = VM_SW_HELD;
+  vm->yield_all = 1;
+  ck_assert_int_eq(block_yields(got, 16), 7);
+}
+END_TEST
+
+START_TEST(switch_block_only_with_nothing_else)
+{
+  /* anything else for the machine or the display keeps MACH */
+  const char *machs[] = {"N1 M25\nN2 M2\n", "N1 M22 M26 R1+1\nN2 M2\n"};
+  const char *mach[] = {"N1 M23 F100\nN2 M2\n", "N1 M23 G04 X+10\nN2 M2\n", "N1 M23 M15\nN2 M2\n",
+                        "N1 M23 M3\nN2 M2\n", "N1 M23 X+1 F1\nN2 M2\n", "N1 M23 G33 /A/\nN2 M2\n"};
+  for (size_t i = 0; i < sizeof machs / sizeof *machs; i++) {
+    load(machs[i]);
+    ck_assert_msg(op_at(0, 1) == OP_MACHS || op_at(0, 3) == OP_MACHS || op_at(0, 2) == OP_MACHS, "%s", machs[i]);
+  }
+  for (size_t i = 0; i < sizeof mach / sizeof *mach; i++) {
+    load(mach[i]);
+    for (uint32_t pc = t.p.blocks[0].code; pc < t.p.blocks[1].code; pc++)
+      ck_assert_msg(INS_OP(t.p.code[pc]) != OP_MACHS, "%s", mach[i]);
+  }
+}
+END_TEST
+
+START_TEST(lone_m17_runs_at_once)
+{
+  const char *src = "N10 M17\nN1 R1+0\nN2 R1+R1+1 L10 P(R1:M:3)2\nN3 M2\n";
+  load(src);
+  ck_assert_uint_eq(op_at(0, 0), OP_BLOCKR);
+  ck_assert_uint_eq(op_at(2, 6), OP_CCALL);
+  ck_assert_int_eq(tp_run(vm), VM_EV_END);
+  ck_assert_double_eq(R(1), 3);
+  ck_assert_uint_eq(vm->blocks, 8);   /* N1, three N2 and N10, N3 */
+  ck_assert_int_eq(vm->depth, 0);
+  /* every block watched: the sub's block comes back as any block */
+  load(src);
+  vm->yield_all = 1;
+  int got[16], n = block_yields(got, 16);
+  int all[] = {1, 2, 10, 2, 10, 2, 10, 3};
+  ck_assert_int_eq(n, 8);
+  for (int i = 0; i < n; i++)
+    ck_assert_int_eq(got[i], all[i]);
+  /* the sub's block watched: it starts as any block, then runs on */
+  load(src);
+  uint8_t w[4] = {1, 0, 0, 0};
+  vm->watch = w;
+  int starts = 0;
+  for (enum vm_event ev; (ev = vm_run(vm)) != VM_EV_END;) {
+    ck_assert_int_ne(ev, VM_EV_ERROR);
+    if (ev == VM_EV_START) {
+      ck_assert_uint_eq(vm->cur, 0);
+      starts++;
+    }
+  }
+  ck_assert_int_eq(starts, 3);
+  ck_assert_uint_eq(vm->blocks, 8);
+  /* the budget stops it at its start, as BLOCK does */
+  load(src);
+  vm->max_blocks = 2;
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_LIMIT, 10);
+  ck_assert_uint_eq(vm->blocks, 2);
+}
+END_TEST
+
+START_TEST(blockr_in_the_main_program)
+{
+  /* by hand (the compiler refuses M17 in the main program): the fused RET
+   * raises E-SUB as the plain one does, at the RET's column */
+  uint32_t entry = hblock(1, 0);
+  hp.code[entry] = INS(OP_BLOCKR, 0);
+  hemit(OP_SYNC, 0);
+  hemit(OP_COMMIT, 0);
+  prog_emit(&hp, INS(OP_RET, 0), 7);
+  hstart(entry);
+  ck_assert_int_eq(vm_run(vm), VM_EV_ERROR);
+  ck_assert_int_eq(vm->err.code, S42_E_SUB);
+  ck_assert_uint_eq(vm->err.col, 7);
+  ck_assert_uint_eq(vm->blocks, 1);
+}
+END_TEST
+
+START_TEST(ccall_nests_as_call)
+{
+  /* subs called without H: CCALL; the ninth level fails at the L word */
+  char src[1024];
+  load(chain(10, src, sizeof src));
+  ck_assert_uint_eq(op_at(t.p.nblocks - 2, 2), OP_CCALL);   /* N1 L2: BLOCK, SYNC, CCALL */
+  ck_assert_int_eq(tp_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_NEST, 9);
+  ck_assert_uint_eq(vm->err.col, 12);   /* "N9 R5+R5+1 L10 M17": the L */
+  ck_assert_uint_eq(vm->blocks, 9);
+}
+END_TEST
+
 /* ---- limits, PP, watch ---- */
 
 START_TEST(limit_max_blocks)
@@ -1586,6 +1738,11 @@ Suite *suite_vm(void)
   tcase_add_test(tc, superinstructions_same_errors);
   tcase_add_test(tc, register_forms_as_their_parts);
   tcase_add_test(tc, rel_bounds_hold);
+  tcase_add_test(tc, switch_block_yields_only_for_a_change);
+  tcase_add_test(tc, switch_block_only_with_nothing_else);
+  tcase_add_test(tc, lone_m17_runs_at_once);
+  tcase_add_test(tc, blockr_in_the_main_program);
+  tcase_add_test(tc, ccall_nests_as_call);
   suite_add_tcase(s, tc);
 
   tc = tcase_create("program");

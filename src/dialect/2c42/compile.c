@@ -1058,7 +1058,19 @@ static void compile_block(struct comp *c)
    * M17 and M20 are the VM's alone (RET, the counter's TRUNC): a block
    * with no other word is nothing to the machine. */
   int machine = mo != MO_NONE || (b->m & ~(1u << 17 | 1u << 20)) || at->has_f || b->g;
-  emit(c, machine ? OP_MACH : OP_SYNC, 0, b->col);
+  /* A block whose other M words only set the machine's switches (M22 M23
+   * M25 M26), and that has no other word for the machine or the display,
+   * is nothing to the host when they already stand so: MACHS lets the VM
+   * see that from the switches the session publishes (vm.sw). */
+  const uint32_t sws = 1u << 22 | 1u << 23 | 1u << 25 | 1u << 26;
+  uint32_t swmask = (b->m & (1u << 22 | 1u << 23) ? KP_SW_CORR : 0) | (b->m & (1u << 25 | 1u << 26) ? KP_SW_OVERRIDE : 0);
+  uint32_t swon = (M(22) ? KP_SW_CORR : 0) | (M(26) ? KP_SW_OVERRIDE : 0);
+  int switches = machine && mo == MO_NONE && !at->has_f && !b->g && !at->slots && !at->plugins &&
+                 (b->m & sws) && !(b->m & ~(sws | 1u << 17 | 1u << 20));
+  if (switches)
+    emit(c, OP_MACHS, swmask | swon << 12, b->col);
+  else
+    emit(c, machine ? OP_MACH : OP_SYNC, 0, b->col);
   if (peep_block(c->p, c->bstart))   /* the block's work is all emitted: fuse it (peep.c) */
     c->oom = 1;
   for (int i = 0; i < b->nm20; i++)
@@ -1068,11 +1080,18 @@ static void compile_block(struct comp *c)
   if (L) {
     if (c->given & (1u << SL_H))
       emit(c, OP_WORD, SL_H, L->col);
-    else
-      emit(c, OP_INT, 1, L->col);
     sm->L = (int16_t)L->num;
     sm->Lcol = col16(L->col);
-    sm->callpc = boff(c, emit(c, OP_CALL, 0, L->col));
+    if (!(c->given & (1u << SL_H)) && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
+      /* COMMIT; INT 1; CALL in one instruction */
+      c->p->code[c->p->ncode - 1] = INS(OP_CCALL, 0);
+      c->p->cols[c->p->ncode - 1] = col16(L->col);
+      sm->callpc = boff(c, (long)c->p->ncode - 1);
+    } else {
+      if (!(c->given & (1u << SL_H)))
+        emit(c, OP_INT, 1, L->col);
+      sm->callpc = boff(c, emit(c, OP_CALL, 0, L->col));
+    }
   }
   if (PP) {
     sm->PP = (int16_t)PP->num;
@@ -1105,6 +1124,11 @@ static void compile_block(struct comp *c)
     sm->flags |= SF_M2;
     emit(c, OP_END, 0, b->mcol[2]);
   }
+  /* a sub's lone M17: BLOCK; SYNC; COMMIT; RET, which BLOCKR runs at once */
+  const uint32_t *code = c->p->code + c->bstart;
+  if (!c->oom && c->p->ncode == c->bstart + 4 && code[1] == INS(OP_SYNC, 0) && code[2] == INS(OP_COMMIT, 0) &&
+      code[3] == INS(OP_RET, 0))
+    c->p->code[c->bstart] = INS(OP_BLOCKR, (uint32_t)bi);
   uint32_t need = block_stack(c);
   if (need > c->p->max_stack)
     c->p->max_stack = need;
@@ -1443,7 +1467,7 @@ static void structure(struct comp *c)
     for (size_t i = 0; i < n; i++) {
       uint32_t *code = c->p->code + B[i].code;
       if (S[i].callpc != NOPC)
-        code[S[i].callpc] = INS(OP_CALL, B[first[S[i].L]].code);
+        code[S[i].callpc] = INS(INS_OP(code[S[i].callpc]), B[first[S[i].L]].code);   /* CALL or CCALL */
       if (S[i].jpc != NOPC)
         code[S[i].jpc] = INS(INS_OP(code[S[i].jpc]), B[first[S[i].P]].code);
       if (S[i].pppc != NOPC)

@@ -22,10 +22,15 @@ struct kp_attr {
   uint32_t g27, g33, m18;   /* string offsets + 1 into kp_ext.str; 0 none */
   uint32_t g29, ng29;       /* first index into kp_ext.lines, count */
   uint32_t m16, nm16;       /* first index into kp_ext.m16, count */
-  int8_t bare[4];
+  int8_t bare[4];      /* M19: axis word X Y Z A is +Rn (n+1) or -Rn (-(n+1)); 0 not bare */
   uint32_t plugins;    /* bit i: plugin i of the session's set runs in this block */
-  uint8_t plug_g;      /* MO_PLUGIN: the plugin's group-1 G number */      /* M19: axis word X Y Z A is +Rn (n+1) or -Rn (-(n+1)); 0 not bare */
+  uint8_t plug_g;      /* MO_PLUGIN: the plugin's group-1 G number */
 };
+
+/* The machine's switches as the session publishes them to the VM (vm.sw),
+ * for a block that sets nothing else (MACHS: compile.c, session.c). */
+#define KP_SW_CORR 1u       /* M22 on, M23 off: the operational corrections allowed */
+#define KP_SW_OVERRIDE 2u   /* M26 on, M25 off: the feed override allowed */
 
 struct kp_ext {
   struct kp_attr *a;

@@ -665,6 +665,19 @@ int sess_run_plugins(struct session *s)
   return s->rt->after(s);
 }
 
+/* The switches a MACHS block looks at (vm.h), published before every
+ * vm_run: the operator, a Modbus client or a plugin may have changed them
+ * since.  Only when such a block would be nothing but the switch: no row is
+ * read (a trace, a plot, the pace, Modbus show every block that comes to
+ * the host), no plugin runs on every block or has started (its trace
+ * members are taken at each block). */
+static uint32_t published_switches(const struct session *s)
+{
+  if (s->sink.row || s->every || s->started)
+    return 0;
+  return VM_SW_HELD | (s->m.corr_allowed ? KP_SW_CORR : 0) | (s->m.override_allowed ? KP_SW_OVERRIDE : 0);
+}
+
 enum sess_ev sess_run(struct session *s)
 {
   if (s->state == SE_WAIT || s->state == SE_END || s->state == SE_ERROR || s->state == SE_STOPPED)
@@ -683,6 +696,7 @@ enum sess_ev sess_run(struct session *s)
     }
   }
   for (;;) {
+    s->vm.sw = published_switches(s);
     enum vm_event ev = vm_run(&s->vm);
     int r;
     switch (ev) {
@@ -699,6 +713,7 @@ enum sess_ev sess_run(struct session *s)
       mach_program_end(&s->m);
       return (enum sess_ev)(s->state = SE_END);
     default:
+      s->scr.block = sess_block_number(s);   /* the screen names the block that failed */
       return (enum sess_ev)(s->state = SE_ERROR);
     }
   }
