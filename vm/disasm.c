@@ -45,15 +45,15 @@ static void operand_of(FILE *f, const struct program *p, int opd, uint32_t a)
       fprintf(f, " %u\t; %.17g", a >> 3, kat(p, a >> 3));
     break;
   }
-  case OPD_PC: {
-    size_t b = prog_block_at(p, a);
-    fprintf(f, "%04u", a);
-    if (b < p->nblocks && p->blocks[b].code == a) {
-      if (p->blocks[b].number)
-        fprintf(f, "\t; N%u", p->blocks[b].number);
+  case OPD_PC:   /* a block: printed as where it starts */
+    if (a < p->nblocks) {
+      fprintf(f, "%04u", p->blocks[a].code);
+      if (p->blocks[a].number)
+        fprintf(f, "\t; N%u", p->blocks[a].number);
+    } else {
+      fprintf(f, "block %u\t; no such block", a);
     }
     break;
-  }
   case OPD_BLK: fprintf(f, "%u", a); break;
   case OPD_RI: fprintf(f, "r%u %u", a & 127, a >> 7); break;
   case OPD_RK: fprintf(f, "r%u %u\t; %.17g", a & 127, a >> 7, kat(p, a >> 7)); break;
@@ -138,6 +138,9 @@ void vm_opcodes_md(FILE *f)
              "Every instruction is one 32-bit word: the opcode in the low 8 bits, the operand A in the high 24.\n\n"
              "An instruction with an EXT operand is two words: an `EXT` word follows it, whose A is that operand "
              "and whose entry in the column map is the column of the instruction's last part (the store).\n\n"
+             "A jump's or a call's operand (PC) is a block's index, not an instruction's address: control goes to "
+             "that block's `BLOCK`, which the compiler and the verifier make the only place a jump lands; so a "
+             "program's code is not bound by the 24-bit operand, only its blocks are (16,777,216).\n\n"
              "| opcode | operand | EXT operand | pops | pushes | meaning |\n|---|---|---|---|---|---|\n");
   for (int i = 0; i < OP__COUNT; i++)
     fprintf(f, "| `%s` | %s | %s | %d | %d | %s |\n", vm_ops[i].name, opd_names[vm_ops[i].opd],

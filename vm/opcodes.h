@@ -50,10 +50,10 @@
   OP(SYNC,   NONE, NONE, 0, 0, "yield the block to the host only when it watches every block") \
   OP(TRUNC,  REG,  NONE, 0, 0, "register A to its integer part, towards zero") \
   OP(COMMIT, NONE, NONE, 0, 0, "close the block's transaction, count it executed") \
-  OP(CALL,   PC,   NONE, 1, 0, "call the sub at A, popped-count times (0: not at all; E-NEST past lim.depth)") \
-  OP(PPJ,    PC,   NONE, 0, 0, "operational jump to A if cycle exit is latched (clears it)") \
-  OP(JMP,    PC,   NONE, 0, 0, "jump to A") \
-  OP(JCOND,  PC,   NONE, 0, 0, "jump to A if the block's condition held") \
+  OP(CALL,   PC,   NONE, 1, 0, "call the sub that starts at block A, popped-count times (0: not at all; E-NEST past lim.depth)") \
+  OP(PPJ,    PC,   NONE, 0, 0, "operational jump to block A if cycle exit is latched (clears it)") \
+  OP(JMP,    PC,   NONE, 0, 0, "jump to block A") \
+  OP(JCOND,  PC,   NONE, 0, 0, "jump to block A if the block's condition held") \
   OP(RET,    NONE, NONE, 0, 0, "end of sub: run it again or return to the caller (E-SUB in the main program)") \
   OP(END,    NONE, NONE, 0, 0, "end of program") \
   OP(RETEND, NONE, NONE, 0, 0, "RET in a called sub, END in the main program (Bosch M2, FMS-3000 M99)") \
@@ -74,8 +74,8 @@
   OP(CMPC,   REL,  NONE, 2, 0, "the block's jump condition is the relation A between two values (CMP A; COND)") \
   OP(CMPCK,  RELK, NONE, 1, 0, "the block's jump condition is the relation A&7 between a value and constant K[A>>3] (CONST; CMPC)") \
   OP(CMPCR,  RELR, NONE, 1, 0, "the block's jump condition is the relation A&7 between a value and register A>>3 (REG; CMPC)") \
-  OP(CJMP,   PC,   NONE, 0, 0, "close the block's transaction, then jump to A (COMMIT; JMP)") \
-  OP(CJCOND, PC,   NONE, 0, 0, "close the block's transaction, then jump to A if the block's condition held (COMMIT; JCOND)") \
+  OP(CJMP,   PC,   NONE, 0, 0, "close the block's transaction, then jump to block A (COMMIT; JMP)") \
+  OP(CJCOND, PC,   NONE, 0, 0, "close the block's transaction, then jump to block A if the block's condition held (COMMIT; JCOND)") \
   /* register forms, fused by the 2С42's peephole pass (src/dialect/2c42/peep.c); \
    * a two-word one is followed by an EXT word: its second operand, and in \
    * the column map the column of its SETP part */ \
@@ -129,7 +129,7 @@
   OP(RCOS,   REG,  NONE, 0, 1, "push the cosine of register A (REG; COS)") \
   OP(CMPRK,  RELR, KT,   0, 0, "the block's jump condition is the relation A&7 between register A>>3 and constant K[EXT], K[EXT+1] and K[EXT+2] its bounds outside which the relation is plainly < or > (REG; CMPCK)") \
   /* a block's control in one dispatch (src/dialect/2c42/compile.c) */ \
-  OP(CCALL,  PC,   NONE, 0, 0, "close the block's transaction, then call the sub at A once (COMMIT; INT 1; CALL)") \
+  OP(CCALL,  PC,   NONE, 0, 0, "close the block's transaction, then call the sub at block A once (COMMIT; INT 1; CALL)") \
   OP(BLOCKR, BLK,  NONE, 0, 0, "BLOCK A of a block that is SYNC; COMMIT; RET and nothing else (a sub's lone M17): when the host watches neither it nor every block, all four at once") \
   OP(MACHS,  SW,   NONE, 0, 0, "MACH of a block that only sets the host's switches: runs on as SYNC when the host has published its switches (vm.sw has VM_SW_HELD) and those in mask A&0xfff already stand as A>>12 says")
 

@@ -45,13 +45,13 @@ static int grow(void **ptr, size_t *cap, size_t need, size_t elem)
 
 long prog_emit_grow(struct program *p, uint32_t ins, unsigned col)
 {
-  if (p->ncode >= INS_AMAX)
+  if (p->ncode >= PROG_MAX_CODE)
     return -1;
   size_t cap = p->capcode;
   if (grow((void **)&p->code, &p->capcode, p->ncode + 1, sizeof *p->code))
     return -1;
-  if (p->capcode > INS_AMAX)
-    p->capcode = INS_AMAX;   /* prog_emit's fast path stops at the operand space */
+  if (p->capcode > PROG_MAX_CODE)
+    p->capcode = PROG_MAX_CODE;   /* prog_emit's fast path stops there */
   if (cap != p->capcode) {
     uint16_t *c = realloc(p->cols, p->capcode * sizeof *c);
     if (!c)
@@ -97,7 +97,7 @@ long prog_rule(struct program *p, const struct prog_rule *r)
 
 long prog_block_add(struct program *p, const struct prog_block *b)
 {
-  if (p->nblocks >= INS_AMAX || grow((void **)&p->blocks, &p->capblocks, p->nblocks + 1, sizeof *p->blocks))
+  if (p->nblocks > INS_AMAX || grow((void **)&p->blocks, &p->capblocks, p->nblocks + 1, sizeof *p->blocks))
     return -1;
   p->blocks[p->nblocks] = *b;
   return (long)p->nblocks++;

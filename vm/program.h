@@ -74,12 +74,18 @@ struct program {
 
 void prog_init(struct program *p);
 void prog_free(struct program *p);
+/* The most instructions a program may have: a jump's or a call's operand
+ * is a block (OPD_PC), so the code is not bound by the 24-bit operand
+ * space; 2^30 instructions (4 GiB of code) is far beyond the blocks a
+ * program may have (INS_AMAX + 1) at any realistic length. */
+#define PROG_MAX_CODE 0x40000000u
 /* Appending; each returns the new index, or -1 when out of memory or out of
- * the 24-bit operand space (the caller reports it). */
+ * its space: PROG_MAX_CODE instructions, the 24-bit operand space for
+ * constants and blocks (the caller reports it). */
 long prog_emit_grow(struct program *p, uint32_t ins, unsigned col);
 static inline long prog_emit(struct program *p, uint32_t ins, unsigned col)
 {
-  if (p->ncode >= p->capcode)   /* full (or at the 24-bit operand space) */
+  if (p->ncode >= p->capcode)   /* full (or at PROG_MAX_CODE) */
     return prog_emit_grow(p, ins, col);
   p->code[p->ncode] = ins;
   p->cols[p->ncode] = (uint16_t)(col > 0xffff ? 0xffff : col);

@@ -122,7 +122,6 @@ static const char *what(const struct program *p, uint32_t pc, char *buf, size_t 
 static int operand_of(const struct program *p, uint32_t pc, int op, int kind, uint32_t a, char *msg, size_t n)
 {
   const char *name = vm_ops[op].name;
-  char buf[40];
   switch (kind) {
   case OPD_NONE:
     if (a)
@@ -178,13 +177,10 @@ static int operand_of(const struct program *p, uint32_t pc, int op, int kind, ui
     if ((a >> 3) >= VM_NREG)
       return bad(msg, n, "pc %u: %s with r%u but there are %d registers", pc, name, a >> 3, VM_NREG);
     return 0;
-  case OPD_PC:
-    if (a >= p->ncode)
-      return bad(msg, n, "pc %u: %s %04u but the program has %zu instruction%s", pc, name, a, p->ncode,
-                 plural(p->ncode));
-    if (!block_start(p, a))
-      return bad(msg, n, "pc %u: %s %04u, which is %s, not the start of a block", pc, name, a,
-                 what(p, a, buf, sizeof buf));
+  case OPD_PC:   /* a block: the jump lands on its BLOCK (the table is checked first) */
+    if (a >= p->nblocks)
+      return bad(msg, n, "pc %u: %s to block %u but the program has %zu block%s", pc, name, a, p->nblocks,
+                 plural(p->nblocks));
     return 0;
   case OPD_BLK:
     if (a >= p->nblocks)
@@ -274,8 +270,8 @@ static int table(const struct program *p, char *msg, size_t n)
     return bad(msg, n, "the program has no instructions");
   if (!p->code || !p->cols)
     return bad(msg, n, "the program's code or its column map is missing");
-  if (p->ncode > INS_AMAX)
-    return bad(msg, n, "the program has %zu instructions; a jump reaches only %u", p->ncode, INS_AMAX);
+  if (p->ncode > PROG_MAX_CODE)
+    return bad(msg, n, "the program has %zu instructions; at most %u run", p->ncode, PROG_MAX_CODE);
   if (p->nblocks == 0 || !p->blocks)
     return bad(msg, n, "the program has no blocks");
   if (p->nblocks > (size_t)INS_AMAX + 1)

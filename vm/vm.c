@@ -302,6 +302,7 @@ enum vm_event vm_run(struct vm *vm)
   const struct program *p = vm->p;
   const uint32_t *code = p->code;
   const double *k = p->k;
+  const struct prog_block *blk = p->blocks;   /* a jump's operand is a block (OPD_PC) */
   double st[VM_STACK + 1];   /* program.max_stack <= VM_STACK (vm_init) */
   double tos = 0.0, popped, out;
   int sp = 0;
@@ -598,26 +599,26 @@ enum vm_event vm_run(struct vm *vm)
         }
         struct vm_frame *f = &vm->frames[vm->depth++];
         f->ret = pc;
-        f->start = INS_A(ins);
+        f->start = blk[INS_A(ins)].code;
         f->left = times - 1;
         f->block = vm->cur;
         f->saved = p->saved_reg >= 0 ? vm->reg[p->saved_reg] : 0.0;
         f->jflag = vm->jflag;
-        pc = INS_A(ins);
+        pc = f->start;
         vmbreak;
       }
       vmcase1(PPJ) {
         if (vm->exit_latch) {
           vm->exit_latch = 0;
           vm->pp_jumps++;
-          pc = INS_A(ins);
+          pc = blk[INS_A(ins)].code;
         }
         vmbreak;
       }
-      vmcase1(JMP) { pc = INS_A(ins); vmbreak; }
+      vmcase1(JMP) { pc = blk[INS_A(ins)].code; vmbreak; }
       vmcase1(JCOND) {
         if (vm->jflag)
-          pc = INS_A(ins);
+          pc = blk[INS_A(ins)].code;
         vmbreak;
       }
       vmcase1(RET) {
@@ -699,7 +700,7 @@ enum vm_event vm_run(struct vm *vm)
         vm->nundo = 0;
         vm->arr_saved = 0;
         vm->blocks++;
-        pc = INS_A(ins);
+        pc = blk[INS_A(ins)].code;
         vmbreak;
       }
       vmcase1(CJCOND) {
@@ -707,7 +708,7 @@ enum vm_event vm_run(struct vm *vm)
         vm->arr_saved = 0;
         vm->blocks++;
         if (vm->jflag)
-          pc = INS_A(ins);
+          pc = blk[INS_A(ins)].code;
         vmbreak;
       }
       /* Register forms (src/dialect/2c42/peep.c): exactly what their two or

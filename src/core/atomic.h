@@ -42,6 +42,10 @@ const char *file_kind(mode_t mode);
  * what `allow` does not allow.  The descriptor (blocking again), or -1
  * with err "PATH: REASON". */
 int file_open_read(const char *path, int allow, char *err, size_t n);
+/* The largest program file s42 reads, compiles or edits (README "Limits"):
+ * 16,777,216 blocks (the most a program can have, vm/opcodes.h) of a
+ * typical 25 bytes fit; larger is a mistake, not a program. */
+#define FILE_MAX_PROGRAM ((size_t)512 << 20)
 /* The whole file, NUL-terminated (*buf, malloc'd; *len without the NUL).
  * 0; -1 with err; -2 when it holds more than max bytes (err says so). */
 int file_read_all(const char *path, int allow, size_t max, char **buf, size_t *len, char *err, size_t n);

@@ -157,10 +157,8 @@ struct opts {
   const char *mb_opt;        /* the first --modbus-* option given (they need --modbus) */
 };
 
-/* Limits of the files s42 reads (README "Limits"): a program of the
- * largest size compiles in well under a second; anything larger is a
- * mistake, not a program. */
-#define MAX_PROGRAM_BYTES ((size_t)64 << 20)
+/* Limits of the files s42 reads (README "Limits"). */
+#define MAX_PROGRAM_BYTES FILE_MAX_PROGRAM
 #define MAX_OPERATOR_BYTES ((size_t)1 << 20)
 
 /* Read a whole regular file of at most `max` bytes, NUL-terminated: a

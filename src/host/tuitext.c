@@ -157,7 +157,7 @@ int tui_disk_changed(const char *path, const struct tui_disk *d)
   /* the same size at another time: only the bytes tell */
   char *b, err[256];
   size_t n;
-  if (file_read_all(path, FILE_REGULAR, (size_t)64 << 20, &b, &n, err, sizeof err))
+  if (file_read_all(path, FILE_REGULAR, FILE_MAX_PROGRAM, &b, &n, err, sizeof err))
     return 1;
   int changed = n != d->len || tui_hash(b, n) != d->hash;
   free(b);
@@ -169,9 +169,9 @@ int tui_text_load(struct tui_text *t, const char *path, struct tui_disk *d, char
   /* a regular file only: a FIFO or a device is refused, not waited on */
   char *b;
   size_t n;
-  int r = file_read_all(path, FILE_REGULAR, (size_t)64 << 20, &b, &n, err, errn);
+  int r = file_read_all(path, FILE_REGULAR, FILE_MAX_PROGRAM, &b, &n, err, errn);
   if (r == -2)
-    snprintf(err, errn, "%s: too large (over 64 MiB)", path);
+    snprintf(err, errn, "%s: too large (over %zu MiB)", path, FILE_MAX_PROGRAM >> 20);
   if (r)
     return -1;
   char why[128];

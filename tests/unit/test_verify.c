@@ -43,7 +43,9 @@ static const char rich[] =
  * 43 ARD 1.2  44 SETP r5 45 MACH    46 COMMIT
  * 47 BLOCK 5  48 SYNC    49 COMMIT  50 PPJ 0052  51 JMP 0052
  * 52 BLOCK 6  53 AZERO 3 54 MACH    55 COMMIT  56 END  57 END
- * (the peephole pass, src/dialect/2c42/peep.c, fused the register forms) */
+ * (the peephole pass, src/dialect/2c42/peep.c, fused the register forms;
+ * a jump's operand is the block it goes to, shown as the pc it starts at:
+ * CALL 0 is block 0, CJCOND 3 block 3, PPJ 6 and JMP 6 block 6) */
 
 static struct tprog t;
 static char msg[300];
@@ -95,7 +97,9 @@ START_TEST(rich_program_verifies)
   ck_assert_uint_eq(t.p.code[28], INS(OP_CMPRK, 4 | 1 << 3));
   ck_assert_uint_eq(t.p.code[29], INS(OP_EXT, 2));
   ck_assert_uint_eq(t.p.code[39], INS(OP_MUL, 0));
-  ck_assert_uint_eq(t.p.code[50], INS(OP_PPJ, 52));
+  ck_assert_uint_eq(t.p.code[31], INS(OP_CJCOND, 3));
+  ck_assert_uint_eq(t.p.code[50], INS(OP_PPJ, 6));
+  ck_assert_uint_eq(t.p.code[51], INS(OP_JMP, 6));
 }
 END_TEST
 
@@ -329,11 +333,16 @@ END_TEST
 
 START_TEST(jump_into_nowhere)
 {
-  refused(51, INS(OP_JMP, 58), "pc 51: JMP 0058 but the program has 58 instructions");
-  refused(51, INS(OP_JMP, 53), "pc 51: JMP 0053, which is AZERO 3, not the start of a block");
-  refused(31, INS(OP_CJCOND, 34), "pc 31: CJCOND 0034, which is REG 1, not the start of a block");
-  refused(24, INS(OP_CALL, 2), "pc 24: CALL 0002, which is EXT, not the start of a block");
-  refused(50, INS(OP_PPJ, 100000), "pc 50: PPJ 100000 but the program has 58 instructions");
+  /* the operand is a block: past the last one it is nowhere */
+  refused(51, INS(OP_JMP, 7), "pc 51: JMP to block 7 but the program has 7 blocks");
+  refused(31, INS(OP_CJCOND, 58), "pc 31: CJCOND to block 58 but the program has 7 blocks");
+  refused(24, INS(OP_CALL, INS_AMAX), "pc 24: CALL to block 16777215 but the program has 7 blocks");
+  refused(50, INS(OP_PPJ, 100000), "pc 50: PPJ to block 100000 but the program has 7 blocks");
+  /* any block is somewhere: the jump lands on its BLOCK, never inside one */
+  load(rich);
+  t.p.code[51] = INS(OP_JMP, 2);
+  t.p.code[31] = INS(OP_CJCOND, 6);
+  ck_assert_msg(prog_verify(&t.p, msg, sizeof msg) == 0, "%s", msg);
 }
 END_TEST
 
@@ -357,7 +366,7 @@ START_TEST(transaction)
 {
   /* control leaves a block only once it is committed */
   refused(22, INS(OP_INT, 1), "pc 24: CALL before block 2 is committed: control leaves a block only after its COMMIT");
-  refused(31, INS(OP_JCOND, 25), "pc 31: JCOND before block 3 is committed: control leaves a block only after its "
+  refused(31, INS(OP_JCOND, 3), "pc 31: JCOND before block 3 is committed: control leaves a block only after its "
           "COMMIT");
   refused(9, INS(OP_SYNC, 0), "block 1: BLOCKR at pc 7 is not followed by SYNC, COMMIT and RET in its block");
   load(rich);

@@ -20,9 +20,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The most blocks a program may have (README "Limits"): a million-block
- * program compiles in well under a second, twice that is the ceiling. */
-#define COMP_MAX_BLOCKS (1 << 21)
+/* The most blocks a program may have (README "Limits"): as many as BLOCK's
+ * 24-bit operand numbers (vm/opcodes.h), 16,777,216. */
+#define COMP_MAX_BLOCKS ((size_t)INS_AMAX + 1)
 
 /* Per-block summary for the structure checks, kept small: it lives for the
  * whole compile (number, line and column are in program.blocks). */
@@ -126,11 +126,11 @@ static long emit(struct comp *c, int op, uint32_t a, unsigned col)
 {
   long i = prog_emit(c->p, INS(op, a), col);
   if (i < 0) {
-    if (c->p->ncode >= INS_AMAX && !c->toolong) {
-      /* not memory: a jump's operand reaches no further (vm/opcodes.h) */
+    if (c->p->ncode >= PROG_MAX_CODE && !c->toolong) {
+      /* not memory: the code's own limit (vm/program.h) */
       c->toolong = 1;
       diag_add(c->d, DIAG_ERROR, S42_E_LIMIT, c->b->line, c->b->col, c->b->number,
-               "more than %u instructions: the program is too long", INS_AMAX);
+               "more than %u instructions: the program is too long", PROG_MAX_CODE);
     }
     c->oom = 1;
   }
@@ -1467,11 +1467,11 @@ static void structure(struct comp *c)
     for (size_t i = 0; i < n; i++) {
       uint32_t *code = c->p->code + B[i].code;
       if (S[i].callpc != NOPC)
-        code[S[i].callpc] = INS(INS_OP(code[S[i].callpc]), B[first[S[i].L]].code);   /* CALL or CCALL */
+        code[S[i].callpc] = INS(INS_OP(code[S[i].callpc]), (uint32_t)first[S[i].L]);   /* CALL or CCALL */
       if (S[i].jpc != NOPC)
-        code[S[i].jpc] = INS(INS_OP(code[S[i].jpc]), B[first[S[i].P]].code);
+        code[S[i].jpc] = INS(INS_OP(code[S[i].jpc]), (uint32_t)first[S[i].P]);
       if (S[i].pppc != NOPC)
-        code[S[i].pppc] = INS(OP_PPJ, B[first[S[i].PP]].code);
+        code[S[i].pppc] = INS(OP_PPJ, (uint32_t)first[S[i].PP]);
     }
     c->p->entry = c->p->blocks[mp].code;
   }
@@ -1547,7 +1547,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   while (!c.oom && parse_block(&ps, c.b)) {
     if (c.ns >= COMP_MAX_BLOCKS) {
       diag_add(d, DIAG_ERROR, S42_E_LIMIT, c.b->line, c.b->col, c.b->number,
-               "more than %d blocks: the program is too long", COMP_MAX_BLOCKS);
+               "more than %zu blocks: the program is too long", COMP_MAX_BLOCKS);
       toolong = 1;   /* its structure is not checked: it cannot run */
       break;
     }

@@ -210,7 +210,8 @@ static void check_frames(struct chk *c, const struct state_payload *pl)
     const struct vm_frame *f = &pl->frames[i];
     long sb = block_starting(p, f->start);
     uint32_t call = f->ret >= 1 && f->ret <= p->ncode ? p->code[f->ret - 1] : 0;
-    if (f->ret == 0 || f->ret > p->ncode || (INS_OP(call) != OP_CALL && INS_OP(call) != OP_CCALL) || INS_A(call) != f->start || sb < 0) {
+    if (f->ret == 0 || f->ret > p->ncode || (INS_OP(call) != OP_CALL && INS_OP(call) != OP_CCALL) || sb < 0 ||
+        INS_A(call) != (uint32_t)sb) {   /* a call's operand is the sub's first block */
       refuse(c, "sub call %d returns to code address %u, which does not follow a call of the sub at %u", i + 1,
              f->ret, f->start);
       break;

@@ -1176,6 +1176,11 @@ int u22_compile(const char *src, size_t n, struct diag_list *d, struct program *
       c.oom = 1;
     free(reported);
   }
+  if (c.nb > (size_t)INS_AMAX + 1) {   /* BLOCK's 24-bit operand numbers them (vm/opcodes.h) */
+    const struct blk *over = &c.b[(size_t)INS_AMAX + 1];
+    err(&c, S42_E_LIMIT, over->line, over->col, over->number, "more than %zu blocks: the program is too long",
+        (size_t)INS_AMAX + 1);
+  }
   if (c.oom) {
     d->oom = 1;
     err(&c, S42_E_LIMIT, line ? line : 1, 1, -1, "out of memory");
@@ -1225,8 +1230,8 @@ int u22_compile(const char *src, size_t n, struct diag_list *d, struct program *
   }
   for (size_t i = 0; i < e.n && !c.oom; i++) {
     long to = e.v[i].to;
-    uint32_t pc = to < 0 ? p->blocks[t.first[-1 - to]].code : p->blocks[to].code;
-    p->code[e.v[i].pc] = INS(INS_OP(p->code[e.v[i].pc]), pc);
+    uint32_t blk = (uint32_t)(to < 0 ? t.first[-1 - to] : to);   /* a jump's operand is the block (OPD_PC) */
+    p->code[e.v[i].pc] = INS(INS_OP(p->code[e.v[i].pc]), blk);
   }
   free(e.v);
   free(c.b);
