@@ -265,6 +265,16 @@ static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, doubl
 #endif
 
 #define RAISED goto fail
+/* BLOCK's part in every form of it: the block is current, and counted
+ * against the budget (E-LIMIT past it) */
+#define BLOCK_ENTER()                                                              \
+  do {                                                                             \
+    vm->cur = INS_A(ins);                                                          \
+    if (vm->blocks >= limit) {                                                     \
+      raise_msg(vm, pc - 1, S42_E_LIMIT, VMSG_BUDGET, (unsigned long long)vm->max_blocks); \
+      RAISED;                                                                      \
+    }                                                                              \
+  } while (0)
 /* An opcode whose plain-table entry is its one handler. */
 #ifdef VM_GOTO
 #define vmcase1(l) L_##l: LP_##l:
@@ -349,11 +359,7 @@ enum vm_event vm_run(struct vm *vm)
 #endif
     vmdispatch(INS_OP(ins)) {
       vmcase(BLOCK) {
-        vm->cur = INS_A(ins);
-        if (vm->blocks >= limit) {
-          raise_msg(vm, pc - 1, S42_E_LIMIT, VMSG_BUDGET, (unsigned long long)vm->max_blocks);
-          RAISED;
-        }
+        BLOCK_ENTER();
         if (watching && (vm->start_all || vm->watch[vm->cur])) {
           vm->pc = pc;
           return VM_EV_START;
@@ -362,20 +368,12 @@ enum vm_event vm_run(struct vm *vm)
       }
 #ifdef VM_GOTO
       LP_BLOCK: {
-        vm->cur = INS_A(ins);
-        if (vm->blocks >= limit) {
-          raise_msg(vm, pc - 1, S42_E_LIMIT, VMSG_BUDGET, (unsigned long long)vm->max_blocks);
-          RAISED;
-        }
+        BLOCK_ENTER();
         vmbreak;
       }
       LP_SYNC: vmbreak;
       LP_BLOCKR: {
-        vm->cur = INS_A(ins);
-        if (vm->blocks >= limit) {
-          raise_msg(vm, pc - 1, S42_E_LIMIT, VMSG_BUDGET, (unsigned long long)vm->max_blocks);
-          RAISED;
-        }
+        BLOCK_ENTER();
         goto blockr;
       }
 #endif
@@ -383,11 +381,7 @@ enum vm_event vm_run(struct vm *vm)
        * block is watched, its SYNC, COMMIT and RET at once (verify.c
        * checks that those three follow) */
       vmcase(BLOCKR) {
-        vm->cur = INS_A(ins);
-        if (vm->blocks >= limit) {
-          raise_msg(vm, pc - 1, S42_E_LIMIT, VMSG_BUDGET, (unsigned long long)vm->max_blocks);
-          RAISED;
-        }
+        BLOCK_ENTER();
         if (watching && (vm->start_all || vm->watch[vm->cur])) {
           vm->pc = pc;
           return VM_EV_START;
