@@ -275,6 +275,14 @@ static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, doubl
       RAISED;                                                                      \
     }                                                                              \
   } while (0)
+/* COMMIT's part in every form of it: the block's journal and array
+ * snapshots are let go, and the block is counted as run */
+#define BLOCK_COMMIT()     \
+  do {                     \
+    vm->nundo = 0;         \
+    vm->arr_saved = 0;     \
+    vm->blocks++;          \
+  } while (0)
 /* An opcode whose plain-table entry is its one handler. */
 #ifdef VM_GOTO
 #define vmcase1(l) L_##l: LP_##l:
@@ -391,14 +399,8 @@ enum vm_event vm_run(struct vm *vm)
 #ifdef VM_GOTO
       blockr:
 #endif
-        vm->nundo = 0;   /* COMMIT */
-        vm->arr_saved = 0;
-        vm->blocks++;
-        pc += 3;         /* past SYNC, COMMIT, RET: the RET is at pc - 1 */
-        if (vm->depth == 0) {
-          raise_msg(vm, pc - 1, S42_E_SUB, VMSG_RETMAIN);
-          RAISED;
-        }
+        BLOCK_COMMIT();
+        pc += 3;   /* past SYNC, COMMIT, RET: RET's own return, its pc at pc - 1 */
         goto ret;
       }
       vmcase1(CONST) { PUSH(k[INS_A(ins)]); vmbreak; }
@@ -570,15 +572,11 @@ enum vm_event vm_run(struct vm *vm)
         vmbreak;
       }
       vmcase1(COMMIT) {
-        vm->nundo = 0;
-        vm->arr_saved = 0;
-        vm->blocks++;
+        BLOCK_COMMIT();
         vmbreak;
       }
       vmcase1(CCALL) {   /* COMMIT, then CALL once */
-        vm->nundo = 0;
-        vm->arr_saved = 0;
-        vm->blocks++;
+        BLOCK_COMMIT();
         times = 1;
         goto call;
       }
@@ -616,11 +614,11 @@ enum vm_event vm_run(struct vm *vm)
         vmbreak;
       }
       vmcase1(RET) {
+      ret:   /* BLOCKR's RET and RETEND in a called sub come here: the same return */
         if (vm->depth == 0) {
           raise_msg(vm, pc - 1, S42_E_SUB, VMSG_RETMAIN);
           RAISED;
         }
-      ret:;   /* RETEND in a called sub comes here: the same return */
         struct vm_frame *f = &vm->frames[vm->depth - 1];
         if (p->saved_reg >= 0)
           vm->reg[p->saved_reg] = f->saved;
@@ -691,16 +689,12 @@ enum vm_event vm_run(struct vm *vm)
         vmbreak;
       }
       vmcase1(CJMP) {
-        vm->nundo = 0;
-        vm->arr_saved = 0;
-        vm->blocks++;
+        BLOCK_COMMIT();
         pc = blk[INS_A(ins)].code;
         vmbreak;
       }
       vmcase1(CJCOND) {
-        vm->nundo = 0;
-        vm->arr_saved = 0;
-        vm->blocks++;
+        BLOCK_COMMIT();
         if (vm->jflag)
           pc = blk[INS_A(ins)].code;
         vmbreak;

@@ -1065,7 +1065,7 @@ static void compile_block(struct comp *c)
   const uint32_t sws = 1u << 22 | 1u << 23 | 1u << 25 | 1u << 26;
   uint32_t swmask = (b->m & (1u << 22 | 1u << 23) ? KP_SW_CORR : 0) | (b->m & (1u << 25 | 1u << 26) ? KP_SW_OVERRIDE : 0);
   uint32_t swon = (M(22) ? KP_SW_CORR : 0) | (M(26) ? KP_SW_OVERRIDE : 0);
-  int switches = machine && mo == MO_NONE && !at->has_f && !b->g && !at->slots && !at->plugins &&
+  int switches = mo == MO_NONE && !at->has_f && !b->g && !at->slots && !at->plugins &&
                  (b->m & sws) && !(b->m & ~(sws | 1u << 17 | 1u << 20));
   if (switches)
     emit(c, OP_MACHS, swmask | swon << 12, b->col);
@@ -1078,18 +1078,16 @@ static void compile_block(struct comp *c)
   emit(c, OP_COMMIT, 0, b->col);
   const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PP = find_word(c, WK_PP);
   if (L) {
-    if (c->given & (1u << SL_H))
-      emit(c, OP_WORD, SL_H, L->col);
+    int h = (c->given & (1u << SL_H)) != 0;
     sm->L = (int16_t)L->num;
     sm->Lcol = col16(L->col);
-    if (!(c->given & (1u << SL_H)) && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
+    if (!h && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
       /* COMMIT; INT 1; CALL in one instruction */
       c->p->code[c->p->ncode - 1] = INS(OP_CCALL, 0);
       c->p->cols[c->p->ncode - 1] = col16(L->col);
       sm->callpc = boff(c, (long)c->p->ncode - 1);
     } else {
-      if (!(c->given & (1u << SL_H)))
-        emit(c, OP_INT, 1, L->col);
+      emit(c, h ? OP_WORD : OP_INT, h ? SL_H : 1, L->col);   /* the count: H's value, or once */
       sm->callpc = boff(c, emit(c, OP_CALL, 0, L->col));
     }
   }
