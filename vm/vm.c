@@ -342,6 +342,12 @@ enum vm_event vm_run(struct vm *vm)
    * so a fused arithmetic-and-store needs one test for both of its checks */
   const double plo = param_lo < -DBL_MAX ? -DBL_MAX : param_lo, phi = param_hi > DBL_MAX ? DBL_MAX : param_hi;
   const double rad = vm->rad, trig_max = p->lim.trig_max;
+  /* a call's two program constants, read once: the deepest nesting, and
+   * the register a call saves and its return restores (a program with none
+   * saves and restores a scratch cell, so CALL and RET need no test) */
+  const uint32_t depth_max = p->lim.depth;
+  double no_saved = 0.0;
+  double *const saved = p->saved_reg >= 0 ? &vm->reg[p->saved_reg] : &no_saved;
 
   if (vm->done)
     return vm->err.code ? VM_EV_ERROR : VM_EV_END;
@@ -585,8 +591,8 @@ enum vm_event vm_run(struct vm *vm)
         if (times == 0)
           vmbreak;
       call:
-        if ((uint32_t)vm->depth >= p->lim.depth) {
-          raise_msg(vm, pc - 1, S42_E_NEST, VMSG_NEST, vm->depth + 1, (int)p->lim.depth);
+        if ((uint32_t)vm->depth >= depth_max) {
+          raise_msg(vm, pc - 1, S42_E_NEST, VMSG_NEST, vm->depth + 1, (int)depth_max);
           RAISED;
         }
         struct vm_frame *f = &vm->frames[vm->depth++];
@@ -594,7 +600,7 @@ enum vm_event vm_run(struct vm *vm)
         f->start = blk[INS_A(ins)].code;
         f->left = times - 1;
         f->block = vm->cur;
-        f->saved = p->saved_reg >= 0 ? vm->reg[p->saved_reg] : 0.0;
+        f->saved = *saved;
         f->jflag = vm->jflag;
         pc = f->start;
         vmbreak;
@@ -620,8 +626,7 @@ enum vm_event vm_run(struct vm *vm)
           RAISED;
         }
         struct vm_frame *f = &vm->frames[vm->depth - 1];
-        if (p->saved_reg >= 0)
-          vm->reg[p->saved_reg] = f->saved;
+        *saved = f->saved;
         if (f->left > 0) {
           f->left--;
           pc = f->start;
