@@ -127,6 +127,8 @@
   OP(ATANP,  NONE, REG,  1, 0, "arctangent, into parameter register EXT (ATAN; SETP)") \
   OP(RSIN,   REG,  NONE, 0, 1, "push the sine of register A (REG; SIN)") \
   OP(RCOS,   REG,  NONE, 0, 1, "push the cosine of register A (REG; COS)") \
+  OP(RSINCOS, REG, NONE, 0, 2, "push the sine, then the cosine, of register A, both from one sincos (REG; SIN; REG; COS)") \
+  OP(RCOSSIN, REG, NONE, 0, 2, "push the cosine, then the sine, of register A, both from one sincos (REG; COS; REG; SIN)") \
   OP(CMPRK,  RELR, KT,   0, 0, "the block's jump condition is the relation A&7 between register A>>3 and constant K[EXT], K[EXT+1] and K[EXT+2] its bounds outside which the relation is plainly < or > (REG; CMPCK)") \
   /* a block's control in one dispatch (src/dialect/2c42/compile.c) */ \
   OP(CCALL,  PC,   NONE, 0, 0, "close the block's transaction, then call the sub at block A once (COMMIT; INT 1; CALL)") \

@@ -49,6 +49,7 @@ static int may_hold(int op)
   case OP_ADDK: case OP_SUBK: case OP_MULK: case OP_DIVK:
   case OP_ADDR: case OP_SUBR: case OP_MULR: case OP_DIVR:
   case OP_SETP: case OP_CMPC: case OP_CMPCK: case OP_CMPCR: case OP_CMPRK: case OP_RSIN: case OP_RCOS:
+  case OP_RSINCOS: case OP_RCOSSIN:
     return 1;
   default:
     return op >= OP_RADDI && op <= OP_ATANP;   /* the register forms compute or store */

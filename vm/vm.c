@@ -469,6 +469,26 @@ enum vm_event vm_run(struct vm *vm)
       RTRIG(RSIN, OP_SIN, sin)
       RTRIG(RCOS, OP_COS, cos)
 #undef RTRIG
+      /* REG a; SIN; REG a; COS (or COS first): one domain test (the two
+       * share it, so the first part is the one that would raise), one
+       * sincos, which gives sin's and cos's results to the bit (glibc
+       * computes the three alike; the unit tests compare them) */
+#define RSINCOS(L, BASE, FIRST, SECOND) \
+      vmcase1(L) { \
+        double s_, c_; \
+        a = vm->reg[INS_A(ins)]; \
+        if (!(fabs(a) <= trig_max)) { \
+          math_at(vm, pc - 1, BASE, a, 0, &out); \
+          RAISED; \
+        } \
+        sincos(a * rad, &s_, &c_); \
+        PUSH(FIRST); \
+        PUSH(SECOND); \
+        vmbreak; \
+      }
+      RSINCOS(RSINCOS, OP_SIN, s_, c_)
+      RSINCOS(RCOSSIN, OP_COS, c_, s_)
+#undef RSINCOS
       /* SIN; SETP and the like: the function exactly, then SETP exactly
        * (its error at the EXT word's column) */
 #define TRIGP(L, BASE, DOMAIN, VALUE) \

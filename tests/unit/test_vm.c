@@ -423,6 +423,41 @@ static void same_outcome(const struct outcome *x, const struct outcome *y, const
                 y->reg[3], y->jflag);
 }
 
+/* RSINCOS and RCOSSIN take both values from one sincos: that it gives
+ * exactly sin's and cos's results is the C library's, so it is checked
+ * here over every 7th 0.001-degree angle of the 2С42's range (and the half
+ * steps beside them, in radians as the VM computes them), random doubles
+ * of that range and random bit patterns. */
+START_TEST(sincos_is_sin_and_cos)
+{
+  double (*volatile fs)(double) = sin, (*volatile fc)(double) = cos;   /* no folding into sincos */
+  const double rad = 0.001 * (M_PI / 180.0);
+  uint64_t x = 88172645463325252ULL;
+  long differ = 0, n = 0;
+  for (long i = -2304000; i <= 2304000 + 2000000; i += 7) {
+    double t;
+    if (i <= 2304000)
+      t = (i % 2 ? i + 0.5 : i) * rad;
+    else {
+      x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+      uint64_t bits = x;
+      if (i % 2)
+        memcpy(&t, &bits, sizeof t);   /* any double */
+      else
+        t = ((double)(bits >> 11) / 9007199254740992.0 * 2 - 1) * 2304000 * rad;
+    }
+    double s, c, s1 = fs(t), c1 = fc(t);
+    sincos(t, &s, &c);
+    n++;
+    if (memcmp(&s, &s1, sizeof s) != 0 || memcmp(&c, &c1, sizeof c) != 0) {
+      if (differ++ < 3)
+        fprintf(stderr, "sincos(%a) = %a, %a; sin, cos = %a, %a\n", t, s, c, s1, c1);
+    }
+  }
+  ck_assert_msg(differ == 0, "sincos differs from sin and cos for %ld of %ld arguments", differ, n);
+}
+END_TEST
+
 START_TEST(register_forms_as_their_parts)
 {
   static const double vals[] = {5, 0, -3, 0.5, 9999999, -9999999, 1e308, -1e308, INFINITY, -INFINITY, NAN,
@@ -476,6 +511,14 @@ START_TEST(register_forms_as_their_parts)
       uint32_t f[2][3] = {{c ? OP_RCOS : OP_RSIN, 1, 20}, {OP_SETP, 3, 30}};
       struct outcome x = run_code(u, 3, angles[i], 0, -9999999, 9999999), y = run_code(f, 2, angles[i], 0, -9999999, 9999999);
       same_outcome(&x, &y, c ? "RCOS" : "RSIN", angles[i], 0);
+      /* RSINCOS, RCOSSIN against REG; SIN; REG; COS and the other way:
+       * both values (their difference, stored: a sum would hide a swap) */
+      uint32_t u2[6][3] = {{OP_REG, 1, 10}, {c ? OP_COS : OP_SIN, 0, 20}, {OP_REG, 1, 25},
+                           {c ? OP_SIN : OP_COS, 0, 30}, {OP_SUB, 0, 35}, {OP_SETP, 3, 40}};
+      uint32_t f2[3][3] = {{c ? OP_RCOSSIN : OP_RSINCOS, 1, 20}, {OP_SUB, 0, 35}, {OP_SETP, 3, 40}};
+      x = run_code(u2, 6, angles[i], 0, -9999999, 9999999);
+      y = run_code(f2, 3, angles[i], 0, -9999999, 9999999);
+      same_outcome(&x, &y, c ? "RCOSSIN" : "RSINCOS", angles[i], 0);
     }
   /* the functions with their store against FN; SETP (ASIN of values out
    * of its domain, results out of a narrow parameter range) */
@@ -1737,6 +1780,7 @@ Suite *suite_vm(void)
   tcase_add_test(tc, many_vms_one_program);
   tcase_add_test(tc, superinstructions_same_errors);
   tcase_add_test(tc, register_forms_as_their_parts);
+  tcase_add_test(tc, sincos_is_sin_and_cos);
   tcase_add_test(tc, rel_bounds_hold);
   tcase_add_test(tc, switch_block_yields_only_for_a_change);
   tcase_add_test(tc, switch_block_only_with_nothing_else);

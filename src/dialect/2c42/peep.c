@@ -7,6 +7,7 @@
  *   ADD; SETP d                  ADDP, EXT d
  *   REG a; CMPCK rel k           CMPRK rel|a<<3, EXT j   (K[j] K[j+1] K[j+2]: K[k], its bounds)
  *   REG a; SIN / COS             RSIN a / RCOS a
+ *   REG a; SIN; REG a; COS       RSINCOS a               (COS first: RCOSSIN a)
  *   SIN; SETP d                  SINP, EXT d             (and COS ASIN ACOS ATAN)
  *
  * Why each is safe: a block's code runs straight through (vm/verify.c), no
@@ -99,6 +100,7 @@ int peep_block(struct program *p, size_t from)
   while (i < n) {
     uint32_t w0 = code[i], w1 = i + 1 < n ? code[i + 1] : 0, w2 = i + 2 < n ? code[i + 2] : 0;
     unsigned op0 = INS_OP(w0), op1 = i + 1 < n ? INS_OP(w1) : OP__COUNT, op2 = i + 2 < n ? INS_OP(w2) : OP__COUNT;
+    unsigned op3 = i + 3 < n ? INS_OP(code[i + 3]) : OP__COUNT;
     int row, kind;
     if (op0 == OP_REG && INS_A(w0) < VM_NREG && arith_x(op1, &row, &kind) == 0 && INS_A(w1) < XMAX) {
       uint32_t a = INS_A(w0) | INS_A(w1) << 7;
@@ -116,6 +118,15 @@ int peep_block(struct program *p, size_t from)
         code[o++] = INS(rpush[kind][row], a);
         i += 2;
       }
+      continue;
+    }
+    if (op0 == OP_REG && (op1 == OP_SIN || op1 == OP_COS) && w2 == w0 && op3 == (op1 == OP_SIN ? OP_COS : OP_SIN)) {
+      /* REG a; SIN; REG a; COS: the sine and the cosine of one angle (the
+       * second cannot fail where the first did not: the same value, the
+       * same domain) */
+      cols[o] = cols[i + 1];
+      code[o++] = INS(op1 == OP_SIN ? OP_RSINCOS : OP_RCOSSIN, INS_A(w0));
+      i += 4;
       continue;
     }
     if (op0 == OP_REG && (op1 == OP_SIN || op1 == OP_COS)) {
