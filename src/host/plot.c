@@ -515,6 +515,7 @@ struct pen {
   long colk;                   /* its index */
   struct pen_col c_first, c_min, c_max, c_last;
   long ndrawn, nskipped;       /* for the curious (S42_PLOT_STATS) */
+  long nprim;                  /* lines and arcs offered (pen_fresh) */
   int lhave;                   /* pen_moveto, pen_lineto: the producer is at (lx, ly) */
   double lx, ly;
   /* the band (pen_band): a stroke's path kept here, not in cairo's */
@@ -1158,6 +1159,7 @@ static void pen_start(struct pen *pn, double x, double y)
  * another chunk, it goes to the next layer (drawn later, over). */
 static int pen_fresh(struct pen *pn, const struct pen_prim *pr)
 {
+  pn->nprim++;
   if (!pn->dedupe)
     return 1;
   int64_t k[7] = {pen_q(pr->x0), pen_q(pr->y0), pen_q(pr->x1), pen_q(pr->y1), pr->arc, 0, 0};
@@ -1344,9 +1346,87 @@ static int seg_has_jog(const struct seg *g)
 
 #define CHUNK 128   /* blocks a chunk (the old plot's strokes): see the pen */
 
-static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
+/* ---- segments seen before ----
+ *
+ * Repeated passes repeat segments exactly, most of them within one chunk,
+ * where the pen leaves out each of their lines and arcs again: a segment's
+ * shape (its start, moves, arc: all that path_seg and bb_curve read) gets
+ * two independent 64-bit hashes (seg_hash; two different shapes collide
+ * with odds of 2^-128), and a small table of the shapes drawn whole in the
+ * chunk (SEEN_SLOTS; one that drops out is drawn whole again, as without
+ * it) lets the next copy in the same chunk go without working out its
+ * geometry: what the pen would do with it, given its lines and arcs all
+ * seen in this chunk, is to break the polyline. */
+#define SEEN_SLOTS 1024
+
+struct seen { uint64_t h1, h2; long chunk, nprim; };
+
+static void seg_hash(const struct seg *g, uint64_t h[2])
+{
+  uint64_t w[10];
+  float f[3] = {g->cp, g->cq, g->sweep};
+  uint32_t fb[3];
+  memcpy(fb, f, sizeof fb);
+  for (int a = 0; a < 4; a++)
+    w[a] = (uint64_t)g->start[a];
+  w[4] = (uint32_t)g->d[0] | (uint64_t)(uint32_t)g->d[1] << 32;
+  w[5] = (uint32_t)g->d[2] | (uint64_t)(uint32_t)g->d[3] << 32;
+  w[6] = (uint32_t)g->jog[0] | (uint64_t)(uint32_t)g->jog[1] << 32;
+  w[7] = (uint32_t)g->jog[2] | (uint64_t)(uint32_t)g->jog[3] << 32;
+  w[8] = fb[0] | (uint64_t)fb[1] << 32;
+  w[9] = fb[2] | (uint64_t)g->kind << 32 | (uint64_t)g->plane << 40 | (uint64_t)g->flags << 48;
+  uint64_t h1 = 0x9e3779b97f4a7c15ULL, h2 = 0x243f6a8885a308d3ULL;
+  for (int i = 0; i < 10; i++) {
+    h1 = mix64(h1 ^ w[i]);
+    h2 = mix64(h2 + w[i] * 0x9e3779b97f4a7c15ULL);
+  }
+  h[0] = h1;
+  h[1] = h2;
+}
+
+/* Every segment's hashes (2 words a segment), or NULL (no memory: none). */
+static uint64_t *seg_hashes(const struct plot *pl)
+{
+  uint64_t *gh = pl->n ? malloc(pl->n * 2 * sizeof *gh) : NULL;
+  for (size_t i = 0; gh && i < pl->n; i++)
+    seg_hash(&pl->v[i], gh + 2 * i);
+  return gh;
+}
+
+static struct seen *seen_new(const uint64_t *gh)
+{
+  struct seen *t = gh ? malloc(SEEN_SLOTS * sizeof *t) : NULL;
+  for (size_t i = 0; t && i < SEEN_SLOTS; i++)
+    t[i] = (struct seen){0, 0, -1, 0};
+  return t;
+}
+
+/* path_seg, or what it would come to for a segment drawn whole before in
+ * this chunk (h its hashes). */
+static void path_seg_seen(struct pen *pn, struct seen *tab, const uint64_t *h, const struct panel *P,
+                          const struct seg *g, int teach)
+{
+  if (!tab || !pn->set || !pn->dedupe) {   /* (no cache in the pen: it draws all) */
+    path_seg(pn, P, g, teach);
+    return;
+  }
+  struct seen *e = &tab[h[0] & (SEEN_SLOTS - 1)];
+  if (e->chunk == pn->chunk && e->h1 == h[0] && e->h2 == h[1]) {
+    if (e->nprim) {
+      pn->nskipped += e->nprim;
+      pen_break(pn);
+    }
+    return;
+  }
+  long before = pn->nprim;
+  path_seg(pn, P, g, teach);
+  *e = (struct seen){h[0], h[1], pn->chunk, pn->nprim - before};
+}
+
+static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl, const uint64_t *gh)
 {
   struct pen pn;
+  struct seen *tab = seen_new(gh);
   /* programmed moves: solid */
   rgb(cr, C_PATH);
   cairo_set_line_width(cr, 1.4);
@@ -1354,9 +1434,11 @@ static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
   pen_init(&pn, cr, 1, 0);
   for (size_t i = 0; i < pl->n; i++) {
     pen_chunk(&pn, (long)(i / CHUNK));
-    path_seg(&pn, P, &pl->v[i], 0);
+    path_seg_seen(&pn, tab, gh + 2 * i, P, &pl->v[i], 0);
   }
   pen_done(&pn);
+  for (size_t i = 0; tab && i < SEEN_SLOTS; i++)
+    tab[i].chunk = -1;
 
   /* manual moves: dashed */
   rgb(cr, C_JOG);
@@ -1367,9 +1449,10 @@ static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
   for (size_t i = 0, k = 0; i < pl->n; i++)
     if (seg_has_jog(&pl->v[i])) {
       pen_chunk(&pn, (long)(k++ / CHUNK));
-      path_seg(&pn, P, &pl->v[i], 1);
+      path_seg_seen(&pn, tab, gh + 2 * i, P, &pl->v[i], 1);
     }
   pen_done(&pn);
+  free(tab);
   cairo_set_dash(cr, NULL, 0, 0);
   /* corrections between blocks: dotted */
   rgb(cr, C_CORR);
@@ -1797,7 +1880,7 @@ static void marker(cairo_t *cr, const struct panel *P, const double pt[4], int e
   }
 }
 
-static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
+static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb, const uint64_t *gh)
 {
   static const struct { int u, v; const char *name, *plane; } def[3] = {
     {AX_X, AX_Y, "XY", "plane G17, mm"},
@@ -1842,7 +1925,7 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
     cairo_rectangle(cr, P.rx, P.ry, P.rw, P.rh);
     cairo_clip(cr);
     draw_scale(cr, &P, step);
-    draw_panel_path(cr, &P, pl);
+    draw_panel_path(cr, &P, pl, gh);
     draw_panel_osc(cr, &P, pl);
     double z[4] = {0, 0, 0, 0}, e[4], con[4];
     final_pos(pl, e, con);
@@ -2121,9 +2204,17 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program, int ra
   struct bbox bb;
   for (int a = 0; a < 4; a++)
     bb.lo[a] = bb.hi[a] = 0;
+  uint64_t *gh = seg_hashes(pl);
+  struct seen *tab = seen_new(gh);
   for (size_t i = 0; i < pl->n; i++) {
     const struct seg *g = &pl->v[i];
     double p[4];
+    if (tab) {   /* a segment seen before adds nothing */
+      struct seen *e = &tab[gh[2 * i] & (SEEN_SLOTS - 1)];
+      if (e->chunk == 0 && e->h1 == gh[2 * i] && e->h2 == gh[2 * i + 1])
+        continue;
+      *e = (struct seen){gh[2 * i], gh[2 * i + 1], 0, 0};
+    }
     for (int a = 0; a < 4; a++)
       p[a] = g->start[a] / 1000.0;
     bb_add(&bb, p);
@@ -2142,7 +2233,9 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program, int ra
       osc_point(pl, i, k, &j, pt);
       bb_add(&bb, pt);
     }
-  draw_xyz(cr, pl, &bb);
+  free(tab);
+  draw_xyz(cr, pl, &bb, gh);
+  free(gh);
   draw_a(cr, pl, raster);
   legend(cr, 40, 984, pl->why[0] != 0);
 
