@@ -698,28 +698,36 @@ static void pen_cline(struct pen *pn, double x, double y)
     cairo_line_to(pn->cr, x, y);
 }
 
-/* Where the vertical line at x crosses the convex quadrilateral (qx, qy):
- * [*lo, *hi], or 0 when it misses it. */
-static int quad_at(const double *qx, const double *qy, double x, double *lo, double *hi)
+/* The rectangle of the line from (px, py) along the unit (ux, uy), len long,
+ * r either side -- the points where t = e.u is in [0, len] and s = e.n in
+ * [-r, r], e from (px, py), n = (-uy, ux) -- crossed by the vertical line at
+ * x: [*lo, *hi], or 0 when it misses it. */
+static int rect_at(double px, double py, double ux, double uy, double len, double r, double x, double *lo,
+                   double *hi)
 {
-  double a = INFINITY, b = -INFINITY;
-  for (int e = 0; e < 4; e++) {
-    int i = e, j = (e + 1) & 3;
-    double x0 = qx[i], x1 = qx[j];
-    if (x < fmin(x0, x1) || x > fmax(x0, x1))
-      continue;
-    double y0 = qy[i], y1 = qy[j];
-    if (x0 == x1) {
-      a = fmin(a, fmin(y0, y1));
-      b = fmax(b, fmax(y0, y1));
-    } else {
-      double y = y0 + (y1 - y0) * (x - x0) / (x1 - x0);
-      a = fmin(a, y);
-      b = fmax(b, y);
-    }
+  double ex = x - px, a = -INFINITY, b = INFINITY;
+  double tx = ex * ux, sx = -ex * uy;   /* t = tx + ey uy, s = sx + ey ux */
+  if (uy != 0) {
+    double y0 = -tx / uy, y1 = (len - tx) / uy;
+    a = y0 < y1 ? y0 : y1;
+    b = y0 < y1 ? y1 : y0;
+  } else if (tx < 0 || tx > len) {
+    return 0;
   }
-  *lo = a;
-  *hi = b;
+  if (ux != 0) {
+    double y0 = (-r - sx) / ux, y1 = (r - sx) / ux;
+    if (y0 > y1) {
+      double t = y0;
+      y0 = y1;
+      y1 = t;
+    }
+    if (y0 > a) a = y0;
+    if (y1 < b) b = y1;
+  } else if (sx < -r || sx > r) {
+    return 0;
+  }
+  *lo = py + a;
+  *hi = py + b;
   return a <= b;
 }
 
@@ -735,11 +743,9 @@ static void band_rect(const struct pen_pt *p, const struct pen_pt *q, double r, 
   double dx = q->x - p->x, dy = q->y - p->y, len = hypot(dx, dy);
   if (!(len > 0) || fabs(dy) < 2)
     return;   /* no more than a row or two of core: left to the stroke */
-  double nx = -dy / len * r, ny = dx / len * r;
-  double qx[4] = {p->x + nx, q->x + nx, q->x - nx, p->x - nx};
-  double qy[4] = {p->y + ny, q->y + ny, q->y - ny, p->y - ny};
-  double xa = fmin(fmin(qx[0], qx[1]), fmin(qx[2], qx[3]));
-  double xb = fmax(fmax(qx[0], qx[1]), fmax(qx[2], qx[3]));
+  double ux = dx / len, uy = dy / len;
+  /* the rectangle's corners are p and q, r either way along (-uy, ux) */
+  double xa = (p->x < q->x ? p->x : q->x) - r * fabs(uy), xb = (p->x < q->x ? q->x : p->x) + r * fabs(uy);
   long sa = (long)ceil((xa + mx) * BAND_SUB), sb = (long)floor((xb - mx) * BAND_SUB);
   if (sa < s0)
     sa = s0;
@@ -747,16 +753,16 @@ static void band_rect(const struct pen_pt *p, const struct pen_pt *q, double r, 
     sb = s0 + ns;
   for (long s = sa; s < sb; s++) {
     double l0, h0, l1, h1;
-    if (!quad_at(qx, qy, (double)s / BAND_SUB - mx, &l0, &h0) ||
-        !quad_at(qx, qy, (double)(s + 1) / BAND_SUB + mx, &l1, &h1))
+    if (!rect_at(p->x, p->y, ux, uy, len, r, (double)s / BAND_SUB - mx, &l0, &h0) ||
+        !rect_at(p->x, p->y, ux, uy, len, r, (double)(s + 1) / BAND_SUB + mx, &l1, &h1))
       continue;
-    double a = fmax(l0, l1), b = fmin(h0, h1);
+    double a = l0 > l1 ? l0 : l1, b = h0 < h1 ? h0 : h1;
     if (!(a < b))
       continue;
     double *v = iv + 2 * (s - s0);
     if (v[0] <= v[1] && a <= v[1] && b >= v[0]) {
-      v[0] = fmin(v[0], a);
-      v[1] = fmax(v[1], b);
+      if (a < v[0]) v[0] = a;
+      if (b > v[1]) v[1] = b;
     } else if (v[0] > v[1] || b - a > v[1] - v[0]) {
       v[0] = a;
       v[1] = b;
