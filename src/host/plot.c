@@ -522,7 +522,7 @@ struct pen {
   double band_r;               /* half the line width; 0: straight to cairo */
   struct pen_pt *bp;
   size_t bn, bcap;
-  long nband, nbox;            /* dense strokes cut, boxes stroked */
+  long nband, nstrip;          /* dense strokes cut, strips stroked */
 };
 
 static void pen_init(struct pen *pn, cairo_t *cr, int dedupe, double colw)
@@ -814,7 +814,8 @@ static void band_strip(struct pen *pn, long y0, long y1, double xl, double xr, c
       continue;
     int inside = 0;
     for (int i = 0; i < ncov && !inside; i++)
-      inside = v[k - 1].x - R >= cov[i].x0 && v[k].x + R <= cov[i].x1;
+      inside = (v[k - 1].x < v[k].x ? v[k - 1].x : v[k].x) - R >= cov[i].x0 &&
+               (v[k - 1].x < v[k].x ? v[k].x : v[k - 1].x) + R <= cov[i].x1;
     if (inside)
       continue;
     if (!any) {
@@ -839,7 +840,7 @@ static void band_strip(struct pen *pn, long y0, long y1, double xl, double xr, c
   band_lines(pn, ga, gb);
   cairo_stroke(cr);
   cairo_restore(cr);
-  pn->nbox++;
+  pn->nstrip++;
 }
 
 static int rect_larger(const void *a, const void *b)
@@ -855,8 +856,8 @@ static int long_cmp(const void *a, const void *b)
   return p < q ? -1 : p > q;
 }
 
-/* Draw the kept path, dense, by its core and boxes: 0, or -1 when it is not
- * worth it (or no memory for it), nothing drawn. */
+/* Draw the kept path, dense, by its cores and strips: 0, or -1 when it is
+ * not worth it (or no memory for it), nothing drawn. */
 static int band_cut(struct pen *pn)
 {
   const struct pen_pt *v = pn->bp;
@@ -867,8 +868,6 @@ static int band_cut(struct pen *pn)
   for (size_t k = 0; k < n; k++) {
     if (!isfinite(v[k].x) || !isfinite(v[k].y) || fabs(v[k].x) > 1e6 || fabs(v[k].y) > 1e6)
       return -1;
-    if (k && v[k].x < v[k - 1].x)
-      return -1;   /* the boxes take the lines in the order of x */
     xa = fmin(xa, v[k].x);
     xb = fmax(xb, v[k].x);
     ya = fmin(ya, v[k].y);
@@ -1246,8 +1245,8 @@ static void pen_done(struct pen *pn)
   pen_cstroke(pn);
   if (getenv("S42_PLOT_STATS"))
     fprintf(stderr, "pen: %ld drawn, %ld duplicates left out (%zu, %zu again), %zu keys, %zu forgotten; "
-            "%ld dense strokes in %ld boxes\n", pn->ndrawn, pn->nskipped, pn->layer[0].n, pn->layer[1].n,
-            pn->used, pn->evicted, pn->nband, pn->nbox);
+            "%ld dense strokes in %ld strips\n", pn->ndrawn, pn->nskipped, pn->layer[0].n, pn->layer[1].n,
+            pn->used, pn->evicted, pn->nband, pn->nstrip);
   free(pn->bp);
   pn->bp = NULL;
   pn->bn = pn->bcap = 0;
