@@ -999,8 +999,9 @@ static void pen_cstroke(struct pen *pn)
   pn->bn = 0;
 }
 
-/* The pen draws a function of x (colw) with lines of width w, round joins
- * and butt caps, on a raster: dense strokes by the band. */
+/* The pen draws on a raster with solid lines (no dash) of width w: dense
+ * strokes by the band (the cores are inside the lines' rectangles, which
+ * every join and cap keeps; a dash would not). */
 static void pen_band(struct pen *pn, double w)
 {
   pn->band_r = w / 2;
@@ -1361,7 +1362,10 @@ static int seg_has_jog(const struct seg *g)
  * chunk (SEEN_SLOTS; one that drops out is drawn whole again, as without
  * it) lets the next copy in the same chunk go without working out its
  * geometry: what the pen would do with it, given its lines and arcs all
- * seen in this chunk, is to break the polyline. */
+ * seen in this chunk, is to break the polyline.  (Where the pen's own cache
+ * would have forgotten one of them in between and drawn it again -- a
+ * chunk of tens of thousands of lines -- it stays left out, as the pen
+ * means.) */
 #define SEEN_SLOTS 1024
 
 struct seen { uint64_t h1, h2; long chunk, nprim; };
