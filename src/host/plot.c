@@ -138,16 +138,15 @@ void plot_sample(struct plot *pl, const struct session *s, int axis, int64_t d)
   pl->osc[pl->nosc++] = (struct osc_pt){sess_time(s), pl->disp[axis], axis, d == 0};
 }
 
-void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r_in)
+void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r)
 {
   (void)s;
   if (!pl || pl->oom)
     return;
   /* the programmed path leaves out what oscillation added: drawn apart */
-  struct sess_row rr = *r_in;
-  const struct sess_row *r = &rr;
+  int64_t start[4];
   for (int a = 0; a < 4; a++)
-    rr.start[a] -= pl->disp_row[a];
+    start[a] = r->start[a] - pl->disp_row[a];
   memcpy(pl->disp_row, pl->disp, sizeof pl->disp_row);
   pl->rows++;
   double t0 = pl->t;
@@ -166,10 +165,10 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
   }
   int moves = arc;   /* a full circle ends where it started */
   for (int a = 0; a < 4; a++)
-    if (r->d[a] || (r->has_jogs && r->jogs[a]) || r->start[a] != pl->pos[a])
+    if (r->d[a] || (r->has_jogs && r->jogs[a]) || start[a] != pl->pos[a])
       moves = 1;
   for (int a = 0; a < 4; a++)
-    pl->pos[a] = r->start[a] + r->d[a] + (r->has_jogs ? r->jogs[a] : 0);
+    pl->pos[a] = start[a] + r->d[a] + (r->has_jogs ? r->jogs[a] : 0);
   if (!moves)
     return;
   if (pl->n == pl->cap) {
@@ -184,7 +183,7 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
   }
   struct seg *g = &pl->v[pl->n++];
   memset(g, 0, sizeof *g);
-  memcpy(g->start, r->start, sizeof g->start);
+  memcpy(g->start, start, sizeof g->start);
   for (int a = 0; a < 4; a++) {
     g->d[a] = clamp32(r->d[a]);
     g->jog[a] = r->has_jogs ? clamp32(r->jogs[a]) : 0;
@@ -211,7 +210,7 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
         off = 1;
     if (!off && (r->jogs[p] || r->jogs[q])) {
       int ccw = pa->ccw;
-      double prog = arc_sweep(cp, cq, (double)(pa->to[p] - r->start[p]), (double)(pa->to[q] - r->start[q]), ccw);
+      double prog = arc_sweep(cp, cq, (double)(pa->to[p] - start[p]), (double)(pa->to[q] - start[q]), ccw);
       double done = arc_sweep(cp, cq, (double)r->jogs[p], (double)r->jogs[q], ccw);
       double sw = done <= prog + 1e-6 ? done : -(2 * M_PI - done);
       g->sweep = (float)(ccw ? sw : -sw);
