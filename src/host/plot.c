@@ -26,7 +26,8 @@
  * teal.  Block numbers label block starts where there is room.
  *
  * Every row that moves is kept as one struct seg (about 100 bytes), so
- * 100,000 blocks take about 10 MB. */
+ * 100,000 blocks take about 10 MB (and 16 bytes a segment more while the
+ * picture is drawn: seg_hashes). */
 #include "plot.h"
 #include "picture.h"
 #include "geom.h"
@@ -137,16 +138,15 @@ void plot_sample(struct plot *pl, const struct session *s, int axis, int64_t d)
   pl->osc[pl->nosc++] = (struct osc_pt){sess_time(s), pl->disp[axis], axis, d == 0};
 }
 
-void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r_in)
+void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r)
 {
   (void)s;
   if (!pl || pl->oom)
     return;
   /* the programmed path leaves out what oscillation added: drawn apart */
-  struct sess_row rr = *r_in;
-  const struct sess_row *r = &rr;
+  int64_t start[4];
   for (int a = 0; a < 4; a++)
-    rr.start[a] -= pl->disp_row[a];
+    start[a] = r->start[a] - pl->disp_row[a];
   memcpy(pl->disp_row, pl->disp, sizeof pl->disp_row);
   pl->rows++;
   double t0 = pl->t;
@@ -165,10 +165,10 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
   }
   int moves = arc;   /* a full circle ends where it started */
   for (int a = 0; a < 4; a++)
-    if (r->d[a] || (r->has_jogs && r->jogs[a]) || r->start[a] != pl->pos[a])
+    if (r->d[a] || (r->has_jogs && r->jogs[a]) || start[a] != pl->pos[a])
       moves = 1;
   for (int a = 0; a < 4; a++)
-    pl->pos[a] = r->start[a] + r->d[a] + (r->has_jogs ? r->jogs[a] : 0);
+    pl->pos[a] = start[a] + r->d[a] + (r->has_jogs ? r->jogs[a] : 0);
   if (!moves)
     return;
   if (pl->n == pl->cap) {
@@ -183,7 +183,7 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
   }
   struct seg *g = &pl->v[pl->n++];
   memset(g, 0, sizeof *g);
-  memcpy(g->start, r->start, sizeof g->start);
+  memcpy(g->start, start, sizeof g->start);
   for (int a = 0; a < 4; a++) {
     g->d[a] = clamp32(r->d[a]);
     g->jog[a] = r->has_jogs ? clamp32(r->jogs[a]) : 0;
@@ -210,7 +210,7 @@ void plot_row(struct plot *pl, const struct session *s, const struct sess_row *r
         off = 1;
     if (!off && (r->jogs[p] || r->jogs[q])) {
       int ccw = pa->ccw;
-      double prog = arc_sweep(cp, cq, (double)(pa->to[p] - r->start[p]), (double)(pa->to[q] - r->start[q]), ccw);
+      double prog = arc_sweep(cp, cq, (double)(pa->to[p] - start[p]), (double)(pa->to[q] - start[q]), ccw);
       double done = arc_sweep(cp, cq, (double)r->jogs[p], (double)r->jogs[q], ccw);
       double sw = done <= prog + 1e-6 ? done : -(2 * M_PI - done);
       g->sweep = (float)(ccw ? sw : -sw);
@@ -488,6 +488,7 @@ static double text_w(cairo_t *cr, const char *s, double size, int bold)
 #define PEN_LAYERS 3       /* a line seen in more chunks is drawn up to 3 times */
 
 struct pen_col { double x, y; int i; };
+struct pen_pt { double x, y; int move; };
 /* a line or an arc, as pen_line and pen_arc take it */
 struct pen_prim { double x0, y0, x1, y1, cx, cy, r, a0, a1; int arc; };
 struct pen_layer { struct pen_prim *v; size_t n, cap; };
@@ -514,8 +515,14 @@ struct pen {
   long colk;                   /* its index */
   struct pen_col c_first, c_min, c_max, c_last;
   long ndrawn, nskipped;       /* for the curious (S42_PLOT_STATS) */
+  long nprim;                  /* lines and arcs offered (pen_fresh) */
   int lhave;                   /* pen_moveto, pen_lineto: the producer is at (lx, ly) */
   double lx, ly;
+  /* the band (pen_band): a stroke's path kept here, not in cairo's */
+  double band_r;               /* half the line width; 0: straight to cairo */
+  struct pen_pt *bp;
+  size_t bn, bcap;
+  long nband, nstrip;          /* dense strokes cut, strips stroked */
 };
 
 static void pen_init(struct pen *pn, cairo_t *cr, int dedupe, double colw)
@@ -603,17 +610,414 @@ static int pen_count_key(struct pen *pn, const int64_t *k, int n)
   return 1;
 }
 
+/* ---- the band: a dense trace on a raster, drawn by the pixels it covers ----
+ *
+ * The A panel's traces are functions of time, and a long program puts many
+ * blocks into each pixel column: the pen cuts each 1/8 px column to four
+ * points, but a run that goes up and down is then still a zigzag of long,
+ * nearly vertical lines 1/8 px apart, and cairo's scan converter steps each
+ * of their edges through every row it spans -- nearly all of them inside a
+ * solid band, where one more line changes nothing.  So on a raster the pen
+ * of such a trace (pen_band) keeps each stroke's path, and when the stroke
+ * is dense (BAND_DENSE):
+ *   - its cores, rectangles of whole pixels it surely covers, are found: in
+ *     each pixel column the rows inside the union of the lines' rectangles
+ *     (the joins left out), on BAND_SUB sub-columns a pixel; a run of
+ *     columns of about the same rows makes one rectangle;
+ *   - the rows are cut into strips where a core starts or ends; each strip
+ *     is stroked under a clip of its rows with only the lines that come
+ *     near its pixels outside the cores spanning it, each run of them with
+ *     one line more at either end so that the joins are as in the whole
+ *     path: those pixels come out of the same edges as in the whole stroke;
+ *   - the cores are filled over it, as solid as the stroke makes them.
+ * The picture is the whole stroke's, but for cairo choosing how it samples
+ * a row by the edges in that row (a level in an edge pixel, here and
+ * there).  The clips are whole rows, wider than the stroke: cairo clips an
+ * edge exactly in y, but replaces its part beyond a clip's side by a
+ * vertical edge, which a side among the lines can get wrong by a whole
+ * pixel; and several boxes in one clip it takes by intersecting polygons,
+ * slower than the stroke.  SVG and PDF keep the plain strokes. */
+#define BAND_DENSE 32.0    /* px of lines' height per px of width: cut the stroke */
+#define BAND_SUB 8         /* sub-columns a pixel column, for the core */
+#define BAND_LOST 4        /* rows a column a run may leave out of the core */
+#define BAND_RECTS 8       /* cores a stroke, the largest */
+
+/* The pen's path goes to cairo (its current point and stroke) through these
+ * three, or into the band's path. */
+static void band_replay(struct pen *pn)
+{
+  for (size_t i = 0; i < pn->bn; i++)
+    if (pn->bp[i].move)
+      cairo_move_to(pn->cr, pn->bp[i].x, pn->bp[i].y);
+    else
+      cairo_line_to(pn->cr, pn->bp[i].x, pn->bp[i].y);
+  pn->bn = 0;
+}
+
+/* No band from here on: what is kept goes into cairo's path. */
+static void band_off(struct pen *pn)
+{
+  if (!(pn->band_r > 0))
+    return;
+  band_replay(pn);
+  free(pn->bp);
+  pn->bp = NULL;
+  pn->bn = pn->bcap = 0;
+  pn->band_r = 0;
+}
+
+/* Keep a point of the path: 1, or 0 when there is no band (any more). */
+static int band_put(struct pen *pn, double x, double y, int move)
+{
+  if (!(pn->band_r > 0))
+    return 0;
+  if (pn->bn == pn->bcap) {
+    size_t nc = pn->bcap ? pn->bcap * 2 : 4096;
+    struct pen_pt *nv = realloc(pn->bp, nc * sizeof *nv);
+    if (!nv) {
+      band_off(pn);   /* no memory: the plain stroke */
+      return 0;
+    }
+    pn->bp = nv;
+    pn->bcap = nc;
+  }
+  /* a line with no point before it starts there, as in cairo */
+  pn->bp[pn->bn++] = (struct pen_pt){x, y, move || !pn->bn};
+  return 1;
+}
+
+static void pen_cmove(struct pen *pn, double x, double y)
+{
+  if (!band_put(pn, x, y, 1))
+    cairo_move_to(pn->cr, x, y);
+}
+
+static void pen_cline(struct pen *pn, double x, double y)
+{
+  if (!band_put(pn, x, y, 0))
+    cairo_line_to(pn->cr, x, y);
+}
+
+/* The rectangle of the line from (px, py) along the unit (ux, uy), len long,
+ * r either side -- the points where t = e.u is in [0, len] and s = e.n in
+ * [-r, r], e from (px, py), n = (-uy, ux) -- crossed by the vertical line at
+ * x: [*lo, *hi], or 0 when it misses it. */
+static int rect_at(double px, double py, double ux, double uy, double len, double r, double x, double *lo,
+                   double *hi)
+{
+  double ex = x - px, a = -INFINITY, b = INFINITY;
+  double tx = ex * ux, sx = -ex * uy;   /* t = tx + ey uy, s = sx + ey ux */
+  if (uy != 0) {
+    double y0 = -tx / uy, y1 = (len - tx) / uy;
+    a = y0 < y1 ? y0 : y1;
+    b = y0 < y1 ? y1 : y0;
+  } else if (tx < 0 || tx > len) {
+    return 0;
+  }
+  if (ux != 0) {
+    double y0 = (-r - sx) / ux, y1 = (r - sx) / ux;
+    if (y0 > y1) {
+      double t = y0;
+      y0 = y1;
+      y1 = t;
+    }
+    if (y0 > a) a = y0;
+    if (y1 < b) b = y1;
+  } else if (sx < -r || sx > r) {
+    return 0;
+  }
+  *lo = py + a;
+  *hi = py + b;
+  return a <= b;
+}
+
+/* The line from p to q, r either side, into the sub-columns' intervals
+ * (sub-column s spans x from s / BAND_SUB to (s + 1) / BAND_SUB, iv[2 (s -
+ * s0)] its lowest and highest y covered whole, lo > hi none): the y at
+ * which a sub-column, a little wider, is inside the line's rectangle.  An
+ * interval that meets the one kept joins it; else the longer is kept (less
+ * core, never a wrong one). */
+static void band_rect(const struct pen_pt *p, const struct pen_pt *q, double r, long s0, long ns, double *iv)
+{
+  const double mx = 1.0 / 64;   /* px: the sub-column's margin */
+  double dx = q->x - p->x, dy = q->y - p->y, len = hypot(dx, dy);
+  if (!(len > 0) || fabs(dy) < 2)
+    return;   /* no more than a row or two of core: left to the stroke */
+  double ux = dx / len, uy = dy / len;
+  /* the rectangle's corners are p and q, r either way along (-uy, ux) */
+  double xa = (p->x < q->x ? p->x : q->x) - r * fabs(uy), xb = (p->x < q->x ? q->x : p->x) + r * fabs(uy);
+  long sa = (long)ceil((xa + mx) * BAND_SUB), sb = (long)floor((xb - mx) * BAND_SUB);
+  if (sa < s0)
+    sa = s0;
+  if (sb > s0 + ns)
+    sb = s0 + ns;
+  for (long s = sa; s < sb; s++) {
+    double l0, h0, l1, h1;
+    if (!rect_at(p->x, p->y, ux, uy, len, r, (double)s / BAND_SUB - mx, &l0, &h0) ||
+        !rect_at(p->x, p->y, ux, uy, len, r, (double)(s + 1) / BAND_SUB + mx, &l1, &h1))
+      continue;
+    double a = l0 > l1 ? l0 : l1, b = h0 < h1 ? h0 : h1;
+    if (!(a < b))
+      continue;
+    double *v = iv + 2 * (s - s0);
+    if (v[0] <= v[1] && a <= v[1] && b >= v[0]) {
+      if (a < v[0]) v[0] = a;
+      if (b > v[1]) v[1] = b;
+    } else if (v[0] > v[1] || b - a > v[1] - v[0]) {
+      v[0] = a;
+      v[1] = b;
+    }
+  }
+}
+
+/* Is the line ending at point k of the path (k >= 1, not a move) too short
+ * for cairo to keep (its ends on the same 1/256 px)? */
+static int band_tiny(const struct pen *pn, size_t k)
+{
+  return fabs(pn->bp[k].x - pn->bp[k - 1].x) < 1.0 / 64 && fabs(pn->bp[k].y - pn->bp[k - 1].y) < 1.0 / 64;
+}
+
+/* Add the lines ending at points ka..kb (one subpath) to cairo's path, with
+ * the line before and the line after them in the subpath, so that their
+ * joins are as in the whole path (a line cairo drops as too short does not
+ * count). */
+static void band_lines(struct pen *pn, size_t ka, size_t kb)
+{
+  const struct pen_pt *v = pn->bp;
+  for (int more = 1; more && ka > 1 && !v[ka - 1].move; ka--)
+    more = band_tiny(pn, ka - 1);
+  for (int more = 1; more && kb + 1 < pn->bn && !v[kb + 1].move; kb++)
+    more = band_tiny(pn, kb + 1);
+  cairo_move_to(pn->cr, v[ka - 1].x, v[ka - 1].y);
+  for (size_t k = ka; k <= kb; k++)
+    cairo_line_to(pn->cr, v[k].x, v[k].y);
+}
+
+/* A core: whole pixels [x0, x1) x [y0, y1) the stroke covers. */
+struct band_rect { long x0, x1, y0, y1; };
+
+/* Stroke, under a clip of the rows [y0, y1) across the whole stroke, the
+ * lines that come within R of a pixel there outside the cores cov[0..ncov)
+ * (those that span these rows). */
+static void band_strip(struct pen *pn, long y0, long y1, double xl, double xr, const struct band_rect *cov,
+                       int ncov, double R)
+{
+  const struct pen_pt *v = pn->bp;
+  cairo_t *cr = pn->cr;
+  size_t ga = 0, gb = 0;   /* the lines ending at points ga..gb, to add */
+  int any = 0;
+  for (size_t k = 1; k < pn->bn; k++) {
+    if (v[k].move)
+      continue;
+    double ya = fmin(v[k - 1].y, v[k].y), yb = fmax(v[k - 1].y, v[k].y);
+    if (yb + R < y0 || ya - R > y1)
+      continue;
+    int inside = 0;
+    for (int i = 0; i < ncov && !inside; i++)
+      inside = (v[k - 1].x < v[k].x ? v[k - 1].x : v[k].x) - R >= cov[i].x0 &&
+               (v[k - 1].x < v[k].x ? v[k].x : v[k - 1].x) + R <= cov[i].x1;
+    if (inside)
+      continue;
+    if (!any) {
+      cairo_save(cr);
+      cairo_new_path(cr);
+      cairo_rectangle(cr, xl, (double)y0, xr - xl, (double)(y1 - y0));
+      cairo_clip(cr);
+      any = 1;
+    }
+    /* a gap of a line or two in one subpath is taken along */
+    int join = ga && k <= gb + 3;
+    for (size_t i = gb + 1; join && i <= k; i++)
+      join = !v[i].move;
+    if (ga && !join)
+      band_lines(pn, ga, gb);
+    if (!join)
+      ga = k;
+    gb = k;
+  }
+  if (!any)
+    return;
+  band_lines(pn, ga, gb);
+  cairo_stroke(cr);
+  cairo_restore(cr);
+  pn->nstrip++;
+}
+
+static int rect_larger(const void *a, const void *b)
+{
+  const struct band_rect *p = a, *q = b;
+  long sa = (p->x1 - p->x0) * (p->y1 - p->y0), sb = (q->x1 - q->x0) * (q->y1 - q->y0);
+  return sa > sb ? -1 : sa < sb;
+}
+
+static int long_cmp(const void *a, const void *b)
+{
+  long p = *(const long *)a, q = *(const long *)b;
+  return p < q ? -1 : p > q;
+}
+
+/* Draw the kept path, dense, by its cores and strips: 0, or -1 when it is
+ * not worth it (or no memory for it), nothing drawn. */
+static int band_cut(struct pen *pn)
+{
+  const struct pen_pt *v = pn->bp;
+  size_t n = pn->bn;
+  double r = pn->band_r, R = r + 1;
+  double xa = v[0].x, xb = v[0].x, ya = v[0].y, yb = v[0].y, sdy = 0;
+  size_t nseg = 0;
+  for (size_t k = 0; k < n; k++) {
+    if (!isfinite(v[k].x) || !isfinite(v[k].y) || fabs(v[k].x) > 1e6 || fabs(v[k].y) > 1e6)
+      return -1;
+    xa = fmin(xa, v[k].x);
+    xb = fmax(xb, v[k].x);
+    ya = fmin(ya, v[k].y);
+    yb = fmax(yb, v[k].y);
+    if (k && !v[k].move) {
+      sdy += fabs(v[k].y - v[k - 1].y);
+      nseg++;
+    }
+  }
+  if (nseg < 64 || sdy < BAND_DENSE * (xb - xa + 1))
+    return -1;
+  long c0 = (long)floor(xa - R), c1 = (long)ceil(xb + R);
+  long j0 = (long)floor(ya - R), j1 = (long)ceil(yb + R);
+  size_t nc = (size_t)(c1 - c0);
+  if (nc > 65536)
+    return -1;
+  double *iv = malloc(nc * BAND_SUB * 2 * sizeof *iv);
+  long *core = malloc(nc * 2 * sizeof *core);
+  if (!iv || !core) {
+    free(iv);
+    free(core);
+    return -1;
+  }
+  for (size_t i = 0; i < nc * BAND_SUB; i++) {
+    iv[2 * i] = 1;
+    iv[2 * i + 1] = 0;
+  }
+  for (size_t k = 1; k < n; k++)
+    if (!v[k].move)
+      band_rect(&v[k - 1], &v[k], r, c0 * BAND_SUB, (long)nc * BAND_SUB, iv);
+  /* a column's core: the rows inside every one of its sub-columns' */
+  const double my = 1.0 / 16;   /* px: the rows' margin */
+  long ncore = 0;
+  for (size_t c = 0; c < nc; c++) {
+    double lo = -INFINITY, hi = INFINITY;
+    for (int s = 0; s < BAND_SUB; s++) {
+      const double *w = iv + 2 * (c * BAND_SUB + s);
+      lo = fmax(lo, w[0]);
+      hi = fmin(hi, w[1]);
+    }
+    core[2 * c] = core[2 * c + 1] = 0;
+    if (lo < hi) {
+      long ra = (long)ceil(lo + my), rb = (long)floor(hi - my);
+      if (ra < rb) {
+        core[2 * c] = ra;
+        core[2 * c + 1] = rb;
+        ncore += rb - ra;
+      }
+    }
+  }
+  free(iv);
+  if (!ncore) {
+    free(core);
+    return -1;
+  }
+  /* runs of columns, each with a core of one rectangle that leaves out at
+   * most BAND_LOST rows a column; the BAND_RECTS largest are kept */
+  struct band_rect *rc = malloc(nc * sizeof *rc);
+  long *cut = malloc((2 * BAND_RECTS + 2) * sizeof *cut);
+  if (!rc || !cut) {
+    free(core);
+    free(rc);
+    free(cut);
+    return -1;
+  }
+  size_t nr = 0;
+  for (size_t c = 0, e; c < nc; c = e) {
+    long ka = core[2 * c], kb = core[2 * c + 1], sum = kb - ka;
+    for (e = c + 1; ka < kb && e < nc && core[2 * e] < core[2 * e + 1]; e++) {
+      long na = ka > core[2 * e] ? ka : core[2 * e], nb = kb < core[2 * e + 1] ? kb : core[2 * e + 1];
+      long cols = (long)(e - c + 1), s2 = sum + core[2 * e + 1] - core[2 * e];
+      if (nb <= na || s2 - (nb - na) * cols > BAND_LOST * cols)
+        break;
+      ka = na;
+      kb = nb;
+      sum = s2;
+    }
+    if (ka < kb)
+      rc[nr++] = (struct band_rect){c0 + (long)c, c0 + (long)e, ka, kb};
+  }
+  free(core);
+  qsort(rc, nr, sizeof *rc, rect_larger);
+  if (nr > BAND_RECTS)
+    nr = BAND_RECTS;
+  /* rows cut where a core starts or ends: each strip is stroked with the
+   * lines near its pixels outside the cores that span it, then the cores
+   * are filled over what the strips drew into them */
+  size_t ncut = 0;
+  cut[ncut++] = j0;
+  cut[ncut++] = j1;
+  for (size_t i = 0; i < nr; i++) {
+    cut[ncut++] = rc[i].y0;
+    cut[ncut++] = rc[i].y1;
+  }
+  qsort(cut, ncut, sizeof *cut, long_cmp);
+  double xl = (double)c0 - 16, xr = (double)c1 + 16;   /* wider than the stroke: only rows clipped */
+  for (size_t i = 0; i + 1 < ncut; i++) {
+    if (cut[i] == cut[i + 1])
+      continue;
+    struct band_rect cov[BAND_RECTS];
+    int ncov = 0;
+    for (size_t k = 0; k < nr; k++)
+      if (rc[k].y0 <= cut[i] && rc[k].y1 >= cut[i + 1])
+        cov[ncov++] = rc[k];
+    band_strip(pn, cut[i], cut[i + 1], xl, xr, cov, ncov, R);
+  }
+  for (size_t i = 0; i < nr; i++) {
+    cairo_new_path(pn->cr);
+    cairo_rectangle(pn->cr, (double)rc[i].x0, (double)rc[i].y0, (double)(rc[i].x1 - rc[i].x0),
+                    (double)(rc[i].y1 - rc[i].y0));
+    cairo_fill(pn->cr);
+  }
+  free(rc);
+  free(cut);
+  pn->nband++;
+  return 0;
+}
+
+static void pen_cstroke(struct pen *pn)
+{
+  if (!(pn->band_r > 0)) {
+    cairo_stroke(pn->cr);
+    return;
+  }
+  if (pn->bn && band_cut(pn) != 0) {
+    band_replay(pn);
+    cairo_stroke(pn->cr);
+  }
+  pn->bn = 0;
+}
+
+/* The pen draws on a raster with solid lines (no dash) of width w: dense
+ * strokes by the band (the cores are inside the lines' rectangles, which
+ * every join and cap keeps; a dash would not). */
+static void pen_band(struct pen *pn, double w)
+{
+  pn->band_r = w / 2;
+}
+
 static void pen_stroke(struct pen *pn)
 {
-  cairo_stroke(pn->cr);
+  pen_cstroke(pn);
   pn->nseg = 0;
   if (pn->have)
-    cairo_move_to(pn->cr, pn->sx, pn->sy);
+    pen_cmove(pn, pn->sx, pn->sy);
 }
 
 static void pen_emit(struct pen *pn, double x, double y)
 {
-  cairo_line_to(pn->cr, x, y);
+  pen_cline(pn, x, y);
   pn->sx = x;
   pn->sy = y;
   pn->pend = pn->cone = 0;
@@ -750,7 +1154,7 @@ static void pen_start(struct pen *pn, double x, double y)
   if (pen_at(pn, x, y))
     return;
   pen_break(pn);
-  cairo_move_to(pn->cr, x, y);
+  pen_cmove(pn, x, y);
   pn->have = 1;
   pn->sx = x;
   pn->sy = y;
@@ -761,6 +1165,7 @@ static void pen_start(struct pen *pn, double x, double y)
  * another chunk, it goes to the next layer (drawn later, over). */
 static int pen_fresh(struct pen *pn, const struct pen_prim *pr)
 {
+  pn->nprim++;
   if (!pn->dedupe)
     return 1;
   int64_t k[7] = {pen_q(pr->x0), pen_q(pr->y0), pen_q(pr->x1), pen_q(pr->y1), pr->arc, 0, 0};
@@ -804,6 +1209,7 @@ static void pen_draw(struct pen *pn, const struct pen_prim *pr)
   pen_col_flush(pn);
   if (pn->pend)
     pen_emit(pn, pn->ex, pn->ey);
+  band_off(pn);   /* (the band takes lines only) */
   if (pr->arc == 2)
     cairo_arc_negative(pn->cr, pr->cx, pr->cy, pr->r, pr->a0, pr->a1);
   else
@@ -837,10 +1243,15 @@ static void pen_arc(struct pen *pn, double cx, double cy, double r, double a0, d
 static void pen_done(struct pen *pn)
 {
   pen_break(pn);
+  pen_cstroke(pn);
   if (getenv("S42_PLOT_STATS"))
-    fprintf(stderr, "pen: %ld drawn, %ld duplicates left out (%zu, %zu again), %zu keys, %zu forgotten\n",
-            pn->ndrawn, pn->nskipped, pn->layer[0].n, pn->layer[1].n, pn->used, pn->evicted);
-  cairo_stroke(pn->cr);
+    fprintf(stderr, "pen: %ld drawn, %ld duplicates left out (%zu, %zu again), %zu keys, %zu forgotten; "
+            "%ld dense strokes in %ld strips\n", pn->ndrawn, pn->nskipped, pn->layer[0].n, pn->layer[1].n,
+            pn->used, pn->evicted, pn->nband, pn->nstrip);
+  free(pn->bp);
+  pn->bp = NULL;
+  pn->bn = pn->bcap = 0;
+  pn->band_r = 0;
   free(pn->set);
   pn->set = NULL;
   pn->used = pn->evicted = 0;
@@ -941,9 +1352,90 @@ static int seg_has_jog(const struct seg *g)
 
 #define CHUNK 128   /* blocks a chunk (the old plot's strokes): see the pen */
 
-static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
+/* ---- segments seen before ----
+ *
+ * Repeated passes repeat segments exactly, most of them within one chunk,
+ * where the pen leaves out each of their lines and arcs again: a segment's
+ * shape (its start, moves, arc: all that path_seg and bb_curve read) gets
+ * two independent 64-bit hashes (seg_hash; two different shapes collide
+ * with odds of 2^-128), and a small table of the shapes drawn whole in the
+ * chunk (SEEN_SLOTS; one that drops out is drawn whole again, as without
+ * it) lets the next copy in the same chunk go without working out its
+ * geometry: what the pen would do with it, given its lines and arcs all
+ * seen in this chunk, is to break the polyline.  (Where the pen's own cache
+ * would have forgotten one of them in between and drawn it again -- a
+ * chunk of tens of thousands of lines -- it stays left out, as the pen
+ * means.) */
+#define SEEN_SLOTS 1024
+
+struct seen { uint64_t h1, h2; long chunk, nprim; };
+
+static void seg_hash(const struct seg *g, uint64_t h[2])
+{
+  uint64_t w[10];
+  float f[3] = {g->cp, g->cq, g->sweep};
+  uint32_t fb[3];
+  memcpy(fb, f, sizeof fb);
+  for (int a = 0; a < 4; a++)
+    w[a] = (uint64_t)g->start[a];
+  w[4] = (uint32_t)g->d[0] | (uint64_t)(uint32_t)g->d[1] << 32;
+  w[5] = (uint32_t)g->d[2] | (uint64_t)(uint32_t)g->d[3] << 32;
+  w[6] = (uint32_t)g->jog[0] | (uint64_t)(uint32_t)g->jog[1] << 32;
+  w[7] = (uint32_t)g->jog[2] | (uint64_t)(uint32_t)g->jog[3] << 32;
+  w[8] = fb[0] | (uint64_t)fb[1] << 32;
+  w[9] = fb[2] | (uint64_t)g->kind << 32 | (uint64_t)g->plane << 40 | (uint64_t)g->flags << 48;
+  uint64_t h1 = 0x9e3779b97f4a7c15ULL, h2 = 0x243f6a8885a308d3ULL;
+  for (int i = 0; i < 10; i++) {
+    h1 = mix64(h1 ^ w[i]);
+    h2 = mix64(h2 + w[i] * 0x9e3779b97f4a7c15ULL);
+  }
+  h[0] = h1;
+  h[1] = h2;
+}
+
+/* Every segment's hashes (2 words a segment), or NULL (no memory: none). */
+static uint64_t *seg_hashes(const struct plot *pl)
+{
+  uint64_t *gh = pl->n ? malloc(pl->n * 2 * sizeof *gh) : NULL;
+  for (size_t i = 0; gh && i < pl->n; i++)
+    seg_hash(&pl->v[i], gh + 2 * i);
+  return gh;
+}
+
+static struct seen *seen_new(const uint64_t *gh)
+{
+  struct seen *t = gh ? malloc(SEEN_SLOTS * sizeof *t) : NULL;
+  for (size_t i = 0; t && i < SEEN_SLOTS; i++)
+    t[i] = (struct seen){0, 0, -1, 0};
+  return t;
+}
+
+/* path_seg, or what it would come to for a segment drawn whole before in
+ * this chunk (h its hashes). */
+static void path_seg_seen(struct pen *pn, struct seen *tab, const uint64_t *h, const struct panel *P,
+                          const struct seg *g, int teach)
+{
+  if (!tab || !pn->set || !pn->dedupe) {   /* (no cache in the pen: it draws all) */
+    path_seg(pn, P, g, teach);
+    return;
+  }
+  struct seen *e = &tab[h[0] & (SEEN_SLOTS - 1)];
+  if (e->chunk == pn->chunk && e->h1 == h[0] && e->h2 == h[1]) {
+    if (e->nprim) {
+      pn->nskipped += e->nprim;
+      pen_break(pn);
+    }
+    return;
+  }
+  long before = pn->nprim;
+  path_seg(pn, P, g, teach);
+  *e = (struct seen){h[0], h[1], pn->chunk, pn->nprim - before};
+}
+
+static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl, const uint64_t *gh)
 {
   struct pen pn;
+  struct seen *tab = seen_new(gh);
   /* programmed moves: solid */
   rgb(cr, C_PATH);
   cairo_set_line_width(cr, 1.4);
@@ -951,9 +1443,11 @@ static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
   pen_init(&pn, cr, 1, 0);
   for (size_t i = 0; i < pl->n; i++) {
     pen_chunk(&pn, (long)(i / CHUNK));
-    path_seg(&pn, P, &pl->v[i], 0);
+    path_seg_seen(&pn, tab, gh + 2 * i, P, &pl->v[i], 0);
   }
   pen_done(&pn);
+  for (size_t i = 0; tab && i < SEEN_SLOTS; i++)
+    tab[i].chunk = -1;
 
   /* manual moves: dashed */
   rgb(cr, C_JOG);
@@ -964,9 +1458,10 @@ static void draw_panel_path(cairo_t *cr, struct panel *P, const struct plot *pl)
   for (size_t i = 0, k = 0; i < pl->n; i++)
     if (seg_has_jog(&pl->v[i])) {
       pen_chunk(&pn, (long)(k++ / CHUNK));
-      path_seg(&pn, P, &pl->v[i], 1);
+      path_seg_seen(&pn, tab, gh + 2 * i, P, &pl->v[i], 1);
     }
   pen_done(&pn);
+  free(tab);
   cairo_set_dash(cr, NULL, 0, 0);
   /* corrections between blocks: dotted */
   rgb(cr, C_CORR);
@@ -1394,7 +1889,7 @@ static void marker(cairo_t *cr, const struct panel *P, const double pt[4], int e
   }
 }
 
-static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
+static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb, const uint64_t *gh)
 {
   static const struct { int u, v; const char *name, *plane; } def[3] = {
     {AX_X, AX_Y, "XY", "plane G17, mm"},
@@ -1439,7 +1934,7 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
     cairo_rectangle(cr, P.rx, P.ry, P.rw, P.rh);
     cairo_clip(cr);
     draw_scale(cr, &P, step);
-    draw_panel_path(cr, &P, pl);
+    draw_panel_path(cr, &P, pl, gh);
     draw_panel_osc(cr, &P, pl);
     double z[4] = {0, 0, 0, 0}, e[4], con[4];
     final_pos(pl, e, con);
@@ -1461,8 +1956,8 @@ static void draw_xyz(cairo_t *cr, const struct plot *pl, const struct bbox *bb)
   }
 }
 
-/* A against simulated time. */
-static void draw_a(cairo_t *cr, const struct plot *pl)
+/* A against simulated time; raster: into an image (the pen's band). */
+static void draw_a(cairo_t *cr, const struct plot *pl, int raster)
 {
   const double X = 90, Y = 724, W = 1470, H = 200;
   double t_end = pl->ended && pl->t_end > pl->t ? pl->t_end : pl->t;
@@ -1589,6 +2084,8 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   /* a function of time: many blocks a pixel column, cut to what it shows */
   pen_init(&pn, cr, 0, 1 / PEN_Q);
+  if (raster)
+    pen_band(&pn, 1.4);
   a = 0;
   pen_moveto(&pn, TX(0), AY(0));
   for (size_t i = 0; i < pl->n; i++) {
@@ -1614,6 +2111,8 @@ static void draw_a(cairo_t *cr, const struct plot *pl)
   cairo_set_line_width(cr, 1.0);
   size_t j = 0;
   pen_init(&pn, cr, 0, 1 / PEN_Q);
+  if (raster)
+    pen_band(&pn, 1.0);
   for (size_t i = 0; i < pl->nosc && pl->n; i++) {
     if (pl->osc[i].axis != 3)
       continue;
@@ -1706,7 +2205,7 @@ static void legend(cairo_t *cr, double x, double y, int stopped)
   }
 }
 
-static void draw(cairo_t *cr, const struct plot *pl, const char *program)
+static void draw(cairo_t *cr, const struct plot *pl, const char *program, int raster)
 {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
@@ -1714,9 +2213,17 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
   struct bbox bb;
   for (int a = 0; a < 4; a++)
     bb.lo[a] = bb.hi[a] = 0;
+  uint64_t *gh = seg_hashes(pl);
+  struct seen *tab = seen_new(gh);
   for (size_t i = 0; i < pl->n; i++) {
     const struct seg *g = &pl->v[i];
     double p[4];
+    if (tab) {   /* a segment seen before adds nothing */
+      struct seen *e = &tab[gh[2 * i] & (SEEN_SLOTS - 1)];
+      if (e->chunk == 0 && e->h1 == gh[2 * i] && e->h2 == gh[2 * i + 1])
+        continue;
+      *e = (struct seen){gh[2 * i], gh[2 * i + 1], 0, 0};
+    }
     for (int a = 0; a < 4; a++)
       p[a] = g->start[a] / 1000.0;
     bb_add(&bb, p);
@@ -1735,8 +2242,10 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
       osc_point(pl, i, k, &j, pt);
       bb_add(&bb, pt);
     }
-  draw_xyz(cr, pl, &bb);
-  draw_a(cr, pl);
+  free(tab);
+  draw_xyz(cr, pl, &bb, gh);
+  free(gh);
+  draw_a(cr, pl, raster);
   legend(cr, 40, 984, pl->why[0] != 0);
 
   /* title and summary */
@@ -1778,12 +2287,12 @@ static void draw(cairo_t *cr, const struct plot *pl, const char *program)
 /* ---- output ---- */
 
 
-struct drawing { struct plot *pl; const char *program; };
+struct drawing { struct plot *pl; const char *program; int raster; };
 
 static void draw_picture(cairo_t *cr, void *ctx)
 {
   struct drawing *d = ctx;
-  draw(cr, d->pl, d->program);
+  draw(cr, d->pl, d->program, d->raster);
 }
 
 int plot_write(struct plot *pl, const char *program, const char *path, char *err, size_t n)
@@ -1792,6 +2301,8 @@ int plot_write(struct plot *pl, const char *program, const char *path, char *err
     osc_retime(pl);
     pl->retimed = 1;
   }
-  struct drawing d = {pl, program};
+  /* S42_PLOT_PLAIN: no band, every stroke as it is (to compare) */
+  const char *ext = strrchr(path, '.');
+  struct drawing d = {pl, program, ext && !strcasecmp(ext, ".png") && !getenv("S42_PLOT_PLAIN")};
   return picture_write(path, PW, PH, program, draw_picture, NULL, &d, err, n);
 }

@@ -3,6 +3,7 @@
 
 check.py PNG SVG TRACE.jsonl DUMP.json [PDF [TITLE]]
 check.py --tips PNG PANEL LEAST   (see tips())
+check.py --same PNG PNG LEVELS    (see same())
   PNG: must be 1600 x 1000; its pixels are decoded here (zlib, no PIL) and
   each panel is checked against what the trace says moved:
     - a panel whose axes the program moves holds path pixels (the blue of
@@ -525,9 +526,37 @@ def tips(png, panel, least):
     return []
 
 
+def same(png_a, png_b, levels):
+    """Two pictures of one run differ by at most LEVELS in any channel of any
+    pixel (the A panel's band against its plain stroke: the same picture but
+    for how cairo samples a row here and there)."""
+    a = decode_png(open(png_a, "rb").read())
+    b = decode_png(open(png_b, "rb").read())
+    if a[:3] != b[:3]:
+        return ["%s and %s: not the same size or format" % (png_a, png_b)]
+    worst, n, at = 0, 0, None
+    for y, (ra, rb) in enumerate(zip(a[3], b[3])):
+        if ra == rb:
+            continue
+        for i, (u, v) in enumerate(zip(ra, rb)):
+            if u != v:
+                n += 1
+                if abs(u - v) > worst:
+                    worst, at = abs(u - v), (i // a[2], y)
+    if worst > int(levels):
+        return ["%s and %s differ by up to %d levels (at %s; %d channel values differ), want %s or less"
+                % (png_a, png_b, worst, at, n, levels)]
+    return []
+
+
 if __name__ == "__main__":
     try:
-        f = tips(*sys.argv[2:5]) if sys.argv[1] == "--tips" else check(*sys.argv[1:7])
+        if sys.argv[1] == "--tips":
+            f = tips(*sys.argv[2:5])
+        elif sys.argv[1] == "--same":
+            f = same(*sys.argv[2:5])
+        else:
+            f = check(*sys.argv[1:7])
     except Exception as e:  # a broken file is a failure, not a crash
         f = ["%s: %s" % (type(e).__name__, e)]
     for m in f:

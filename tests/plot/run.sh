@@ -86,6 +86,16 @@ else
   fail "osc-tips" "$msg"
 fi
 
+# a dense A trace: drawn by the band (a solid core and the edges around it),
+# the same picture as the plain stroke but for a level here and there
+case_ dense-a "$HERE/dense-a.kp"
+S42_PLOT_PLAIN=1 "$S42" plot "$HERE/dense-a.kp" -o "$T/dense-a-plain.png" 2>/dev/null
+if msg=$("$PY" "$HERE/check.py" --same "$T/dense-a.png" "$T/dense-a-plain.png" 2); then
+  ok
+else
+  fail "dense-a-plain" "$msg"
+fi
+
 # a failed run whose picture cannot be written: 4, and no file
 "$S42" plot programs/errors/e-div0.kp -o "$T/nodir/div0.png" 2>"$T/nodir-div0.err"
 st=$?
