@@ -52,6 +52,13 @@ struct comp {
   uint16_t given;
   uint16_t isconst;
   uint16_t badslot;        /* a slot whose word was refused (its checks would cascade) */
+  /* store() folds an expression, then generates its code: gen reads the
+   * fold of each node from the node (memo) instead of folding each subtree
+   * again -- unless the expression reads the slot being stored (selfslot),
+   * whose given and constant bits change in between (selfref) */
+  int memo, selfslot, selfref;
+  uint64_t core_g;         /* the functions no plugin has (core_masks) */
+  uint32_t core_m;
   double kval[SL__COUNT];
   const struct plug_set *plugins;
   uint32_t plugmask;       /* plugins the current block calls */
@@ -122,9 +129,9 @@ static void warn(struct comp *c, unsigned col, const char *fmt, ...)
   diag_add(c->d, DIAG_WARNING, 0, c->b->line, col ? col : c->b->col, c->b->number, "%s", msg);
 }
 
-static long emit(struct comp *c, int op, uint32_t a, unsigned col)
+static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, unsigned col)
 {
-  long i = prog_emit(c->p, INS(op, a), col);
+  long i = prog_emit_grow(c->p, ins, col);
   if (i < 0) {
     if (c->p->ncode >= PROG_MAX_CODE && !c->toolong) {
       /* not memory: the code's own limit (vm/program.h) */
@@ -135,6 +142,17 @@ static long emit(struct comp *c, int op, uint32_t a, unsigned col)
     c->oom = 1;
   }
   return i;
+}
+
+/* prog_emit, inline: a block emits a dozen instructions */
+static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
+{
+  struct program *p = c->p;
+  if (p->ncode >= p->capcode)   /* full (or at PROG_MAX_CODE) */
+    return emit_grow(c, INS(op, a), col);
+  p->code[p->ncode] = INS(op, a);
+  p->cols[p->ncode] = (uint16_t)(col > 0xffff ? 0xffff : col);
+  return (long)p->ncode++;
 }
 
 /* The deepest stack of the current block's code, from the stack effects of
@@ -155,7 +173,8 @@ static uint32_t block_stack(const struct comp *c)
 
 static void emit_num(struct comp *c, double v, unsigned col)
 {
-  if (v >= 0 && v <= INS_AMAX && v == floor(v) && !(v == 0 && signbit(v))) {
+  /* an integer in 0..INS_AMAX (the conversion is exact there: no floor call) */
+  if (v >= 0 && v <= INS_AMAX && v == (double)(uint32_t)v && !(v == 0 && signbit(v))) {
     emit(c, OP_INT, (uint32_t)v, col);
   } else {
     long k = prog_const(c->p, v);
@@ -167,9 +186,9 @@ static void emit_num(struct comp *c, double v, unsigned col)
 
 /* ---- constant folding ---- */
 
-/* Returns 1 and *v when e is constant.  A folding error (E-DIV0, E-DOMAIN on
- * literals) is reported here, once, and *failed set. */
-static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
+static int fold(struct comp *c, struct expr *e, double *v, int *failed);
+
+static int fold_node(struct comp *c, const struct expr *e, double *v, int *failed)
 {
   double a, b;
   char msg[200];
@@ -179,6 +198,8 @@ static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
     *v = e->v;
     return 1;
   case EX_SLOT:
+    if ((int)e->idx == c->selfslot)
+      c->selfref = 1;
     if (!(c->given & (1u << e->idx))) {
       *v = 0;
       return 1;
@@ -230,6 +251,18 @@ static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
   return 1;
 }
 
+/* Returns 1 and *v when e is constant.  A folding error (E-DIV0, E-DOMAIN on
+ * literals) is reported here, once, and *failed set.  Every node's answer
+ * is kept in it (e->fk, e->v) for gen. */
+static int fold(struct comp *c, struct expr *e, double *v, int *failed)
+{
+  int k = fold_node(c, e, v, failed);
+  e->fk = k ? 1 : 2;
+  if (k && e->kind != EX_NUM)
+    e->v = *v;
+  return k;
+}
+
 /* The superinstruction for binary `op` with a right operand pushed by
  * `push` (INT, CONST or REG), or -1. */
 static int fuse_operand(int op, int push)
@@ -266,11 +299,12 @@ static void fuse_compare(struct comp *c)
   c->p->ncode = n - 1;
 }
 
-static void gen(struct comp *c, const struct expr *e)
+static void gen(struct comp *c, struct expr *e)
 {
   double v;
   int failed = 0;
-  if (e->kind != EX_CMP && e->kind != EX_AND && e->kind != EX_OR && fold(c, e, &v, &failed)) {
+  if (e->kind != EX_CMP && e->kind != EX_AND && e->kind != EX_OR &&
+      (c->memo ? e->fk == 1 && (v = e->v, 1) : fold(c, e, &v, &failed))) {
     emit_num(c, v, e->col);
     return;
   }
@@ -406,13 +440,16 @@ static struct wrule slot_rule(const struct block *b, int slot)
 
 /* Emit value + SET into dest (register < VM_NREG, or VM_NREG + slot); check
  * a constant value now, as `s42 check` must. */
-static void store(struct comp *c, const struct expr *e, unsigned dest, struct wrule w, unsigned col)
+static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w, unsigned col)
 {
   double v;
   int failed = 0;
   if (!e || c->b->bad)
     return;   /* a block that did not parse is not compiled: it cannot run */
+  c->selfslot = dest >= VM_NREG ? (int)(dest - VM_NREG) : -1;
+  c->selfref = 0;
   int k = fold(c, e, &v, &failed);
+  c->selfslot = -1;
   /* a refused word is reported once: the checks that need its value (the
    * arc's radius) skip it rather than report a second, false error */
   uint16_t bit = dest >= VM_NREG ? (uint16_t)(1u << (dest - VM_NREG)) : 0;
@@ -446,7 +483,9 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
       c->isconst &= (uint16_t)~(1u << s);
     }
   }
+  c->memo = !c->selfref;   /* failed returned above: the folds hold */
   gen(c, e);
+  c->memo = 0;
   if (dest <= 113 && w.lo == -9999999 && w.hi == 9999999 && !w.round && !w.clamp) {
     emit(c, OP_SETP, dest, col);   /* a parameter: its rule is implied */
     return;
@@ -673,10 +712,13 @@ static int text_refs(struct comp *c, const struct text *t, const char *fn, int g
 }
 
 /* The group of Gn: the language's, or the one its plugin declares. */
-static int group_of(const struct comp *c, int n)
+static inline int group_of(const struct comp *c, int n)
 {
+  const struct kp_word *w = kp_g(n);
   const struct s42_function *fn;
-  if (!kp_valid_g(n) && plug_find(c->plugins, 'G', n, &fn) >= 0)
+  if (w)
+    return w->group;
+  if (plug_find(c->plugins, 'G', n, &fn) >= 0)
     return fn->group;
   return kp_g_group(n);
 }
@@ -722,6 +764,18 @@ static void plugin_function(struct comp *c, char kind, int n, unsigned col, int 
       err(c, S42_E_BLOCK, b->w[w].col, "%c%02d takes no %c word (it takes %s)", kind, n, l,
           *fn->operands ? fn->operands : "none");
   }
+}
+
+/* The G and M functions that are the core's own (a row with no owner):
+ * bit n set, from the table. */
+static void core_masks(struct comp *c)
+{
+  for (int n = 0; n < 64; n++)
+    if (kp_g(n) && !kp_g(n)->owner)
+      c->core_g |= 1ull << n;
+  for (int n = 0; n < 32; n++)
+    if (kp_m(n) && !kp_m(n)->owner)
+      c->core_m |= 1u << n;
 }
 
 static void check_block(struct comp *c)
@@ -908,14 +962,15 @@ static void check_block(struct comp *c)
   if (b->len > 320)
     err(c, S42_E_BLOCKLEN, b->col, "block of %u characters; at most 320 (ten display lines)", b->len);
 
-  /* functions that plugins implement */
+  /* functions that plugins implement (the core's own have no plugin:
+   * plugin_function returns at once for them, so they are not visited) */
   c->plugmask = 0;
   c->plug_g = 0;
-  for (uint64_t bits = b->g; bits;) {
+  for (uint64_t bits = b->g & ~c->core_g; bits;) {
     int n = take_low(&bits);
     plugin_function(c, 'G', n, b->gcol[n], naxis + ncentre, plane);
   }
-  for (uint64_t bits = b->m; bits;) {
+  for (uint64_t bits = b->m & ~c->core_m; bits;) {
     int n = take_low(&bits);
     plugin_function(c, 'M', n, b->mcol[n], naxis + ncentre, plane);
   }
@@ -1499,6 +1554,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
 {
   struct comp c;
   memset(&c, 0, sizeof c);
+  c.selfslot = -1;
   c.p = p;
   c.d = d;
   c.x = calloc(1, sizeof *c.x);
@@ -1515,6 +1571,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   d->src = src;   /* the source lines under the diagnostics */
   d->nsrc = n;
   comp_setup(p);
+  core_masks(&c);
   p->file = d->file;
   /* a file in another encoding is one error, not one a block */
   unsigned bl, bc, bb;
