@@ -24,17 +24,19 @@
  * 24-bit operand numbers (vm/opcodes.h), 16,777,216. */
 #define COMP_MAX_BLOCKS ((size_t)INS_AMAX + 1)
 
-/* Per-block summary for the structure checks, kept small: it lives for the
- * whole compile (number, line and column are in program.blocks). */
+/* What the structure checks need of each block, kept small: it lives for
+ * the whole compile (number, line and column are in program.blocks).  A
+ * flags byte for every block; the calls and jumps, which most blocks have
+ * not, in a list of their own in block order (struct summ, SF_JUMPS). */
 /* SF_NONUM: the block's number did not parse -- it may be the one a
  * structure check misses, which then says nothing (one mistake, one error) */
-enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8, SF_NONUM = 16 };
+enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8, SF_NONUM = 16, SF_JUMPS = 32 };
 #define NOPC 0xffffu       /* no instruction to patch */
 struct summ {
+  uint32_t i;              /* the block */
   int16_t L, P, PP;        /* targets, -1 none */
   uint16_t Lcol, Pcol, PPcol;
   uint16_t callpc, jpc, pppc;  /* instructions to patch, from the block's first; NOPC none */
-  uint8_t flags;
 };
 
 struct comp {
@@ -42,8 +44,10 @@ struct comp {
   struct kp_ext *x;
   struct diag_list *d;
   struct block *b;
-  struct summ *s;
-  size_t ns, caps;
+  uint8_t *sf;             /* each block's SF_ flags */
+  size_t ns, capsf;
+  struct summ *s;          /* the blocks with SF_JUMPS */
+  size_t nj, capj;
   int oom;
   int toolong;             /* the code reached the VM's 24-bit operand space (said at the block) */
   int seen_g34;            /* text order: a G34 came before */
@@ -1006,29 +1010,27 @@ static void compile_block(struct comp *c)
     return;
   }
   c->x->a = grow(c->x->a, &c->x->cap, c->x->n + 1, sizeof *c->x->a, &c->oom);
-  c->s = grow(c->s, &c->caps, c->ns + 1, sizeof *c->s, &c->oom);
+  c->sf = grow(c->sf, &c->capsf, c->ns + 1, sizeof *c->sf, &c->oom);
   if (c->oom)
     return;
   struct kp_attr *at = &c->x->a[c->x->n++];
-  struct summ *sm = &c->s[c->ns++];
+  uint8_t *flags = &c->sf[c->ns];
+  struct summ summ = {.i = (uint32_t)c->ns++, .L = -1, .P = -1, .PP = -1, .callpc = NOPC, .jpc = NOPC, .pppc = NOPC};
+  struct summ *sm = &summ;
   memset(at, 0, sizeof *at);
-  memset(sm, 0, sizeof *sm);
-  sm->L = sm->P = sm->PP = -1;
-  sm->callpc = sm->jpc = sm->pppc = NOPC;
+  *flags = 0;
   c->bstart = pb.code;
   if (b->bad)
-    sm->flags |= SF_BAD;
+    *flags |= SF_BAD;
   if (b->badnum)
-    sm->flags |= SF_NONUM;
+    *flags |= SF_NONUM;
 
   at->g = b->g;
   at->m = b->m;
   at->plugins = c->plugmask;
   at->plug_g = (uint8_t)c->plug_g;
   at->plane = (uint8_t)plane_of(b);
-  at->g28reg = (int16_t)b->g28reg;
-  at->g27form = b->g27form;
-  at->g37axis = b->g37axis;
+  struct kp_more more = {.g28reg = (int16_t)b->g28reg, .g27form = b->g27form, .g37axis = b->g37axis};
   int mo = motion_of(b);
   c->given = c->isconst = c->badslot = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
@@ -1159,7 +1161,7 @@ static void compile_block(struct comp *c)
     int failed = 0;
     int always = P || (b->cond && fold(c, b->cond, &v, &failed) && v != 0);
     if (always)
-      sm->flags |= SF_UNCOND;
+      *flags |= SF_UNCOND;
     if (!L && !PP && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
       /* COMMIT; JMP / JCOND in one instruction */
       c->p->code[c->p->ncode - 1] = INS(P ? OP_CJMP : OP_CJCOND, 0);
@@ -1170,12 +1172,19 @@ static void compile_block(struct comp *c)
     }
   }
   if (M(17)) {
-    sm->flags |= SF_M17;
+    *flags |= SF_M17;
     emit(c, OP_RET, 0, b->mcol[17]);
   }
   if (M(2)) {
-    sm->flags |= SF_M2;
+    *flags |= SF_M2;
     emit(c, OP_END, 0, b->mcol[2]);
+  }
+  if (L || P || PC || PP) {
+    c->s = grow(c->s, &c->capj, c->nj + 1, sizeof *c->s, &c->oom);
+    if (c->oom)
+      return;
+    c->s[c->nj++] = summ;
+    *flags |= SF_JUMPS;
   }
   /* a sub's lone M17: BLOCK; SYNC; COMMIT; RET, which BLOCKR runs at once */
   const uint32_t *code = c->p->code + c->bstart;
@@ -1189,12 +1198,12 @@ static void compile_block(struct comp *c)
     err(c, S42_E_SYNTAX, b->col, "expression too complex");
 
   /* keep the texts */
-  if (G(27) && b->g27.s) at->g27 = add_str(c, &b->g27);
-  if (G(33) && b->g33.s) at->g33 = add_str(c, &b->g33);
-  if (M(18) && b->m18.s) at->m18 = add_str(c, &b->m18);
+  if (G(27) && b->g27.s) more.g27 = add_str(c, &b->g27);
+  if (G(33) && b->g33.s) more.g33 = add_str(c, &b->g33);
+  if (M(18) && b->m18.s) more.m18 = add_str(c, &b->m18);
   if (b->ng29) {
-    at->g29 = (uint32_t)c->x->nlines;
-    at->ng29 = (uint32_t)b->ng29;
+    more.g29 = (uint32_t)c->x->nlines;
+    more.ng29 = (uint32_t)b->ng29;
     for (int i = 0; i < b->ng29; i++) {
       if (!b->g29[i].s)
         continue;
@@ -1205,13 +1214,20 @@ static void compile_block(struct comp *c)
     }
   }
   if (b->nm16) {
-    at->m16 = (uint32_t)c->x->nm16;
-    at->nm16 = (uint32_t)b->nm16;
+    more.m16 = (uint32_t)c->x->nm16;
+    more.nm16 = (uint32_t)b->nm16;
     c->x->m16 = grow(c->x->m16, &c->x->capm16, c->x->nm16 + (size_t)b->nm16, sizeof *c->x->m16, &c->oom);
     if (c->oom)
       return;
     memcpy(c->x->m16 + c->x->nm16, b->m16, (size_t)b->nm16 * sizeof *b->m16);
     c->x->nm16 += (size_t)b->nm16;
+  }
+  if (more.g27 || more.g33 || more.m18 || more.ng29 || more.nm16 || more.g28reg != -1 || more.g27form || more.g37axis) {
+    c->x->more = grow(c->x->more, &c->x->capmore, c->x->nmore + 1, sizeof *c->x->more, &c->oom);
+    if (c->oom)
+      return;
+    c->x->more[c->x->nmore++] = more;
+    at->more = (uint32_t)c->x->nmore;
   }
   if (M(10) && (G(10) || G(11)))
     c->x->has_m10 = 1;
@@ -1242,22 +1258,38 @@ static void ext_free(void *v)
   if (!x)
     return;
   free(x->a);
+  free(x->more);
   free(x->str);
   free(x->lines);
   free(x->m16);
   free(x);
 }
 
+/* The calls and jumps of block i, which has SF_JUMPS (the list is in
+ * block order). */
+static const struct summ *jumps_of(const struct comp *c, size_t i)
+{
+  size_t lo = 0, hi = c->nj;
+  while (hi - lo > 1) {
+    size_t mid = (lo + hi) / 2;
+    if (c->s[mid].i <= i)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return &c->s[lo];
+}
+
 /* The units that can call themselves, directly or through others: those
  * on a cycle of the call graph (the calls of reachable blocks), found as
  * its strongly connected components (Tarjan's, without recursion): linear
  * in units and calls.  cyc[u] is 1 for such a unit; NULL when out of memory. */
-static char *calls_itself(size_t n, const struct summ *S, const int *first, const int *unit, const char *reach,
+static char *calls_itself(const struct summ *S, size_t nj, const int *first, const int *unit, const char *reach,
                           int nu)
 {
   size_t ne = 0;
-  for (size_t i = 0; i < n; i++)
-    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
+  for (size_t k = 0; k < nj; k++)
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit[S[k].i] >= 0 && reach[S[k].i])
       ne++;
   size_t *off = calloc((size_t)nu + 1, sizeof *off);
   int *dst = malloc((ne ? ne : 1) * sizeof *dst);
@@ -1271,16 +1303,16 @@ static char *calls_itself(size_t n, const struct summ *S, const int *first, cons
     goto out;
   }
   /* the calls by caller (counting sort) */
-  for (size_t i = 0; i < n; i++)
-    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
-      off[unit[i] + 1]++;
+  for (size_t k = 0; k < nj; k++)
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit[S[k].i] >= 0 && reach[S[k].i])
+      off[unit[S[k].i] + 1]++;
   for (int u = 0; u < nu; u++)
     off[u + 1] += off[u];
   for (int u = 0; u < nu; u++)
     it[u] = off[u];
-  for (size_t i = 0; i < n; i++)
-    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i]) {
-      int from = unit[i], to = unit[first[S[i].L]];
+  for (size_t k = 0; k < nj; k++)
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit[S[k].i] >= 0 && reach[S[k].i]) {
+      int from = unit[S[k].i], to = unit[first[S[k].L]];
       dst[it[from]++] = to;
       if (from == to)
         cyc[from] = 1;   /* calls itself directly */
@@ -1341,8 +1373,9 @@ out:
 
 static void structure(struct comp *c)
 {
-  size_t n = c->ns;
-  struct summ *S = c->s;
+  size_t n = c->ns, nj = c->nj;
+  const uint8_t *F = c->sf;
+  const struct summ *S = c->s;
   const struct prog_block *B = c->p->blocks;
   if (n == 0) {
     diag_add(c->d, DIAG_ERROR, S42_E_SUB, 1, 1, -1, "the program is empty: it needs block 1 and M2");
@@ -1373,8 +1406,8 @@ static void structure(struct comp *c)
   /* what a block that did not parse may have held: a number, an M2 */
   int nonum = 0, anybad = 0;
   for (size_t i = 0; i < n; i++) {
-    nonum |= (S[i].flags & SF_NONUM) != 0;
-    anybad |= (S[i].flags & SF_BAD) != 0;
+    nonum |= (F[i] & SF_NONUM) != 0;
+    anybad |= (F[i] & SF_BAD) != 0;
   }
   int mp = first[1];
   if (mp < 0 && nonum)
@@ -1388,27 +1421,28 @@ static void structure(struct comp *c)
         serr(c, i, 0, S42_E_SUB, "block 1 appears twice: the main program starts at block 1");
   if (mp >= 0)
     start[mp] = 1;
-  for (size_t i = 0; i < n; i++) {
-    if (S[i].L < 0 || S[i].L < 2 || S[i].L > 999)
+  for (size_t k = 0; k < nj; k++) {
+    size_t i = S[k].i;
+    if (S[k].L < 0 || S[k].L < 2 || S[k].L > 999)
       continue;
-    int t = S[i].L;
+    int t = S[k].L;
     if (count[t] == 0) {
       if (!nonum)
-        serr(c, i, S[i].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
+        serr(c, i, S[k].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
     }
     else if (count[t] > 1)
-      serr(c, i, S[i].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
+      serr(c, i, S[k].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
            t, t, count[t]);
     else {
       size_t f = (size_t)first[t];
       if (mp >= 0 && first[t] > mp && !start[f])   /* once a sub, however many call it */
         serr(c, f, 0, S42_E_SUB, "sub %d starts after block 1: subs come before the main program", t);
       else if (f > 0 && !start[f] && !into[f] && (int)f != mp &&
-               !(S[f - 1].flags & (SF_M2 | SF_M17 | SF_UNCOND | SF_BAD))) {
+               !(F[f - 1] & (SF_M2 | SF_M17 | SF_UNCOND | SF_BAD))) {
         /* a call into the middle of a sub: the block before runs on into
          * it, so the call is the mistake (not that sub's "end") */
         into[f] = 1;
-        serr(c, i, S[i].Lcol, S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
+        serr(c, i, S[k].Lcol, S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
              "it); a sub starts after the end (M17, M2 or a jump) of the one before", t, t, B[f - 1].number);
       }
       start[f] = 1;
@@ -1423,9 +1457,10 @@ static void structure(struct comp *c)
     c->p->blocks[i].unit = (uint16_t)(u < 0 ? 0xffff : u);
   }
   /* jumps */
-  for (size_t i = 0; i < n; i++) {
-    int tg[2] = {S[i].P, S[i].PP};
-    unsigned tc[2] = {S[i].Pcol, S[i].PPcol};
+  for (size_t j = 0; j < nj; j++) {
+    size_t i = S[j].i;
+    int tg[2] = {S[j].P, S[j].PP};
+    unsigned tc[2] = {S[j].Pcol, S[j].PPcol};
     for (int k = 0; k < 2; k++) {
       int t = tg[k];
       if (t < 1)
@@ -1444,18 +1479,18 @@ static void structure(struct comp *c)
   }
   int anym2 = 0;
   for (size_t i = 0; i < n; i++)
-    if ((S[i].flags & SF_M2) && unit[i] >= 0)
+    if ((F[i] & SF_M2) && unit[i] >= 0)
       anym2 = 1;
   /* M17 in the MP, running off the end of a unit */
   for (size_t i = 0; i < n; i++) {
-    if ((S[i].flags & SF_M17) && unit[i] == 0)
+    if ((F[i] & SF_M17) && unit[i] == 0)
       serr(c, i, 0, S42_E_SUB, "M17 (end of sub) in the main program");
     int last = i + 1 == n || start[i + 1];
-    if (!last || unit[i] < 0 || (S[i].flags & SF_BAD) || (i + 1 < n && into[i + 1]))
+    if (!last || unit[i] < 0 || (F[i] & SF_BAD) || (i + 1 < n && into[i + 1]))
       continue;
     if (unit[i] == 0 && !anym2)
       continue;   /* the program has no M2 at all: that one error says it */
-    int ok = (S[i].flags & (SF_M2 | SF_UNCOND)) || (unit[i] > 0 && (S[i].flags & SF_M17));
+    int ok = (F[i] & (SF_M2 | SF_UNCOND)) || (unit[i] > 0 && (F[i] & SF_M17));
     if (!ok) {
       if (unit[i] == 0)
         serr(c, i, 0, S42_E_SUB, "the main program can run off its end here: its last block needs M2 or an unconditional jump");
@@ -1481,12 +1516,13 @@ static void structure(struct comp *c)
       size_t i = work[--top];
       size_t nx[3];
       int nn = 0;
-      if (!(S[i].flags & (SF_M2 | SF_M17 | SF_UNCOND)) && i + 1 < n && !start[i + 1])
+      if (!(F[i] & (SF_M2 | SF_M17 | SF_UNCOND)) && i + 1 < n && !start[i + 1])
         nx[nn++] = i + 1;
-      if (S[i].P > 0 && S[i].P < 1000 && first[S[i].P] >= 0)
-        nx[nn++] = (size_t)first[S[i].P];
-      if (S[i].PP > 0 && S[i].PP < 1000 && first[S[i].PP] >= 0)
-        nx[nn++] = (size_t)first[S[i].PP];
+      const struct summ *J = F[i] & SF_JUMPS ? jumps_of(c, i) : NULL;
+      if (J && J->P > 0 && J->P < 1000 && first[J->P] >= 0)
+        nx[nn++] = (size_t)first[J->P];
+      if (J && J->PP > 0 && J->PP < 1000 && first[J->PP] >= 0)
+        nx[nn++] = (size_t)first[J->PP];
       for (int k = 0; k < nn; k++)
         if (!reach[nx[k]]) {
           reach[nx[k]] = 1;
@@ -1503,7 +1539,7 @@ static void structure(struct comp *c)
         i = j;
       }
     /* recursion: a sub that can call itself, directly or through others */
-    char *cyc = calls_itself(n, S, first, unit, reach, nsub + 1);
+    char *cyc = calls_itself(S, nj, first, unit, reach, nsub + 1);
     if (cyc) {
       for (size_t i = 0; i < n; i++)
         if (start[i] && unit[i] > 0 && cyc[unit[i]])
@@ -1517,14 +1553,15 @@ static void structure(struct comp *c)
 
   /* patch targets */
   if (!c->d->nerr) {
-    for (size_t i = 0; i < n; i++) {
-      uint32_t *code = c->p->code + B[i].code;
-      if (S[i].callpc != NOPC)
-        code[S[i].callpc] = INS(INS_OP(code[S[i].callpc]), (uint32_t)first[S[i].L]);   /* CALL or CCALL */
-      if (S[i].jpc != NOPC)
-        code[S[i].jpc] = INS(INS_OP(code[S[i].jpc]), (uint32_t)first[S[i].P]);
-      if (S[i].pppc != NOPC)
-        code[S[i].pppc] = INS(OP_PPJ, (uint32_t)first[S[i].PP]);
+    for (size_t k = 0; k < nj; k++) {
+      const struct summ *J = &S[k];
+      uint32_t *code = c->p->code + B[J->i].code;
+      if (J->callpc != NOPC)
+        code[J->callpc] = INS(INS_OP(code[J->callpc]), (uint32_t)first[J->L]);   /* CALL or CCALL */
+      if (J->jpc != NOPC)
+        code[J->jpc] = INS(INS_OP(code[J->jpc]), (uint32_t)first[J->P]);
+      if (J->pppc != NOPC)
+        code[J->pppc] = INS(OP_PPJ, (uint32_t)first[J->PP]);
     }
     c->p->entry = c->p->blocks[mp].code;
   }
@@ -1618,6 +1655,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
              "TK and UG are set only by a tooth-step search with M10, and this program has none: they read 0");
   if (c.oom && !c.toolong)
     diag_add(d, DIAG_ERROR, S42_E_LIMIT, 1, 1, -1, "out of memory");
+  free(c.sf);
   free(c.s);
   free(c.b);
   diag_sort(d);
