@@ -163,34 +163,41 @@ static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
  * vm/opcodes.h: walked once the block is emitted, superinstructions fused,
  * so the count is exact.  A block's code runs straight through (vm/verify.c
  * proves the same walk safe). */
+#define STACK_DELTA(name, opd, ext, pop, push, doc) [OP_##name] = (push) - (pop),
+static const int8_t stack_delta[256] = {S42_OPCODES(STACK_DELTA)};   /* vm_ops' push - pop, by opcode */
+
 static uint32_t block_stack(const struct comp *c)
 {
   int depth = 0, max = 0;
-  for (size_t pc = c->bstart; pc < c->p->ncode; pc++) {
-    const struct vm_opinfo *o = &vm_ops[INS_OP(c->p->code[pc])];
-    depth += o->push - o->pop;
+  const uint32_t *code = c->p->code;
+  for (size_t pc = c->bstart, n = c->p->ncode; pc < n; pc++) {
+    depth += stack_delta[INS_OP(code[pc])];
     if (depth > max)
       max = depth;
   }
   return (uint32_t)max;
 }
 
-static void emit_num(struct comp *c, double v, unsigned col)
+static void __attribute__((noinline)) emit_const(struct comp *c, double v, unsigned col)
+{
+  long k = prog_const(c->p, v);
+  if (k < 0)
+    c->oom = 1;
+  emit(c, OP_CONST, (uint32_t)(k < 0 ? 0 : k), col);
+}
+
+static inline void emit_num(struct comp *c, double v, unsigned col)
 {
   /* an integer in 0..INS_AMAX (the conversion is exact there: no floor call) */
-  if (v >= 0 && v <= INS_AMAX && v == (double)(uint32_t)v && !(v == 0 && signbit(v))) {
+  if (v >= 0 && v <= INS_AMAX && v == (double)(uint32_t)v && !(v == 0 && signbit(v)))
     emit(c, OP_INT, (uint32_t)v, col);
-  } else {
-    long k = prog_const(c->p, v);
-    if (k < 0)
-      c->oom = 1;
-    emit(c, OP_CONST, (uint32_t)(k < 0 ? 0 : k), col);
-  }
+  else
+    emit_const(c, v, col);
 }
 
 /* ---- constant folding ---- */
 
-static int fold(struct comp *c, struct expr *e, double *v, int *failed);
+static inline int fold(struct comp *c, struct expr *e, double *v, int *failed);
 
 static int fold_node(struct comp *c, const struct expr *e, double *v, int *failed)
 {
@@ -258,12 +265,20 @@ static int fold_node(struct comp *c, const struct expr *e, double *v, int *faile
 /* Returns 1 and *v when e is constant.  A folding error (E-DIV0, E-DOMAIN on
  * literals) is reported here, once, and *failed set.  Every node's answer
  * is kept in it (e->fk, e->v) for gen. */
-static int fold(struct comp *c, struct expr *e, double *v, int *failed)
+static inline int fold(struct comp *c, struct expr *e, double *v, int *failed)
 {
-  int k = fold_node(c, e, v, failed);
+  int k;
+  if (e->kind == EX_NUM) {   /* the leaves without a call */
+    *v = e->v;
+    k = 1;
+  } else if (e->kind == EX_REG || e->kind == EX_ARR) {
+    k = 0;
+  } else {
+    k = fold_node(c, e, v, failed);
+    if (k)
+      e->v = *v;
+  }
   e->fk = k ? 1 : 2;
-  if (k && e->kind != EX_NUM)
-    e->v = *v;
   return k;
 }
 
@@ -469,7 +484,10 @@ static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w,
         warn(c, col, "%s%.10g is over %.0f: clamped to %.0f", w.name, v, w.hi, w.hi);
         w.clamp = 2;   /* said once, here: not again when it runs */
       } else {
-        err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w.name, v, w.lo, w.hi);
+        char rn[8];   /* a parameter's rule has no name of its own: R12 */
+        if (!w.name)
+          snprintf(rn, sizeof rn, "R%u", dest % 1000);
+        err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w.name ? w.name : rn, v, w.lo, w.hi);
         c->badslot |= bit;
         return;
       }
@@ -480,7 +498,7 @@ static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w,
     c->given |= (uint16_t)(1u << s);
     if (k) {
       c->isconst |= (uint16_t)(1u << s);
-      c->kval[s] = w.round ? round(v) : v;
+      c->kval[s] = v;   /* rounded above when the rule rounds */
       if (w.clamp && c->kval[s] > w.hi)
         c->kval[s] = w.hi;
     } else {
@@ -788,7 +806,7 @@ static void check_block(struct comp *c)
   unsigned col;
   /* groups */
   int seen[5] = {0};
-  for (int i = 0; i < b->nw; i++) {
+  for (int i = 0; i < b->nw && b->g; i++) {
     const struct word *w = &b->w[i];
     if (w->kind != WK_G)
       continue;
@@ -798,12 +816,14 @@ static void check_block(struct comp *c)
     else
       seen[grp] = w->num;
   }
-  int naxis = 0, ncentre = 0;
-  unsigned axcol = 0, cecol = 0;
-  for (int s = SL_X; s <= SL_A; s++)
-    if (slot_word(c, s, &col)) { naxis++; if (!axcol) axcol = col; }
-  for (int s = SL_I; s <= SL_K; s++)
-    if (slot_word(c, s, &col)) { ncentre++; if (!cecol) cecol = col; }
+  /* the axis and centre words, and the column of the first of each in
+   * slot order (X Y Z A, I J K) */
+  unsigned axes = c->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
+  unsigned centres = c->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
+  static const uint8_t nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};   /* (no popcnt call) */
+  int naxis = nbits[axes], ncentre = nbits[centres >> SL_I];
+  unsigned axcol = axes ? c->slotcol[__builtin_ctz(axes)] : 0;
+  unsigned cecol = centres ? c->slotcol[__builtin_ctz(centres)] : 0;
   /* a dialog or display function (group 4) stands with no function of
    * groups 1-3 and no axis or centre word: only assignments, array
    * operations and M functions beside it (language.md sec. 8) */
@@ -889,23 +909,25 @@ static void check_block(struct comp *c)
       warn(c, b->gcol[plane], "G%d has no effect without an arc (%s)", plane, kp_codes(list, sizeof list, is_arc));
   }
 
-  /* auxiliary functions */
-  int wheel = M(3) + M(4) + M(5);
-  if (wheel > 1)
-    err(c, S42_E_BLOCK, b->mcol[M(3) ? (M(4) ? 4 : 5) : 5], "only one of M3 M4 M5 in a block");
-  if (M(22) && M(23))
-    err(c, S42_E_BLOCK, b->mcol[23], "M22 and M23 contradict each other");
-  if (M(25) && M(26))
-    err(c, S42_E_BLOCK, b->mcol[26], "M25 and M26 contradict each other");
-  if (M(27) + M(28) + M(29) > 1)
-    err(c, S42_E_BLOCK, b->mcol[29] ? b->mcol[29] : b->mcol[28], "only one of M27 M28 M29 in a block");
-  if (M(18) && M(21))
-    err(c, S42_E_BLOCK, b->mcol[21], "M18 shows a directive and M21 erases it: not both in a block");
-  if (M(17) && M(2))
-    err(c, S42_E_BLOCK, b->mcol[17], "M17 and M2 in one block");
-  if ((P || PC) && (M(17) || M(2)))
-    err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
-  int dg = first_g(b, KP_NODIR), dlg = dg >= 0;
+  /* auxiliary functions (none of these is said without an M word) */
+  if (b->m) {
+    int wheel = M(3) + M(4) + M(5);
+    if (wheel > 1)
+      err(c, S42_E_BLOCK, b->mcol[M(3) ? (M(4) ? 4 : 5) : 5], "only one of M3 M4 M5 in a block");
+    if (M(22) && M(23))
+      err(c, S42_E_BLOCK, b->mcol[23], "M22 and M23 contradict each other");
+    if (M(25) && M(26))
+      err(c, S42_E_BLOCK, b->mcol[26], "M25 and M26 contradict each other");
+    if (M(27) + M(28) + M(29) > 1)
+      err(c, S42_E_BLOCK, b->mcol[29] ? b->mcol[29] : b->mcol[28], "only one of M27 M28 M29 in a block");
+    if (M(18) && M(21))
+      err(c, S42_E_BLOCK, b->mcol[21], "M18 shows a directive and M21 erases it: not both in a block");
+    if (M(17) && M(2))
+      err(c, S42_E_BLOCK, b->mcol[17], "M17 and M2 in one block");
+    if ((P || PC) && (M(17) || M(2)))
+      err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
+  }
+  int dg = b->g ? first_g(b, KP_NODIR) : -1, dlg = dg >= 0;
   if (dlg && PP)
     err(c, S42_E_BLOCK, PP->col, "PP is not allowed in a block with G%02d", dg);
   if (dlg && M(18))
@@ -1050,11 +1072,9 @@ static void compile_block(struct comp *c)
       } else if (w->letter == 'D') {
         store(c, w->e, REG_D1, (struct wrule){"D1", 0, 400000, 0, 0}, w->col);
       } else {
-        char name[8] = {'R'};   /* "R12", without printf: this runs for every R word */
-        unsigned n = (unsigned)w->num % 1000, k = n >= 100 ? 3 : n >= 10 ? 2 : 1;
-        for (unsigned d = k; d > 0; d--, n /= 10)
-          name[d] = (char)('0' + n % 10);
-        store(c, w->e, w->idx, (struct wrule){name, -9999999, 9999999, 0, 0}, w->col);
+        /* a parameter: SETP, whose rule is implied; the name (R12) only
+         * when store() reports its value */
+        store(c, w->e, w->idx, (struct wrule){NULL, -9999999, 9999999, 0, 0}, w->col);
       }
       break;
     }
@@ -1222,7 +1242,7 @@ static void compile_block(struct comp *c)
     memcpy(c->x->m16 + c->x->nm16, b->m16, (size_t)b->nm16 * sizeof *b->m16);
     c->x->nm16 += (size_t)b->nm16;
   }
-  if (more.g27 || more.g33 || more.m18 || more.ng29 || more.nm16 || more.g28reg != -1 || more.g27form || more.g37axis) {
+  if (b->g28reg != -1 || b->g27form || b->g37axis || more.g27 || more.g33 || more.m18 || more.ng29 || more.nm16) {
     c->x->more = grow(c->x->more, &c->x->capmore, c->x->nmore + 1, sizeof *c->x->more, &c->oom);
     if (c->oom)
       return;
@@ -1265,6 +1285,14 @@ static void ext_free(void *v)
   free(x);
 }
 
+/* The unit of block i as structure() numbers them (program.blocks' unit,
+ * -1 for a block before the first unit): read from the block table rather
+ * than kept in an array of its own beside it. */
+static inline int unit_of(const struct prog_block *B, size_t i)
+{
+  return B[i].unit == 0xffff ? -1 : (int)B[i].unit;
+}
+
 /* The calls and jumps of block i, which has SF_JUMPS (the list is in
  * block order). */
 static const struct summ *jumps_of(const struct comp *c, size_t i)
@@ -1284,12 +1312,12 @@ static const struct summ *jumps_of(const struct comp *c, size_t i)
  * on a cycle of the call graph (the calls of reachable blocks), found as
  * its strongly connected components (Tarjan's, without recursion): linear
  * in units and calls.  cyc[u] is 1 for such a unit; NULL when out of memory. */
-static char *calls_itself(const struct summ *S, size_t nj, const int *first, const int *unit, const char *reach,
+static char *calls_itself(const struct summ *S, size_t nj, const int *first, const struct prog_block *B, const char *reach,
                           int nu)
 {
   size_t ne = 0;
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit[S[k].i] >= 0 && reach[S[k].i])
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i])
       ne++;
   size_t *off = calloc((size_t)nu + 1, sizeof *off);
   int *dst = malloc((ne ? ne : 1) * sizeof *dst);
@@ -1304,15 +1332,15 @@ static char *calls_itself(const struct summ *S, size_t nj, const int *first, con
   }
   /* the calls by caller (counting sort) */
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit[S[k].i] >= 0 && reach[S[k].i])
-      off[unit[S[k].i] + 1]++;
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i])
+      off[unit_of(B, S[k].i) + 1]++;
   for (int u = 0; u < nu; u++)
     off[u + 1] += off[u];
   for (int u = 0; u < nu; u++)
     it[u] = off[u];
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit[S[k].i] >= 0 && reach[S[k].i]) {
-      int from = unit[S[k].i], to = unit[first[S[k].L]];
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i]) {
+      int from = unit_of(B, S[k].i), to = unit_of(B, first[S[k].L]);
       dst[it[from]++] = to;
       if (from == to)
         cyc[from] = 1;   /* calls itself directly */
@@ -1395,11 +1423,9 @@ static void structure(struct comp *c)
     }
   /* unit starts: block 1 and every L target */
   char *start = calloc(n, 1), *into = calloc(n, 1);
-  int *unit = malloc(n * sizeof *unit);
-  if (!start || !unit || !into) {
+  if (!start || !into) {
     free(start);
     free(into);
-    free(unit);
     c->oom = 1;
     return;
   }
@@ -1453,7 +1479,6 @@ static void structure(struct comp *c)
   for (size_t i = 0; i < n; i++) {
     if (start[i])
       u = ((int)i == mp) ? 0 : ++nsub;
-    unit[i] = u;
     c->p->blocks[i].unit = (uint16_t)(u < 0 ? 0xffff : u);
   }
   /* jumps */
@@ -1472,27 +1497,27 @@ static void structure(struct comp *c)
       else if (count[t] > 1)
         serr(c, i, tc[k], S42_E_TARGET, "%s%d: block %d appears %d times; a jump target must be unique",
              k ? "PP" : "P", t, t, count[t]);
-      else if (unit[first[t]] != unit[i])
+      else if (unit_of(B, first[t]) != unit_of(B, i))
         serr(c, i, tc[k], S42_E_SCOPE, "%s%d: block %d is in another %s", k ? "PP" : "P", t, t,
-             unit[i] == 0 ? "unit (a sub)" : "unit");
+             unit_of(B, i) == 0 ? "unit (a sub)" : "unit");
     }
   }
   int anym2 = 0;
   for (size_t i = 0; i < n; i++)
-    if ((F[i] & SF_M2) && unit[i] >= 0)
+    if ((F[i] & SF_M2) && unit_of(B, i) >= 0)
       anym2 = 1;
   /* M17 in the MP, running off the end of a unit */
   for (size_t i = 0; i < n; i++) {
-    if ((F[i] & SF_M17) && unit[i] == 0)
+    if ((F[i] & SF_M17) && unit_of(B, i) == 0)
       serr(c, i, 0, S42_E_SUB, "M17 (end of sub) in the main program");
     int last = i + 1 == n || start[i + 1];
-    if (!last || unit[i] < 0 || (F[i] & SF_BAD) || (i + 1 < n && into[i + 1]))
+    if (!last || unit_of(B, i) < 0 || (F[i] & SF_BAD) || (i + 1 < n && into[i + 1]))
       continue;
-    if (unit[i] == 0 && !anym2)
+    if (unit_of(B, i) == 0 && !anym2)
       continue;   /* the program has no M2 at all: that one error says it */
-    int ok = (F[i] & (SF_M2 | SF_UNCOND)) || (unit[i] > 0 && (F[i] & SF_M17));
+    int ok = (F[i] & (SF_M2 | SF_UNCOND)) || (unit_of(B, i) > 0 && (F[i] & SF_M17));
     if (!ok) {
-      if (unit[i] == 0)
+      if (unit_of(B, i) == 0)
         serr(c, i, 0, S42_E_SUB, "the main program can run off its end here: its last block needs M2 or an unconditional jump");
       else
         serr(c, i, 0, S42_E_SUB, "this sub can run off its end here: its last block needs M17, M2 or an unconditional jump");
@@ -1534,15 +1559,15 @@ static void structure(struct comp *c)
         size_t j = i;
         while (j + 1 < n && !reach[j + 1])
           j++;
-        serr(c, i, 0, 0, "%s never run%s", unit[i] < 0 ? "blocks before the first unit are" : "this code is",
+        serr(c, i, 0, 0, "%s never run%s", unit_of(B, i) < 0 ? "blocks before the first unit are" : "this code is",
              j > i ? " (up to the next reachable block)" : "");
         i = j;
       }
     /* recursion: a sub that can call itself, directly or through others */
-    char *cyc = calls_itself(S, nj, first, unit, reach, nsub + 1);
+    char *cyc = calls_itself(S, nj, first, B, reach, nsub + 1);
     if (cyc) {
       for (size_t i = 0; i < n; i++)
-        if (start[i] && unit[i] > 0 && cyc[unit[i]])
+        if (start[i] && unit_of(B, i) > 0 && cyc[unit_of(B, i)])
           serr(c, i, 0, 0, "sub %d can call itself: more than 8 nested calls stop the run with E-NEST",
                B[i].number);
       free(cyc);
@@ -1567,7 +1592,6 @@ static void structure(struct comp *c)
   }
   free(start);
   free(into);
-  free(unit);
 }
 
 void comp_setup(struct program *p)

@@ -202,7 +202,7 @@ static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct psta
   fail(s, S42_E_BLOCKLEN, col, "block too long to analyse (over %d terms)", MAX_NODES);
 }
 
-static struct expr *node(struct pstate *s, int kind, unsigned col)
+HOT struct expr *node(struct pstate *s, int kind, unsigned col)
 {
   enum { SIZE = (sizeof(struct expr) + 15) & ~(size_t)15 };   /* as arena_alloc rounds it */
   if (++s->p->nodes > MAX_NODES)
@@ -455,7 +455,7 @@ static struct expr *expr(struct pstate *s)
 
 /* A word's value: its sign (required when `sign` is set) starts the first
  * term: X-R3+100 is (-R3)+100. */
-static struct expr *word_value(struct pstate *s, const char *word, int sign)
+HOT struct expr *word_value(struct pstate *s, const char *word, int sign)
 {
   char buf[32];
   int32_t c = peek(s);
@@ -732,7 +732,7 @@ static int takes_slash(const struct kp_word *w)
 
 /* ---- words ---- */
 
-static struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
+HOT struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
 {
   struct block *b = s->b;
   if (b->nw >= MAX_WORDS)
@@ -745,7 +745,7 @@ static struct word *new_word(struct pstate *s, int kind, char letter, unsigned c
   return w;
 }
 
-static int has_word(const struct block *b, int kind, char letter)
+HOT int has_word(const struct block *b, int kind, char letter)
 {
   for (int i = 0; i < b->nw; i++)
     if (b->w[i].kind == kind && b->w[i].letter == letter)
@@ -753,7 +753,7 @@ static int has_word(const struct block *b, int kind, char letter)
   return 0;
 }
 
-static void once(struct pstate *s, int kind, char letter, const char *name, unsigned col)
+HOT void once(struct pstate *s, int kind, char letter, const char *name, unsigned col)
 {
   if (has_word(s->b, kind, letter))
     fail(s, S42_E_SYNTAX, col, "%s appears twice in the block", name);
