@@ -387,7 +387,19 @@ HOT struct expr *unary_inner(struct pstate *s)
     adv(s);
     if (++s->p->depth > MAX_DEPTH)
       fail(s, S42_E_SYNTAX, col, "expression nested too deeply");
-    struct expr *u = unary(s);
+    /* unary() of what follows, without the call when it is no sign and no
+     * parenthesis: its depth check first, at the sign's column as there */
+    struct expr *u;
+    if (++s->p->depth > MAX_DEPTH)
+      fail(s, S42_E_SYNTAX, 0, "expression nested too deeply");
+    int32_t c2 = peek(s);
+    if (c2 == '+' || c2 == '-' || c2 == '(') {
+      s->p->depth--;
+      u = unary(s);   /* the same check again, passed */
+    } else {
+      u = power(s);
+      s->p->depth--;
+    }
     s->p->depth--;
     if (c == '+')
       return u;
