@@ -461,9 +461,9 @@ START_TEST(texts_kept)
   struct tprog t;
   tp_compile(&t, "N1 M18 /ПС, ПОТІМ ПУСК/ G20\nN2 M2\n");
   ck_assert_msg(t.rc == 0, "%s", tp_diags(&t.d));
-  ck_assert_str_eq(kp_str(&t.p, kp_attr(&t.p, 0)->m18), "ПС, ПОТІМ ПУСК");
+  ck_assert_str_eq(kp_str(&t.p, kp_more(&t.p, kp_attr(&t.p, 0))->m18), "ПС, ПОТІМ ПУСК");
   ck_assert_int_eq(kp_attr(&t.p, 0)->motion, MO_G20);
-  ck_assert_ptr_null(kp_str(&t.p, kp_attr(&t.p, 1)->m18));
+  ck_assert_ptr_null(kp_str(&t.p, kp_more(&t.p, kp_attr(&t.p, 1))->m18));
   tp_free(&t);
 }
 END_TEST

@@ -112,7 +112,7 @@ START_TEST(ps_is_one_eob)
   /* both letters consumed: Y is the 6th character */
   ck_assert_int_eq(lex_peek(&l), 'Y');
   ck_assert_uint_eq(l.ccol, 6);
-  ck_assert_uint_eq(l.cline, 1);
+  ck_assert_uint_eq(l.line, 1);
   /* ПС is not a look-alike letter: no note */
   ck_assert_uint_eq(d.n, 0);
 }
@@ -189,7 +189,7 @@ START_TEST(columns_count_characters)
   next(); next(); next();
   ck_assert_int_eq(lex_peek(&l), 'Y');
   ck_assert_uint_eq(l.ccol, 5);
-  ck_assert_uint_eq(l.cpos, 7);     /* but byte 7 */
+  ck_assert_uint_eq(l.pos, 7);      /* but byte 7 */
 }
 END_TEST
 
@@ -197,14 +197,14 @@ START_TEST(lines_and_columns)
 {
   start("AB\n  C");
   ck_assert_int_eq(lex_peek(&l), 'A');
-  ck_assert_uint_eq(l.cline, 1);
+  ck_assert_uint_eq(l.line, 1);
   ck_assert_uint_eq(l.ccol, 1);
   next(); next();
   ck_assert_int_eq(lex_peek(&l), LX_EOB);
   ck_assert_uint_eq(l.ccol, 3);
   lex_adv(&l);
   ck_assert_int_eq(lex_peek(&l), 'C');
-  ck_assert_uint_eq(l.cline, 2);
+  ck_assert_uint_eq(l.line, 2);
   ck_assert_uint_eq(l.ccol, 3);
 }
 END_TEST
@@ -254,7 +254,7 @@ START_TEST(bom_skipped)
   start("\xEF\xBB\xBFN1");
   ck_assert_int_eq(lex_peek(&l), 'N');
   ck_assert_uint_eq(l.ccol, 1);
-  ck_assert_uint_eq(l.cline, 1);
+  ck_assert_uint_eq(l.line, 1);
 }
 END_TEST
 

@@ -19,8 +19,9 @@ enum ex_kind { EX_NUM, EX_REG, EX_SLOT, EX_ARR, EX_NEG, EX_BIN, EX_FN, EX_CMP, E
 struct expr {
   uint8_t kind;
   uint8_t op;         /* EX_BIN/EX_FN: the vm opcode; EX_CMP: relation mask */
+  uint8_t fk;         /* the compiler's last fold of it: 1 constant (v), 2 not, 0 not folded */
   unsigned col;
-  double v;           /* EX_NUM */
+  double v;           /* EX_NUM; the folded value of another constant node */
   unsigned idx;       /* EX_REG register, EX_SLOT slot, EX_ARR arr | mode << 2 */
   struct expr *a, *b;
 };

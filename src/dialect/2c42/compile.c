@@ -24,17 +24,19 @@
  * 24-bit operand numbers (vm/opcodes.h), 16,777,216. */
 #define COMP_MAX_BLOCKS ((size_t)INS_AMAX + 1)
 
-/* Per-block summary for the structure checks, kept small: it lives for the
- * whole compile (number, line and column are in program.blocks). */
+/* What the structure checks need of each block, kept small: it lives for
+ * the whole compile (number, line and column are in program.blocks).  A
+ * flags byte for every block; the calls and jumps, which most blocks have
+ * not, in a list of their own in block order (struct summ, SF_JUMPS). */
 /* SF_NONUM: the block's number did not parse -- it may be the one a
  * structure check misses, which then says nothing (one mistake, one error) */
-enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8, SF_NONUM = 16 };
+enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8, SF_NONUM = 16, SF_JUMPS = 32 };
 #define NOPC 0xffffu       /* no instruction to patch */
 struct summ {
+  uint32_t i;              /* the block */
   int16_t L, P, PP;        /* targets, -1 none */
   uint16_t Lcol, Pcol, PPcol;
   uint16_t callpc, jpc, pppc;  /* instructions to patch, from the block's first; NOPC none */
-  uint8_t flags;
 };
 
 struct comp {
@@ -42,8 +44,10 @@ struct comp {
   struct kp_ext *x;
   struct diag_list *d;
   struct block *b;
-  struct summ *s;
-  size_t ns, caps;
+  uint8_t *sf;             /* each block's SF_ flags */
+  size_t ns, capsf;
+  struct summ *s;          /* the blocks with SF_JUMPS */
+  size_t nj, capj;
   int oom;
   int toolong;             /* the code reached the VM's 24-bit operand space (said at the block) */
   int seen_g34;            /* text order: a G34 came before */
@@ -52,6 +56,13 @@ struct comp {
   uint16_t given;
   uint16_t isconst;
   uint16_t badslot;        /* a slot whose word was refused (its checks would cascade) */
+  /* store() folds an expression, then generates its code: gen reads the
+   * fold of each node from the node (memo) instead of folding each subtree
+   * again -- unless the expression reads the slot being stored (selfslot),
+   * whose given and constant bits change in between (selfref) */
+  int memo, selfslot, selfref;
+  uint64_t core_g;         /* the functions no plugin has (core_masks) */
+  uint32_t core_m;
   double kval[SL__COUNT];
   const struct plug_set *plugins;
   uint32_t plugmask;       /* plugins the current block calls */
@@ -122,9 +133,9 @@ static void warn(struct comp *c, unsigned col, const char *fmt, ...)
   diag_add(c->d, DIAG_WARNING, 0, c->b->line, col ? col : c->b->col, c->b->number, "%s", msg);
 }
 
-static long emit(struct comp *c, int op, uint32_t a, unsigned col)
+static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, unsigned col)
 {
-  long i = prog_emit(c->p, INS(op, a), col);
+  long i = prog_emit_grow(c->p, ins, col);
   if (i < 0) {
     if (c->p->ncode >= PROG_MAX_CODE && !c->toolong) {
       /* not memory: the code's own limit (vm/program.h) */
@@ -137,39 +148,58 @@ static long emit(struct comp *c, int op, uint32_t a, unsigned col)
   return i;
 }
 
+/* prog_emit, inline: a block emits a dozen instructions */
+static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
+{
+  struct program *p = c->p;
+  if (p->ncode >= p->capcode)   /* full (or at PROG_MAX_CODE) */
+    return emit_grow(c, INS(op, a), col);
+  p->code[p->ncode] = INS(op, a);
+  p->cols[p->ncode] = (uint16_t)(col > 0xffff ? 0xffff : col);
+  return (long)p->ncode++;
+}
+
 /* The deepest stack of the current block's code, from the stack effects of
  * vm/opcodes.h: walked once the block is emitted, superinstructions fused,
  * so the count is exact.  A block's code runs straight through (vm/verify.c
  * proves the same walk safe). */
+#define STACK_DELTA(name, opd, ext, pop, push, doc) [OP_##name] = (push) - (pop),
+static const int8_t stack_delta[256] = {S42_OPCODES(STACK_DELTA)};   /* vm_ops' push - pop, by opcode */
+
 static uint32_t block_stack(const struct comp *c)
 {
   int depth = 0, max = 0;
-  for (size_t pc = c->bstart; pc < c->p->ncode; pc++) {
-    const struct vm_opinfo *o = &vm_ops[INS_OP(c->p->code[pc])];
-    depth += o->push - o->pop;
+  const uint32_t *code = c->p->code;
+  for (size_t pc = c->bstart, n = c->p->ncode; pc < n; pc++) {
+    depth += stack_delta[INS_OP(code[pc])];
     if (depth > max)
       max = depth;
   }
   return (uint32_t)max;
 }
 
-static void emit_num(struct comp *c, double v, unsigned col)
+static void __attribute__((noinline)) emit_const(struct comp *c, double v, unsigned col)
 {
-  if (v >= 0 && v <= INS_AMAX && v == floor(v) && !(v == 0 && signbit(v))) {
+  long k = prog_const(c->p, v);
+  if (k < 0)
+    c->oom = 1;
+  emit(c, OP_CONST, (uint32_t)(k < 0 ? 0 : k), col);
+}
+
+static inline void emit_num(struct comp *c, double v, unsigned col)
+{
+  /* an integer in 0..INS_AMAX (the conversion is exact there: no floor call) */
+  if (v >= 0 && v <= INS_AMAX && v == (double)(uint32_t)v && !(v == 0 && signbit(v)))
     emit(c, OP_INT, (uint32_t)v, col);
-  } else {
-    long k = prog_const(c->p, v);
-    if (k < 0)
-      c->oom = 1;
-    emit(c, OP_CONST, (uint32_t)(k < 0 ? 0 : k), col);
-  }
+  else
+    emit_const(c, v, col);
 }
 
 /* ---- constant folding ---- */
 
-/* Returns 1 and *v when e is constant.  A folding error (E-DIV0, E-DOMAIN on
- * literals) is reported here, once, and *failed set. */
-static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
+static inline int fold(struct comp *c, struct expr *e, double *v, int *failed);
+
+static int fold_node(struct comp *c, const struct expr *e, double *v, int *failed)
 {
   double a, b;
   char msg[200];
@@ -179,6 +209,8 @@ static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
     *v = e->v;
     return 1;
   case EX_SLOT:
+    if ((int)e->idx == c->selfslot)
+      c->selfref = 1;
     if (!(c->given & (1u << e->idx))) {
       *v = 0;
       return 1;
@@ -230,6 +262,26 @@ static int fold(struct comp *c, const struct expr *e, double *v, int *failed)
   return 1;
 }
 
+/* Returns 1 and *v when e is constant.  A folding error (E-DIV0, E-DOMAIN on
+ * literals) is reported here, once, and *failed set.  Every node's answer
+ * is kept in it (e->fk, e->v) for gen. */
+static inline int fold(struct comp *c, struct expr *e, double *v, int *failed)
+{
+  int k;
+  if (e->kind == EX_NUM) {   /* the leaves without a call */
+    *v = e->v;
+    k = 1;
+  } else if (e->kind == EX_REG || e->kind == EX_ARR) {
+    k = 0;
+  } else {
+    k = fold_node(c, e, v, failed);
+    if (k)
+      e->v = *v;
+  }
+  e->fk = k ? 1 : 2;
+  return k;
+}
+
 /* The superinstruction for binary `op` with a right operand pushed by
  * `push` (INT, CONST or REG), or -1. */
 static int fuse_operand(int op, int push)
@@ -266,11 +318,12 @@ static void fuse_compare(struct comp *c)
   c->p->ncode = n - 1;
 }
 
-static void gen(struct comp *c, const struct expr *e)
+static void gen(struct comp *c, struct expr *e)
 {
   double v;
   int failed = 0;
-  if (e->kind != EX_CMP && e->kind != EX_AND && e->kind != EX_OR && fold(c, e, &v, &failed)) {
+  if (e->kind != EX_CMP && e->kind != EX_AND && e->kind != EX_OR &&
+      (c->memo ? e->fk == 1 && (v = e->v, 1) : fold(c, e, &v, &failed))) {
     emit_num(c, v, e->col);
     return;
   }
@@ -406,13 +459,16 @@ static struct wrule slot_rule(const struct block *b, int slot)
 
 /* Emit value + SET into dest (register < VM_NREG, or VM_NREG + slot); check
  * a constant value now, as `s42 check` must. */
-static void store(struct comp *c, const struct expr *e, unsigned dest, struct wrule w, unsigned col)
+static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w, unsigned col)
 {
   double v;
   int failed = 0;
   if (!e || c->b->bad)
     return;   /* a block that did not parse is not compiled: it cannot run */
+  c->selfslot = dest >= VM_NREG ? (int)(dest - VM_NREG) : -1;
+  c->selfref = 0;
   int k = fold(c, e, &v, &failed);
+  c->selfslot = -1;
   /* a refused word is reported once: the checks that need its value (the
    * arc's radius) skip it rather than report a second, false error */
   uint16_t bit = dest >= VM_NREG ? (uint16_t)(1u << (dest - VM_NREG)) : 0;
@@ -428,7 +484,10 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
         warn(c, col, "%s%.10g is over %.0f: clamped to %.0f", w.name, v, w.hi, w.hi);
         w.clamp = 2;   /* said once, here: not again when it runs */
       } else {
-        err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w.name, v, w.lo, w.hi);
+        char rn[8];   /* a parameter's rule has no name of its own: R12 */
+        if (!w.name)
+          snprintf(rn, sizeof rn, "R%u", dest % 1000);
+        err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w.name ? w.name : rn, v, w.lo, w.hi);
         c->badslot |= bit;
         return;
       }
@@ -439,14 +498,16 @@ static void store(struct comp *c, const struct expr *e, unsigned dest, struct wr
     c->given |= (uint16_t)(1u << s);
     if (k) {
       c->isconst |= (uint16_t)(1u << s);
-      c->kval[s] = w.round ? round(v) : v;
+      c->kval[s] = v;   /* rounded above when the rule rounds */
       if (w.clamp && c->kval[s] > w.hi)
         c->kval[s] = w.hi;
     } else {
       c->isconst &= (uint16_t)~(1u << s);
     }
   }
+  c->memo = !c->selfref;   /* failed returned above: the folds hold */
   gen(c, e);
+  c->memo = 0;
   if (dest <= 113 && w.lo == -9999999 && w.hi == 9999999 && !w.round && !w.clamp) {
     emit(c, OP_SETP, dest, col);   /* a parameter: its rule is implied */
     return;
@@ -673,10 +734,13 @@ static int text_refs(struct comp *c, const struct text *t, const char *fn, int g
 }
 
 /* The group of Gn: the language's, or the one its plugin declares. */
-static int group_of(const struct comp *c, int n)
+static inline int group_of(const struct comp *c, int n)
 {
+  const struct kp_word *w = kp_g(n);
   const struct s42_function *fn;
-  if (!kp_valid_g(n) && plug_find(c->plugins, 'G', n, &fn) >= 0)
+  if (w)
+    return w->group;
+  if (plug_find(c->plugins, 'G', n, &fn) >= 0)
     return fn->group;
   return kp_g_group(n);
 }
@@ -724,13 +788,25 @@ static void plugin_function(struct comp *c, char kind, int n, unsigned col, int 
   }
 }
 
+/* The G and M functions that are the core's own (a row with no owner):
+ * bit n set, from the table. */
+static void core_masks(struct comp *c)
+{
+  for (int n = 0; n < 64; n++)
+    if (kp_g(n) && !kp_g(n)->owner)
+      c->core_g |= 1ull << n;
+  for (int n = 0; n < 32; n++)
+    if (kp_m(n) && !kp_m(n)->owner)
+      c->core_m |= 1u << n;
+}
+
 static void check_block(struct comp *c)
 {
   struct block *b = c->b;
   unsigned col;
   /* groups */
   int seen[5] = {0};
-  for (int i = 0; i < b->nw; i++) {
+  for (int i = 0; i < b->nw && b->g; i++) {
     const struct word *w = &b->w[i];
     if (w->kind != WK_G)
       continue;
@@ -740,12 +816,14 @@ static void check_block(struct comp *c)
     else
       seen[grp] = w->num;
   }
-  int naxis = 0, ncentre = 0;
-  unsigned axcol = 0, cecol = 0;
-  for (int s = SL_X; s <= SL_A; s++)
-    if (slot_word(c, s, &col)) { naxis++; if (!axcol) axcol = col; }
-  for (int s = SL_I; s <= SL_K; s++)
-    if (slot_word(c, s, &col)) { ncentre++; if (!cecol) cecol = col; }
+  /* the axis and centre words, and the column of the first of each in
+   * slot order (X Y Z A, I J K) */
+  unsigned axes = c->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
+  unsigned centres = c->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
+  static const uint8_t nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};   /* (no popcnt call) */
+  int naxis = nbits[axes], ncentre = nbits[centres >> SL_I];
+  unsigned axcol = axes ? c->slotcol[__builtin_ctz(axes)] : 0;
+  unsigned cecol = centres ? c->slotcol[__builtin_ctz(centres)] : 0;
   /* a dialog or display function (group 4) stands with no function of
    * groups 1-3 and no axis or centre word: only assignments, array
    * operations and M functions beside it (language.md sec. 8) */
@@ -831,23 +909,25 @@ static void check_block(struct comp *c)
       warn(c, b->gcol[plane], "G%d has no effect without an arc (%s)", plane, kp_codes(list, sizeof list, is_arc));
   }
 
-  /* auxiliary functions */
-  int wheel = M(3) + M(4) + M(5);
-  if (wheel > 1)
-    err(c, S42_E_BLOCK, b->mcol[M(3) ? (M(4) ? 4 : 5) : 5], "only one of M3 M4 M5 in a block");
-  if (M(22) && M(23))
-    err(c, S42_E_BLOCK, b->mcol[23], "M22 and M23 contradict each other");
-  if (M(25) && M(26))
-    err(c, S42_E_BLOCK, b->mcol[26], "M25 and M26 contradict each other");
-  if (M(27) + M(28) + M(29) > 1)
-    err(c, S42_E_BLOCK, b->mcol[29] ? b->mcol[29] : b->mcol[28], "only one of M27 M28 M29 in a block");
-  if (M(18) && M(21))
-    err(c, S42_E_BLOCK, b->mcol[21], "M18 shows a directive and M21 erases it: not both in a block");
-  if (M(17) && M(2))
-    err(c, S42_E_BLOCK, b->mcol[17], "M17 and M2 in one block");
-  if ((P || PC) && (M(17) || M(2)))
-    err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
-  int dg = first_g(b, KP_NODIR), dlg = dg >= 0;
+  /* auxiliary functions (none of these is said without an M word) */
+  if (b->m) {
+    int wheel = M(3) + M(4) + M(5);
+    if (wheel > 1)
+      err(c, S42_E_BLOCK, b->mcol[M(3) ? (M(4) ? 4 : 5) : 5], "only one of M3 M4 M5 in a block");
+    if (M(22) && M(23))
+      err(c, S42_E_BLOCK, b->mcol[23], "M22 and M23 contradict each other");
+    if (M(25) && M(26))
+      err(c, S42_E_BLOCK, b->mcol[26], "M25 and M26 contradict each other");
+    if (M(27) + M(28) + M(29) > 1)
+      err(c, S42_E_BLOCK, b->mcol[29] ? b->mcol[29] : b->mcol[28], "only one of M27 M28 M29 in a block");
+    if (M(18) && M(21))
+      err(c, S42_E_BLOCK, b->mcol[21], "M18 shows a directive and M21 erases it: not both in a block");
+    if (M(17) && M(2))
+      err(c, S42_E_BLOCK, b->mcol[17], "M17 and M2 in one block");
+    if ((P || PC) && (M(17) || M(2)))
+      err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
+  }
+  int dg = b->g ? first_g(b, KP_NODIR) : -1, dlg = dg >= 0;
   if (dlg && PP)
     err(c, S42_E_BLOCK, PP->col, "PP is not allowed in a block with G%02d", dg);
   if (dlg && M(18))
@@ -908,14 +988,15 @@ static void check_block(struct comp *c)
   if (b->len > 320)
     err(c, S42_E_BLOCKLEN, b->col, "block of %u characters; at most 320 (ten display lines)", b->len);
 
-  /* functions that plugins implement */
+  /* functions that plugins implement (the core's own have no plugin:
+   * plugin_function returns at once for them, so they are not visited) */
   c->plugmask = 0;
   c->plug_g = 0;
-  for (uint64_t bits = b->g; bits;) {
+  for (uint64_t bits = b->g & ~c->core_g; bits;) {
     int n = take_low(&bits);
     plugin_function(c, 'G', n, b->gcol[n], naxis + ncentre, plane);
   }
-  for (uint64_t bits = b->m; bits;) {
+  for (uint64_t bits = b->m & ~c->core_m; bits;) {
     int n = take_low(&bits);
     plugin_function(c, 'M', n, b->mcol[n], naxis + ncentre, plane);
   }
@@ -951,29 +1032,27 @@ static void compile_block(struct comp *c)
     return;
   }
   c->x->a = grow(c->x->a, &c->x->cap, c->x->n + 1, sizeof *c->x->a, &c->oom);
-  c->s = grow(c->s, &c->caps, c->ns + 1, sizeof *c->s, &c->oom);
+  c->sf = grow(c->sf, &c->capsf, c->ns + 1, sizeof *c->sf, &c->oom);
   if (c->oom)
     return;
   struct kp_attr *at = &c->x->a[c->x->n++];
-  struct summ *sm = &c->s[c->ns++];
+  uint8_t *flags = &c->sf[c->ns];
+  struct summ summ = {.i = (uint32_t)c->ns++, .L = -1, .P = -1, .PP = -1, .callpc = NOPC, .jpc = NOPC, .pppc = NOPC};
+  struct summ *sm = &summ;
   memset(at, 0, sizeof *at);
-  memset(sm, 0, sizeof *sm);
-  sm->L = sm->P = sm->PP = -1;
-  sm->callpc = sm->jpc = sm->pppc = NOPC;
+  *flags = 0;
   c->bstart = pb.code;
   if (b->bad)
-    sm->flags |= SF_BAD;
+    *flags |= SF_BAD;
   if (b->badnum)
-    sm->flags |= SF_NONUM;
+    *flags |= SF_NONUM;
 
   at->g = b->g;
   at->m = b->m;
   at->plugins = c->plugmask;
   at->plug_g = (uint8_t)c->plug_g;
   at->plane = (uint8_t)plane_of(b);
-  at->g28reg = (int16_t)b->g28reg;
-  at->g27form = b->g27form;
-  at->g37axis = b->g37axis;
+  struct kp_more more = {.g28reg = (int16_t)b->g28reg, .g27form = b->g27form, .g37axis = b->g37axis};
   int mo = motion_of(b);
   c->given = c->isconst = c->badslot = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
@@ -993,11 +1072,9 @@ static void compile_block(struct comp *c)
       } else if (w->letter == 'D') {
         store(c, w->e, REG_D1, (struct wrule){"D1", 0, 400000, 0, 0}, w->col);
       } else {
-        char name[8] = {'R'};   /* "R12", without printf: this runs for every R word */
-        unsigned n = (unsigned)w->num % 1000, k = n >= 100 ? 3 : n >= 10 ? 2 : 1;
-        for (unsigned d = k; d > 0; d--, n /= 10)
-          name[d] = (char)('0' + n % 10);
-        store(c, w->e, w->idx, (struct wrule){name, -9999999, 9999999, 0, 0}, w->col);
+        /* a parameter: SETP, whose rule is implied; the name (R12) only
+         * when store() reports its value */
+        store(c, w->e, w->idx, (struct wrule){NULL, -9999999, 9999999, 0, 0}, w->col);
       }
       break;
     }
@@ -1104,7 +1181,7 @@ static void compile_block(struct comp *c)
     int failed = 0;
     int always = P || (b->cond && fold(c, b->cond, &v, &failed) && v != 0);
     if (always)
-      sm->flags |= SF_UNCOND;
+      *flags |= SF_UNCOND;
     if (!L && !PP && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
       /* COMMIT; JMP / JCOND in one instruction */
       c->p->code[c->p->ncode - 1] = INS(P ? OP_CJMP : OP_CJCOND, 0);
@@ -1115,12 +1192,19 @@ static void compile_block(struct comp *c)
     }
   }
   if (M(17)) {
-    sm->flags |= SF_M17;
+    *flags |= SF_M17;
     emit(c, OP_RET, 0, b->mcol[17]);
   }
   if (M(2)) {
-    sm->flags |= SF_M2;
+    *flags |= SF_M2;
     emit(c, OP_END, 0, b->mcol[2]);
+  }
+  if (L || P || PC || PP) {
+    c->s = grow(c->s, &c->capj, c->nj + 1, sizeof *c->s, &c->oom);
+    if (c->oom)
+      return;
+    c->s[c->nj++] = summ;
+    *flags |= SF_JUMPS;
   }
   /* a sub's lone M17: BLOCK; SYNC; COMMIT; RET, which BLOCKR runs at once */
   const uint32_t *code = c->p->code + c->bstart;
@@ -1134,12 +1218,12 @@ static void compile_block(struct comp *c)
     err(c, S42_E_SYNTAX, b->col, "expression too complex");
 
   /* keep the texts */
-  if (G(27) && b->g27.s) at->g27 = add_str(c, &b->g27);
-  if (G(33) && b->g33.s) at->g33 = add_str(c, &b->g33);
-  if (M(18) && b->m18.s) at->m18 = add_str(c, &b->m18);
+  if (G(27) && b->g27.s) more.g27 = add_str(c, &b->g27);
+  if (G(33) && b->g33.s) more.g33 = add_str(c, &b->g33);
+  if (M(18) && b->m18.s) more.m18 = add_str(c, &b->m18);
   if (b->ng29) {
-    at->g29 = (uint32_t)c->x->nlines;
-    at->ng29 = (uint32_t)b->ng29;
+    more.g29 = (uint32_t)c->x->nlines;
+    more.ng29 = (uint32_t)b->ng29;
     for (int i = 0; i < b->ng29; i++) {
       if (!b->g29[i].s)
         continue;
@@ -1150,13 +1234,20 @@ static void compile_block(struct comp *c)
     }
   }
   if (b->nm16) {
-    at->m16 = (uint32_t)c->x->nm16;
-    at->nm16 = (uint32_t)b->nm16;
+    more.m16 = (uint32_t)c->x->nm16;
+    more.nm16 = (uint32_t)b->nm16;
     c->x->m16 = grow(c->x->m16, &c->x->capm16, c->x->nm16 + (size_t)b->nm16, sizeof *c->x->m16, &c->oom);
     if (c->oom)
       return;
     memcpy(c->x->m16 + c->x->nm16, b->m16, (size_t)b->nm16 * sizeof *b->m16);
     c->x->nm16 += (size_t)b->nm16;
+  }
+  if (b->g28reg != -1 || b->g27form || b->g37axis || more.g27 || more.g33 || more.m18 || more.ng29 || more.nm16) {
+    c->x->more = grow(c->x->more, &c->x->capmore, c->x->nmore + 1, sizeof *c->x->more, &c->oom);
+    if (c->oom)
+      return;
+    c->x->more[c->x->nmore++] = more;
+    at->more = (uint32_t)c->x->nmore;
   }
   if (M(10) && (G(10) || G(11)))
     c->x->has_m10 = 1;
@@ -1187,22 +1278,46 @@ static void ext_free(void *v)
   if (!x)
     return;
   free(x->a);
+  free(x->more);
   free(x->str);
   free(x->lines);
   free(x->m16);
   free(x);
 }
 
+/* The unit of block i as structure() numbers them (program.blocks' unit,
+ * -1 for a block before the first unit): read from the block table rather
+ * than kept in an array of its own beside it. */
+static inline int unit_of(const struct prog_block *B, size_t i)
+{
+  return B[i].unit == 0xffff ? -1 : (int)B[i].unit;
+}
+
+/* The calls and jumps of block i, which has SF_JUMPS (the list is in
+ * block order). */
+static const struct summ *jumps_of(const struct comp *c, size_t i)
+{
+  size_t lo = 0, hi = c->nj;
+  while (hi - lo > 1) {
+    size_t mid = (lo + hi) / 2;
+    if (c->s[mid].i <= i)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return &c->s[lo];
+}
+
 /* The units that can call themselves, directly or through others: those
  * on a cycle of the call graph (the calls of reachable blocks), found as
  * its strongly connected components (Tarjan's, without recursion): linear
  * in units and calls.  cyc[u] is 1 for such a unit; NULL when out of memory. */
-static char *calls_itself(size_t n, const struct summ *S, const int *first, const int *unit, const char *reach,
+static char *calls_itself(const struct summ *S, size_t nj, const int *first, const struct prog_block *B, const char *reach,
                           int nu)
 {
   size_t ne = 0;
-  for (size_t i = 0; i < n; i++)
-    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
+  for (size_t k = 0; k < nj; k++)
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i])
       ne++;
   size_t *off = calloc((size_t)nu + 1, sizeof *off);
   int *dst = malloc((ne ? ne : 1) * sizeof *dst);
@@ -1216,16 +1331,16 @@ static char *calls_itself(size_t n, const struct summ *S, const int *first, cons
     goto out;
   }
   /* the calls by caller (counting sort) */
-  for (size_t i = 0; i < n; i++)
-    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i])
-      off[unit[i] + 1]++;
+  for (size_t k = 0; k < nj; k++)
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i])
+      off[unit_of(B, S[k].i) + 1]++;
   for (int u = 0; u < nu; u++)
     off[u + 1] += off[u];
   for (int u = 0; u < nu; u++)
     it[u] = off[u];
-  for (size_t i = 0; i < n; i++)
-    if (S[i].L >= 2 && S[i].L < 1000 && first[S[i].L] >= 0 && unit[i] >= 0 && reach[i]) {
-      int from = unit[i], to = unit[first[S[i].L]];
+  for (size_t k = 0; k < nj; k++)
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i]) {
+      int from = unit_of(B, S[k].i), to = unit_of(B, first[S[k].L]);
       dst[it[from]++] = to;
       if (from == to)
         cyc[from] = 1;   /* calls itself directly */
@@ -1286,8 +1401,9 @@ out:
 
 static void structure(struct comp *c)
 {
-  size_t n = c->ns;
-  struct summ *S = c->s;
+  size_t n = c->ns, nj = c->nj;
+  const uint8_t *F = c->sf;
+  const struct summ *S = c->s;
   const struct prog_block *B = c->p->blocks;
   if (n == 0) {
     diag_add(c->d, DIAG_ERROR, S42_E_SUB, 1, 1, -1, "the program is empty: it needs block 1 and M2");
@@ -1307,19 +1423,17 @@ static void structure(struct comp *c)
     }
   /* unit starts: block 1 and every L target */
   char *start = calloc(n, 1), *into = calloc(n, 1);
-  int *unit = malloc(n * sizeof *unit);
-  if (!start || !unit || !into) {
+  if (!start || !into) {
     free(start);
     free(into);
-    free(unit);
     c->oom = 1;
     return;
   }
   /* what a block that did not parse may have held: a number, an M2 */
   int nonum = 0, anybad = 0;
   for (size_t i = 0; i < n; i++) {
-    nonum |= (S[i].flags & SF_NONUM) != 0;
-    anybad |= (S[i].flags & SF_BAD) != 0;
+    nonum |= (F[i] & SF_NONUM) != 0;
+    anybad |= (F[i] & SF_BAD) != 0;
   }
   int mp = first[1];
   if (mp < 0 && nonum)
@@ -1333,27 +1447,28 @@ static void structure(struct comp *c)
         serr(c, i, 0, S42_E_SUB, "block 1 appears twice: the main program starts at block 1");
   if (mp >= 0)
     start[mp] = 1;
-  for (size_t i = 0; i < n; i++) {
-    if (S[i].L < 0 || S[i].L < 2 || S[i].L > 999)
+  for (size_t k = 0; k < nj; k++) {
+    size_t i = S[k].i;
+    if (S[k].L < 0 || S[k].L < 2 || S[k].L > 999)
       continue;
-    int t = S[i].L;
+    int t = S[k].L;
     if (count[t] == 0) {
       if (!nonum)
-        serr(c, i, S[i].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
+        serr(c, i, S[k].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
     }
     else if (count[t] > 1)
-      serr(c, i, S[i].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
+      serr(c, i, S[k].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
            t, t, count[t]);
     else {
       size_t f = (size_t)first[t];
       if (mp >= 0 && first[t] > mp && !start[f])   /* once a sub, however many call it */
         serr(c, f, 0, S42_E_SUB, "sub %d starts after block 1: subs come before the main program", t);
       else if (f > 0 && !start[f] && !into[f] && (int)f != mp &&
-               !(S[f - 1].flags & (SF_M2 | SF_M17 | SF_UNCOND | SF_BAD))) {
+               !(F[f - 1] & (SF_M2 | SF_M17 | SF_UNCOND | SF_BAD))) {
         /* a call into the middle of a sub: the block before runs on into
          * it, so the call is the mistake (not that sub's "end") */
         into[f] = 1;
-        serr(c, i, S[i].Lcol, S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
+        serr(c, i, S[k].Lcol, S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
              "it); a sub starts after the end (M17, M2 or a jump) of the one before", t, t, B[f - 1].number);
       }
       start[f] = 1;
@@ -1364,13 +1479,13 @@ static void structure(struct comp *c)
   for (size_t i = 0; i < n; i++) {
     if (start[i])
       u = ((int)i == mp) ? 0 : ++nsub;
-    unit[i] = u;
     c->p->blocks[i].unit = (uint16_t)(u < 0 ? 0xffff : u);
   }
   /* jumps */
-  for (size_t i = 0; i < n; i++) {
-    int tg[2] = {S[i].P, S[i].PP};
-    unsigned tc[2] = {S[i].Pcol, S[i].PPcol};
+  for (size_t j = 0; j < nj; j++) {
+    size_t i = S[j].i;
+    int tg[2] = {S[j].P, S[j].PP};
+    unsigned tc[2] = {S[j].Pcol, S[j].PPcol};
     for (int k = 0; k < 2; k++) {
       int t = tg[k];
       if (t < 1)
@@ -1382,27 +1497,27 @@ static void structure(struct comp *c)
       else if (count[t] > 1)
         serr(c, i, tc[k], S42_E_TARGET, "%s%d: block %d appears %d times; a jump target must be unique",
              k ? "PP" : "P", t, t, count[t]);
-      else if (unit[first[t]] != unit[i])
+      else if (unit_of(B, first[t]) != unit_of(B, i))
         serr(c, i, tc[k], S42_E_SCOPE, "%s%d: block %d is in another %s", k ? "PP" : "P", t, t,
-             unit[i] == 0 ? "unit (a sub)" : "unit");
+             unit_of(B, i) == 0 ? "unit (a sub)" : "unit");
     }
   }
   int anym2 = 0;
   for (size_t i = 0; i < n; i++)
-    if ((S[i].flags & SF_M2) && unit[i] >= 0)
+    if ((F[i] & SF_M2) && unit_of(B, i) >= 0)
       anym2 = 1;
   /* M17 in the MP, running off the end of a unit */
   for (size_t i = 0; i < n; i++) {
-    if ((S[i].flags & SF_M17) && unit[i] == 0)
+    if ((F[i] & SF_M17) && unit_of(B, i) == 0)
       serr(c, i, 0, S42_E_SUB, "M17 (end of sub) in the main program");
     int last = i + 1 == n || start[i + 1];
-    if (!last || unit[i] < 0 || (S[i].flags & SF_BAD) || (i + 1 < n && into[i + 1]))
+    if (!last || unit_of(B, i) < 0 || (F[i] & SF_BAD) || (i + 1 < n && into[i + 1]))
       continue;
-    if (unit[i] == 0 && !anym2)
+    if (unit_of(B, i) == 0 && !anym2)
       continue;   /* the program has no M2 at all: that one error says it */
-    int ok = (S[i].flags & (SF_M2 | SF_UNCOND)) || (unit[i] > 0 && (S[i].flags & SF_M17));
+    int ok = (F[i] & (SF_M2 | SF_UNCOND)) || (unit_of(B, i) > 0 && (F[i] & SF_M17));
     if (!ok) {
-      if (unit[i] == 0)
+      if (unit_of(B, i) == 0)
         serr(c, i, 0, S42_E_SUB, "the main program can run off its end here: its last block needs M2 or an unconditional jump");
       else
         serr(c, i, 0, S42_E_SUB, "this sub can run off its end here: its last block needs M17, M2 or an unconditional jump");
@@ -1426,12 +1541,13 @@ static void structure(struct comp *c)
       size_t i = work[--top];
       size_t nx[3];
       int nn = 0;
-      if (!(S[i].flags & (SF_M2 | SF_M17 | SF_UNCOND)) && i + 1 < n && !start[i + 1])
+      if (!(F[i] & (SF_M2 | SF_M17 | SF_UNCOND)) && i + 1 < n && !start[i + 1])
         nx[nn++] = i + 1;
-      if (S[i].P > 0 && S[i].P < 1000 && first[S[i].P] >= 0)
-        nx[nn++] = (size_t)first[S[i].P];
-      if (S[i].PP > 0 && S[i].PP < 1000 && first[S[i].PP] >= 0)
-        nx[nn++] = (size_t)first[S[i].PP];
+      const struct summ *J = F[i] & SF_JUMPS ? jumps_of(c, i) : NULL;
+      if (J && J->P > 0 && J->P < 1000 && first[J->P] >= 0)
+        nx[nn++] = (size_t)first[J->P];
+      if (J && J->PP > 0 && J->PP < 1000 && first[J->PP] >= 0)
+        nx[nn++] = (size_t)first[J->PP];
       for (int k = 0; k < nn; k++)
         if (!reach[nx[k]]) {
           reach[nx[k]] = 1;
@@ -1443,15 +1559,15 @@ static void structure(struct comp *c)
         size_t j = i;
         while (j + 1 < n && !reach[j + 1])
           j++;
-        serr(c, i, 0, 0, "%s never run%s", unit[i] < 0 ? "blocks before the first unit are" : "this code is",
+        serr(c, i, 0, 0, "%s never run%s", unit_of(B, i) < 0 ? "blocks before the first unit are" : "this code is",
              j > i ? " (up to the next reachable block)" : "");
         i = j;
       }
     /* recursion: a sub that can call itself, directly or through others */
-    char *cyc = calls_itself(n, S, first, unit, reach, nsub + 1);
+    char *cyc = calls_itself(S, nj, first, B, reach, nsub + 1);
     if (cyc) {
       for (size_t i = 0; i < n; i++)
-        if (start[i] && unit[i] > 0 && cyc[unit[i]])
+        if (start[i] && unit_of(B, i) > 0 && cyc[unit_of(B, i)])
           serr(c, i, 0, 0, "sub %d can call itself: more than 8 nested calls stop the run with E-NEST",
                B[i].number);
       free(cyc);
@@ -1462,20 +1578,20 @@ static void structure(struct comp *c)
 
   /* patch targets */
   if (!c->d->nerr) {
-    for (size_t i = 0; i < n; i++) {
-      uint32_t *code = c->p->code + B[i].code;
-      if (S[i].callpc != NOPC)
-        code[S[i].callpc] = INS(INS_OP(code[S[i].callpc]), (uint32_t)first[S[i].L]);   /* CALL or CCALL */
-      if (S[i].jpc != NOPC)
-        code[S[i].jpc] = INS(INS_OP(code[S[i].jpc]), (uint32_t)first[S[i].P]);
-      if (S[i].pppc != NOPC)
-        code[S[i].pppc] = INS(OP_PPJ, (uint32_t)first[S[i].PP]);
+    for (size_t k = 0; k < nj; k++) {
+      const struct summ *J = &S[k];
+      uint32_t *code = c->p->code + B[J->i].code;
+      if (J->callpc != NOPC)
+        code[J->callpc] = INS(INS_OP(code[J->callpc]), (uint32_t)first[J->L]);   /* CALL or CCALL */
+      if (J->jpc != NOPC)
+        code[J->jpc] = INS(INS_OP(code[J->jpc]), (uint32_t)first[J->P]);
+      if (J->pppc != NOPC)
+        code[J->pppc] = INS(OP_PPJ, (uint32_t)first[J->PP]);
     }
     c->p->entry = c->p->blocks[mp].code;
   }
   free(start);
   free(into);
-  free(unit);
 }
 
 void comp_setup(struct program *p)
@@ -1499,6 +1615,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
 {
   struct comp c;
   memset(&c, 0, sizeof c);
+  c.selfslot = -1;
   c.p = p;
   c.d = d;
   c.x = calloc(1, sizeof *c.x);
@@ -1515,6 +1632,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   d->src = src;   /* the source lines under the diagnostics */
   d->nsrc = n;
   comp_setup(p);
+  core_masks(&c);
   p->file = d->file;
   /* a file in another encoding is one error, not one a block */
   unsigned bl, bc, bb;
@@ -1561,6 +1679,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
              "TK and UG are set only by a tooth-step search with M10, and this program has none: they read 0");
   if (c.oom && !c.toolong)
     diag_add(d, DIAG_ERROR, S42_E_LIMIT, 1, 1, -1, "out of memory");
+  free(c.sf);
   free(c.s);
   free(c.b);
   diag_sort(d);

@@ -9,6 +9,17 @@
 #include "words.h"   /* enum motion, kp_motion_name */
 #include <stdint.h>
 
+/* What few blocks have -- the texts, the dialog's forms, M16's list --
+ * kept apart (kp_ext.more) so that every block's record stays small. */
+struct kp_more {
+  uint32_t g27, g33, m18;   /* string offsets + 1 into kp_ext.str; 0 none */
+  uint32_t g29, ng29;       /* first index into kp_ext.lines, count */
+  uint32_t m16, nm16;       /* first index into kp_ext.m16, count */
+  int16_t g28reg;           /* -1 none */
+  char g27form;             /* ':' or '-' */
+  char g37axis;
+};
+
 struct kp_attr {
   uint64_t g;          /* bit n: Gn */
   uint32_t m;          /* bit n: Mn */
@@ -16,15 +27,10 @@ struct kp_attr {
   uint8_t motion;      /* enum motion */
   uint8_t plane;       /* 0, 17, 18 or 19 */
   uint8_t has_f;       /* the block sets the contour speed */
-  char g27form;        /* ':' or '-' */
-  char g37axis;
-  int16_t g28reg;      /* -1 none */
-  uint32_t g27, g33, m18;   /* string offsets + 1 into kp_ext.str; 0 none */
-  uint32_t g29, ng29;       /* first index into kp_ext.lines, count */
-  uint32_t m16, nm16;       /* first index into kp_ext.m16, count */
+  uint8_t plug_g;      /* MO_PLUGIN: the plugin's group-1 G number */
   int8_t bare[4];      /* M19: axis word X Y Z A is +Rn (n+1) or -Rn (-(n+1)); 0 not bare */
   uint32_t plugins;    /* bit i: plugin i of the session's set runs in this block */
-  uint8_t plug_g;      /* MO_PLUGIN: the plugin's group-1 G number */
+  uint32_t more;       /* 1 + its index in kp_ext.more; 0: none (kp_more: a record of nothing) */
 };
 
 /* The machine's switches as the session publishes them to the VM (vm.sw),
@@ -35,6 +41,8 @@ struct kp_attr {
 struct kp_ext {
   struct kp_attr *a;
   size_t n, cap;
+  struct kp_more *more;
+  size_t nmore, capmore;
   char *str;
   size_t nstr, capstr;
   uint32_t *lines;     /* string offsets + 1 */
@@ -49,6 +57,13 @@ struct kp_ext {
 static inline const struct kp_attr *kp_attr(const struct program *p, size_t b)
 {
   return &((const struct kp_ext *)p->ext)->a[b];
+}
+
+/* The block's texts, dialog forms and M16 list (all none for most). */
+static inline const struct kp_more *kp_more(const struct program *p, const struct kp_attr *at)
+{
+  static const struct kp_more none = {.g28reg = -1};
+  return at->more ? &((const struct kp_ext *)p->ext)->more[at->more - 1] : &none;
 }
 
 static inline const char *kp_str(const struct program *p, uint32_t off)

@@ -71,11 +71,21 @@ int32_t lex_peek_slow(struct lex *l)
   if (l->peeked)
     return l->c;
   l->peeked = 1;
+  /* the end of nearly every block first: ^ or a newline right here */
+  if (l->pos < l->n && (l->s[l->pos] == '^' || l->s[l->pos] == '\n')) {
+    int nl = l->s[l->pos] == '\n';
+    l->c = LX_EOB;
+    l->ccol = l->col;
+    l->cnext = l->pos + 1;
+    l->cnline = l->line + (unsigned)nl;
+    l->cncol = nl ? 1 : l->col + 1;
+    return LX_EOB;
+  }
   for (;;) {
     if (l->pos >= l->n) {
       l->c = LX_EOF;
-      l->cpos = l->cnext = l->pos;
-      l->cline = l->cnline = l->line;
+      l->cnext = l->pos;
+      l->cnline = l->line;
       l->ccol = l->cncol = l->col;
       return LX_EOF;
     }
@@ -101,8 +111,6 @@ int32_t lex_peek_slow(struct lex *l)
       continue;
     }
     l->c = c;
-    l->cpos = l->pos;
-    l->cline = l->line;
     l->ccol = l->col;
     l->cnext = l->pos + len;
     l->cnline = l->line;
@@ -162,7 +170,7 @@ void lex_raw_adv(struct lex *l)
 
 int lex_cyrillic(const struct lex *l)
 {
-  return l->peeked && l->cpos < l->n && (unsigned char)l->s[l->cpos] >= 0x80;
+  return l->peeked && l->pos < l->n && (unsigned char)l->s[l->pos] >= 0x80;
 }
 
 void lex_set_number(struct lex *l, int number)

@@ -24,11 +24,16 @@ struct lex {
   int note_here;          /* ... during the current block (the parser clears it) */
   int cr_noted;           /* CR-only line ends noted */
   unsigned blen;          /* significant characters of the current block */
-  /* what lex_peek saw: */
+  /* what lex_peek saw: c, at pos, line and col (peeking skips to it); ccol
+   * stays its column after it is consumed (for diagnostics).  peeked 2: a
+   * plain ASCII byte, which lex_adv steps over by itself; 1: anything else,
+   * which lex_adv leaves for cnext, cnline, cncol.  A block never spans
+   * lines, so its characters' line is `line` until its newline is consumed. */
   int peeked;
   int32_t c;
-  size_t cpos, cnext;
-  unsigned cline, ccol, cnline, cncol;
+  unsigned ccol;
+  size_t cnext;
+  unsigned cnline, cncol;
 };
 
 struct lex_mark { size_t pos; unsigned line, col, blen; };
@@ -59,12 +64,9 @@ static inline int32_t lex_peek(struct lex *l)
     }
     if (!lex_plain[b])
       break;
-    l->pos = l->cpos = pos;
+    l->pos = pos;
     l->col = l->ccol = col;
-    l->cnext = pos + 1;
-    l->cline = l->cnline = l->line;
-    l->cncol = col + 1;
-    l->peeked = 1;
+    l->peeked = 2;
     return l->c = b;
   }
   l->pos = pos;
@@ -75,12 +77,18 @@ static inline int32_t lex_peek(struct lex *l)
 /* Consume what lex_peek returned (a whole ПС for LX_EOB); counts it. */
 static inline void lex_adv(struct lex *l)
 {
-  l->peeked = 0;
-  if (l->c != LX_EOB && l->c != LX_EOF)
+  if (l->peeked == 2) {   /* a plain byte: one byte, one column */
+    l->pos++;
+    l->col++;
     l->blen++;
-  l->pos = l->cnext;
-  l->line = l->cnline;
-  l->col = l->cncol;
+  } else {
+    if (l->c >= 0)
+      l->blen++;
+    l->pos = l->cnext;
+    l->line = l->cnline;
+    l->col = l->cncol;
+  }
+  l->peeked = 0;
 }
 /* After a lex_peek that returned a digit: consume the ASCII digits that
  * follow one another from there, as lex_peek and lex_adv would one by one;

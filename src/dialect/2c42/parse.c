@@ -83,7 +83,7 @@ static void fail(struct pstate *s, int code, unsigned col, const char *fmt, ...)
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  diag_add(s->p->d, DIAG_ERROR, code, s->p->lx.cline, col ? col : s->p->lx.ccol, s->b->number, "%s", msg);
+  diag_add(s->p->d, DIAG_ERROR, code, s->p->lx.line, col ? col : s->p->lx.ccol, s->b->number, "%s", msg);
   s->b->bad = 1;
   longjmp(s->jb, 1);
 }
@@ -146,49 +146,78 @@ static void fmt_uint(char *p, unsigned n)
   *p = 0;
 }
 
+/* number()'s errors, out of its way: its frame holds no message buffer. */
+static void __attribute__((noinline, cold, noreturn)) no_number(struct pstate *s, const char *what)
+{
+  char buf[32];
+  fail(s, S42_E_SYNTAX, 0, "expected %s, found %s", what, show(peek(s), buf));
+}
+
+static void __attribute__((noinline, cold, noreturn)) long_number(struct pstate *s, unsigned col, const char *what,
+                                                                 int nd, int maxdig)
+{
+  fail(s, S42_E_RANGE, col, "%s has %d digits; at most %d are allowed", what, nd, maxdig);
+}
+
 /* An unsigned integer of at most `maxdig` significant digits: leading
  * zeros are insignificant however many (`G001`, `№0002`, language.md
  * sec. 9), and whitespace between digits too, as everywhere outside text. */
-static long number(struct pstate *s, int maxdig, const char *what)
+HOT long number(struct pstate *s, int maxdig, const char *what)
 {
-  char buf[32];
+  struct lex *l = &s->p->lx;
   unsigned col = pcol(s);
-  if (!isdig(peek(s)))
-    fail(s, S42_E_SYNTAX, 0, "expected %s, found %s", what, show(peek(s), buf));
+  if (!isdig(lex_peek(l)))
+    no_number(s, what);
   long v = 0;
   int nd = 0;
-  while (isdig(peek(s))) {
+  do {
     /* the digits written together, straight from the bytes (what a peek
      * and an advance would do for each); a space between digits comes
-     * back here through peek */
-    const char *t;
-    size_t k = lex_digit_run(&s->p->lx, &t);
-    for (size_t i = 0; i < k; i++) {
-      int dig = t[i] - '0';
+     * back here through the peek */
+    const char *t = l->s, *end = l->s + l->n, *p = t + l->pos;
+    const char *q = p;
+    for (; q < end && isdig(*q); q++) {
+      int dig = *q - '0';
       if (nd || dig) {
         if (nd < 12)
           v = v * 10 + dig;
         nd++;
       }
     }
-  }
+    unsigned k = (unsigned)(q - p);
+    l->peeked = 0;
+    l->blen += k;
+    l->col += k;
+    l->pos = (size_t)(q - t);
+  } while (isdig(lex_peek(l)));
   if (nd > maxdig)
-    fail(s, S42_E_RANGE, col, "%s has %d digits; at most %d are allowed", what, nd, maxdig);
+    long_number(s, col, what, nd, maxdig);
   return v;
 }
 
 /* ---- expressions ---- */
 
-static struct expr *node(struct pstate *s, int kind, unsigned col)
+static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct pstate *s, unsigned col)
 {
+  fail(s, S42_E_BLOCKLEN, col, "block too long to analyse (over %d terms)", MAX_NODES);
+}
+
+HOT struct expr *node(struct pstate *s, int kind, unsigned col)
+{
+  enum { SIZE = (sizeof(struct expr) + 15) & ~(size_t)15 };   /* as arena_alloc rounds it */
   if (++s->p->nodes > MAX_NODES)
-    fail(s, S42_E_BLOCKLEN, col, "block too long to analyse (over %d terms)", MAX_NODES);
-  struct expr *e = arena_alloc(&s->p->ar, sizeof *e);
-  if (!e)
-    longjmp(s->jb, 2);   /* out of memory (arena_alloc goes there itself while a block is parsed) */
-  memset(e, 0, sizeof *e);
-  e->kind = (uint8_t)kind;
-  e->col = col;
+    too_many_nodes(s, col);
+  struct arena *a = &s->p->ar;
+  struct expr *e;
+  if (a->used + SIZE <= a->cap) {   /* arena_alloc's common case, inline */
+    e = (struct expr *)(a->buf + a->used);
+    a->used += SIZE;
+  } else {
+    e = arena_alloc(a, sizeof *e);
+    if (!e)
+      longjmp(s->jb, 2);   /* out of memory (arena_alloc goes there itself while a block is parsed) */
+  }
+  *e = (struct expr){.kind = (uint8_t)kind, .col = col};
   return e;
 }
 
@@ -210,10 +239,17 @@ static struct expr *call(struct pstate *s, int op, unsigned col, int skip)
 /* The letter after an operand's first letter, to tell SI( from S. */
 static int32_t peek2(struct pstate *s)
 {
-  struct lex_mark m = lex_mark(&s->p->lx);
+  struct lex *l = &s->p->lx;
+  int32_t c = lex_peek(l);
+  /* the next byte a plain character: it is what an advance and a peek
+   * would give (and they would note nothing) */
+  size_t next = l->peeked == 2 ? l->pos + 1 : l->cnext;
+  if (c >= 0 && next < l->n && lex_plain[(unsigned char)l->s[next]])
+    return (unsigned char)l->s[next];
+  struct lex_mark m = lex_mark(l);
   adv(s);
-  int32_t c = peek(s);
-  lex_reset(&s->p->lx, m);
+  c = peek(s);
+  lex_reset(l, m);
   return c;
 }
 
@@ -343,7 +379,7 @@ static struct expr *power(struct pstate *s)
 }
 
 /* A sign applies to the factor that follows, power included: -2%%2 = -4. */
-static struct expr *unary_inner(struct pstate *s)
+HOT struct expr *unary_inner(struct pstate *s)
 {
   int32_t c = peek(s);
   if (c == '+' || c == '-') {
@@ -351,7 +387,19 @@ static struct expr *unary_inner(struct pstate *s)
     adv(s);
     if (++s->p->depth > MAX_DEPTH)
       fail(s, S42_E_SYNTAX, col, "expression nested too deeply");
-    struct expr *u = unary(s);
+    /* unary() of what follows, without the call when it is no sign and no
+     * parenthesis: its depth check first, at the sign's column as there */
+    struct expr *u;
+    if (++s->p->depth > MAX_DEPTH)
+      fail(s, S42_E_SYNTAX, 0, "expression nested too deeply");
+    int32_t c2 = peek(s);
+    if (c2 == '+' || c2 == '-' || c2 == '(') {
+      s->p->depth--;
+      u = unary(s);   /* the same check again, passed */
+    } else {
+      u = power(s);
+      s->p->depth--;
+    }
     s->p->depth--;
     if (c == '+')
       return u;
@@ -380,14 +428,17 @@ static struct expr *unary(struct pstate *s)
   return e;
 }
 
-static struct expr *term(struct pstate *s)
+/* expr := term { (+|-) term },  term := unary { (/|%) unary }: one loop
+ * for both levels (a call less per operand), building the same left-deep
+ * trees in the same order: `top` is the + or - waiting for its right term. */
+static struct expr *expr(struct pstate *s)
 {
-  struct expr *e = unary(s);
+  struct expr *e = unary(s), *top = NULL;
   for (;;) {
     int32_t c = peek(s);
     if (c == '/' && s->p->slash_ends && s->p->paren == 0)
-      return e;   /* the slash that closes G28 /min:max/ */
-    if (c == '/' || (c == '%' && peek2(s) != '%')) {
+      ;   /* the slash that closes G28 /min:max/: the term ends */
+    else if (c == '/' || (c == '%' && peek2(s) != '%')) {
       unsigned col = pcol(s);
       adv(s);
       struct expr *n = node(s, EX_BIN, col);
@@ -395,17 +446,13 @@ static struct expr *term(struct pstate *s)
       n->a = e;
       n->b = unary(s);
       e = n;
-    } else {
-      return e;
+      continue;
     }
-  }
-}
-
-static struct expr *expr(struct pstate *s)
-{
-  struct expr *e = term(s);
-  for (;;) {
-    int32_t c = peek(s);
+    if (top) {   /* the term is whole: the right operand of the + or - */
+      top->b = e;
+      e = top;
+      top = NULL;
+    }
     if (c != '+' && c != '-')
       return e;
     unsigned col = pcol(s);
@@ -413,14 +460,14 @@ static struct expr *expr(struct pstate *s)
     struct expr *n = node(s, EX_BIN, col);
     n->op = c == '+' ? OP_ADD : OP_SUB;
     n->a = e;
-    n->b = term(s);
-    e = n;
+    top = n;
+    e = unary(s);
   }
 }
 
 /* A word's value: its sign (required when `sign` is set) starts the first
  * term: X-R3+100 is (-R3)+100. */
-static struct expr *word_value(struct pstate *s, const char *word, int sign)
+HOT struct expr *word_value(struct pstate *s, const char *word, int sign)
 {
   char buf[32];
   int32_t c = peek(s);
@@ -697,7 +744,7 @@ static int takes_slash(const struct kp_word *w)
 
 /* ---- words ---- */
 
-static struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
+HOT struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
 {
   struct block *b = s->b;
   if (b->nw >= MAX_WORDS)
@@ -710,7 +757,7 @@ static struct word *new_word(struct pstate *s, int kind, char letter, unsigned c
   return w;
 }
 
-static int has_word(const struct block *b, int kind, char letter)
+HOT int has_word(const struct block *b, int kind, char letter)
 {
   for (int i = 0; i < b->nw; i++)
     if (b->w[i].kind == kind && b->w[i].letter == letter)
@@ -718,7 +765,7 @@ static int has_word(const struct block *b, int kind, char letter)
   return 0;
 }
 
-static void once(struct pstate *s, int kind, char letter, const char *name, unsigned col)
+HOT void once(struct pstate *s, int kind, char letter, const char *name, unsigned col)
 {
   if (has_word(s->b, kind, letter))
     fail(s, S42_E_SYNTAX, col, "%s appears twice in the block", name);
@@ -740,7 +787,7 @@ static void word(struct pstate *s)
     if (!valid && n < (c == 'G' ? 64 : 32))   /* a function a plugin adds */
       valid = plug_find(s->p->plugins, (char)c, (int)n, NULL) >= 0;
     if (!valid) {
-      diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, s->p->lx.cline, col, b->number,
+      diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, s->p->lx.line, col, b->number,
                "%c%02ld is not a function of the 2С42 or of a plugin found", (char)c, n);
       b->bad = 1;
       return;
@@ -960,7 +1007,7 @@ int parse_block(struct parser *p, struct block *b)
   if (c == LX_EOF)
     return 0;
   l->blen = 0;
-  b->line = l->cline;
+  b->line = l->line;
   b->col = l->ccol;
   b->badnum = 0;
   p->ar.oom = &s.jb;

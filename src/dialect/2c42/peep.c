@@ -25,28 +25,36 @@
 
 #define XMAX (1u << 17)   /* the x of a|x<<7 */
 
+/* What each opcode is to the pass, one lookup (the pass looks at every
+ * instruction of every block): ADDI..DIVR by arithmetic (0 ADD .. 3 DIV)
+ * and operand (0 I, 1 K, 2 R) as 1 + kind * 4 + row; ADD..DIV as 1 + row. */
+#define AX(op, kind, row) [op] = 1 + (kind) * 4 + (row)
+static const uint8_t arith_x_tab[256] = {
+  AX(OP_ADDI, 0, 0), AX(OP_SUBI, 0, 1), AX(OP_MULI, 0, 2), AX(OP_DIVI, 0, 3),
+  AX(OP_ADDK, 1, 0), AX(OP_SUBK, 1, 1), AX(OP_MULK, 1, 2), AX(OP_DIVK, 1, 3),
+  AX(OP_ADDR, 2, 0), AX(OP_SUBR, 2, 1), AX(OP_MULR, 2, 2), AX(OP_DIVR, 2, 3),
+};
+static const uint8_t arith_stack_tab[256] = {[OP_ADD] = 1, [OP_SUB] = 2, [OP_MUL] = 3, [OP_DIV] = 4};
+
 /* The column of the ops ADDI..DIVR: which arithmetic (0 ADD .. 3 DIV) and
  * which operand (0 I, 1 K, 2 R), or -1. */
-static int arith_x(unsigned op, int *row, int *kind)
+static inline int arith_x(unsigned op, int *row, int *kind)
 {
-  static const uint8_t tab[12] = {OP_ADDI, OP_SUBI, OP_MULI, OP_DIVI, OP_ADDK, OP_SUBK,
-                                  OP_MULK, OP_DIVK, OP_ADDR, OP_SUBR, OP_MULR, OP_DIVR};
-  for (int i = 0; i < 12; i++)
-    if (tab[i] == op) {
-      *row = i % 4;
-      *kind = i / 4;
-      return 0;
-    }
-  return -1;
+  unsigned t = arith_x_tab[op & 0xff];
+  if (!t)
+    return -1;
+  *row = (int)(t - 1) % 4;
+  *kind = (int)(t - 1) / 4;
+  return 0;
 }
 
-static int arith_stack(unsigned op)
+static inline int arith_stack(unsigned op)
 {
-  return op == OP_ADD ? 0 : op == OP_SUB ? 1 : op == OP_MUL ? 2 : op == OP_DIV ? 3 : -1;
+  return (int)arith_stack_tab[op & 0xff] - 1;
 }
 
 /* The function-and-store form of a function, 0 none. */
-static unsigned trig_store(unsigned op)
+static inline unsigned trig_store(unsigned op)
 {
   switch (op) {
   case OP_SIN: return OP_SINP;
@@ -90,9 +98,8 @@ int peep_block(struct program *p, size_t from)
   /* nothing to fuse in most blocks: look before writing */
   while (i + 1 < n) {
     unsigned op0 = INS_OP(code[i]), op1 = INS_OP(code[i + 1]);
-    int row, kind;
-    if ((op0 == OP_REG && (arith_x(op1, &row, &kind) == 0 || op1 == OP_CMPCK || op1 == OP_SIN || op1 == OP_COS)) ||
-        (op1 == OP_SETP && (arith_x(op0, &row, &kind) == 0 || arith_stack(op0) >= 0 || trig_store(op0))))
+    if ((op0 == OP_REG && (arith_x_tab[op1] || op1 == OP_CMPCK || op1 == OP_SIN || op1 == OP_COS)) ||
+        (op1 == OP_SETP && (arith_x_tab[op0] || arith_stack_tab[op0] || trig_store(op0))))
       break;
     i++;
   }

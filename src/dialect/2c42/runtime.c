@@ -27,7 +27,7 @@ static int window_block(const struct kp_attr *at)
 /* The rest of a block after its machine work and waits: M16, the row. */
 static void finish_block(struct session *s)
 {
-  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
+  const struct kp_more *at = kp_more(s->p, kp_attr(s->p, s->vm.cur));
   const struct kp_ext *x = s->p->ext;
   for (uint32_t i = 0; i < at->nm16; i++) {
     const struct m16_item *it = &x->m16[at->m16 + i];
@@ -46,7 +46,7 @@ static void finish_block(struct session *s)
  * show why not and ask again.  Returns the session event or -1. */
 static int g28_check(struct session *s)
 {
-  const struct kp_attr *at = kp_attr(s->p, s->vm.cur);
+  const struct kp_more *at = kp_more(s->p, kp_attr(s->p, s->vm.cur));
   double v = fabs(s->answer);
   int msg = -1;
   if (v < s->vm.w[SL_MIN])
@@ -67,22 +67,23 @@ static int g28_check(struct session *s)
 /* The dialog and display functions of the block (language.md sec. 13). */
 static int dialog(struct session *s, const struct kp_attr *at)
 {
+  const struct kp_more *mo = kp_more(s->p, at);
   if (BIT(at->m, 29))
     s->scr.fixed = -1;
   if (BIT(at->m, 28))
     s->scr.at_fixed = 1;
   if (BIT(at->g, 33))
-    screen_center(&s->scr, kp_str(s->p, at->g33));
+    screen_center(&s->scr, kp_str(s->p, mo->g33));
   if (BIT(at->g, 29)) {
     const struct kp_ext *x = s->p->ext;
     if (!s->m15_seen)
       screen_p3_clear(&s->scr);
-    for (uint32_t i = 0; i < at->ng29; i++)
-      screen_p3_add(&s->scr, kp_str(s->p, x->lines[at->g29 + i]));
+    for (uint32_t i = 0; i < mo->ng29; i++)
+      screen_p3_add(&s->scr, kp_str(s->p, x->lines[mo->g29 + i]));
     s->scr.p3 = 1;
   }
   if (BIT(at->g, 27)) {
-    screen_prompt(&s->scr, kp_str(s->p, at->g27), at->g27form == '-');
+    screen_prompt(&s->scr, kp_str(s->p, mo->g27), mo->g27form == '-');
     if (BIT(at->m, 27))
       s->scr.fixed = s->scr.last;
     s->wait = W_ANSWER;
@@ -255,13 +256,14 @@ static int after_motion(struct session *s)
     s->directive = 0;
     screen_clear_directive(&s->scr);
   }
-  if (at->m18) {
-    s->directive = at->m18;
-    screen_set_directive(&s->scr, kp_str(s->p, at->m18));
+  const uint32_t m18 = kp_more(s->p, at)->m18;
+  if (m18) {
+    s->directive = m18;
+    screen_set_directive(&s->scr, kp_str(s->p, m18));
   }
   if (at->motion == MO_G20) {
     s->scr.mode = SCR_MANUAL;
-    s->wait = at->m18 ? W_PS : W_PUSK;
+    s->wait = m18 ? W_PS : W_PUSK;
     return SE_WAIT;
   }
   if (at->motion == MO_M19) {
@@ -300,7 +302,8 @@ static int held(const struct session *s)
  * stores more than one that does not come to the host (issue 18). */
 static inline int lean_block(const struct session *s, const struct kp_attr *at)
 {
-  return at->motion == MO_NONE && !(at->m & ~LEAN_M) && !(at->plugins | s->every) && !at->nm16 && !at->m18;
+  return at->motion == MO_NONE && !(at->m & ~LEAN_M) && !(at->plugins | s->every) &&
+         (!at->more || (!kp_more(s->p, at)->nm16 && !kp_more(s->p, at)->m18));
 }
 
 static int lean_rest(struct session *s, const struct kp_attr *at)
@@ -395,6 +398,7 @@ void kp_restore_dialog(struct session *s)
     upto = 0;   /* the state brought the buffer itself */
   for (size_t b = 0; b < upto && b < p->nblocks; b++) {
     const struct kp_attr *at = kp_attr(p, b);
+    const struct kp_more *mo = kp_more(p, at);
     if (p->blocks[b].unit != 0)
       continue;
     if (BIT(at->m, 29))
@@ -402,18 +406,18 @@ void kp_restore_dialog(struct session *s)
     if (BIT(at->m, 28))
       sc->at_fixed = 1;
     if (BIT(at->g, 33))
-      screen_center(sc, kp_str(p, at->g33));
+      screen_center(sc, kp_str(p, mo->g33));
     if (BIT(at->g, 27)) {
       sc->editing = 0;   /* a G27 without its G28: the number it took is not known */
-      screen_prompt(sc, kp_str(p, at->g27), at->g27form == '-');
+      screen_prompt(sc, kp_str(p, mo->g27), mo->g27form == '-');
       if (BIT(at->m, 27))
         sc->fixed = sc->last;
       open = 1;
     } else if (BIT(at->m, 27)) {
       sc->fixed = sc->last >= 0 ? sc->last : sc->nbuf;
     }
-    if (BIT(at->g, 28) && open && at->g28reg >= 0) {
-      screen_field_type(sc, llround(s->vm.reg[at->g28reg]));
+    if (BIT(at->g, 28) && open && mo->g28reg >= 0) {
+      screen_field_type(sc, llround(s->vm.reg[mo->g28reg]));
       screen_field_close(sc);
       open = 0;
     }

@@ -340,7 +340,7 @@ static void check_payload(struct chk *c, const struct state_payload *pl)
     /* an M18 of this program, shown as screen_set_directive keeps it */
     int found = 0;
     for (size_t k = 0; k < p->nblocks && !found; k++)
-      found = kp_attr(p, k)->m18 == pl->directive;
+      found = kp_more(p, kp_attr(p, k))->m18 == pl->directive;
     char want[sizeof pl->dirtext];
     if (found)
       snprintf(want, sizeof want, "%s", kp_str(p, pl->directive));
