@@ -67,16 +67,54 @@ struct search_out {
   std::vector<std::vector<double>> shot_faces;   // per shot, aligned with psi (camera deg)
 };
 
-cv::Mat unwrap(const cv::Mat &img, cv::Point2d c, const band &b)
-{
-  cv::Mat dst;
-  // column j is radius j * rmax / rbins; row i is angle 360 * i / (abins/2)
-  cv::warpPolar(img, dst, cv::Size(b.rbins, b.abins / 2), c, (double)b.rmax,
-                cv::INTER_LINEAR | cv::WARP_POLAR_LINEAR | cv::WARP_FILL_OUTLIERS);
-  return dst;
-}
-
 double col_of(const band &b, double r) { return r * b.rbins / b.rmax; }
+
+// The flute depth's circle: the first column, from 0.2 tip on, of the polar
+// unwrap (cv::warpPolar(img, p, Size(rbins, abins / 2), c, rmax,
+// INTER_LINEAR | WARP_POLAR_LINEAR | WARP_FILL_OUTLIERS): column j is
+// radius j * rmax / rbins, row i angle 360 * i / (abins / 2)) where under
+// 98 % of the angles are brighter than t; 0 when there is none before the
+// tip.  The unwrap is made a block of columns at a time and only as far as
+// the answer: warpPolar's own map (its float centre, radii and angles, the
+// same arithmetic) through cv::remap, so every value is warpPolar's.
+double core_radius(const cv::Mat &img, cv::Point2d c, const band &b, double t)
+{
+  const int rows = b.abins / 2, W = 16;
+  const double kangle = 2 * kPi / rows, kmag = (double)b.rmax / b.rbins;
+  const cv::Point2f cf(c);
+  static thread_local cv::Mat mx, my, p;
+  static thread_local std::vector<double> cs, sn;
+  cs.resize(rows);
+  sn.resize(rows);
+  for (int i = 0; i < rows; i++) {
+    cs[i] = std::cos(kangle * i);
+    sn[i] = std::sin(kangle * i);
+  }
+  for (int c0 = (int)col_of(b, 0.2 * b.tip); c0 < b.rbins && c0 < col_of(b, b.tip); c0 += W) {
+    const int w = std::min(W, b.rbins - c0);
+    float rho[W];
+    for (int j = 0; j < w; j++)
+      rho[j] = (float)((c0 + j) * kmag);
+    mx.create(rows, w, CV_32F);
+    my.create(rows, w, CV_32F);
+    for (int i = 0; i < rows; i++) {
+      float *px = mx.ptr<float>(i), *py = my.ptr<float>(i);
+      for (int j = 0; j < w; j++) {
+        px[j] = (float)(rho[j] * cs[i] + cf.x);
+        py[j] = (float)(rho[j] * sn[i] + cf.y);
+      }
+    }
+    cv::remap(img, p, mx, my, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+    for (int j = 0; j < w && c0 + j < col_of(b, b.tip); j++) {
+      int on = 0;
+      for (int i = 0; i < rows; i++)
+        on += p.at<float>(i, j) > t;
+      if (on < 0.98 * rows)
+        return (c0 + j) * (double)b.rmax / b.rbins;
+    }
+  }
+  return 0;
+}
 
 // Cyclic smoothing of a signal with a Gaussian of sigma bins.
 std::vector<double> smooth(const std::vector<double> &s, double sigma)
@@ -86,11 +124,17 @@ std::vector<double> smooth(const std::vector<double> &s, double sigma)
   double sum = 0;
   for (int j = -k; j <= k; j++)
     sum += w[j + k] = std::exp(-0.5 * j * j / (sigma * sigma));
+  // the signal with k wrapped samples each side: no index arithmetic per
+  // tap (the sums are the same, term for term)
+  std::vector<double> ext(n + 2 * k);
+  for (int i = -k; i < n + k; i++)
+    ext[i + k] = s[((i % n) + n) % n];
   std::vector<double> out(n);
   for (int i = 0; i < n; i++) {
+    const double *e = &ext[i];
     double a = 0;
-    for (int j = -k; j <= k; j++)
-      a += w[j + k] * s[((i + j) % n + n) % n];
+    for (int j = 0; j <= 2 * k; j++)
+      a += w[j] * e[j];
     out[i] = a / sum;
   }
   return out;
@@ -420,16 +464,51 @@ void measure_shot(shot &s, cv::Point2d c, const band &b, bool precise)
   s.ok = true;
 }
 
+// The silhouette's centroid as cv::moments(bin, true) gives it, bin the
+// image cv::threshold(img8, bin, thresh * 255, 255, THRESH_BINARY) makes
+// (pixels above the threshold rounded down), without either image: per
+// 32 x 32 tile the pixel count and coordinate sums (integers, exact), then
+// moments()'s own arithmetic, the 1/255 of its binary mode and the tiles'
+// order included, so that the sums are the same to the last bit.
+void centroid(const cv::Mat &img8, double thresh, double &m00, double &m10, double &m01)
+{
+  const double ft = std::floor(thresh * 255.0);
+  const int level = ft < 0 ? -1 : ft > 255 ? 255 : (int)ft;
+  const int H = img8.rows, W = img8.cols, T = 32;
+  m00 = m10 = m01 = 0;
+  for (int ty = 0; ty < H; ty += T)
+    for (int tx = 0; tx < W; tx += T) {
+      const int tile_h = std::min(T, H - ty), tile_w = std::min(T, W - tx);
+      int cnt = 0, sx = 0, sy = 0;        // in the tile's coordinates
+      for (int yy = 0; yy < tile_h; yy++) {
+        const unsigned char *p = img8.ptr(ty + yy) + tx;
+        int rc = 0;
+        for (int xx = 0; xx < tile_w; xx++) {
+          const int on = p[xx] > level;
+          rc += on;
+          sx += on * xx;
+        }
+        cnt += rc;
+        sy += rc * yy;
+      }
+      const double s = 1. / 255;
+      const double mom0 = (double)(255 * cnt) * s, mom1 = (double)(255 * sx) * s, mom2 = (double)(255 * sy) * s;
+      const double xm = tx * mom0, ym = ty * mom0;
+      m00 += mom0;
+      m10 += mom1 + xm;
+      m01 += mom2 + ym;
+    }
+}
+
 // The rotation axis from the silhouettes' centroids: a centroid turns about
 // the axis with A, m_i = c + Rot(A_i) v; least squares for c and v.
 cv::Point2d centroid_axis(const std::vector<shot> &shots)
 {
   cv::Mat M((int)shots.size() * 2, 4, CV_64F), y((int)shots.size() * 2, 1, CV_64F);
   for (size_t i = 0; i < shots.size(); i++) {
-    cv::Mat bin;
-    cv::threshold(shots[i].img8, bin, shots[i].thresh * 255.0, 255, cv::THRESH_BINARY);
-    cv::Moments mo = cv::moments(bin, true);
-    if (mo.m00 <= 0)
+    double m00, m10, m01;
+    centroid(shots[i].img8, shots[i].thresh, m00, m10, m01);
+    if (m00 <= 0)
       throw ts_error{TS_E_TEETH, "no teeth found: the image shows no tool"};
     double a = shots[i].a * kPi / 180, ca = std::cos(a), sa = std::sin(a);
     int r = (int)i * 2;
@@ -438,8 +517,8 @@ cv::Point2d centroid_axis(const std::vector<shot> &shots)
       M.at<double>(r, k) = row0[k];
       M.at<double>(r + 1, k) = row1[k];
     }
-    y.at<double>(r) = mo.m10 / mo.m00;
-    y.at<double>(r + 1) = mo.m01 / mo.m00;
+    y.at<double>(r) = m10 / m00;
+    y.at<double>(r + 1) = m01 / m00;
   }
   cv::Mat x;
   cv::solve(M, y, x, cv::DECOMP_SVD);
@@ -494,17 +573,20 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
 {
   const int N = m->image, K = TS_SHOTS;
   std::vector<shot> shots(K);
-  std::vector<unsigned char> buf((size_t)N * N);
+  // the images live on from search to search (fresh pages cost more than
+  // the arithmetic on them); shots[i] shares cache8[i] and cachef[i]
+  static thread_local cv::Mat cache8[K], cachef[K], otsu;
   char err[256];
   for (int i = 0; i < K; i++) {
     ts_view v{x, a0 + 360.0 * i / K, mount, section, shot0 + (uint32_t)i};
-    if (ts_render(m, &v, buf.data(), nullptr, err, sizeof err) != 0)
+    cache8[i].create(N, N, CV_8U);
+    if (ts_render(m, &v, cache8[i].ptr(), nullptr, err, sizeof err) != 0)
       throw ts_error{TS_E_INTERNAL, err};
-    shots[i].img8 = cv::Mat(N, N, CV_8U, buf.data()).clone();
-    shots[i].img8.convertTo(shots[i].img, CV_32F, 1.0 / 255);
+    shots[i].img8 = cache8[i];
+    shots[i].img8.convertTo(cachef[i], CV_32F, 1.0 / 255);
+    shots[i].img = cachef[i];
     shots[i].a = v.a_deg;
-    cv::Mat tmp;
-    shots[i].thresh = cv::threshold(shots[i].img8, tmp, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU) / 255.0;
+    shots[i].thresh = cv::threshold(shots[i].img8, otsu, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU) / 255.0;
   }
 
   // 1. the axis, roughly, from the centroids
@@ -520,18 +602,7 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
   b.rbins = b.rmax;
   b.abins = (int)std::ceil(2 * kPi * b.tip * 1.25);
   {
-    cv::Mat p = unwrap(shots[0].img, c, b);
-    double t = shots[0].thresh;
-    b.core = 0;
-    for (int col = (int)col_of(b, 0.2 * b.tip); col < p.cols && col < col_of(b, b.tip); col++) {
-      int on = 0;
-      for (int i = 0; i < p.rows; i++)
-        on += p.at<float>(i, col) > t;
-      if (on < 0.98 * p.rows) {
-        b.core = col * (double)b.rmax / b.rbins;
-        break;
-      }
-    }
+    b.core = core_radius(shots[0].img, c, b, shots[0].thresh);
     double h = b.tip - b.core;
     if (b.core <= 0 || h < 2.5)
       throw ts_error{TS_E_TEETH, "no teeth found: no flutes in the image"};

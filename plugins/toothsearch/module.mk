@@ -31,13 +31,13 @@ $(TS_C_OBJS): MOD_CPPFLAGS := -I$(TS_DIR) -fPIC
 $(BUILD)/$(TS_DIR)/%.o: $(TS_DIR)/%.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(CPPFLAGS) -I$(TS_DIR) $(OPENCV_CFLAGS) $(TS_CXXWARN) $(CFLAGS) $(TS_CXXVIS) $(TS_CXXVEC) -fPIC -c -o $@ $<
-# the renderer's per-pixel loop (illumination, noise, clamp, 8 bits) is
-# vectorized by GCC only if a float compare may be if-converted (no
-# floating-point traps: s42 never enables them) and the vector loop's cost
-# is weighed (the dynamic model; -O2's very cheap one refuses a loop with a
-# remainder).  Neither option changes a value: no reassociation, no
-# contraction.
-$(BUILD)/$(TS_DIR)/render.o: TS_CXXVEC := -ftree-vectorize -fno-trapping-math -fvect-cost-model=dynamic
+# the renderer's per-pixel loop (illumination, noise, clamp, 8 bits) and
+# the measurement's silhouette sums are vectorized by GCC only if a float
+# compare may be if-converted (no floating-point traps: s42 never enables
+# them) and the vector loop's cost is weighed (the dynamic model; -O2's
+# very cheap one refuses a loop with a remainder).  Neither option changes
+# a value: no reassociation, no contraction.
+$(BUILD)/$(TS_DIR)/render.o $(BUILD)/$(TS_DIR)/measure.o: TS_CXXVEC := -ftree-vectorize -fno-trapping-math -fvect-cost-model=dynamic
 
 $(TS_LIB): $(TS_C_OBJS) $(TS_CXX_OBJS)
 	@mkdir -p $(@D)
