@@ -35,9 +35,11 @@ $(BUILD)/$(TS_DIR)/%.o: $(TS_DIR)/%.cpp
 # the measurement's silhouette sums are vectorized by GCC only if a float
 # compare may be if-converted (no floating-point traps: s42 never enables
 # them) and the vector loop's cost is weighed (the dynamic model; -O2's
-# very cheap one refuses a loop with a remainder).  Neither option changes
-# a value: no reassociation, no contraction.
-$(BUILD)/$(TS_DIR)/render.o $(BUILD)/$(TS_DIR)/measure.o: TS_CXXVEC := -ftree-vectorize -fno-trapping-math -fvect-cost-model=dynamic
+# very cheap one refuses a loop with a remainder); and lrint, the sampler's
+# rounding, is one instruction only when it need not set errno (nothing
+# here reads errno after a math function).  None of these changes a value:
+# no reassociation, no contraction.
+$(BUILD)/$(TS_DIR)/render.o $(BUILD)/$(TS_DIR)/measure.o: TS_CXXVEC := -ftree-vectorize -fno-trapping-math -fno-math-errno -fvect-cost-model=dynamic
 
 $(TS_LIB): $(TS_C_OBJS) $(TS_CXX_OBJS)
 	@mkdir -p $(@D)
