@@ -46,7 +46,6 @@ struct ts_error {
 
 struct shot {
   cv::Mat img8;               // the camera image
-  cv::Mat img;                // the same as float 0..1
   double a;                   // A when it was taken, degrees
   double thresh;              // Otsu threshold (0..1)
   std::vector<double> faces;  // camera angles of the faces, degrees, sorted
@@ -71,20 +70,35 @@ struct search_out {
 
 double col_of(const band &b, double r) { return r * b.rbins / b.rmax; }
 
-// A float image sampled at (mx, my) as cv::remap(img, dst, mapx, mapy,
-// INTER_LINEAR, border) samples it from float maps (border REPLICATE or
-// CONSTANT 0), for one point without the maps: the position rounded to
-// 1/32 pixel (INTER_TAB_SIZE, half to even), the weights of its 32 x 32
-// table (products of multiples of 1/32, exact in float), the four products
-// summed in OpenCV's order, and its border rule.  Equal to cv::remap on 6.1
+// The camera image as the float image img8.convertTo(img, CV_32F, 1 / 255.)
+// would be (each level's value taken from convertTo itself), sampled at
+// (mx, my) as cv::remap(img, dst, mapx, mapy, INTER_LINEAR, border)
+// samples it from float maps (border REPLICATE or CONSTANT 0), for one
+// point without the maps or the float image: the position rounded to 1/32
+// pixel (INTER_TAB_SIZE, half to even), the weights of its 32 x 32 table
+// (products of multiples of 1/32, exact in float), the four products summed
+// in OpenCV's order, and its border rule.  Equal to cv::remap on 6.1
 // million random points, borders included.
 struct sampler {
-  const float *data;
-  size_t step;             // floats a row
+  const unsigned char *data;
+  size_t step;             // bytes a row
   int W, H, border;
+  const float *level;      // the float of each 8-bit level
 
-  sampler(const cv::Mat &img, int border_)
-    : data(img.ptr<float>()), step(img.step1()), W(img.cols), H(img.rows), border(border_) {}
+  sampler(const cv::Mat &img8, int border_)
+    : data(img8.ptr()), step(img8.step), W(img8.cols), H(img8.rows), border(border_), level(levels()) {}
+
+  static const float *levels()
+  {
+    static const cv::Mat lut = [] {
+      cv::Mat l8(1, 256, CV_8U), l;
+      for (int v = 0; v < 256; v++)
+        l8.at<unsigned char>(v) = (unsigned char)v;
+      l8.convertTo(l, CV_32F, 1.0 / 255);
+      return l;
+    }();
+    return lut.ptr<float>();
+  }
 
   // the weights of a position's 1/32 fractions (fy, fx): [fy * 32 + fx]
   static constexpr std::array<std::array<float, 4>, 32 * 32> weights = [] {
@@ -105,8 +119,8 @@ struct sampler {
     const float *w = weights[(Y & 31) * 32 + (X & 31)].data();
     const int sx = X >> 5, sy = Y >> 5;
     if ((unsigned)sx < (unsigned)(W - 1) && (unsigned)sy < (unsigned)(H - 1)) {
-      const float *s0 = data + sy * step + sx, *s1 = s0 + step;
-      return s0[0] * w[0] + s0[1] * w[1] + s1[0] * w[2] + s1[1] * w[3];
+      const unsigned char *s0 = data + sy * step + sx, *s1 = s0 + step;
+      return level[s0[0]] * w[0] + level[s0[1]] * w[1] + level[s1[0]] * w[2] + level[s1[1]] * w[3];
     }
     return edge(std::clamp(sx, -32768, 32767), std::clamp(sy, -32768, 32767), w);   // remap's shorts
   }
@@ -117,8 +131,8 @@ struct sampler {
       return 0.0f;
     auto at = [&](int x, int y) {
       if (border == cv::BORDER_REPLICATE)
-        return data[std::clamp(y, 0, H - 1) * step + std::clamp(x, 0, W - 1)];
-      return x >= 0 && x < W && y >= 0 && y < H ? data[y * step + x] : 0.0f;
+        return level[data[std::clamp(y, 0, H - 1) * step + std::clamp(x, 0, W - 1)]];
+      return x >= 0 && x < W && y >= 0 && y < H ? level[data[y * step + x]] : 0.0f;
     };
     return at(sx, sy) * w[0] + at(sx + 1, sy) * w[1] + at(sx, sy + 1) * w[2] + at(sx + 1, sy + 1) * w[3];
   }
@@ -133,7 +147,7 @@ struct sampler {
 // answer: warpPolar's own map (its float centre, radii and angles, the same
 // arithmetic) sampled as its cv::remap samples it (sampler), so every
 // value is warpPolar's.
-double core_radius(const cv::Mat &img, cv::Point2d c, const band &b, double t)
+double core_radius(const cv::Mat &img8, cv::Point2d c, const band &b, double t)
 {
   const int rows = b.abins / 2;
   const double kangle = 2 * kPi / rows, kmag = (double)b.rmax / b.rbins;
@@ -145,7 +159,7 @@ double core_radius(const cv::Mat &img, cv::Point2d c, const band &b, double t)
     cs[i] = std::cos(kangle * i);
     sn[i] = std::sin(kangle * i);
   }
-  const sampler at(img, cv::BORDER_CONSTANT);
+  const sampler at(img8, cv::BORDER_CONSTANT);
   for (int col = (int)col_of(b, 0.2 * b.tip); col < b.rbins && col < col_of(b, b.tip); col++) {
     const float rho = (float)(col * kmag);
     int on = 0;
@@ -225,20 +239,23 @@ bool fit_edge(const std::vector<double> &y, double &x0, double &w, bool fixw)
     p[3] += y[j] / 3;
     p[2] += y[n - 1 - j] / 3;
   }
-  auto cost = [&](const double *q) {
+  // the cost keeps its Q values: the next Jacobian, at the same p when the
+  // step is taken, reads them instead of calling erfc again
+  std::vector<double> qp(n), qq(n);
+  auto cost = [&](const double *q, std::vector<double> &qs) {
     double c = 0;
     for (int j = 0; j < n; j++) {
-      double z = (j - q[0]) / q[1], Q = 0.5 * std::erfc(z / std::sqrt(2.0));
+      double z = (j - q[0]) / q[1], Q = qs[j] = 0.5 * std::erfc(z / std::sqrt(2.0));
       double r = y[j] - (q[2] + (q[3] - q[2]) * Q);
       c += r * r;
     }
     return c;
   };
-  double lambda = 1e-3, c0 = cost(p);
+  double lambda = 1e-3, c0 = cost(p, qp);
   for (int it = 0; it < 30; it++) {
     double A[4][4] = {{0}}, g[4] = {0};
     for (int j = 0; j < n; j++) {
-      double z = (j - p[0]) / p[1], Q = 0.5 * std::erfc(z / std::sqrt(2.0));
+      double z = (j - p[0]) / p[1], Q = qp[j];
       double ph = std::exp(-0.5 * z * z) / std::sqrt(2 * kPi), d = p[3] - p[2];
       double J[4] = {d * ph / p[1], fixw ? 0.0 : d * ph * z / p[1], 1 - Q, Q};
       double r = y[j] - (p[2] + d * Q);
@@ -264,10 +281,11 @@ bool fit_edge(const std::vector<double> &y, double &x0, double &w, bool fixw)
       if (!solve4(M, rhs, dx))
         return false;
       double q[4] = {p[0] + dx[0], std::clamp(p[1] + dx[1], 0.2, 0.5 * n), p[2] + dx[2], p[3] + dx[3]};
-      double c1 = cost(q);
+      double c1 = cost(q, qq);
       if (c1 <= c0) {
         bool done = std::fabs(q[0] - p[0]) < 1e-5;
         std::copy(q, q + 4, p);
+        qp.swap(qq);
         c0 = c1;
         lambda = std::max(lambda * 0.3, 1e-7);
         better = true;
@@ -440,7 +458,7 @@ std::vector<double> average(const std::vector<double> &ref, const std::vector<st
 // (the background's).  warpPolar would unwrap every radius from 0 to rmax;
 // the faces need a dozen circles, so this is the same bilinear unwrap
 // (cv::remap's: sampler) on those radii alone (some forty times less work).
-cv::Mat unwrap_circles(const cv::Mat &img, cv::Point2d c, const band &b, std::vector<double> &radii)
+cv::Mat unwrap_circles(const cv::Mat &img8, cv::Point2d c, const band &b, std::vector<double> &radii)
 {
   radii = b.radii;
   for (int k = 0; k < 5; k++)
@@ -458,7 +476,7 @@ cv::Mat unwrap_circles(const cv::Mat &img, cv::Point2d c, const band &b, std::ve
     }
   }
   cv::Mat out((int)radii.size(), n, CV_32F);
-  const sampler at(img, cv::BORDER_REPLICATE);
+  const sampler at(img8, cv::BORDER_REPLICATE);
   for (int k = 0; k < (int)radii.size(); k++) {
     float *o = out.ptr<float>(k);
     for (int i = 0; i < n; i++)
@@ -471,7 +489,7 @@ cv::Mat unwrap_circles(const cv::Mat &img, cv::Point2d c, const band &b, std::ve
 void measure_shot(shot &s, cv::Point2d c, const band &b, bool precise)
 {
   std::vector<double> radii;
-  cv::Mat p = unwrap_circles(s.img, c, b, radii);
+  cv::Mat p = unwrap_circles(s.img8, c, b, radii);
   const int n = b.abins, nb = (int)b.radii.size();
   std::vector<double> hi(n, 0.0), lo(n, 0.0), mid(n), hyst(n);
   for (int i = 0; i < n; i++) {
@@ -661,8 +679,8 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
   const int N = m->image, K = TS_SHOTS;
   std::vector<shot> shots(K);
   // the images live on from search to search (fresh pages cost more than
-  // the arithmetic on them); shots[i] shares cache8[i] and cachef[i]
-  static thread_local cv::Mat cache8[K], cachef[K];
+  // the arithmetic on them); shots[i] shares cache8[i]
+  static thread_local cv::Mat cache8[K];
   char err[256];
   for (int i = 0; i < K; i++) {
     ts_view v{x, a0 + 360.0 * i / K, mount, section, shot0 + (uint32_t)i};
@@ -670,8 +688,6 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
     if (ts_render(m, &v, cache8[i].ptr(), nullptr, err, sizeof err) != 0)
       throw ts_error{TS_E_INTERNAL, err};
     shots[i].img8 = cache8[i];
-    shots[i].img8.convertTo(cachef[i], CV_32F, 1.0 / 255);
-    shots[i].img = cachef[i];
     shots[i].a = v.a_deg;
     shots[i].thresh = otsu(shots[i].img8) / 255.0;
   }
@@ -689,7 +705,7 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
   b.rbins = b.rmax;
   b.abins = (int)std::ceil(2 * kPi * b.tip * 1.25);
   {
-    b.core = core_radius(shots[0].img, c, b, shots[0].thresh);
+    b.core = core_radius(shots[0].img8, c, b, shots[0].thresh);
     double h = b.tip - b.core;
     if (b.core <= 0 || h < 2.5)
       throw ts_error{TS_E_TEETH, "no teeth found: no flutes in the image"};
