@@ -195,14 +195,15 @@ struct outline {
 
   struct sure {
     float value;           // 0 or 1; -1: cover_exact decides
-    double slack;          // px of inside
-    int k;                 // the sector it holds in (fl[k - 1]'s), -1 any
-    double from, to;       // the sector's edges, degrees
+    double any;            // slack from R - r alone: slope 1, any sector
+    double face;           // slack from R - r and sface: slope 1 in the sector
+    double all;            // slack with sback too: slope f.lip in the sector
+    int k;                 // the sector (fl[k - 1]'s flute, fl.back()'s for 0)
   };
 
   // the sector of angle phi: k edges <= phi, the flute fl[k - 1] (or the
-  // last one), between from and to; false within kAngleErr of an edge
-  bool sector(double phi, int &k, double &from, double &to) const
+  // last one) from the edge `from' on; false within kAngleErr of an edge
+  bool sector(double phi, int &k, double &from) const
   {
     const int n = (int)fl.size();
     if (!(phi >= kAngleErr && phi <= 360.0 - kAngleErr))
@@ -211,24 +212,26 @@ struct outline {
     while (k < n && fl[k].edge <= phi)
       k++;
     from = k > 0 ? fl[k - 1].edge : fl[n - 1].edge - 360.0;
-    to = k < n ? fl[k].edge : fl[0].edge + 360.0;
+    const double to = k < n ? fl[k].edge : fl[0].edge + 360.0;
     return phi - from >= kAngleErr && to - phi >= kAngleErr;
   }
 
   sure classify(double dx, double dy, double r2) const
   {
+    const double none = -HUGE_VAL;
     const double r = std::sqrt(r2), outside = R - r;
     if (outside <= -0.5)                 // beyond the tip: 0 whatever the flutes
-      return {0.0f, -0.5 - outside, -1, 0, 0};
+      return {0.0f, -0.5 - outside, none, none, -1};
     int k;
-    double from, to;
+    double from;
     const double phi = fast_deg(dx, dy);
-    if (!sector(phi, k, from, to))
-      return {-1.0f, 0, -1, 0, 0};
+    if (!sector(phi, k, from))
+      return {-1.0f, none, none, none, -1};
     const flute &f = k > 0 ? fl[k - 1] : fl.back();
     const double sface = (dx - f.ex) * f.nx + (dy - f.ey) * f.ny;
-    if (outside >= 0.5 && sface <= -0.5)   // inside the tip, behind the face
-      return {1.0f, std::min(outside, -sface) - 0.5, k, from, to};
+    const double face = std::min(outside, -sface) - 0.5;
+    if (face >= 0)                       // inside the tip, behind the face
+      return {1.0f, none, face, none, k};
     const double u = (phi - from) / f.width;
     double sback;
     if (u >= 1) {
@@ -241,11 +244,11 @@ struct outline {
     // inside = min(outside, max(-sface, -sback)), sback within f.margin
     const double lo = std::min(outside, std::max(-sface, -sback - f.margin));
     if (lo >= 0.5)
-      return {1.0f, lo - 0.5, k, from, to};
+      return {1.0f, none, face, lo - 0.5, k};
     const double hi = std::min(outside, std::max(-sface, -sback + f.margin));
     if (hi <= -0.5)
-      return {0.0f, -0.5 - hi, k, from, to};
-    return {-1.0f, 0, -1, 0, 0};
+      return {0.0f, none, none, -0.5 - hi, k};
+    return {-1.0f, none, none, none, -1};
   }
 
   // pixels [x0, x1) of row y (dy = y - cy), all in the annulus
@@ -259,20 +262,43 @@ struct outline {
         continue;
       }
       // the pixels after it that cannot differ (2e-9: the rounding of both)
-      const double lip = s.k < 0 ? 1.0 : (s.k > 0 ? fl[s.k - 1] : fl.back()).lip;
-      int j = (int)std::min((double)(x1 - 1 - x), std::floor((s.slack - 2e-9) / lip));
-      while (j > 0 && s.k >= 0) {
-        int k;
-        double from, to;
-        if (sector(fast_deg(x + j - cx, dy), k, from, to) && k == s.k)
-          break;
-        j /= 2;
+      const double e = 2e-9;
+      int j = 0;
+      if (s.k >= 0) {
+        const double lip = (s.k > 0 ? fl[s.k - 1] : fl.back()).lip;
+        j = (int)std::min((double)(x1 - 1 - x), std::max(std::floor(s.face - e), std::floor((s.all - e) / lip)));
+        for (; j > 0; j /= 2) {
+          int k;
+          double from;
+          if (sector(fast_deg(x + j - cx, dy), k, from) && k == s.k)
+            break;
+        }
       }
-      std::fill(out + x, out + x + std::max(j, 0) + 1, s.value);
-      x += std::max(j, 0) + 1;
+      j = std::max(j, (int)std::min((double)(x1 - 1 - x), std::floor(s.any - e)));
+      j = std::max(j, 0);
+      std::fill(out + x, out + x + j + 1, s.value);
+      x += j + 1;
     }
   }
 };
+
+// Sensor noise: normal deviates from a table of the inverse normal law
+// (65536 quantiles; four per 64-bit draw), much faster than Box-Muller.
+const std::vector<float> &quantiles()
+{
+  static const std::vector<float> quant = [] {
+    std::vector<float> q(65536);
+    for (int i = 0; i < 65536; i++)
+      q[i] = (float)inv_normal((i + 0.5) / 65536.0);
+    return q;
+  }();
+  return quant;
+}
+
+// The image of ts_render, or with reference of ts_render_reference: every
+// step as it was first written, which defines the image.
+int render(const struct tm_model *m, const struct ts_view *v, unsigned char *pix, struct ts_truth *truth,
+           char *err, size_t errlen, bool reference);
 
 }  // namespace
 
@@ -300,6 +326,20 @@ extern "C" double ts_flute_depth(const struct tm_model *m)
 
 extern "C" int ts_render(const struct tm_model *m, const struct ts_view *v, unsigned char *pix,
                          struct ts_truth *truth, char *err, size_t errlen)
+{
+  return render(m, v, pix, truth, err, errlen, false);
+}
+
+extern "C" int ts_render_reference(const struct tm_model *m, const struct ts_view *v, unsigned char *pix,
+                                   struct ts_truth *truth, char *err, size_t errlen)
+{
+  return render(m, v, pix, truth, err, errlen, true);
+}
+
+namespace {
+
+int render(const struct tm_model *m, const struct ts_view *v, unsigned char *pix, struct ts_truth *truth,
+           char *err, size_t errlen, bool reference)
 {
   try {
     const int N = m->image, n = m->teeth;
@@ -340,20 +380,70 @@ extern "C" int ts_render(const struct tm_model *m, const struct ts_view *v, unsi
       }
     }
 
-    // The back's distance sback = (r - rho) / D moves with u, the position
-    // across the flute, by at most 1.5 h + |r - rho| 6h / (wr r) (D >= 1;
-    // wr the width in radians), and with r by at most
-    // 1 + |r - rho| q^2 / (r D^3) <= 1 + 0.4 |r - rho| / r (q = rho' / r);
-    // in the annulus (r from rin to rout, and a little less between two
-    // pixels of a row) |r - rho| <= h + 2.5 and r >= rlo.  So kAngleErr
-    // degrees of angle (kAngleErr / width of u) move it by f.margin (and
-    // 1e-9 px for the rounding), a pixel along a row by f.lip.  (rin is at
-    // least 0.7 R - 2, some 17 px.)
+    const std::vector<float> &quant = quantiles();
+    rng rn(mix(((uint64_t)m->seed << 32) ^ ((uint64_t)v->section << 24) ^ v->shot));
+    const float sigma = (float)m->noise;
+    uint64_t bits = 0;
+    int left = 0;
+
+    if (reference) {
+      cv::Mat cover(N, N, CV_32F);
+      const double rin = std::max(0.0, R - h - 2), rout = R + 2;
+      for (int y = 0; y < N; y++) {
+        float *row = cover.ptr<float>(y);
+        const double dy = y - cy;
+        for (int x = 0; x < N; x++) {
+          const double dx = x - cx, r2 = dx * dx + dy * dy;
+          if (r2 <= rin * rin) { row[x] = 1.0f; continue; }
+          if (r2 >= rout * rout) { row[x] = 0.0f; continue; }
+          row[x] = cover_exact(fl, R, h, dx, dy, r2);
+        }
+      }
+      if (m->blur > 0)
+        cv::GaussianBlur(cover, cover, cv::Size(0, 0), m->blur, m->blur, cv::BORDER_REPLICATE);
+      for (int y = 0; y < N; y++) {
+        const float *row = cover.ptr<float>(y);
+        unsigned char *out = pix + (size_t)y * N;
+        const double g0 = (0 - cx) * gx + (y - cy) * gy;
+        for (int x = 0; x < N; x++) {
+          float g = (float)(g0 + x * gx);                        // -0.7 .. 0.7
+          float bg = 0.10f + 0.05f * g, fg = 0.78f + 0.12f * g;
+          float val = bg + (fg - bg) * row[x];
+          if (sigma > 0) {
+            if (left == 0) {
+              bits = rn.next();
+              left = 4;
+            }
+            val += sigma * quant[bits & 0xffff];
+            bits >>= 16;
+            left--;
+          }
+          val = std::clamp(val, 0.0f, 1.0f) * 255.0f + 0.5f;
+          out[x] = (unsigned char)val;
+        }
+      }
+      return 0;
+    }
+
+    // The back's distance sback = (r - rho) / D, D = sqrt(1 + q^2),
+    // q = rho' / (wr r) (u the position across the flute, rho' = d rho / du,
+    // wr the width in radians), moves with u by at most
+    // |rho'| / D + |r - rho| 0.385 |dq/du| (|q| / D^3 <= 0.385), where
+    // |rho'| <= 1.5 h, |rho'| / D <= wr r and |dq/du| <= 6h / (wr r); and
+    // with r by at most 1 + |r - rho| 0.385 / r (q^2 / D^3 <= 0.385).  In
+    // the annulus, and between two of its pixels in a row, r >= rlo and
+    // |r - rho| <= h + 2.5.  So an angle kAngleErr degrees off
+    // (kAngleErr / width of u) moves sback by f.margin (1e-9 px more for
+    // the rounding), and a pixel along a row (du <= 1 / (wr r)) by f.lip:
+    // the radial and angular slopes' hypotenuse.  (rin is at least
+    // 0.7 R - 2, some 17 px.)
     const double rin = std::max(0.0, R - h - 2), rout = R + 2, rlo = rin - 0.5;
     for (flute &f : fl) {
-      double wr = rad(f.width), du = 1.5 * h + (h + 2.5) * 6 * h / (wr * rlo);
+      const double wr = rad(f.width), du = 1.5 * h + (h + 2.5) * 0.39 * 6 * h / (wr * rlo);
+      const double radial = 1 + 0.39 * (h + 2.5) / rlo;
+      const double angular = 1 + (h + 2.5) * 0.39 * 6 * h / ((wr * rlo) * (wr * rlo));
       f.margin = rlo >= 1 ? du * kAngleErr / f.width + 1e-9 : HUGE_VAL;
-      f.lip = rlo >= 1 ? 1 + 0.4 * (h + 2.5) / rlo + du / (wr * rlo) : HUGE_VAL;
+      f.lip = rlo >= 1 ? std::hypot(radial, angular) : HUGE_VAL;
     }
     static thread_local outline ol;
     ol.fl = fl;
@@ -391,18 +481,7 @@ extern "C" int ts_render(const struct tm_model *m, const struct ts_view *v, unsi
     if (m->blur > 0)
       cv::GaussianBlur(cover, cover, cv::Size(0, 0), m->blur, m->blur, cv::BORDER_REPLICATE);
 
-    // sensor noise: normal deviates from a table of the inverse normal law
-    // (65536 quantiles; four per 64-bit draw), much faster than Box-Muller
-    static const std::vector<float> quant = [] {
-      std::vector<float> q(65536);
-      for (int i = 0; i < 65536; i++)
-        q[i] = (float)inv_normal((i + 0.5) / 65536.0);
-      return q;
-    }();
-    rng rn(mix(((uint64_t)m->seed << 32) ^ ((uint64_t)v->section << 24) ^ v->shot));
-    const float sigma = (float)m->noise;
-    uint64_t bits = 0;
-    int left = 0;
+    // the noise (quantiles()) as in the reference, a row at a time
     std::vector<float> noise(N, 0.0f);
     for (int y = 0; y < N; y++) {
       // a row's deviates first (the generator is sequential, and a draw
@@ -448,3 +527,5 @@ extern "C" int ts_render(const struct tm_model *m, const struct ts_view *v, unsi
   }
   return -1;
 }
+
+}  // namespace
