@@ -5,6 +5,7 @@
 // are found with sub-pixel precision on circles just inside the tip, and
 // the tooth positions become the A values at which the probe meets them.
 #include "toothsearch.h"
+#include "cvexact.h"
 #include "render.h"
 
 #include <opencv2/core.hpp>
@@ -44,7 +45,6 @@ struct ts_error {
 
 struct shot {
   cv::Mat img8;               // the camera image
-  cv::Mat img;                // the same as float 0..1
   double a;                   // A when it was taken, degrees
   double thresh;              // Otsu threshold (0..1)
   std::vector<double> faces;  // camera angles of the faces, degrees, sorted
@@ -67,16 +67,31 @@ struct search_out {
   std::vector<std::vector<double>> shot_faces;   // per shot, aligned with psi (camera deg)
 };
 
-cv::Mat unwrap(const cv::Mat &img, cv::Point2d c, const band &b)
-{
-  cv::Mat dst;
-  // column j is radius j * rmax / rbins; row i is angle 360 * i / (abins/2)
-  cv::warpPolar(img, dst, cv::Size(b.rbins, b.abins / 2), c, (double)b.rmax,
-                cv::INTER_LINEAR | cv::WARP_POLAR_LINEAR | cv::WARP_FILL_OUTLIERS);
-  return dst;
-}
-
 double col_of(const band &b, double r) { return r * b.rbins / b.rmax; }
+
+
+// The flute depth's circle: the first column, from 0.2 tip on, of the polar
+// unwrap (cv::warpPolar(img, p, Size(rbins, abins / 2), c, rmax,
+// INTER_LINEAR | WARP_POLAR_LINEAR | WARP_FILL_OUTLIERS): column j is
+// radius j * rmax / rbins, row i angle 360 * i / (abins / 2)) where under
+// 98 % of the angles are brighter than t; 0 when there is none before the
+// tip.  The unwrap is made a column at a time and only as far as the
+// answer (cvexact::polar: every value is warpPolar's).
+double core_radius(const cv::Mat &img8, cv::Point2d c, const band &b, double t)
+{
+  const cvexact::polar unwrap(img8, c, b.rmax, b.rbins, b.abins / 2);
+  static thread_local std::vector<float> column;
+  column.resize(unwrap.rows);
+  for (int col = (int)col_of(b, 0.2 * b.tip); col < b.rbins && col < col_of(b, b.tip); col++) {
+    unwrap.column(col, column.data());
+    int on = 0;
+    for (float v : column)
+      on += v > t;
+    if (on < 0.98 * unwrap.rows)
+      return col * (double)b.rmax / b.rbins;
+  }
+  return 0;
+}
 
 // Cyclic smoothing of a signal with a Gaussian of sigma bins.
 std::vector<double> smooth(const std::vector<double> &s, double sigma)
@@ -86,11 +101,17 @@ std::vector<double> smooth(const std::vector<double> &s, double sigma)
   double sum = 0;
   for (int j = -k; j <= k; j++)
     sum += w[j + k] = std::exp(-0.5 * j * j / (sigma * sigma));
+  // the signal with k wrapped samples each side: no index arithmetic per
+  // tap (the sums are the same, term for term)
+  std::vector<double> ext(n + 2 * k);
+  for (int i = -k; i < n + k; i++)
+    ext[i + k] = s[i >= 0 && i < n ? i : ((i % n) + n) % n];
   std::vector<double> out(n);
   for (int i = 0; i < n; i++) {
+    const double *e = &ext[i];
     double a = 0;
-    for (int j = -k; j <= k; j++)
-      a += w[j + k] * s[((i + j) % n + n) % n];
+    for (int j = 0; j <= 2 * k; j++)
+      a += w[j] * e[j];
     out[i] = a / sum;
   }
   return out;
@@ -140,20 +161,23 @@ bool fit_edge(const std::vector<double> &y, double &x0, double &w, bool fixw)
     p[3] += y[j] / 3;
     p[2] += y[n - 1 - j] / 3;
   }
-  auto cost = [&](const double *q) {
+  // the cost keeps its Q values: the next Jacobian, at the same p when the
+  // step is taken, reads them instead of calling erfc again
+  std::vector<double> qp(n), qq(n);
+  auto cost = [&](const double *q, std::vector<double> &qs) {
     double c = 0;
     for (int j = 0; j < n; j++) {
-      double z = (j - q[0]) / q[1], Q = 0.5 * std::erfc(z / std::sqrt(2.0));
+      double z = (j - q[0]) / q[1], Q = qs[j] = 0.5 * std::erfc(z / std::sqrt(2.0));
       double r = y[j] - (q[2] + (q[3] - q[2]) * Q);
       c += r * r;
     }
     return c;
   };
-  double lambda = 1e-3, c0 = cost(p);
+  double lambda = 1e-3, c0 = cost(p, qp);
   for (int it = 0; it < 30; it++) {
     double A[4][4] = {{0}}, g[4] = {0};
     for (int j = 0; j < n; j++) {
-      double z = (j - p[0]) / p[1], Q = 0.5 * std::erfc(z / std::sqrt(2.0));
+      double z = (j - p[0]) / p[1], Q = qp[j];
       double ph = std::exp(-0.5 * z * z) / std::sqrt(2 * kPi), d = p[3] - p[2];
       double J[4] = {d * ph / p[1], fixw ? 0.0 : d * ph * z / p[1], 1 - Q, Q};
       double r = y[j] - (p[2] + d * Q);
@@ -179,10 +203,11 @@ bool fit_edge(const std::vector<double> &y, double &x0, double &w, bool fixw)
       if (!solve4(M, rhs, dx))
         return false;
       double q[4] = {p[0] + dx[0], std::clamp(p[1] + dx[1], 0.2, 0.5 * n), p[2] + dx[2], p[3] + dx[3]};
-      double c1 = cost(q);
+      double c1 = cost(q, qq);
       if (c1 <= c0) {
         bool done = std::fabs(q[0] - p[0]) < 1e-5;
         std::copy(q, q + 4, p);
+        qp.swap(qq);
         c0 = c1;
         lambda = std::max(lambda * 0.3, 1e-7);
         better = true;
@@ -353,9 +378,9 @@ std::vector<double> average(const std::vector<double> &ref, const std::vector<st
 // The circles a shot is read on, about c: the band's radii, then five
 // radii just inside the core (the tool's level) and four outside the tip
 // (the background's).  warpPolar would unwrap every radius from 0 to rmax;
-// the faces need a dozen circles, so this is the same bilinear unwrap with
-// cv::remap on those radii alone (some forty times less work).
-cv::Mat unwrap_circles(const cv::Mat &img, cv::Point2d c, const band &b, std::vector<double> &radii)
+// the faces need a dozen circles, so this is the same bilinear unwrap
+// (cv::remap's: cvexact::sampler) on those radii alone (some forty times less work).
+cv::Mat unwrap_circles(const cv::Mat &img8, cv::Point2d c, const band &b, std::vector<double> &radii)
 {
   radii = b.radii;
   for (int k = 0; k < 5; k++)
@@ -363,21 +388,22 @@ cv::Mat unwrap_circles(const cv::Mat &img, cv::Point2d c, const band &b, std::ve
   for (int k = 0; k < 4; k++)
     radii.push_back(b.tip * (1.04 + 0.01 * k));
   const int n = b.abins;
-  cv::Mat mx((int)radii.size(), n, CV_32F), my((int)radii.size(), n, CV_32F);
-  std::vector<double> cs(n), sn(n);
-  for (int i = 0; i < n; i++) {
-    cs[i] = std::cos(2 * kPi * i / n);
-    sn[i] = std::sin(2 * kPi * i / n);
-  }
-  for (int k = 0; k < (int)radii.size(); k++) {
-    float *px = mx.ptr<float>(k), *py = my.ptr<float>(k);
+  static thread_local std::vector<double> cs, sn;
+  if ((int)cs.size() != n) {
+    cs.resize(n);
+    sn.resize(n);
     for (int i = 0; i < n; i++) {
-      px[i] = (float)(c.x + radii[k] * cs[i]);
-      py[i] = (float)(c.y + radii[k] * sn[i]);
+      cs[i] = std::cos(2 * kPi * i / n);
+      sn[i] = std::sin(2 * kPi * i / n);
     }
   }
-  cv::Mat out;
-  cv::remap(img, out, mx, my, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  cv::Mat out((int)radii.size(), n, CV_32F);
+  const cvexact::sampler at(img8, cv::BORDER_REPLICATE);
+  for (int k = 0; k < (int)radii.size(); k++) {
+    float *o = out.ptr<float>(k);
+    for (int i = 0; i < n; i++)
+      o[i] = at((float)(c.x + radii[k] * cs[i]), (float)(c.y + radii[k] * sn[i]));
+  }
   return out;
 }
 
@@ -385,7 +411,7 @@ cv::Mat unwrap_circles(const cv::Mat &img, cv::Point2d c, const band &b, std::ve
 void measure_shot(shot &s, cv::Point2d c, const band &b, bool precise)
 {
   std::vector<double> radii;
-  cv::Mat p = unwrap_circles(s.img, c, b, radii);
+  cv::Mat p = unwrap_circles(s.img8, c, b, radii);
   const int n = b.abins, nb = (int)b.radii.size();
   std::vector<double> hi(n, 0.0), lo(n, 0.0), mid(n), hyst(n);
   for (int i = 0; i < n; i++) {
@@ -426,10 +452,9 @@ cv::Point2d centroid_axis(const std::vector<shot> &shots)
 {
   cv::Mat M((int)shots.size() * 2, 4, CV_64F), y((int)shots.size() * 2, 1, CV_64F);
   for (size_t i = 0; i < shots.size(); i++) {
-    cv::Mat bin;
-    cv::threshold(shots[i].img8, bin, shots[i].thresh * 255.0, 255, cv::THRESH_BINARY);
-    cv::Moments mo = cv::moments(bin, true);
-    if (mo.m00 <= 0)
+    double m00, m10, m01;
+    cvexact::centroid(shots[i].img8, shots[i].thresh, m00, m10, m01);
+    if (m00 <= 0)
       throw ts_error{TS_E_TEETH, "no teeth found: the image shows no tool"};
     double a = shots[i].a * kPi / 180, ca = std::cos(a), sa = std::sin(a);
     int r = (int)i * 2;
@@ -438,8 +463,8 @@ cv::Point2d centroid_axis(const std::vector<shot> &shots)
       M.at<double>(r, k) = row0[k];
       M.at<double>(r + 1, k) = row1[k];
     }
-    y.at<double>(r) = mo.m10 / mo.m00;
-    y.at<double>(r + 1) = mo.m01 / mo.m00;
+    y.at<double>(r) = m10 / m00;
+    y.at<double>(r + 1) = m01 / m00;
   }
   cv::Mat x;
   cv::solve(M, y, x, cv::DECOMP_SVD);
@@ -494,17 +519,18 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
 {
   const int N = m->image, K = TS_SHOTS;
   std::vector<shot> shots(K);
-  std::vector<unsigned char> buf((size_t)N * N);
+  // the images live on from search to search (fresh pages cost more than
+  // the arithmetic on them); shots[i] shares cache8[i]
+  static thread_local cv::Mat cache8[K];
   char err[256];
   for (int i = 0; i < K; i++) {
     ts_view v{x, a0 + 360.0 * i / K, mount, section, shot0 + (uint32_t)i};
-    if (ts_render(m, &v, buf.data(), nullptr, err, sizeof err) != 0)
+    cache8[i].create(N, N, CV_8U);
+    if (ts_render(m, &v, cache8[i].ptr(), nullptr, err, sizeof err) != 0)
       throw ts_error{TS_E_INTERNAL, err};
-    shots[i].img8 = cv::Mat(N, N, CV_8U, buf.data()).clone();
-    shots[i].img8.convertTo(shots[i].img, CV_32F, 1.0 / 255);
+    shots[i].img8 = cache8[i];
     shots[i].a = v.a_deg;
-    cv::Mat tmp;
-    shots[i].thresh = cv::threshold(shots[i].img8, tmp, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU) / 255.0;
+    shots[i].thresh = cvexact::otsu(shots[i].img8) / 255.0;
   }
 
   // 1. the axis, roughly, from the centroids
@@ -520,18 +546,7 @@ search_out run_search(const tm_model *m, double x, double a0, double mount, int 
   b.rbins = b.rmax;
   b.abins = (int)std::ceil(2 * kPi * b.tip * 1.25);
   {
-    cv::Mat p = unwrap(shots[0].img, c, b);
-    double t = shots[0].thresh;
-    b.core = 0;
-    for (int col = (int)col_of(b, 0.2 * b.tip); col < p.cols && col < col_of(b, b.tip); col++) {
-      int on = 0;
-      for (int i = 0; i < p.rows; i++)
-        on += p.at<float>(i, col) > t;
-      if (on < 0.98 * p.rows) {
-        b.core = col * (double)b.rmax / b.rbins;
-        break;
-      }
-    }
+    b.core = core_radius(shots[0].img8, c, b, shots[0].thresh);
     double h = b.tip - b.core;
     if (b.core <= 0 || h < 2.5)
       throw ts_error{TS_E_TEETH, "no teeth found: no flutes in the image"};

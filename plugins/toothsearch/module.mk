@@ -12,7 +12,9 @@
 #       most of a searching run's time to load.
 # ./s42 itself never links either (nor OpenCV).  The tool-model parser is
 # plain C and also goes into the unit tests and the fuzzer.
-#   make toothsearch        the accuracy test set (part of make check)
+#   make toothsearch        the OpenCV stand-ins against OpenCV, the renderer
+#                           against its reference, the accuracy test set,
+#                           the plugin (part of make check)
 #   make toothsearch-bench  time per image and per search
 TS_DIR        := plugins/toothsearch
 OPENCV_CFLAGS = $(call pkg,OPENCV_CFLAGS,--cflags opencv4)
@@ -25,12 +27,24 @@ TS_C_OBJS     := $(BUILD)/$(TS_DIR)/toolmodel.o
 TS_CXX_OBJS   := $(BUILD)/$(TS_DIR)/render.o $(BUILD)/$(TS_DIR)/measure.o
 TS_LIB        := $(BUILD)/$(TS_DIR)/libtoothsearch.a
 TS_TEST       := $(BUILD)/tests/toothsearch/accuracy
+TS_REF        := $(BUILD)/tests/toothsearch/render_ref
+TS_CVEXACT    := $(BUILD)/tests/toothsearch/cvexact
 TS_BENCH      := $(BUILD)/$(TS_DIR)/bench
 
 $(TS_C_OBJS): MOD_CPPFLAGS := -I$(TS_DIR) -fPIC
 $(BUILD)/$(TS_DIR)/%.o: $(TS_DIR)/%.cpp
 	@mkdir -p $(@D)
-	$(CXX) $(CPPFLAGS) -I$(TS_DIR) $(OPENCV_CFLAGS) $(TS_CXXWARN) $(CFLAGS) $(TS_CXXVIS) -fPIC -c -o $@ $<
+	$(CXX) $(CPPFLAGS) -I$(TS_DIR) $(OPENCV_CFLAGS) $(TS_CXXWARN) $(CFLAGS) $(TS_CXXVIS) $(TS_CXXVEC) -fPIC -c -o $@ $<
+# the renderer's per-pixel loop (illumination, noise, clamp, 8 bits) and
+# the measurement's silhouette sums are vectorized by GCC only if a float
+# compare may be if-converted (no floating-point traps: s42 never enables
+# them) and the vector loop's cost is weighed (the dynamic model; -O2's
+# very cheap one refuses a loop with a remainder); and lrint, the sampler's
+# rounding, is one instruction only when it need not set errno (nothing
+# here reads errno after a math function).  None of these changes a value:
+# no reassociation, no contraction.
+TS_VEC := -ftree-vectorize -fno-trapping-math -fno-math-errno -fvect-cost-model=dynamic
+$(BUILD)/$(TS_DIR)/render.o $(BUILD)/$(TS_DIR)/measure.o: TS_CXXVEC := $(TS_VEC)
 
 $(TS_LIB): $(TS_C_OBJS) $(TS_CXX_OBJS)
 	@mkdir -p $(@D)
@@ -75,17 +89,29 @@ $(TS_TEST): $(BUILD)/tests/toothsearch/accuracy.o $(TS_LIB) $(TS_PNG_OBJ)
 	$(CXX) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(OPENCV_PNG_LIBS) $(OPENCV_LIBS) -lm
 $(TS_BENCH): $(BUILD)/$(TS_DIR)/bench.o $(TS_LIB)
 	$(CXX) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(OPENCV_LIBS) -lm
+$(TS_REF): $(BUILD)/tests/toothsearch/render_ref.o $(TS_LIB)
+	$(CXX) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(OPENCV_LIBS) -lm
+# cvexact.h is compiled as in measure.o
+$(BUILD)/tests/toothsearch/cvexact.o: tests/toothsearch/cvexact.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(CPPFLAGS) -I$(TS_DIR) $(OPENCV_CFLAGS) $(TS_CXXWARN) $(CFLAGS) $(TS_VEC) -c -o $@ $<
+$(TS_CVEXACT): $(BUILD)/tests/toothsearch/cvexact.o
+	$(CXX) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(OPENCV_LIBS) -lm
 
 .PHONY: toothsearch toothsearch-bin toothsearch-bench
-toothsearch-bin: $(TS_TEST) $(TS_BENCH)
-# every model in tests/toothsearch measured against its truth, then the
-# plugin through s42 run against the truth of eight of them (plugin.sh);
-# under ASan OpenCV's process-long allocations are not ours (lsan.supp)
+toothsearch-bin: $(TS_TEST) $(TS_BENCH) $(TS_REF) $(TS_CVEXACT)
+# the measurement's stand-ins for OpenCV calls against OpenCV (cvexact),
+# every model in tests/toothsearch rendered as the renderer's definition
+# renders it (render_ref), measured against its truth, then the plugin
+# through s42 run against the truth of eight of them (plugin.sh); under
+# ASan OpenCV's process-long allocations are not ours (lsan.supp)
 TS_LSAN = LSAN_OPTIONS="suppressions=$(CURDIR)/tests/toothsearch/lsan.supp$${LSAN_OPTIONS:+:$$LSAN_OPTIONS}"
-toothsearch: $(TS_TEST) $(S42) $(PLUGIN_SOS)
+toothsearch: $(TS_TEST) $(TS_REF) $(TS_CVEXACT) $(S42) $(PLUGIN_SOS)
+	$(TS_LSAN) $(TS_CVEXACT)
+	$(TS_LSAN) $(TS_REF) tests/toothsearch/*.tool programs/endmill_search.tool
 	$(TS_LSAN) $(TS_TEST) tests/toothsearch/*.tool
 	$(TS_LSAN) sh tests/toothsearch/plugin.sh $(S42)
 toothsearch-bench: $(TS_BENCH)
 	$(TS_BENCH) tests/toothsearch/t004_reamer_seed.tool tests/toothsearch/t150_saw_fine.tool
 
--include $(TS_C_OBJS:.o=.d) $(TS_CXX_OBJS:.o=.d) $(TS_CV_OBJ:.o=.d) $(TS_PNG_OBJ:.o=.d) $(BUILD)/tests/toothsearch/accuracy.d $(BUILD)/$(TS_DIR)/bench.d
+-include $(TS_C_OBJS:.o=.d) $(TS_CXX_OBJS:.o=.d) $(TS_CV_OBJ:.o=.d) $(TS_PNG_OBJ:.o=.d) $(BUILD)/tests/toothsearch/accuracy.d $(BUILD)/tests/toothsearch/render_ref.d $(BUILD)/tests/toothsearch/cvexact.d $(BUILD)/$(TS_DIR)/bench.d

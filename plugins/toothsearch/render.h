@@ -49,6 +49,12 @@ double ts_flute_depth(const struct tm_model *m);
 int ts_render(const struct tm_model *m, const struct ts_view *v, unsigned char *pix,
               struct ts_truth *truth, char *err, size_t errlen);
 
+/* The same image made as the renderer was first written: every pixel of
+ * the outline from its definition (atan2 and all), the noise a pixel at a
+ * time.  Slow; ts_render must equal it byte for byte (the tests check). */
+int ts_render_reference(const struct tm_model *m, const struct ts_view *v, unsigned char *pix,
+                        struct ts_truth *truth, char *err, size_t errlen);
+
 #ifdef __cplusplus
 }
 #endif
