@@ -69,6 +69,13 @@ struct block {
   unsigned gcol[64], mcol[32];
   struct word w[MAX_WORDS];
   int nw;
+  /* the words indexed as the parser adds them (the compiler's questions) */
+  uint16_t wslots;            /* bit s: a word fills slot s (WK_SLOT) */
+  uint16_t wkinds;            /* bit k: a word of kind k (enum word_kind) */
+  uint8_t wfirst[WK_PP + 1];  /* the index of the first word of each kind in wkinds */
+  int wF;                     /* the index of the F word, -1 none */
+  int hasD;                   /* a D1 word */
+  unsigned slotcol[SL__COUNT];  /* the column of the word filling each slot in wslots */
   struct expr *cond;        /* P(cond) */
   /* slash arguments */
   struct text g27, g33, m18;

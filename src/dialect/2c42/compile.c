@@ -68,12 +68,6 @@ struct comp {
   uint32_t plugmask;       /* plugins the current block calls */
   int plug_g;              /* a group-1 G of a plugin that is not the language's, 0 none */
   size_t bstart;           /* the current block's first instruction */
-  /* the current block's words, indexed once (index_words): the first word
-   * filling each slot and its column, the first word of each kind, the last F */
-  uint16_t wslots;
-  unsigned slotcol[SL__COUNT];
-  const struct word *wfirst[WK_PP + 1];
-  const struct word *wF;
 #define RCACHE 64          /* a power of two, well over the rules a program has */
   struct rcache { const char *name; double lo, hi; int round, clamp, code; uint32_t idx; } rcache[RCACHE];
   int nrcache;
@@ -521,40 +515,22 @@ static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w,
 #define G(n) ((b->g >> (n)) & 1)
 #define M(n) ((b->m >> (n)) & 1)
 
-/* One pass over the block's words for the questions the checks and the
- * emitter ask of them many times. */
-static void index_words(struct comp *c)
-{
-  const struct block *b = c->b;
-  c->wslots = 0;
-  c->wF = NULL;
-  memset(c->wfirst, 0, sizeof c->wfirst);
-  for (int i = 0; i < b->nw; i++) {
-    const struct word *w = &b->w[i];
-    if (w->kind == WK_SLOT && w->idx < SL__COUNT && !(c->wslots & (1u << w->idx))) {
-      c->wslots |= (uint16_t)(1u << w->idx);
-      c->slotcol[w->idx] = w->col;
-    }
-    if (w->kind <= WK_PP && !c->wfirst[w->kind])
-      c->wfirst[w->kind] = w;
-    if (w->kind == WK_REG && w->letter == 'F')
-      c->wF = w;
-  }
-}
-
-/* Is there a word for slot (the first one's column in *col)? */
+/* Is there a word for slot (its column in *col)?  The parser indexes the
+ * words as it reads them (struct block: wslots, wkinds, wfirst, wF). */
 static int slot_word(const struct comp *c, int slot, unsigned *col)
 {
-  if (!(c->wslots & (1u << slot)))
+  if (!(c->b->wslots & (1u << slot)))
     return 0;
   if (col)
-    *col = c->slotcol[slot];
+    *col = c->b->slotcol[slot];
   return 1;
 }
 
+/* The first word of a kind, or NULL. */
 static const struct word *find_word(const struct comp *c, int kind)
 {
-  return c->wfirst[kind];
+  const struct block *b = c->b;
+  return b->wkinds & (1u << kind) ? &b->w[b->wfirst[kind]] : NULL;
 }
 
 /* The block's motion (words.h): the first G in number order that is a
@@ -818,12 +794,12 @@ static void check_block(struct comp *c)
   }
   /* the axis and centre words, and the column of the first of each in
    * slot order (X Y Z A, I J K) */
-  unsigned axes = c->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
-  unsigned centres = c->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
+  unsigned axes = b->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
+  unsigned centres = b->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
   static const uint8_t nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};   /* (no popcnt call) */
   int naxis = nbits[axes], ncentre = nbits[centres >> SL_I];
-  unsigned axcol = axes ? c->slotcol[__builtin_ctz(axes)] : 0;
-  unsigned cecol = centres ? c->slotcol[__builtin_ctz(centres)] : 0;
+  unsigned axcol = axes ? b->slotcol[__builtin_ctz(axes)] : 0;
+  unsigned cecol = centres ? b->slotcol[__builtin_ctz(centres)] : 0;
   /* a dialog or display function (group 4) stands with no function of
    * groups 1-3 and no axis or centre word: only assignments, array
    * operations and M functions beside it (language.md sec. 8) */
@@ -845,7 +821,7 @@ static void check_block(struct comp *c)
           "G%02d (dialog and display, group 4) stands without axis or centre words", seen[4]);
     }
   }
-  const struct word *F = c->wF;
+  const struct word *F = b->wF >= 0 ? &b->w[b->wF] : NULL;
   const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PC = find_word(c, WK_PCOND),
                     *PP = find_word(c, WK_PP);
   int arc = first_g(b, KP_ARC);   /* its G, or -1 */
@@ -1018,7 +994,6 @@ static uint32_t add_str(struct comp *c, const struct text *t)
 static void compile_block(struct comp *c)
 {
   struct block *b = c->b;
-  index_words(c);
   check_block(c);
 
   struct prog_block pb = {0};

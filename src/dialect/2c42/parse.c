@@ -83,7 +83,7 @@ static void fail(struct pstate *s, int code, unsigned col, const char *fmt, ...)
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  diag_add(s->p->d, DIAG_ERROR, code, s->p->lx.line, col ? col : s->p->lx.ccol, s->b->number, "%s", msg);
+  diag_add(s->p->d, DIAG_ERROR, code, s->b->line, col, s->b->number, "%s", msg);
   s->b->bad = 1;
   longjmp(s->jb, 1);
 }
@@ -109,10 +109,11 @@ static const char *show(int32_t c, char *buf)
   return buf;
 }
 
-/* Inline everywhere: the cached peek is a load and a compare. */
+/* Inline everywhere: a peek is a load and a compare. */
 #define HOT static inline __attribute__((always_inline))
 HOT int32_t peek(struct pstate *s) { return lex_peek(&s->p->lx); }
-HOT unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return s->p->lx.ccol; }
+/* The column of the character peek() returns. */
+HOT unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return lex_col(&s->p->lx); }
 HOT void adv(struct pstate *s) { lex_peek(&s->p->lx); lex_adv(&s->p->lx); }
 
 static void expect(struct pstate *s, int32_t c, const char *what)
@@ -120,7 +121,7 @@ static void expect(struct pstate *s, int32_t c, const char *what)
   char buf[32];
   int32_t got = peek(s);
   if (got != c)
-    fail(s, S42_E_SYNTAX, 0, "expected %s, found %s", what, show(got, buf));
+    fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(got, buf));
   adv(s);
 }
 
@@ -150,7 +151,7 @@ static void fmt_uint(char *p, unsigned n)
 static void __attribute__((noinline, cold, noreturn)) no_number(struct pstate *s, const char *what)
 {
   char buf[32];
-  fail(s, S42_E_SYNTAX, 0, "expected %s, found %s", what, show(peek(s), buf));
+  fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(peek(s), buf));
 }
 
 static void __attribute__((noinline, cold, noreturn)) long_number(struct pstate *s, unsigned col, const char *what,
@@ -161,41 +162,48 @@ static void __attribute__((noinline, cold, noreturn)) long_number(struct pstate 
 
 /* An unsigned integer of at most `maxdig` significant digits: leading
  * zeros are insignificant however many (`G001`, `№0002`, language.md
- * sec. 9), and whitespace between digits too, as everywhere outside text. */
+ * sec. 9), and whitespace between digits too, as everywhere outside text
+ * (the window holds the digits without it). */
 HOT long number(struct pstate *s, int maxdig, const char *what)
 {
   struct lex *l = &s->p->lx;
-  unsigned col = pcol(s);
-  if (!isdig(lex_peek(l)))
+  int32_t c = lex_peek(l);
+  unsigned col = lex_col(l);
+  if (!isdig(c))
     no_number(s, what);
   long v = 0;
   int nd = 0;
-  do {
-    /* the digits written together, straight from the bytes (what a peek
-     * and an advance would do for each); a space between digits comes
-     * back here through the peek */
-    const char *t = l->s, *end = l->s + l->n, *p = t + l->pos;
-    const char *q = p;
-    for (; q < end && isdig(*q); q++) {
-      int dig = *q - '0';
+  for (;;) {
+    unsigned i = l->wi, n = l->wn;
+    const int32_t *w = l->wc;
+    for (; i < n && isdig(w[i]); i++) {
+      int dig = w[i] - '0';
       if (nd || dig) {
         if (nd < 12)
           v = v * 10 + dig;
         nd++;
       }
     }
-    unsigned k = (unsigned)(q - p);
-    l->peeked = 0;
-    l->blen += k;
-    l->col += k;
-    l->pos = (size_t)(q - t);
-  } while (isdig(lex_peek(l)));
+    l->wi = i;
+    if (i < n || !isdig(lex_more(l)))   /* the window's end: more digits after it? */
+      break;
+  }
   if (nd > maxdig)
     long_number(s, col, what, nd, maxdig);
   return v;
 }
 
 /* ---- expressions ---- */
+
+/* expr := term { (+|-) term }      term := unary { (/|%) unary }
+ * unary := (+|-) unary | power     power := primary [ %% unary ]
+ * expr() is one loop over its operands; an operand (unary) is parsed
+ * inline, its leaves -- numbers, parameters, X Y Z -- without a call; a
+ * parenthesis, a function, a chain of signs and a power recurse.  Every way
+ * an expression nests passes through unary's depth check, bounded
+ * whatever the text: the depth counts as it always did (a sign two, a
+ * parenthesis at an operand's start one, each operand one), so that deep
+ * nesting fails where and as it did. */
 
 static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct pstate *s, unsigned col)
 {
@@ -236,34 +244,11 @@ static struct expr *call(struct pstate *s, int op, unsigned col, int skip)
   return e;
 }
 
-/* The letter after an operand's first letter, to tell SI( from S. */
-static int32_t peek2(struct pstate *s)
-{
-  struct lex *l = &s->p->lx;
-  int32_t c = lex_peek(l);
-  /* the next byte a plain character: it is what an advance and a peek
-   * would give (and they would note nothing) */
-  size_t next = l->peeked == 2 ? l->pos + 1 : l->cnext;
-  if (c >= 0 && next < l->n && lex_plain[(unsigned char)l->s[next]])
-    return (unsigned char)l->s[next];
-  struct lex_mark m = lex_mark(l);
-  adv(s);
-  c = peek(s);
-  lex_reset(l, m);
-  return c;
-}
-
-static struct expr *primary(struct pstate *s)
+/* The operands that are not a number, a parameter or X Y Z. */
+static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, int32_t c, unsigned col)
 {
   char buf[32];
-  unsigned col = pcol(s);
-  int32_t c = peek(s);
   struct expr *e;
-  if (isdig(c)) {
-    e = node(s, EX_NUM, col);
-    e->v = (double)number(s, 7, "a number");
-    return e;
-  }
   switch (c) {
   case '(':
     adv(s);
@@ -272,22 +257,8 @@ static struct expr *primary(struct pstate *s)
     expect(s, ')', "')'");
     s->p->paren--;
     return e;
-  case 'R': {
-    adv(s);
-    long n = number(s, 3, "a parameter number after R");
-    if (n > 113)
-      fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
-    e = node(s, EX_REG, col);
-    e->idx = (unsigned)n;
-    return e;
-  }
-  case 'X': case 'Y': case 'Z':
-    adv(s);
-    e = node(s, EX_SLOT, col);
-    e->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : SL_Z;
-    return e;
   case 'A': {
-    int32_t c2 = peek2(s);
+    int32_t c2 = lex_peek2(&s->p->lx);
     if (c2 == 'S') { adv(s); adv(s); if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ASI(...)?"); return call(s, OP_ASIN, col, 1); }
     if (c2 == 'C') { adv(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1); }
     if (c2 == 'T') { adv(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1); }
@@ -357,24 +328,58 @@ static struct expr *primary(struct pstate *s)
     fail(s, S42_E_SYNTAX, col, "as an operand T is TK, TG(...) or an array read T11 T21 T31 T12 T22 T32");
   }
   default:
-    fail(s, S42_E_SYNTAX, 0, "expected a number, parameter or function, found %s", show(c, buf));
+    fail(s, S42_E_SYNTAX, col, "expected a number, parameter or function, found %s", show(c, buf));
   }
 }
 
-/* power := primary [ %% unary ]   (right-associative through unary) */
-static struct expr *power(struct pstate *s)
+HOT struct expr *primary(struct pstate *s)
 {
-  struct expr *b = primary(s);
-  if (peek(s) == '%' && peek2(s) == '%') {
-    unsigned col = pcol(s);
-    adv(s);
-    adv(s);
-    struct expr *e = node(s, EX_BIN, col);
-    e->op = OP_POW;
-    e->a = b;
-    e->b = unary(s);
+  int32_t c = peek(s);
+  unsigned col = pcol(s);
+  struct expr *e;
+  if (isdig(c)) {
+    e = node(s, EX_NUM, col);
+    e->v = (double)number(s, 7, "a number");
     return e;
   }
+  if (c == 'R') {
+    adv(s);
+    long n = number(s, 3, "a parameter number after R");
+    if (n > 113)
+      fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
+    e = node(s, EX_REG, col);
+    e->idx = (unsigned)n;
+    return e;
+  }
+  if (c == 'X' || c == 'Y' || c == 'Z') {
+    adv(s);
+    e = node(s, EX_SLOT, col);
+    e->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : SL_Z;
+    return e;
+  }
+  return primary_other(s, c, col);
+}
+
+/* The %% after the primary b and its exponent (right-associative through
+ * unary). */
+static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struct expr *b)
+{
+  unsigned col = pcol(s);
+  adv(s);
+  adv(s);
+  struct expr *e = node(s, EX_BIN, col);
+  e->op = OP_POW;
+  e->a = b;
+  e->b = unary(s);
+  return e;
+}
+
+/* power := primary [ %% unary ] */
+HOT struct expr *power(struct pstate *s)
+{
+  struct expr *b = primary(s);
+  if (peek(s) == '%' && lex_peek2(&s->p->lx) == '%')
+    return power_rest(s, b);
   return b;
 }
 
@@ -385,17 +390,16 @@ HOT struct expr *unary_inner(struct pstate *s)
   if (c == '+' || c == '-') {
     unsigned col = pcol(s);
     adv(s);
-    if (++s->p->depth > MAX_DEPTH)
+    /* two levels for a sign, both told at the sign's column */
+    if ((s->p->depth += 2) > MAX_DEPTH)
       fail(s, S42_E_SYNTAX, col, "expression nested too deeply");
     /* unary() of what follows, without the call when it is no sign and no
-     * parenthesis: its depth check first, at the sign's column as there */
+     * parenthesis (unary's check, the same as the one above, passes) */
     struct expr *u;
-    if (++s->p->depth > MAX_DEPTH)
-      fail(s, S42_E_SYNTAX, 0, "expression nested too deeply");
     int32_t c2 = peek(s);
     if (c2 == '+' || c2 == '-' || c2 == '(') {
       s->p->depth--;
-      u = unary(s);   /* the same check again, passed */
+      u = unary(s);
     } else {
       u = power(s);
       s->p->depth--;
@@ -409,7 +413,7 @@ HOT struct expr *unary_inner(struct pstate *s)
   }
   if (c == '(') {
     if (++s->p->depth > MAX_DEPTH)
-      fail(s, S42_E_SYNTAX, 0, "expression nested too deeply");
+      fail(s, S42_E_SYNTAX, pcol(s), "expression nested too deeply");
     struct expr *e = power(s);
     s->p->depth--;
     return e;
@@ -417,35 +421,45 @@ HOT struct expr *unary_inner(struct pstate *s)
   return power(s);
 }
 
-/* Every way an expression nests (signs, parentheses, functions, powers)
- * passes through here: bound the recursion, whatever the text. */
-static struct expr *unary(struct pstate *s)
+/* unary: one level more, checked at the character consumed last (the
+ * operator, sign or parenthesis before the operand: at the top of a word's
+ * value the depth is 0 and the check passes). */
+HOT struct expr *operand(struct pstate *s)
 {
   if (++s->p->depth > MAX_DEPTH)
-    fail(s, S42_E_SYNTAX, 0, "expression nested too deeply");
+    fail(s, S42_E_SYNTAX, lex_prev_col(&s->p->lx), "expression nested too deeply");
   struct expr *e = unary_inner(s);
   s->p->depth--;
   return e;
 }
 
-/* expr := term { (+|-) term },  term := unary { (/|%) unary }: one loop
- * for both levels (a call less per operand), building the same left-deep
- * trees in the same order: `top` is the + or - waiting for its right term. */
+static struct expr *__attribute__((noinline)) unary(struct pstate *s)
+{
+  return operand(s);
+}
+
+/* The same left-deep trees as term inside expr, made in the same order:
+ * `mul` is the / or % waiting for its right operand, `top` the + or -
+ * waiting for its right term. */
 static struct expr *expr(struct pstate *s)
 {
-  struct expr *e = unary(s), *top = NULL;
+  struct expr *e, *top = NULL, *mul = NULL;
   for (;;) {
+    e = operand(s);
+    if (mul) {
+      mul->b = e;
+      e = mul;
+      mul = NULL;
+    }
     int32_t c = peek(s);
     if (c == '/' && s->p->slash_ends && s->p->paren == 0)
       ;   /* the slash that closes G28 /min:max/: the term ends */
-    else if (c == '/' || (c == '%' && peek2(s) != '%')) {
+    else if (c == '/' || (c == '%' && lex_peek2(&s->p->lx) != '%')) {
       unsigned col = pcol(s);
       adv(s);
-      struct expr *n = node(s, EX_BIN, col);
-      n->op = c == '/' ? OP_DIV : OP_MUL;
-      n->a = e;
-      n->b = unary(s);
-      e = n;
+      mul = node(s, EX_BIN, col);
+      mul->op = c == '/' ? OP_DIV : OP_MUL;
+      mul->a = e;
       continue;
     }
     if (top) {   /* the term is whole: the right operand of the + or - */
@@ -457,11 +471,9 @@ static struct expr *expr(struct pstate *s)
       return e;
     unsigned col = pcol(s);
     adv(s);
-    struct expr *n = node(s, EX_BIN, col);
-    n->op = c == '+' ? OP_ADD : OP_SUB;
-    n->a = e;
-    top = n;
-    e = unary(s);
+    top = node(s, EX_BIN, col);
+    top->op = c == '+' ? OP_ADD : OP_SUB;
+    top->a = e;
   }
 }
 
@@ -472,10 +484,10 @@ HOT struct expr *word_value(struct pstate *s, const char *word, int sign)
   char buf[32];
   int32_t c = peek(s);
   if (sign && c != '+' && c != '-')
-    fail(s, S42_E_SYNTAX, 0, "%s needs a sign and a value (%s+... or %s-...), found %s", word, word, word,
+    fail(s, S42_E_SYNTAX, pcol(s), "%s needs a sign and a value (%s+... or %s-...), found %s", word, word, word,
          show(c, buf));
   if (c == LX_EOB || c == LX_EOF)
-    fail(s, S42_E_SYNTAX, 0, "%s needs a value", word);
+    fail(s, S42_E_SYNTAX, pcol(s), "%s needs a value", word);
   return expr(s);
 }
 
@@ -487,25 +499,22 @@ static struct expr *cond(struct pstate *s);
  * level) rather than a nested condition? */
 static int is_comparison(struct pstate *s)
 {
-  struct lex_mark m = lex_mark(&s->p->lx);
-  int depth = 0, found = 0;
+  struct lex_ahead a;
+  lex_ahead_start(&s->p->lx, &a);
+  int depth = 0;
   for (;;) {
-    int32_t c = peek(s);
+    int32_t c = lex_ahead_next(&s->p->lx, &a);
     if (c == LX_EOB || c == LX_EOF)
-      break;
+      return 0;
     if (c == '(') {
       depth++;
     } else if (c == ')') {
       if (--depth == 0)
-        break;
+        return 0;
     } else if (c == ':' && depth == 1) {
-      found = 1;
-      break;
+      return 1;
     }
-    adv(s);
   }
-  lex_reset(&s->p->lx, m);
-  return found;
 }
 
 static struct expr *prim(struct pstate *s)
@@ -513,7 +522,7 @@ static struct expr *prim(struct pstate *s)
   char buf[32];
   unsigned col = pcol(s);
   if (peek(s) != '(')
-    fail(s, S42_E_SYNTAX, 0, "expected '(' starting a condition, found %s", show(peek(s), buf));
+    fail(s, S42_E_SYNTAX, col, "expected '(' starting a condition, found %s", show(peek(s), buf));
   if (++s->p->depth > MAX_DEPTH)
     fail(s, S42_E_SYNTAX, col, "condition nested too deeply");
   struct expr *e;
@@ -531,7 +540,7 @@ static struct expr *prim(struct pstate *s)
       adv(s);
     }
     if (peek(s) != ':')
-      fail(s, S42_E_SYNTAX, 0, "relation must be R, B, M, BR or RB, MR or RM, BM, BMR or empty, found %s",
+      fail(s, S42_E_SYNTAX, pcol(s), "relation must be R, B, M, BR or RB, MR or RM, BM, BMR or empty, found %s",
            show(peek(s), buf));
     adv(s);
     e->op = (uint8_t)mask;
@@ -615,12 +624,15 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
   t->nchars = nch;
 }
 
-static void open_slash(struct pstate *s, const char *fn, int code)
+/* The opening slash; its column. */
+static unsigned open_slash(struct pstate *s, const char *fn, int code)
 {
   char buf[32];
+  unsigned col = pcol(s);
   if (peek(s) != '/')
-    fail(s, code, 0, "%s needs its argument in slashes (/.../), found %s", fn, show(peek(s), buf));
+    fail(s, code, col, "%s needs its argument in slashes (/.../), found %s", fn, show(peek(s), buf));
   adv(s);
+  return col;
 }
 
 /* Where a text argument goes: each has its own place in the block. */
@@ -647,11 +659,11 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
     }
     break;
   }
-  case KP_SA_LINES:
-    open_slash(s, fn, S42_E_TEXT);
+  case KP_SA_LINES: {
+    unsigned scol = open_slash(s, fn, S42_E_TEXT);
     for (;;) {
-      if (b->ng29 >= MAX_LINES)
-        fail(s, S42_E_TEXT, 0, "G29: more than %d lines", MAX_LINES);
+      if (b->ng29 >= MAX_LINES)   /* said at the opening slash, the character last looked at outside text */
+        fail(s, S42_E_TEXT, scol, "G29: more than %d lines", MAX_LINES);
       struct text *t = &b->g29[b->ng29++];
       memset(t, 0, sizeof *t);   /* no stale text from an earlier block if this one fails */
       raw_text(s, t, fn);
@@ -662,6 +674,7 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
       }
     }
     break;
+  }
   case KP_SA_BOUNDS:
     open_slash(s, fn, S42_E_SYNTAX);
     b->g28col = pcol(s);
@@ -681,7 +694,7 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
       b->g37axis = (char)c;
       adv(s);
     } else if (c != '/') {
-      fail(s, S42_E_AXIS, 0, "G37 takes one axis letter: G37 /Y/");
+      fail(s, S42_E_AXIS, pcol(s), "G37 takes one axis letter: G37 /Y/");
     }
     expect(s, '/', "'/' closing G37 /Y/");
     break;
@@ -700,7 +713,7 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
       b->m20[b->nm20++] = (unsigned)r;
     }
     if (b->nm20 == 0)
-      fail(s, S42_E_SYNTAX, 0, "M20 lists parameters: M20 /R12R15/");
+      fail(s, S42_E_SYNTAX, pcol(s), "M20 lists parameters: M20 /R12R15/");
     expect(s, '/', "'/' closing the M20 list");
     break;
   case KP_SA_CORR:
@@ -714,11 +727,11 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
         fail(s, S42_E_RANGE, it.col, "parameter R%ld does not exist (R0..R113)", r);
       int32_t sg = peek(s);
       if (sg != '+' && sg != '-')
-        fail(s, S42_E_SYNTAX, 0, "M16: expected + or - and an axis after R%ld", r);
+        fail(s, S42_E_SYNTAX, pcol(s), "M16: expected + or - and an axis after R%ld", r);
       adv(s);
       int32_t ax = peek(s);
       if (ax != 'X' && ax != 'Y' && ax != 'Z' && ax != 'A')
-        fail(s, S42_E_AXIS, 0, "M16: expected an axis X, Y, Z or A after R%ld%c", r, (char)sg);
+        fail(s, S42_E_AXIS, pcol(s), "M16: expected an axis X, Y, Z or A after R%ld%c", r, (char)sg);
       adv(s);
       it.reg = (unsigned)r;
       it.sign = sg == '-' ? -1 : 1;
@@ -728,7 +741,7 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
       b->m16[b->nm16++] = it;
     }
     if (b->nm16 == 0)
-      fail(s, S42_E_SYNTAX, 0, "M16 lists corrections to store: M16 /R1+X R2-Z//");
+      fail(s, S42_E_SYNTAX, pcol(s), "M16 lists corrections to store: M16 /R1+X R2-Z//");
     expect(s, '/', "'//' closing the M16 list");
     accept(s, '/');
     break;
@@ -749,25 +762,20 @@ HOT struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
   struct block *b = s->b;
   if (b->nw >= MAX_WORDS)
     fail(s, S42_E_BLOCKLEN, col, "too many words in one block");
-  struct word *w = &b->w[b->nw++];
-  memset(w, 0, sizeof *w);
-  w->kind = (uint8_t)kind;
-  w->letter = letter;
-  w->col = col;
+  int i = b->nw++;
+  struct word *w = &b->w[i];
+  *w = (struct word){.kind = (uint8_t)kind, .letter = letter, .col = col};
+  if (!(b->wkinds & (1u << kind))) {
+    b->wkinds |= (uint16_t)(1u << kind);
+    b->wfirst[kind] = (uint8_t)i;
+  }
   return w;
 }
 
-HOT int has_word(const struct block *b, int kind, char letter)
+/* A word the block may have once: `there` says it has it already. */
+HOT void once(struct pstate *s, int there, const char *name, unsigned col)
 {
-  for (int i = 0; i < b->nw; i++)
-    if (b->w[i].kind == kind && b->w[i].letter == letter)
-      return 1;
-  return 0;
-}
-
-HOT void once(struct pstate *s, int kind, char letter, const char *name, unsigned col)
-{
-  if (has_word(s->b, kind, letter))
+  if (there)
     fail(s, S42_E_SYNTAX, col, "%s appears twice in the block", name);
 }
 
@@ -787,7 +795,7 @@ static void word(struct pstate *s)
     if (!valid && n < (c == 'G' ? 64 : 32))   /* a function a plugin adds */
       valid = plug_find(s->p->plugins, (char)c, (int)n, NULL) >= 0;
     if (!valid) {
-      diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, s->p->lx.line, col, b->number,
+      diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, b->line, col, b->number,
                "%c%02ld is not a function of the 2С42 or of a plugin found", (char)c, n);
       b->bad = 1;
       return;
@@ -809,29 +817,32 @@ static void word(struct pstate *s)
       slash_arg(s, b, kw);
     return;
   }
-  case 'X': case 'Y': case 'Z': case 'A': case 'I': case 'J': case 'K': {
+  case 'X': case 'Y': case 'Z': case 'A': case 'I': case 'J': case 'K': case 'H': {
     char name[2] = {(char)c, 0};
-    once(s, WK_SLOT, (char)c, name, col);
+    unsigned slot = c == 'X' ? SL_X : c == 'Y' ? SL_Y : c == 'Z' ? SL_Z : c == 'A' ? SL_A
+                  : c == 'I' ? SL_I : c == 'J' ? SL_J : c == 'K' ? SL_K : SL_H;
+    once(s, b->wslots & (1u << slot), name, col);
     adv(s);
-    struct expr *e = word_value(s, name, 1);
+    struct expr *e = word_value(s, name, c != 'H');
     w = new_word(s, WK_SLOT, (char)c, col);
     w->e = e;
-    w->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : c == 'Z' ? SL_Z : c == 'A' ? SL_A
-           : c == 'I' ? SL_I : c == 'J' ? SL_J : SL_K;
+    w->idx = slot;
+    b->wslots |= (uint16_t)(1u << slot);
+    b->slotcol[slot] = col;
     return;
   }
-  case 'F': case 'H': {
-    char name[2] = {(char)c, 0};
-    once(s, c == 'F' ? WK_REG : WK_SLOT, (char)c, name, col);
+  case 'F': {
+    once(s, b->wF >= 0, "F", col);
     adv(s);
-    struct expr *e = word_value(s, name, 0);
-    w = new_word(s, c == 'F' ? WK_REG : WK_SLOT, (char)c, col);
+    struct expr *e = word_value(s, "F", 0);
+    w = new_word(s, WK_REG, 'F', col);
     w->e = e;
-    w->idx = c == 'F' ? REG_F : SL_H;
+    w->idx = REG_F;
+    b->wF = b->nw - 1;
     return;
   }
   case 'L': {
-    once(s, WK_L, 'L', "L", col);
+    once(s, b->wkinds & (1u << WK_L), "L", col);
     adv(s);
     long n = number(s, 3, "the first block number of a sub after L");
     w = new_word(s, WK_L, 'L', col);
@@ -861,9 +872,10 @@ static void word(struct pstate *s)
     if (peek(s) != '1')
       fail(s, S42_E_SYNTAX, col, "the only D word is D1 (tool diameter)");
     adv(s);
-    once(s, WK_REG, 'D', "D1", col);
+    once(s, b->hasD, "D1", col);
     struct expr *e = word_value(s, "D1", 1);
     w = new_word(s, WK_REG, 'D', col);
+    b->hasD = 1;
     w->idx = REG_D1;
     w->e = e;
     return;
@@ -913,12 +925,12 @@ static void word(struct pstate *s)
     adv(s);
     if (peek(s) == 'P') {
       adv(s);
-      once(s, WK_PP, 'P', "PP", col);
+      once(s, b->wkinds & (1u << WK_PP), "PP", col);
       w = new_word(s, WK_PP, 'P', col);
       w->num = (int)number(s, 3, "the target block number after PP");
       return;
     }
-    if (has_word(b, WK_P, 'P') || has_word(b, WK_PCOND, 'P'))
+    if (b->wkinds & (1u << WK_P | 1u << WK_PCOND))
       fail(s, S42_E_SYNTAX, col, "two jumps P in one block");
     if (peek(s) == '(') {
       b->cond = cond(s);
@@ -968,6 +980,9 @@ static void clear_block(struct block *b)
   b->g = 0;
   b->m = 0;
   b->nw = 0;
+  b->wslots = b->wkinds = 0;
+  b->wF = -1;
+  b->hasD = 0;
   b->cond = NULL;
   memset(&b->g27, 0, sizeof b->g27);
   memset(&b->g33, 0, sizeof b->g33);
@@ -1003,12 +1018,12 @@ int parse_block(struct parser *p, struct block *b)
   p->nodes = 0;
   l->number = -1;   /* before the first peek: a note there is this block's */
   l->note_here = 0;
+  l->blen = 0;      /* the block's characters are counted as they are lexed */
   const int32_t c = first_char(l);   /* set once, before the setjmp */
   if (c == LX_EOF)
     return 0;
-  l->blen = 0;
-  b->line = l->line;
-  b->col = l->ccol;
+  b->line = lex_line(l);
+  b->col = lex_col(l);
   b->badnum = 0;
   p->ar.oom = &s.jb;
   int jumped = setjmp(s.jb);
@@ -1022,18 +1037,14 @@ int parse_block(struct parser *p, struct block *b)
   if (jumped == 0) {
     if (c == 'H' && lex_cyrillic(l)) {
       /* Н, the Cyrillic N, looks like a Latin H: a block number meant */
-      struct lex_mark m = lex_mark(l);
-      lex_adv(l);
-      int dig = isdig(lex_peek(l));
-      lex_reset(l, m);
-      if (dig) {
+      if (isdig(lex_peek2(l))) {
         b->badnum = 1;
         fail(&s, S42_E_SYNTAX, b->col, "Cyrillic Н at the block start reads as the letter H: did you mean N "
              "(the block number, N1 or №1)?");
       }
     }
     if (c == 'N' || c == 0x2116) {   /* N12, №12, № 12 */
-      b->ncol = l->ccol;
+      b->ncol = lex_col(l);
       b->badnum = 1;
       lex_adv(l);
       long n = number(&s, 3, "a block number");
