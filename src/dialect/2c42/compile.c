@@ -63,14 +63,21 @@ struct comp {
   int memo, selfslot, selfref;
   uint64_t core_g;         /* the functions no plugin has (core_masks) */
   uint32_t core_m;
+  /* the G and M numbers by what their rows say (core_masks): the questions
+   * a block asks of its functions in number order are the lowest bit of
+   * its g (m) and one of these */
+  uint64_t g_table, g_own, g_dialog, g_plane, g_arc, g_sep, g_nodir;
+  uint32_t m_own;
   double kval[SL__COUNT];
   const struct plug_set *plugins;
   uint32_t plugmask;       /* plugins the current block calls */
   int plug_g;              /* a group-1 G of a plugin that is not the language's, 0 none */
   size_t bstart;           /* the current block's first instruction */
-#define RCACHE 64          /* a power of two, well over the rules a program has */
-  struct rcache { const char *name; double lo, hi; int round, clamp, code; uint32_t idx; } rcache[RCACHE];
-  int nrcache;
+  /* the stack as the block's code is emitted: its depth, and an upper
+   * bound of its deepest (a fused instruction pushes no more than its
+   * parts did; a fusion corrects the depth) */
+  int depth, peak;
+  uint32_t ruleidx[16][2];  /* 1 + the program's rule of each kind (enum rule_kind, clamp 2 or not), 0 none yet */
 };
 
 static uint16_t col16(unsigned col)
@@ -127,6 +134,9 @@ static void warn(struct comp *c, unsigned col, const char *fmt, ...)
   diag_add(c->d, DIAG_WARNING, 0, c->b->line, col ? col : c->b->col, c->b->number, "%s", msg);
 }
 
+#define STACK_DELTA(name, opd, ext, pop, push, doc) [OP_##name] = (push) - (pop),
+static const int8_t stack_delta[256] = {S42_OPCODES(STACK_DELTA)};   /* vm_ops' push - pop, by opcode */
+
 static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, unsigned col)
 {
   long i = prog_emit_grow(c->p, ins, col);
@@ -146,6 +156,9 @@ static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, un
 static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
 {
   struct program *p = c->p;
+  int d = c->depth += stack_delta[op];
+  if (d > c->peak)
+    c->peak = d;
   if (p->ncode >= p->capcode)   /* full (or at PROG_MAX_CODE) */
     return emit_grow(c, INS(op, a), col);
   p->code[p->ncode] = INS(op, a);
@@ -156,9 +169,8 @@ static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
 /* The deepest stack of the current block's code, from the stack effects of
  * vm/opcodes.h: walked once the block is emitted, superinstructions fused,
  * so the count is exact.  A block's code runs straight through (vm/verify.c
- * proves the same walk safe). */
-#define STACK_DELTA(name, opd, ext, pop, push, doc) [OP_##name] = (push) - (pop),
-static const int8_t stack_delta[256] = {S42_OPCODES(STACK_DELTA)};   /* vm_ops' push - pop, by opcode */
+ * proves the same walk safe).  The walk is needed only when the block's
+ * peak as emit() counts it (struct comp) is over the deepest so far. */
 
 static uint32_t block_stack(const struct comp *c)
 {
@@ -369,6 +381,7 @@ static void gen(struct comp *c, struct expr *e)
           last = INS(OP_CONST, (uint32_t)k);
         }
       }
+      c->depth += stack_delta[fused] - stack_delta[INS_OP(c->p->code[mark])];
       c->p->code[mark] = INS(fused, INS_A(last));
       c->p->cols[mark] = (uint16_t)(e->col > 0xffff ? 0xffff : e->col);
       return;
@@ -391,74 +404,89 @@ static void gen(struct comp *c, struct expr *e)
 
 /* ---- conversion rules ---- */
 
-static uint32_t rule(struct comp *c, const char *name, double lo, double hi, int round_, int clamp, int code)
+/* The rule of each word a block stores: its name (the word, as messages
+ * say it), its range, rounding and clamping.  A parameter's (RK_PARAM) is
+ * implied by SETP and has no name of its own. */
+enum rule_kind { RK_X, RK_Y, RK_Z, RK_A, RK_I, RK_J, RK_K, RK_H, RK_MIN, RK_MAX, RK_OSCF, RK_SRCHF,
+                 RK_G04X, RK_F, RK_D1, RK_PARAM, RK__COUNT };
+_Static_assert((int)RK_X == (int)SL_X && (int)RK_H == (int)SL_H && (int)RK_SRCHF == (int)SL_SRCHF,
+               "a slot's rule kind is its number");
+struct wrule { const char *name; double lo, hi; int round, clamp; };
+static const struct wrule wrules[RK__COUNT] = {
+  [RK_X] = {"X", -999999, 999999, 1, 0},
+  [RK_Y] = {"Y", -999999, 999999, 1, 0},
+  [RK_Z] = {"Z", -999999, 999999, 1, 0},
+  [RK_A] = {"A", -9999999, 9999999, 1, 0},
+  [RK_I] = {"I", -4000000, 4000000, 1, 0},
+  [RK_J] = {"J", -4000000, 4000000, 1, 0},
+  [RK_K] = {"K", -4000000, 4000000, 1, 0},
+  [RK_H] = {"H", 0, 30000, 1, 0},
+  [RK_MIN] = {"G28 min", -9999999, 9999999, 0, 0},
+  [RK_MAX] = {"G28 max", -9999999, 9999999, 0, 0},
+  [RK_OSCF] = {"G07 F", 0, 6000, 1, 1},
+  [RK_SRCHF] = {"M12 F", 0, 6000, 1, 1},
+  [RK_G04X] = {"G04 X", 0, 999999, 1, 0},
+  [RK_F] = {"F", 0, 6000, 1, 1},
+  [RK_D1] = {"D1", 0, 400000, 0, 0},
+  [RK_PARAM] = {NULL, -9999999, 9999999, 0, 0},
+};
+
+/* The rule of word slot `slot` (its kind is the slot's number, but for
+ * G04's X). */
+static inline int slot_rule(const struct block *b, int slot)
 {
-  /* Every axis word asks for its rule: remember each answer by name (the
-   * names are string literals) and limits instead of searching and
-   * formatting again -- open addressing, so that no two names share a
-   * slot and miss in turn. */
-  unsigned h = (unsigned)(((uintptr_t)name * 0x9E3779B97F4A7C15ull) >> 58) % RCACHE;
-  struct rcache *rc;
-  for (;; h = (h + 1) % RCACHE) {
-    rc = &c->rcache[h];
-    if (!rc->name)
-      break;
-    if (rc->name == name && rc->lo == lo && rc->hi == hi && rc->round == round_ && rc->clamp == clamp &&
-        rc->code == code)
-      return rc->idx;
-  }
+  return slot == SL_X && ((b->g >> 4) & 1) ? RK_G04X : slot;
+}
+
+/* The program's rule for kind rk (clamp 2: a clamp already warned of), in
+ * the program's table by the first word that needs it. */
+static uint32_t rule(struct comp *c, int rk, int clamp)
+{
+  uint32_t *idx = &c->ruleidx[rk][clamp == 2];
+  if (*idx)
+    return *idx - 1;
+  const struct wrule *w = &wrules[rk];
   struct prog_rule r;
   memset(&r, 0, sizeof r);
-  r.lo = lo;
-  r.hi = hi;
-  r.round = (uint8_t)round_;
+  r.lo = w->lo;
+  r.hi = w->hi;
+  r.round = (uint8_t)w->round;
   r.clamp_hi = (uint8_t)clamp;
-  r.err = (uint8_t)code;
-  snprintf(r.name, sizeof r.name, "%s", name);
+  r.err = (uint8_t)S42_E_RANGE;
+  snprintf(r.name, sizeof r.name, "%s", w->name);
   long i = prog_rule(c->p, &r);
   if (i < 0) {
     c->oom = 1;
     return 0;
   }
-  if (c->nrcache >= RCACHE / 2) {   /* never full: the probe always ends */
-    memset(c->rcache, 0, sizeof c->rcache);
-    c->nrcache = 0;
-    rc = &c->rcache[((uintptr_t)name * 0x9E3779B97F4A7C15ull) >> 58];
-  }
-  c->nrcache++;
-  *rc = (struct rcache){name, lo, hi, round_, clamp, code, (uint32_t)i};
+  *idx = (uint32_t)i + 1;
   return (uint32_t)i;
 }
 
-struct wrule { const char *name; double lo, hi; int round, clamp; };
-
-static struct wrule slot_rule(const struct block *b, int slot)
+/* round(): half away from zero, the zero's sign kept (an inline: the libm
+ * call costs more than the rounding of the integers it mostly gets). */
+static inline double round_half_away(double v)
 {
-  int g04 = (b->g >> 4) & 1;
-  switch (slot) {
-  case SL_X: if (g04) return (struct wrule){"G04 X", 0, 999999, 1, 0};
-    return (struct wrule){"X", -999999, 999999, 1, 0};
-  case SL_Y: return (struct wrule){"Y", -999999, 999999, 1, 0};
-  case SL_Z: return (struct wrule){"Z", -999999, 999999, 1, 0};
-  case SL_A: return (struct wrule){"A", -9999999, 9999999, 1, 0};
-  case SL_I: return (struct wrule){"I", -4000000, 4000000, 1, 0};
-  case SL_J: return (struct wrule){"J", -4000000, 4000000, 1, 0};
-  case SL_K: return (struct wrule){"K", -4000000, 4000000, 1, 0};
-  case SL_H: return (struct wrule){"H", 0, 30000, 1, 0};
-  case SL_OSCF: return (struct wrule){"G07 F", 0, 6000, 1, 1};
-  case SL_SRCHF: return (struct wrule){"M12 F", 0, 6000, 1, 1};
-  default: return (struct wrule){slot == SL_MIN ? "G28 min" : "G28 max", -9999999, 9999999, 0, 0};
-  }
+  if (!(fabs(v) < 4503599627370496.0))   /* 2^52: an integer already; NaN and infinities as they are */
+    return v;
+  double t = (double)(int64_t)v, f = v - t;   /* f: exact */
+  if (f >= 0.5)
+    t += 1;
+  else if (f <= -0.5)
+    t -= 1;
+  return copysign(t, v);
 }
 
-/* Emit value + SET into dest (register < VM_NREG, or VM_NREG + slot); check
- * a constant value now, as `s42 check` must. */
-static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w, unsigned col)
+/* Emit value + SET into dest (register < VM_NREG, or VM_NREG + slot) by
+ * the rule of kind rk; check a constant value now, as `s42 check` must. */
+static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigned col)
 {
   double v;
   int failed = 0;
   if (!e || c->b->bad)
     return;   /* a block that did not parse is not compiled: it cannot run */
+  const struct wrule *w = &wrules[rk];
+  int clamp = w->clamp;
   c->selfslot = dest >= VM_NREG ? (int)(dest - VM_NREG) : -1;
   c->selfref = 0;
   int k = fold(c, e, &v, &failed);
@@ -471,17 +499,17 @@ static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w,
     return;
   }
   if (k) {
-    if (w.round)
-      v = round(v);
-    if (!(v >= w.lo && v <= w.hi)) {
-      if (w.clamp && v > w.hi) {
-        warn(c, col, "%s%.10g is over %.0f: clamped to %.0f", w.name, v, w.hi, w.hi);
-        w.clamp = 2;   /* said once, here: not again when it runs */
+    if (w->round)
+      v = round_half_away(v);
+    if (!(v >= w->lo && v <= w->hi)) {
+      if (clamp && v > w->hi) {
+        warn(c, col, "%s%.10g is over %.0f: clamped to %.0f", w->name, v, w->hi, w->hi);
+        clamp = 2;   /* said once, here: not again when it runs */
       } else {
         char rn[8];   /* a parameter's rule has no name of its own: R12 */
-        if (!w.name)
+        if (!w->name)
           snprintf(rn, sizeof rn, "R%u", dest % 1000);
-        err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w.name ? w.name : rn, v, w.lo, w.hi);
+        err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w->name ? w->name : rn, v, w->lo, w->hi);
         c->badslot |= bit;
         return;
       }
@@ -492,9 +520,7 @@ static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w,
     c->given |= (uint16_t)(1u << s);
     if (k) {
       c->isconst |= (uint16_t)(1u << s);
-      c->kval[s] = v;   /* rounded above when the rule rounds */
-      if (w.clamp && c->kval[s] > w.hi)
-        c->kval[s] = w.hi;
+      c->kval[s] = clamp && v > w->hi ? w->hi : v;   /* rounded above when the rule rounds */
     } else {
       c->isconst &= (uint16_t)~(1u << s);
     }
@@ -502,11 +528,11 @@ static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w,
   c->memo = !c->selfref;   /* failed returned above: the folds hold */
   gen(c, e);
   c->memo = 0;
-  if (dest <= 113 && w.lo == -9999999 && w.hi == 9999999 && !w.round && !w.clamp) {
+  if (rk == RK_PARAM) {
     emit(c, OP_SETP, dest, col);   /* a parameter: its rule is implied */
     return;
   }
-  uint32_t r = rule(c, w.name, w.lo, w.hi, w.round, w.clamp, S42_E_RANGE);
+  uint32_t r = rule(c, rk, clamp);
   emit(c, OP_SET, dest | r << 10, col);
 }
 
@@ -547,48 +573,30 @@ static int take_low(uint64_t *bits)
   return n;
 }
 
-static int motion_of(const struct block *b)
+static int motion_of(const struct comp *c, const struct block *b)
 {
-  int mo = MO_NONE, plugin = 0, dialog = 0;
-  for (uint64_t g = b->g; g;) {
-    const struct kp_word *w = kp_g(take_low(&g));
-    if (!w)
-      plugin = 1;
-    else if (w->motion == MO_DIALOG)
-      dialog = 1;
-    else if (w->motion != MO_NONE && mo == MO_NONE)
-      mo = w->motion;
-  }
-  if (mo == MO_NONE && plugin)
+  uint64_t own = b->g & c->g_own;
+  int mo = own ? kp_g(__builtin_ctzll(own))->motion : MO_NONE;
+  if (mo == MO_NONE && (b->g & ~c->g_table))
     mo = MO_PLUGIN;
-  for (uint64_t m = b->m; m;) {
-    const struct kp_word *w = kp_m(take_low(&m));
-    if (w && w->motion != MO_NONE)
-      return w->motion;
-  }
-  return mo == MO_NONE && dialog ? MO_DIALOG : mo;
+  uint32_t mown = b->m & c->m_own;
+  if (mown)
+    return kp_m(__builtin_ctz(mown))->motion;
+  return mo == MO_NONE && (b->g & c->g_dialog) ? MO_DIALOG : mo;
 }
 
-/* The first G of the block whose row has `flag`, or -1. */
-static int first_g(const struct block *b, unsigned flag)
+/* The first G of the block in `mask` (comp's g_arc, g_sep, g_nodir), or -1. */
+static inline int first_g(const struct block *b, uint64_t mask)
 {
-  for (uint64_t g = b->g; g;) {
-    int n = take_low(&g);
-    if (kp_g(n) && (kp_g(n)->flags & flag))
-      return n;
-  }
-  return -1;
+  uint64_t g = b->g & mask;
+  return g ? __builtin_ctzll(g) : -1;
 }
 
 /* The plane the block selects: its G17, G18 or G19 (the first), or 0. */
-static int plane_of(const struct block *b)
+static inline int plane_of(const struct comp *c, const struct block *b)
 {
-  for (uint64_t g = b->g; g;) {
-    const struct kp_word *w = kp_g(take_low(&g));
-    if (w && w->plane)
-      return w->plane;
-  }
-  return 0;
+  uint64_t g = b->g & c->g_plane;
+  return g ? kp_g(__builtin_ctzll(g))->plane : 0;
 }
 
 static int is_sep(const struct kp_word *w) { return w->kind == 'G' && (w->flags & KP_SEP); }
@@ -768,12 +776,33 @@ static void plugin_function(struct comp *c, char kind, int n, unsigned col, int 
  * bit n set, from the table. */
 static void core_masks(struct comp *c)
 {
-  for (int n = 0; n < 64; n++)
-    if (kp_g(n) && !kp_g(n)->owner)
-      c->core_g |= 1ull << n;
-  for (int n = 0; n < 32; n++)
+  for (int n = 0; n < 64; n++) {
+    const struct kp_word *w = kp_g(n);
+    if (!w)
+      continue;
+    uint64_t bit = 1ull << n;
+    c->g_table |= bit;
+    if (!w->owner)
+      c->core_g |= bit;
+    if (w->motion == MO_DIALOG)
+      c->g_dialog |= bit;
+    else if (w->motion != MO_NONE)
+      c->g_own |= bit;
+    if (w->plane)
+      c->g_plane |= bit;
+    if (w->flags & KP_ARC)
+      c->g_arc |= bit;
+    if (w->flags & KP_SEP)
+      c->g_sep |= bit;
+    if (w->flags & KP_NODIR)
+      c->g_nodir |= bit;
+  }
+  for (int n = 0; n < 32; n++) {
     if (kp_m(n) && !kp_m(n)->owner)
       c->core_m |= 1u << n;
+    if (kp_m(n) && kp_m(n)->motion != MO_NONE)
+      c->m_own |= 1u << n;
+  }
 }
 
 static void check_block(struct comp *c)
@@ -824,14 +853,12 @@ static void check_block(struct comp *c)
   const struct word *F = b->wF >= 0 ? &b->w[b->wF] : NULL;
   const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PC = find_word(c, WK_PCOND),
                     *PP = find_word(c, WK_PP);
-  int arc = first_g(b, KP_ARC);   /* its G, or -1 */
+  int arc = first_g(b, c->g_arc);   /* its G, or -1 */
   char list[80];
 
   /* functions that stand in a separate block */
-  for (uint64_t bits = b->g; bits;) {
+  for (uint64_t bits = b->g & c->g_sep; bits;) {
     int g = take_low(&bits);
-    if (!kp_g(g) || !(kp_g(g)->flags & KP_SEP))
-      continue;
     if (g == 7) {
       if (naxis != 1 || ncentre)
         err(c, S42_E_OSC, b->gcol[7], "G07 takes exactly one axis word (the stroke) and F (the speed)");
@@ -846,14 +873,14 @@ static void check_block(struct comp *c)
       err(c, S42_E_BLOCK, axcol ? axcol : cecol, "G%02d stands in a separate block: no axis or centre words beside it", g);
     }
   }
-  if (M(19) && first_g(b, KP_SEP) >= 0)
+  if (M(19) && first_g(b, c->g_sep) >= 0)
     err(c, S42_E_BLOCK, b->mcol[19], "M19 gives the direction of a move: not with %s",
         kp_codes(list, sizeof list, is_sep));
   if (M(19) && !naxis)
     err(c, S42_E_BLOCK, b->mcol[19], "M19 needs the increments that give the direction of the move");
 
   /* arcs and planes */
-  int plane = plane_of(b);
+  int plane = plane_of(c, b);
   if (arc >= 0) {
     int g = arc;
     int helix = (kp_g(g)->flags & KP_HELIX) != 0;
@@ -903,7 +930,7 @@ static void check_block(struct comp *c)
     if ((P || PC) && (M(17) || M(2)))
       err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
   }
-  int dg = b->g ? first_g(b, KP_NODIR) : -1, dlg = dg >= 0;
+  int dg = b->g ? first_g(b, c->g_nodir) : -1, dlg = dg >= 0;
   if (dlg && PP)
     err(c, S42_E_BLOCK, PP->col, "PP is not allowed in a block with G%02d", dg);
   if (dlg && M(18))
@@ -1026,10 +1053,11 @@ static void compile_block(struct comp *c)
   at->m = b->m;
   at->plugins = c->plugmask;
   at->plug_g = (uint8_t)c->plug_g;
-  at->plane = (uint8_t)plane_of(b);
+  at->plane = (uint8_t)plane_of(c, b);
   struct kp_more more = {.g28reg = (int16_t)b->g28reg, .g27form = b->g27form, .g37axis = b->g37axis};
-  int mo = motion_of(b);
+  int mo = motion_of(c, b);
   c->given = c->isconst = c->badslot = 0;
+  c->depth = c->peak = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
 
   int g07 = G(7), srch = (G(10) || G(11)) && M(12);
@@ -1039,17 +1067,17 @@ static void compile_block(struct comp *c)
     switch (w->kind) {
     case WK_REG: {
       if (w->letter == 'F' && (g07 || srch)) {
-        store(c, w->e, VM_NREG + (g07 ? SL_OSCF : SL_SRCHF), slot_rule(b, g07 ? SL_OSCF : SL_SRCHF), w->col);
+        store(c, w->e, VM_NREG + (g07 ? SL_OSCF : SL_SRCHF), g07 ? RK_OSCF : RK_SRCHF, w->col);
         at->slots |= (uint16_t)(1u << (g07 ? SL_OSCF : SL_SRCHF));
       } else if (w->letter == 'F') {
-        store(c, w->e, REG_F, (struct wrule){"F", 0, 6000, 1, 1}, w->col);
+        store(c, w->e, REG_F, RK_F, w->col);
         at->has_f = 1;
       } else if (w->letter == 'D') {
-        store(c, w->e, REG_D1, (struct wrule){"D1", 0, 400000, 0, 0}, w->col);
+        store(c, w->e, REG_D1, RK_D1, w->col);
       } else {
         /* a parameter: SETP, whose rule is implied; the name (R12) only
          * when store() reports its value */
-        store(c, w->e, w->idx, (struct wrule){NULL, -9999999, 9999999, 0, 0}, w->col);
+        store(c, w->e, w->idx, RK_PARAM, w->col);
       }
       break;
     }
@@ -1083,8 +1111,8 @@ static void compile_block(struct comp *c)
     mo = MO_G01;
   at->motion = (uint8_t)mo;
   if (G(28) && b->g28min && b->g28max) {
-    store(c, b->g28min, VM_NREG + SL_MIN, slot_rule(b, SL_MIN), b->g28col);
-    store(c, b->g28max, VM_NREG + SL_MAX, slot_rule(b, SL_MAX), b->g28col);
+    store(c, b->g28min, VM_NREG + SL_MIN, RK_MIN, b->g28col);
+    store(c, b->g28max, VM_NREG + SL_MAX, RK_MAX, b->g28col);
     /* |answer| must lie in min..max: bounds the wrong way round refuse
      * every answer, and the operator could never leave the field */
     const uint16_t both = 1u << SL_MIN | 1u << SL_MAX;
@@ -1092,7 +1120,7 @@ static void compile_block(struct comp *c)
       err(c, S42_E_RANGE, b->g28col, "G28 /%.10g:%.10g/: the minimum is over the maximum, so no number can pass",
           c->kval[SL_MIN], c->kval[SL_MAX]);
   }
-  int arc = first_g(b, KP_ARC);
+  int arc = first_g(b, c->g_arc);
   if (arc >= 0 && at->plane)
     check_arc_const(c, at->plane, b->gcol[arc]);
   const struct word *PC = find_word(c, WK_PCOND);
@@ -1101,6 +1129,7 @@ static void compile_block(struct comp *c)
     size_t last = c->p->ncode - 1;
     if (b->cond->kind == EX_CMP && c->p->ncode > 0 && INS_OP(c->p->code[last]) == OP_CMP) {
       c->p->code[last] = INS(OP_CMPC, INS_A(c->p->code[last]));   /* CMP; COND */
+      c->depth += stack_delta[OP_CMPC] - stack_delta[OP_CMP];
       fuse_compare(c);
     } else
       emit(c, OP_COND, 0, PC->col);
@@ -1186,11 +1215,13 @@ static void compile_block(struct comp *c)
   if (!c->oom && c->p->ncode == c->bstart + 4 && code[1] == INS(OP_SYNC, 0) && code[2] == INS(OP_COMMIT, 0) &&
       code[3] == INS(OP_RET, 0))
     c->p->code[c->bstart] = INS(OP_BLOCKR, (uint32_t)bi);
-  uint32_t need = block_stack(c);
-  if (need > c->p->max_stack)
-    c->p->max_stack = need;
-  if (need > 500)
-    err(c, S42_E_SYNTAX, b->col, "expression too complex");
+  if ((uint32_t)c->peak > c->p->max_stack || c->peak > 500) {
+    uint32_t need = block_stack(c);
+    if (need > c->p->max_stack)
+      c->p->max_stack = need;
+    if (need > 500)
+      err(c, S42_E_SYNTAX, b->col, "expression too complex");
+  }
 
   /* keep the texts */
   if (G(27) && b->g27.s) more.g27 = add_str(c, &b->g27);

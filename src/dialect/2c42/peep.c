@@ -90,21 +90,54 @@ static long triplet(struct program *p, double b)
   return prog_consts(p, t, 3);
 }
 
+/* Which pairs can start a fusion, by one lookup an instruction: the low
+ * bits of pair_tab[op] say what op can be first in (REG_FIRST: a REG;
+ * SETP_FIRST: an arithmetic or a function a SETP may follow), the high bits
+ * what it can be second in; a pair (a, b) can fuse when
+ * pair_tab[a] & pair_tab[b] >> 2. */
+enum { REG_FIRST = 1, SETP_FIRST = 2, REG_SECOND = 4, SETP_SECOND = 8 };
+static uint8_t pair_tab[256];
+
+static void __attribute__((constructor)) pair_tab_init(void)
+{
+  for (unsigned op = 0; op < 256; op++) {
+    unsigned t = 0;
+    if (op == OP_REG)
+      t |= REG_FIRST;
+    if (arith_x_tab[op] || arith_stack_tab[op] || trig_store(op))
+      t |= SETP_FIRST;
+    if (arith_x_tab[op] || op == OP_CMPCK || op == OP_SIN || op == OP_COS)
+      t |= REG_SECOND;
+    if (op == OP_SETP)
+      t |= SETP_SECOND;
+    pair_tab[op] = (uint8_t)t;
+  }
+}
+
 int peep_block(struct program *p, size_t from)
 {
   uint32_t *code = p->code;
   uint16_t *cols = p->cols;
-  size_t n = p->ncode, o = from + 1, i = from + 1;
+  size_t n = p->ncode, o, i = from + 1;
   /* nothing to fuse in most blocks: look before writing */
-  while (i + 1 < n) {
-    unsigned op0 = INS_OP(code[i]), op1 = INS_OP(code[i + 1]);
-    if ((op0 == OP_REG && (arith_x_tab[op1] || op1 == OP_CMPCK || op1 == OP_SIN || op1 == OP_COS)) ||
-        (op1 == OP_SETP && (arith_x_tab[op0] || arith_stack_tab[op0] || trig_store(op0))))
+  if (i >= n)
+    return 0;
+  unsigned prev = pair_tab[INS_OP(code[i])];
+  for (; i + 1 < n; i++) {
+    unsigned t = pair_tab[INS_OP(code[i + 1])];
+    if (prev & t >> 2)
       break;
-    i++;
+    prev = t;
   }
+  if (i + 1 >= n)
+    return 0;
   o = i;
   while (i < n) {
+    if (i + 1 >= n || !(pair_tab[INS_OP(code[i])] & pair_tab[INS_OP(code[i + 1])] >> 2)) {
+      cols[o] = cols[i];   /* no fusion starts here */
+      code[o++] = code[i++];
+      continue;
+    }
     uint32_t w0 = code[i], w1 = i + 1 < n ? code[i + 1] : 0, w2 = i + 2 < n ? code[i + 2] : 0;
     unsigned op0 = INS_OP(w0), op1 = i + 1 < n ? INS_OP(w1) : OP__COUNT, op2 = i + 2 < n ? INS_OP(w2) : OP__COUNT;
     unsigned op3 = i + 3 < n ? INS_OP(code[i + 3]) : OP__COUNT;
