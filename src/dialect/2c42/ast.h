@@ -75,6 +75,8 @@ struct block {
   uint8_t wfirst[WK_PP + 1];  /* the index of the first word of each kind in wkinds */
   int wF;                     /* the index of the F word, -1 none */
   int hasD;                   /* a D1 word */
+  uint8_t gw[64];             /* the indices of the G words, in text order */
+  int ngw;
   unsigned slotcol[SL__COUNT];  /* the column of the word filling each slot in wslots */
   struct expr *cond;        /* P(cond) */
   /* slash arguments */

@@ -324,6 +324,36 @@ static void fuse_compare(struct comp *c)
   c->p->ncode = n - 1;
 }
 
+static void gen(struct comp *c, struct expr *e);
+
+static void gen_reg(struct comp *c, const struct expr *e)
+{
+  emit(c, OP_REG, e->idx, e->col);
+  if ((e->idx == REG_TK || e->idx == REG_UG) && !c->x->uses_tk) {
+    c->x->uses_tk = 1;
+    c->x->tk_line = c->b->line;
+    c->x->tk_col = e->col;
+    c->x->tk_number = c->b->number;
+  }
+}
+
+/* gen() of e, its leaves without a call: with the folds kept (memo), a
+ * constant node and a register are one push. */
+static inline void gen_in(struct comp *c, struct expr *e)
+{
+  if (c->memo) {
+    if (e->kind <= EX_FN && e->fk == 1) {
+      emit_num(c, e->v, e->col);
+      return;
+    }
+    if (e->kind == EX_REG) {
+      gen_reg(c, e);
+      return;
+    }
+  }
+  gen(c, e);
+}
+
 static void gen(struct comp *c, struct expr *e)
 {
   double v;
@@ -338,13 +368,7 @@ static void gen(struct comp *c, struct expr *e)
     emit_num(c, e->v, e->col);
     return;
   case EX_REG:
-    emit(c, OP_REG, e->idx, e->col);
-    if ((e->idx == REG_TK || e->idx == REG_UG) && !c->x->uses_tk) {
-      c->x->uses_tk = 1;
-      c->x->tk_line = c->b->line;
-      c->x->tk_col = e->col;
-      c->x->tk_number = c->b->number;
-    }
+    gen_reg(c, e);
     return;
   case EX_SLOT:
     if (c->given & (1u << e->idx))
@@ -356,17 +380,17 @@ static void gen(struct comp *c, struct expr *e)
     emit(c, OP_ARD, e->idx, e->col);
     return;
   case EX_NEG:
-    gen(c, e->a);
+    gen_in(c, e->a);
     emit(c, OP_NEG, 0, e->col);
     return;
   case EX_FN:
-    gen(c, e->a);
+    gen_in(c, e->a);
     emit(c, e->op, 0, e->col);
     return;
   case EX_BIN: {
-    gen(c, e->a);
+    gen_in(c, e->a);
     size_t mark = c->p->ncode;
-    gen(c, e->b);
+    gen_in(c, e->b);
     /* superinstruction: an operator whose right operand is one push */
     uint32_t last = mark < c->p->ncode ? c->p->code[mark] : 0;
     int fused = fuse_operand(e->op, (int)INS_OP(last));
@@ -390,13 +414,13 @@ static void gen(struct comp *c, struct expr *e)
     return;
   }
   case EX_CMP:
-    gen(c, e->a);
-    gen(c, e->b);
+    gen_in(c, e->a);
+    gen_in(c, e->b);
     emit(c, OP_CMP, e->op, e->col);
     return;
   case EX_AND: case EX_OR:
-    gen(c, e->a);
-    gen(c, e->b);
+    gen_in(c, e->a);
+    gen_in(c, e->b);
     emit(c, e->kind == EX_AND ? OP_AND : OP_OR, 0, e->col);
     return;
   }
@@ -526,7 +550,7 @@ static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigne
     }
   }
   c->memo = !c->selfref;   /* failed returned above: the folds hold */
-  gen(c, e);
+  gen_in(c, e);
   c->memo = 0;
   if (rk == RK_PARAM) {
     emit(c, OP_SETP, dest, col);   /* a parameter: its rule is implied */
@@ -805,16 +829,17 @@ static void core_masks(struct comp *c)
   }
 }
 
-static void check_block(struct comp *c)
+static void check_dialog(struct comp *c);
+
+static void check_block(struct comp *c, const struct word *L, const struct word *P, const struct word *PC,
+                        const struct word *PP)
 {
   struct block *b = c->b;
   unsigned col;
-  /* groups */
+  /* groups, the G words in text order */
   int seen[5] = {0};
-  for (int i = 0; i < b->nw && b->g; i++) {
-    const struct word *w = &b->w[i];
-    if (w->kind != WK_G)
-      continue;
+  for (int i = 0; i < b->ngw; i++) {
+    const struct word *w = &b->w[b->gw[i]];
     int grp = group_of(c, w->num);
     if (seen[grp])
       err(c, S42_E_GROUP, w->col, "G%02d and G%02d are both group %d functions", seen[grp], w->num, grp);
@@ -835,9 +860,9 @@ static void check_block(struct comp *c)
   int g4_words = 0;   /* said: the block's axis or centre words do not belong */
   if (seen[4]) {
     int other = 0;   /* one error a block: the first thing that does not belong */
-    for (int i = 0; i < b->nw && !other; i++) {
-      const struct word *w = &b->w[i];
-      int grp = w->kind == WK_G ? group_of(c, w->num) : 0;
+    for (int i = 0; i < b->ngw && !other; i++) {
+      const struct word *w = &b->w[b->gw[i]];
+      int grp = group_of(c, w->num);
       if (grp >= 1 && grp <= 3) {
         err(c, S42_E_GROUP, w->col, "G%02d (dialog and display, group 4) stands without functions of groups 1-3: "
             "G%02d belongs in another block", seen[4], w->num);
@@ -851,8 +876,6 @@ static void check_block(struct comp *c)
     }
   }
   const struct word *F = b->wF >= 0 ? &b->w[b->wF] : NULL;
-  const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PC = find_word(c, WK_PCOND),
-                    *PP = find_word(c, WK_PP);
   int arc = first_g(b, c->g_arc);   /* its G, or -1 */
   char list[80];
 
@@ -873,11 +896,13 @@ static void check_block(struct comp *c)
       err(c, S42_E_BLOCK, axcol ? axcol : cecol, "G%02d stands in a separate block: no axis or centre words beside it", g);
     }
   }
-  if (M(19) && first_g(b, c->g_sep) >= 0)
-    err(c, S42_E_BLOCK, b->mcol[19], "M19 gives the direction of a move: not with %s",
-        kp_codes(list, sizeof list, is_sep));
-  if (M(19) && !naxis)
-    err(c, S42_E_BLOCK, b->mcol[19], "M19 needs the increments that give the direction of the move");
+  if (M(19)) {
+    if (first_g(b, c->g_sep) >= 0)
+      err(c, S42_E_BLOCK, b->mcol[19], "M19 gives the direction of a move: not with %s",
+          kp_codes(list, sizeof list, is_sep));
+    if (!naxis)
+      err(c, S42_E_BLOCK, b->mcol[19], "M19 needs the increments that give the direction of the move");
+  }
 
   /* arcs and planes */
   int plane = plane_of(c, b);
@@ -912,8 +937,8 @@ static void check_block(struct comp *c)
       warn(c, b->gcol[plane], "G%d has no effect without an arc (%s)", plane, kp_codes(list, sizeof list, is_arc));
   }
 
-  /* auxiliary functions (none of these is said without an M word) */
-  if (b->m) {
+  /* auxiliary functions (none of these is said without two M words) */
+  if (b->m & (b->m - 1)) {
     int wheel = M(3) + M(4) + M(5);
     if (wheel > 1)
       err(c, S42_E_BLOCK, b->mcol[M(3) ? (M(4) ? 4 : 5) : 5], "only one of M3 M4 M5 in a block");
@@ -927,9 +952,9 @@ static void check_block(struct comp *c)
       err(c, S42_E_BLOCK, b->mcol[21], "M18 shows a directive and M21 erases it: not both in a block");
     if (M(17) && M(2))
       err(c, S42_E_BLOCK, b->mcol[17], "M17 and M2 in one block");
-    if ((P || PC) && (M(17) || M(2)))
-      err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
   }
+  if ((P || PC) && (M(17) || M(2)))
+    err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
   int dg = b->g ? first_g(b, c->g_nodir) : -1, dlg = dg >= 0;
   if (dlg && PP)
     err(c, S42_E_BLOCK, PP->col, "PP is not allowed in a block with G%02d", dg);
@@ -941,14 +966,40 @@ static void check_block(struct comp *c)
     err(c, S42_E_BLOCK, b->mcol[M(10) ? 10 : 12], "M%d belongs to a tooth-step search (G10 or G11)", M(10) ? 10 : 12);
   if (slot_word(c, SL_H, &col) && !L)
     err(c, S42_E_BLOCK, col, "H (repeat count) without L (sub call)");
-  if (L && (L->num < 2 || L->num > 999))
-    err(c, S42_E_RANGE, L->col, "L%d: a sub's first block is 2..999", L->num);
-  if (!b->bad && ((P && P->num < 1) || (PC && PC->num < 1)))
-    err(c, S42_E_RANGE, (P ? P : PC)->col, "jump target 0: block numbers are 1..999");
-  if (!b->bad && PP && PP->num < 1)
-    err(c, S42_E_RANGE, PP->col, "PP target 0: block numbers are 1..999");
+  if (L || P || PC || PP) {
+    if (L && (L->num < 2 || L->num > 999))
+      err(c, S42_E_RANGE, L->col, "L%d: a sub's first block is 2..999", L->num);
+    if (!b->bad && ((P && P->num < 1) || (PC && PC->num < 1)))
+      err(c, S42_E_RANGE, (P ? P : PC)->col, "jump target 0: block numbers are 1..999");
+    if (!b->bad && PP && PP->num < 1)
+      err(c, S42_E_RANGE, PP->col, "PP target 0: block numbers are 1..999");
+  }
 
   /* group 4: dialog and display */
+  if (b->g & (1ull << 27 | 1ull << 28 | 1ull << 33 | 1ull << 37) || M(18) || b->ng29)
+    check_dialog(c);
+  if (b->len > 320)
+    err(c, S42_E_BLOCKLEN, b->col, "block of %u characters; at most 320 (ten display lines)", b->len);
+
+  /* functions that plugins implement (the core's own have no plugin:
+   * plugin_function returns at once for them, so they are not visited) */
+  c->plugmask = 0;
+  c->plug_g = 0;
+  for (uint64_t bits = b->g & ~c->core_g; bits;) {
+    int n = take_low(&bits);
+    plugin_function(c, 'G', n, b->gcol[n], naxis + ncentre, plane);
+  }
+  for (uint64_t bits = b->m & ~c->core_m; bits;) {
+    int n = take_low(&bits);
+    plugin_function(c, 'M', n, b->mcol[n], naxis + ncentre, plane);
+  }
+}
+
+/* The checks of group 4, dialog and display: G27 G28 G33 G37, and the
+ * texts of M18 and G29. */
+static void check_dialog(struct comp *c)
+{
+  struct block *b = c->b;
   if (G(28) && !c->prev_g27)
     err(c, S42_E_ORDER, b->gcol[28], "G28 must follow a G27 block (it stores the number G27 took)");
   if (G(27) && c->seen_g34)
@@ -988,21 +1039,6 @@ static void check_block(struct comp *c)
   if (G(37) && b->g37axis != 'Y')
     err(c, S42_E_AXIS, b->g37col ? b->g37col : b->gcol[37],
         "G37 returns only Y to its home position: G37 /Y/");
-  if (b->len > 320)
-    err(c, S42_E_BLOCKLEN, b->col, "block of %u characters; at most 320 (ten display lines)", b->len);
-
-  /* functions that plugins implement (the core's own have no plugin:
-   * plugin_function returns at once for them, so they are not visited) */
-  c->plugmask = 0;
-  c->plug_g = 0;
-  for (uint64_t bits = b->g & ~c->core_g; bits;) {
-    int n = take_low(&bits);
-    plugin_function(c, 'G', n, b->gcol[n], naxis + ncentre, plane);
-  }
-  for (uint64_t bits = b->m & ~c->core_m; bits;) {
-    int n = take_low(&bits);
-    plugin_function(c, 'M', n, b->mcol[n], naxis + ncentre, plane);
-  }
 }
 
 /* ---- one block ---- */
@@ -1018,17 +1054,18 @@ static uint32_t add_str(struct comp *c, const struct text *t)
   return (uint32_t)(c->x->nstr - n + 1);
 }
 
+static int keep_more(struct comp *c, const struct block *b, struct kp_attr *at);
+
 static void compile_block(struct comp *c)
 {
   struct block *b = c->b;
-  check_block(c);
+  const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PC = find_word(c, WK_PCOND),
+                    *PP = find_word(c, WK_PP);
+  check_block(c, L, P, PC, PP);
 
-  struct prog_block pb = {0};
-  pb.line = b->line;
-  pb.col = (uint16_t)(b->col > 0xffff ? 0xffff : b->col);
-  pb.number = (uint32_t)(b->number < 0 ? 0 : b->number);
-  pb.code = (uint32_t)c->p->ncode;
-  long bi = prog_block_add(c->p, &pb);
+  struct prog_block pb = {.code = (uint32_t)c->p->ncode, .line = b->line,
+                          .number = (uint32_t)(b->number < 0 ? 0 : b->number), .col = col16(b->col)};
+  long bi = prog_block_push(c->p, &pb);
   if (bi < 0) {
     c->oom = 1;
     return;
@@ -1039,22 +1076,15 @@ static void compile_block(struct comp *c)
     return;
   struct kp_attr *at = &c->x->a[c->x->n++];
   uint8_t *flags = &c->sf[c->ns];
-  struct summ summ = {.i = (uint32_t)c->ns++, .L = -1, .P = -1, .PP = -1, .callpc = NOPC, .jpc = NOPC, .pppc = NOPC};
-  struct summ *sm = &summ;
-  memset(at, 0, sizeof *at);
-  *flags = 0;
+  int jumps = L || P || PC || PP;
+  struct summ summ, *sm = &summ;   /* the block's calls and jumps: made when it has some */
+  if (jumps)
+    summ = (struct summ){.i = (uint32_t)c->ns, .L = -1, .P = -1, .PP = -1, .callpc = NOPC, .jpc = NOPC, .pppc = NOPC};
+  c->ns++;
+  *flags = (uint8_t)((b->bad ? SF_BAD : 0) | (b->badnum ? SF_NONUM : 0));
   c->bstart = pb.code;
-  if (b->bad)
-    *flags |= SF_BAD;
-  if (b->badnum)
-    *flags |= SF_NONUM;
-
-  at->g = b->g;
-  at->m = b->m;
-  at->plugins = c->plugmask;
-  at->plug_g = (uint8_t)c->plug_g;
-  at->plane = (uint8_t)plane_of(c, b);
-  struct kp_more more = {.g28reg = (int16_t)b->g28reg, .g27form = b->g27form, .g37axis = b->g37axis};
+  *at = (struct kp_attr){.g = b->g, .m = b->m, .plugins = c->plugmask, .plug_g = (uint8_t)c->plug_g,
+                         .plane = (uint8_t)plane_of(c, b)};
   int mo = motion_of(c, b);
   c->given = c->isconst = c->badslot = 0;
   c->depth = c->peak = 0;
@@ -1123,7 +1153,6 @@ static void compile_block(struct comp *c)
   int arc = first_g(b, c->g_arc);
   if (arc >= 0 && at->plane)
     check_arc_const(c, at->plane, b->gcol[arc]);
-  const struct word *PC = find_word(c, WK_PCOND);
   if (b->cond && PC && !b->bad) {
     gen(c, b->cond);
     size_t last = c->p->ncode - 1;
@@ -1157,7 +1186,6 @@ static void compile_block(struct comp *c)
   for (int i = 0; i < b->nm20; i++)
     emit(c, OP_TRUNC, b->m20[i], b->m20col[i]);
   emit(c, OP_COMMIT, 0, b->col);
-  const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PP = find_word(c, WK_PP);
   if (L) {
     int h = (c->given & (1u << SL_H)) != 0;
     sm->L = (int16_t)L->num;
@@ -1203,7 +1231,7 @@ static void compile_block(struct comp *c)
     *flags |= SF_M2;
     emit(c, OP_END, 0, b->mcol[2]);
   }
-  if (L || P || PC || PP) {
+  if (jumps) {
     c->s = grow(c->s, &c->capj, c->nj + 1, sizeof *c->s, &c->oom);
     if (c->oom)
       return;
@@ -1212,8 +1240,8 @@ static void compile_block(struct comp *c)
   }
   /* a sub's lone M17: BLOCK; SYNC; COMMIT; RET, which BLOCKR runs at once */
   const uint32_t *code = c->p->code + c->bstart;
-  if (!c->oom && c->p->ncode == c->bstart + 4 && code[1] == INS(OP_SYNC, 0) && code[2] == INS(OP_COMMIT, 0) &&
-      code[3] == INS(OP_RET, 0))
+  if (M(17) && !c->oom && c->p->ncode == c->bstart + 4 && code[1] == INS(OP_SYNC, 0) &&
+      code[2] == INS(OP_COMMIT, 0) && code[3] == INS(OP_RET, 0))
     c->p->code[c->bstart] = INS(OP_BLOCKR, (uint32_t)bi);
   if ((uint32_t)c->peak > c->p->max_stack || c->peak > 500) {
     uint32_t need = block_stack(c);
@@ -1223,7 +1251,22 @@ static void compile_block(struct comp *c)
       err(c, S42_E_SYNTAX, b->col, "expression too complex");
   }
 
-  /* keep the texts */
+  /* keep the texts and what else few blocks have (struct kp_more) */
+  if (G(27) || G(33) || M(18) || b->ng29 || b->nm16 || b->g28reg != -1 || b->g27form || b->g37axis)
+    if (!keep_more(c, b, at))
+      return;
+  if (M(10) && (G(10) || G(11)))
+    c->x->has_m10 = 1;
+  c->prev_g27 = G(27);
+  if (G(34))
+    c->seen_g34 = 1;
+}
+
+/* The block's texts, dialog forms and M16 list, kept in kp_ext.more; 0
+ * when out of memory. */
+static int keep_more(struct comp *c, const struct block *b, struct kp_attr *at)
+{
+  struct kp_more more = {.g28reg = (int16_t)b->g28reg, .g27form = b->g27form, .g37axis = b->g37axis};
   if (G(27) && b->g27.s) more.g27 = add_str(c, &b->g27);
   if (G(33) && b->g33.s) more.g33 = add_str(c, &b->g33);
   if (M(18) && b->m18.s) more.m18 = add_str(c, &b->m18);
@@ -1235,7 +1278,7 @@ static void compile_block(struct comp *c)
         continue;
       c->x->lines = grow(c->x->lines, &c->x->caplines, c->x->nlines + 1, sizeof *c->x->lines, &c->oom);
       if (c->oom)
-        return;
+        return 0;
       c->x->lines[c->x->nlines++] = add_str(c, &b->g29[i]);
     }
   }
@@ -1244,22 +1287,18 @@ static void compile_block(struct comp *c)
     more.nm16 = (uint32_t)b->nm16;
     c->x->m16 = grow(c->x->m16, &c->x->capm16, c->x->nm16 + (size_t)b->nm16, sizeof *c->x->m16, &c->oom);
     if (c->oom)
-      return;
+      return 0;
     memcpy(c->x->m16 + c->x->nm16, b->m16, (size_t)b->nm16 * sizeof *b->m16);
     c->x->nm16 += (size_t)b->nm16;
   }
   if (b->g28reg != -1 || b->g27form || b->g37axis || more.g27 || more.g33 || more.m18 || more.ng29 || more.nm16) {
     c->x->more = grow(c->x->more, &c->x->capmore, c->x->nmore + 1, sizeof *c->x->more, &c->oom);
     if (c->oom)
-      return;
+      return 0;
     c->x->more[c->x->nmore++] = more;
     at->more = (uint32_t)c->x->nmore;
   }
-  if (M(10) && (G(10) || G(11)))
-    c->x->has_m10 = 1;
-  c->prev_g27 = G(27);
-  if (G(34))
-    c->seen_g34 = 1;
+  return 1;
 }
 
 /* ---- program structure ---- */

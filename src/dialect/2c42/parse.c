@@ -813,6 +813,8 @@ static void word(struct pstate *s)
     }
     w = new_word(s, c == 'G' ? WK_G : WK_M, (char)c, col);
     w->num = (int)n;
+    if (c == 'G')
+      b->gw[b->ngw++] = (uint8_t)(b->nw - 1);
     if (kw && kw->slash != KP_SA_NONE)
       slash_arg(s, b, kw);
     return;
@@ -983,6 +985,7 @@ static void clear_block(struct block *b)
   b->wslots = b->wkinds = 0;
   b->wF = -1;
   b->hasD = 0;
+  b->ngw = 0;
   b->cond = NULL;
   memset(&b->g27, 0, sizeof b->g27);
   memset(&b->g33, 0, sizeof b->g33);
