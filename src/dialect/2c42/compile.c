@@ -1338,31 +1338,20 @@ static inline int unit_of(const struct prog_block *B, size_t i)
   return B[i].unit == 0xffff ? -1 : (int)B[i].unit;
 }
 
-/* The calls and jumps of block i, which has SF_JUMPS (the list is in
- * block order). */
-static const struct summ *jumps_of(const struct comp *c, size_t i)
-{
-  size_t lo = 0, hi = c->nj;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (c->s[mid].i <= i)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return &c->s[lo];
-}
-
 /* The units that can call themselves, directly or through others: those
  * on a cycle of the call graph (the calls of reachable blocks), found as
  * its strongly connected components (Tarjan's, without recursion): linear
  * in units and calls.  cyc[u] is 1 for such a unit; NULL when out of memory. */
-static char *calls_itself(const struct summ *S, size_t nj, const int *first, const struct prog_block *B, const char *reach,
+/* A block's flags in structure(): it starts a unit; a call lands in the
+ * middle of a unit there; it can run. */
+enum { FL_START = 1, FL_INTO = 2, FL_REACH = 4 };
+
+static char *calls_itself(const struct summ *S, size_t nj, const int *first, const struct prog_block *B, const uint8_t *fl,
                           int nu)
 {
   size_t ne = 0;
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i])
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && (fl[S[k].i] & FL_REACH))
       ne++;
   size_t *off = calloc((size_t)nu + 1, sizeof *off);
   int *dst = malloc((ne ? ne : 1) * sizeof *dst);
@@ -1377,14 +1366,14 @@ static char *calls_itself(const struct summ *S, size_t nj, const int *first, con
   }
   /* the calls by caller (counting sort) */
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i])
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && (fl[S[k].i] & FL_REACH))
       off[unit_of(B, S[k].i) + 1]++;
   for (int u = 0; u < nu; u++)
     off[u + 1] += off[u];
   for (int u = 0; u < nu; u++)
     it[u] = off[u];
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i]) {
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && (fl[S[k].i] & FL_REACH)) {
       int from = unit_of(B, S[k].i), to = unit_of(B, first[S[k].L]);
       dst[it[from]++] = to;
       if (from == to)
@@ -1444,6 +1433,71 @@ out:
   return cyc;
 }
 
+/* FL_REACH on every block that can run: from each unit's start, on
+ * through the blocks that run on into the next and to the targets of
+ * jumps (the calls' and jumps' list is in block order: walking on, the
+ * next block's are the next in it).  0 when out of memory. */
+static int reach_all(struct comp *c, uint8_t *fl, const int *first)
+{
+  size_t n = c->ns, nj = c->nj, cap = 256, top = 0;
+  const uint8_t *F = c->sf;
+  const struct summ *S = c->s;
+  uint32_t *stk = malloc(cap * sizeof *stk);   /* blocks reached, not yet walked from */
+  if (!stk)
+    return 0;
+  for (size_t i = 0; i < n; i++)
+    if (fl[i] & FL_START) {
+      fl[i] |= FL_REACH;
+      if (top == cap) {
+        uint32_t *t = realloc(stk, 2 * cap * sizeof *stk);
+        if (!t) {
+          free(stk);
+          return 0;
+        }
+        stk = t;
+        cap *= 2;
+      }
+      stk[top++] = (uint32_t)i;
+    }
+  while (top) {
+    size_t i = stk[--top], k = 0, hi = nj;
+    while (k < hi) {   /* the first calls and jumps at or after block i */
+      size_t mid = (k + hi) / 2;
+      if (S[mid].i < i)
+        k = mid + 1;
+      else
+        hi = mid;
+    }
+    for (;;) {
+      if (F[i] & SF_JUMPS) {
+        while (S[k].i < i)
+          k++;
+        int tg[2] = {S[k].P, S[k].PP};
+        for (int t = 0; t < 2; t++) {
+          if (tg[t] <= 0 || tg[t] >= 1000 || first[tg[t]] < 0 || (fl[first[tg[t]]] & FL_REACH))
+            continue;
+          fl[first[tg[t]]] |= FL_REACH;
+          if (top == cap) {
+            uint32_t *s2 = realloc(stk, 2 * cap * sizeof *stk);
+            if (!s2) {
+              free(stk);
+              return 0;
+            }
+            stk = s2;
+            cap *= 2;
+          }
+          stk[top++] = (uint32_t)first[tg[t]];
+        }
+      }
+      if ((F[i] & (SF_M2 | SF_M17 | SF_UNCOND)) || i + 1 >= n || (fl[i + 1] & (FL_START | FL_REACH)))
+        break;
+      fl[++i] |= FL_REACH;   /* runs on into the next */
+    }
+  }
+  free(stk);
+  return 1;
+}
+
 static void structure(struct comp *c)
 {
   size_t n = c->ns, nj = c->nj;
@@ -1460,25 +1514,22 @@ static void structure(struct comp *c)
     first[i] = -1;
     count[i] = 0;
   }
-  for (size_t i = 0; i < n; i++)
+  /* and what a block that did not parse may have held: a number, an M2 */
+  unsigned anyf = 0;
+  for (size_t i = 0; i < n; i++) {
+    anyf |= F[i];
     if (B[i].number > 0 && B[i].number < 1000) {
       if (first[B[i].number] < 0)
         first[B[i].number] = (int)i;
       count[B[i].number]++;
     }
-  /* unit starts: block 1 and every L target */
-  char *start = calloc(n, 1), *into = calloc(n, 1);
-  if (!start || !into) {
-    free(start);
-    free(into);
+  }
+  int nonum = (anyf & SF_NONUM) != 0, anybad = (anyf & SF_BAD) != 0;
+  /* each block's FL_ flags: unit starts (block 1 and every L target) first */
+  uint8_t *fl = calloc(n, 1);
+  if (!fl) {
     c->oom = 1;
     return;
-  }
-  /* what a block that did not parse may have held: a number, an M2 */
-  int nonum = 0, anybad = 0;
-  for (size_t i = 0; i < n; i++) {
-    nonum |= (F[i] & SF_NONUM) != 0;
-    anybad |= (F[i] & SF_BAD) != 0;
   }
   int mp = first[1];
   if (mp < 0 && nonum)
@@ -1491,7 +1542,7 @@ static void structure(struct comp *c)
       if (B[i].number == 1 && (int)i != mp)
         serr(c, i, 0, S42_E_SUB, "block 1 appears twice: the main program starts at block 1");
   if (mp >= 0)
-    start[mp] = 1;
+    fl[mp] = FL_START;
   for (size_t k = 0; k < nj; k++) {
     size_t i = S[k].i;
     if (S[k].L < 0 || S[k].L < 2 || S[k].L > 999)
@@ -1506,25 +1557,27 @@ static void structure(struct comp *c)
            t, t, count[t]);
     else {
       size_t f = (size_t)first[t];
-      if (mp >= 0 && first[t] > mp && !start[f])   /* once a sub, however many call it */
+      if (mp >= 0 && first[t] > mp && !(fl[f] & FL_START))   /* once a sub, however many call it */
         serr(c, f, 0, S42_E_SUB, "sub %d starts after block 1: subs come before the main program", t);
-      else if (f > 0 && !start[f] && !into[f] && (int)f != mp &&
+      else if (f > 0 && !(fl[f] & (FL_START | FL_INTO)) && (int)f != mp &&
                !(F[f - 1] & (SF_M2 | SF_M17 | SF_UNCOND | SF_BAD))) {
         /* a call into the middle of a sub: the block before runs on into
          * it, so the call is the mistake (not that sub's "end") */
-        into[f] = 1;
+        fl[f] |= FL_INTO;
         serr(c, i, S[k].Lcol, S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
              "it); a sub starts after the end (M17, M2 or a jump) of the one before", t, t, B[f - 1].number);
       }
-      start[f] = 1;
+      fl[f] |= FL_START;
     }
   }
-  /* units in text order: 0 = the MP, subs numbered from 1 */
-  int u = -1, nsub = 0;
+  /* units in text order: 0 = the MP, subs numbered from 1; whether a unit
+   * has an M2 */
+  int u = -1, nsub = 0, anym2 = 0;
   for (size_t i = 0; i < n; i++) {
-    if (start[i])
+    if (fl[i] & FL_START)
       u = ((int)i == mp) ? 0 : ++nsub;
     c->p->blocks[i].unit = (uint16_t)(u < 0 ? 0xffff : u);
+    anym2 |= (F[i] & SF_M2) && u >= 0;
   }
   /* jumps */
   for (size_t j = 0; j < nj; j++) {
@@ -1547,16 +1600,12 @@ static void structure(struct comp *c)
              unit_of(B, i) == 0 ? "unit (a sub)" : "unit");
     }
   }
-  int anym2 = 0;
-  for (size_t i = 0; i < n; i++)
-    if ((F[i] & SF_M2) && unit_of(B, i) >= 0)
-      anym2 = 1;
   /* M17 in the MP, running off the end of a unit */
   for (size_t i = 0; i < n; i++) {
     if ((F[i] & SF_M17) && unit_of(B, i) == 0)
       serr(c, i, 0, S42_E_SUB, "M17 (end of sub) in the main program");
-    int last = i + 1 == n || start[i + 1];
-    if (!last || unit_of(B, i) < 0 || (F[i] & SF_BAD) || (i + 1 < n && into[i + 1]))
+    int last = i + 1 == n || (fl[i + 1] & FL_START);
+    if (!last || unit_of(B, i) < 0 || (F[i] & SF_BAD) || (i + 1 < n && (fl[i + 1] & FL_INTO)))
       continue;
     if (unit_of(B, i) == 0 && !anym2)
       continue;   /* the program has no M2 at all: that one error says it */
@@ -1573,53 +1622,26 @@ static void structure(struct comp *c)
              "no M2: the program never ends (its last block needs M2 or an unconditional jump)");
 
   /* reachability, per unit, for the dead-code warning */
-  char *reach = calloc(n, 1);
-  uint32_t *work = malloc(n * sizeof *work);
-  if (reach && work && !c->d->nerr) {
-    size_t top = 0;
+  if (!c->d->nerr && reach_all(c, fl, first)) {
     for (size_t i = 0; i < n; i++)
-      if (start[i]) {
-        reach[i] = 1;
-        work[top++] = (uint32_t)i;
-      }
-    while (top) {
-      size_t i = work[--top];
-      size_t nx[3];
-      int nn = 0;
-      if (!(F[i] & (SF_M2 | SF_M17 | SF_UNCOND)) && i + 1 < n && !start[i + 1])
-        nx[nn++] = i + 1;
-      const struct summ *J = F[i] & SF_JUMPS ? jumps_of(c, i) : NULL;
-      if (J && J->P > 0 && J->P < 1000 && first[J->P] >= 0)
-        nx[nn++] = (size_t)first[J->P];
-      if (J && J->PP > 0 && J->PP < 1000 && first[J->PP] >= 0)
-        nx[nn++] = (size_t)first[J->PP];
-      for (int k = 0; k < nn; k++)
-        if (!reach[nx[k]]) {
-          reach[nx[k]] = 1;
-          work[top++] = (uint32_t)nx[k];
-        }
-    }
-    for (size_t i = 0; i < n; i++)
-      if (!reach[i]) {
+      if (!(fl[i] & FL_REACH)) {
         size_t j = i;
-        while (j + 1 < n && !reach[j + 1])
+        while (j + 1 < n && !(fl[j + 1] & FL_REACH))
           j++;
         serr(c, i, 0, 0, "%s never run%s", unit_of(B, i) < 0 ? "blocks before the first unit are" : "this code is",
              j > i ? " (up to the next reachable block)" : "");
         i = j;
       }
     /* recursion: a sub that can call itself, directly or through others */
-    char *cyc = calls_itself(S, nj, first, B, reach, nsub + 1);
+    char *cyc = calls_itself(S, nj, first, B, fl, nsub + 1);
     if (cyc) {
       for (size_t i = 0; i < n; i++)
-        if (start[i] && unit_of(B, i) > 0 && cyc[unit_of(B, i)])
+        if ((fl[i] & FL_START) && unit_of(B, i) > 0 && cyc[unit_of(B, i)])
           serr(c, i, 0, 0, "sub %d can call itself: more than 8 nested calls stop the run with E-NEST",
                B[i].number);
       free(cyc);
     }
   }
-  free(reach);
-  free(work);
 
   /* patch targets */
   if (!c->d->nerr) {
@@ -1635,8 +1657,7 @@ static void structure(struct comp *c)
     }
     c->p->entry = c->p->blocks[mp].code;
   }
-  free(start);
-  free(into);
+  free(fl);
 }
 
 void comp_setup(struct program *p)
