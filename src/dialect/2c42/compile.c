@@ -50,6 +50,7 @@ struct comp {
   size_t nj, capj;
   int oom;
   int toolong;             /* the code reached the VM's 24-bit operand space (said at the block) */
+  int toomany;             /* more blocks than COMP_MAX_BLOCKS (said at the block) */
   int seen_g34;            /* text order: a G34 came before */
   int prev_g27;            /* the previous block had G27 */
   /* within a block: which slots are given, with known constant values */
@@ -1671,6 +1672,20 @@ void comp_setup(struct program *p)
   p->msgs = &kp_msgs;
 }
 
+/* parse_all's each: a block parsed, compile it; nonzero to stop. */
+static int compile_one(void *v, struct block *b)
+{
+  struct comp *c = v;
+  if (c->ns >= COMP_MAX_BLOCKS) {
+    diag_add(c->d, DIAG_ERROR, S42_E_LIMIT, b->line, b->col, b->number,
+             "more than %zu blocks: the program is too long", COMP_MAX_BLOCKS);
+    c->toomany = 1;   /* its structure is not checked: it cannot run */
+    return 1;
+  }
+  compile_block(c);
+  return c->oom;
+}
+
 int comp_program(const char *src, size_t n, struct diag_list *d, struct program *p)
 {
   return comp_program_with(src, n, d, p, NULL);
@@ -1722,23 +1737,14 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
     return -1;
   }
   struct parser ps;
-  int toolong = 0;
   parse_init(&ps, src, n, d);
   ps.plugins = plugins;
   c.plugins = plugins;
-  while (!c.oom && parse_block(&ps, c.b)) {
-    if (c.ns >= COMP_MAX_BLOCKS) {
-      diag_add(d, DIAG_ERROR, S42_E_LIMIT, c.b->line, c.b->col, c.b->number,
-               "more than %zu blocks: the program is too long", COMP_MAX_BLOCKS);
-      toolong = 1;   /* its structure is not checked: it cannot run */
-      break;
-    }
-    compile_block(&c);
-  }
+  parse_all(&ps, c.b, compile_one, &c);
   /* a last instruction so that nothing runs off the code */
   emit(&c, OP_END, 0, 0);
   parse_free(&ps);
-  if (!c.oom && !toolong)
+  if (!c.oom && !c.toomany)
     structure(&c);
   if (c.x->uses_tk && !c.x->has_m10)
     diag_add(d, DIAG_WARNING, 0, c.x->tk_line, c.x->tk_col, c.x->tk_number,

@@ -779,7 +779,7 @@ HOT void once(struct pstate *s, int there, const char *name, unsigned col)
     fail(s, S42_E_SYNTAX, col, "%s appears twice in the block", name);
 }
 
-static void word(struct pstate *s)
+static inline __attribute__((always_inline)) void word(struct pstate *s)
 {
   char buf[32];
   struct block *b = s->b;
@@ -972,7 +972,7 @@ void parse_free(struct parser *p)
   arena_free(&p->ar);
 }
 
-static void clear_block(struct block *b)
+static inline void clear_block(struct block *b)
 {
   /* Only the header needs zeroing: words are counted by nw. */
   b->number = -1;
@@ -1010,26 +1010,65 @@ static int32_t first_char(struct lex *l)
   }
 }
 
-int parse_block(struct parser *p, struct block *b)
+/* The start of the next non-empty block: 0 at the end of the text. */
+static int block_start(struct parser *p, struct block *b)
 {
   struct lex *l = &p->lx;
-  struct pstate s;
-  s.p = p;
-  s.b = b;
   arena_reset(&p->ar);
   clear_block(b);
   p->nodes = 0;
   l->number = -1;   /* before the first peek: a note there is this block's */
   l->note_here = 0;
   l->blen = 0;      /* the block's characters are counted as they are lexed */
-  const int32_t c = first_char(l);   /* set once, before the setjmp */
-  if (c == LX_EOF)
+  if (first_char(l) == LX_EOF)
     return 0;
   b->line = lex_line(l);
   b->col = lex_col(l);
   b->badnum = 0;
-  p->ar.oom = &s.jb;
-  int jumped = setjmp(s.jb);
+  return 1;
+}
+
+/* The block's number and words, after block_start: an error leaves by
+ * longjmp (fail). */
+static void block_words(struct pstate *s)
+{
+  struct lex *l = &s->p->lx;
+  struct block *b = s->b;
+  int32_t c = lex_peek(l);
+  if (c == 'H' && lex_cyrillic(l)) {
+    /* Н, the Cyrillic N, looks like a Latin H: a block number meant */
+    if (isdig(lex_peek2(l))) {
+      b->badnum = 1;
+      fail(s, S42_E_SYNTAX, b->col, "Cyrillic Н at the block start reads as the letter H: did you mean N "
+           "(the block number, N1 or №1)?");
+    }
+  }
+  if (c == 'N' || c == 0x2116) {   /* N12, №12, № 12 */
+    b->ncol = lex_col(l);
+    b->badnum = 1;
+    lex_adv(l);
+    long n = number(s, 3, "a block number");
+    if (n < 1 || n > 999)
+      fail(s, S42_E_RANGE, b->ncol, "block number %ld outside 1..999", n);
+    b->number = (int)n;
+    b->badnum = 0;
+    lex_set_number(l, (int)n);
+  }
+  for (;;) {
+    int32_t w = lex_peek(l);
+    if (w == LX_EOB || w == LX_EOF)
+      break;
+    word(s);
+  }
+  if (b->g28reg == -2)
+    fail(s, S42_E_SYNTAX, b->g28col, "G28 /min:max/ must be followed by the parameter: G28 /min:max/ R3");
+}
+
+/* The block's end, after its words or a longjmp out of them (`jumped` 1:
+ * a syntax error; 2: out of memory). */
+static void block_end(struct parser *p, struct block *b, int jumped)
+{
+  struct lex *l = &p->lx;
   if (jumped == 2) {   /* said once: the blocks after it are not read either */
     if (!p->d->oom)
       diag_add(p->d, DIAG_ERROR, S42_E_SYNTAX, b->line, b->col, b->number,
@@ -1037,41 +1076,51 @@ int parse_block(struct parser *p, struct block *b)
     p->d->oom = 1;
     b->bad = 1;
   }
-  if (jumped == 0) {
-    if (c == 'H' && lex_cyrillic(l)) {
-      /* Н, the Cyrillic N, looks like a Latin H: a block number meant */
-      if (isdig(lex_peek2(l))) {
-        b->badnum = 1;
-        fail(&s, S42_E_SYNTAX, b->col, "Cyrillic Н at the block start reads as the letter H: did you mean N "
-             "(the block number, N1 or №1)?");
-      }
-    }
-    if (c == 'N' || c == 0x2116) {   /* N12, №12, № 12 */
-      b->ncol = lex_col(l);
-      b->badnum = 1;
-      lex_adv(l);
-      long n = number(&s, 3, "a block number");
-      if (n < 1 || n > 999)
-        fail(&s, S42_E_RANGE, b->ncol, "block number %ld outside 1..999", n);
-      b->number = (int)n;
-      b->badnum = 0;
-      lex_set_number(l, (int)n);
-    }
-    for (;;) {
-      int32_t w = lex_peek(l);   /* not c: nothing set after the setjmp is read after a longjmp */
-      if (w == LX_EOB || w == LX_EOF)
-        break;
-      word(&s);
-    }
-    if (b->g28reg == -2)
-      fail(&s, S42_E_SYNTAX, b->g28col, "G28 /min:max/ must be followed by the parameter: G28 /min:max/ R3");
-  } else {
+  if (jumped)
     lex_skip_block(l);
-  }
-  p->ar.oom = NULL;
   p->depth = p->paren = p->slash_ends = p->nodes = 0;
   b->len = l->blen;
   if (lex_peek(l) == LX_EOB)
     lex_adv(l);
+}
+
+int parse_block(struct parser *p, struct block *b)
+{
+  struct pstate s;
+  s.p = p;
+  s.b = b;
+  if (!block_start(p, b))
+    return 0;
+  p->ar.oom = &s.jb;
+  int jumped = setjmp(s.jb);
+  if (!jumped)
+    block_words(&s);
+  block_end(p, b, jumped);
+  p->ar.oom = NULL;
   return 1;
+}
+
+void parse_all(struct parser *p, struct block *b, int (*each)(void *ctx, struct block *b), void *ctx)
+{
+  /* one setjmp for the whole text: after a longjmp out of a block's words
+   * the loop goes on from that block's end (nothing here changes after
+   * the setjmp but what p and b point to) */
+  struct pstate s;
+  s.p = p;
+  s.b = b;
+  p->ar.oom = &s.jb;
+  int jumped = setjmp(s.jb);
+  if (jumped) {
+    block_end(p, b, jumped);
+    if (each(ctx, b))
+      goto out;
+  }
+  while (block_start(p, b)) {
+    block_words(&s);
+    block_end(p, b, 0);
+    if (each(ctx, b))
+      break;
+  }
+out:
+  p->ar.oom = NULL;
 }

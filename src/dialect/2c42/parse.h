@@ -23,5 +23,8 @@ void parse_free(struct parser *p);
 /* Parse the next non-empty block into b.  Returns 1 when a block was read,
  * 0 at the end of the text.  Errors are reported and set b->bad. */
 int parse_block(struct parser *p, struct block *b);
+/* Every block, each one into b and then to each(ctx, b), which returns
+ * nonzero to stop: parse_block over the whole text, with one setjmp. */
+void parse_all(struct parser *p, struct block *b, int (*each)(void *ctx, struct block *b), void *ctx);
 
 #endif
