@@ -20,6 +20,7 @@ struct expr {
   uint8_t kind;
   uint8_t op;         /* EX_BIN/EX_FN: the vm opcode; EX_CMP: relation mask */
   uint8_t fk;         /* the compiler's last fold of it: 1 constant (v), 2 not, 0 not folded */
+  uint16_t need;      /* the stack its code needs at most (the parser's count: a bound) */
   unsigned col;
   double v;           /* EX_NUM; the folded value of another constant node */
   unsigned idx;       /* EX_REG register, EX_SLOT slot, EX_ARR arr | mode << 2 */

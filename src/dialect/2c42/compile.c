@@ -74,10 +74,7 @@ struct comp {
   uint32_t plugmask;       /* plugins the current block calls */
   int plug_g;              /* a group-1 G of a plugin that is not the language's, 0 none */
   size_t bstart;           /* the current block's first instruction */
-  /* the stack as the block's code is emitted: its depth, and an upper
-   * bound of its deepest (a fused instruction pushes no more than its
-   * parts did; a fusion corrects the depth) */
-  int depth, peak;
+  unsigned need;           /* the most stack the block's expressions need (the parser's bound) */
   uint32_t ruleidx[16][2];  /* 1 + the program's rule of each kind (enum rule_kind, clamp 2 or not), 0 none yet */
 };
 
@@ -157,14 +154,15 @@ static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, un
 static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
 {
   struct program *p = c->p;
-  int d = c->depth += stack_delta[op];
-  if (d > c->peak)
-    c->peak = d;
-  if (p->ncode >= p->capcode)   /* full (or at PROG_MAX_CODE) */
+  size_t n = p->ncode;
+  if (__builtin_expect(n >= p->capcode, 0))   /* full (or at PROG_MAX_CODE) */
     return emit_grow(c, INS(op, a), col);
-  p->code[p->ncode] = INS(op, a);
-  p->cols[p->ncode] = (uint16_t)(col > 0xffff ? 0xffff : col);
-  return (long)p->ncode++;
+  uint32_t *code = p->code;
+  uint16_t *cols = p->cols;
+  code[n] = INS(op, a);
+  cols[n] = (uint16_t)(col > 0xffff ? 0xffff : col);
+  p->ncode = n + 1;
+  return (long)n;
 }
 
 /* The deepest stack of the current block's code, from the stack effects of
@@ -406,7 +404,6 @@ static void gen(struct comp *c, struct expr *e)
           last = INS(OP_CONST, (uint32_t)k);
         }
       }
-      c->depth += stack_delta[fused] - stack_delta[INS_OP(c->p->code[mark])];
       c->p->code[mark] = INS(fused, INS_A(last));
       c->p->cols[mark] = (uint16_t)(e->col > 0xffff ? 0xffff : e->col);
       return;
@@ -510,6 +507,8 @@ static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigne
   int failed = 0;
   if (!e || c->b->bad)
     return;   /* a block that did not parse is not compiled: it cannot run */
+  if (e->need > c->need)
+    c->need = e->need;
   const struct wrule *w = &wrules[rk];
   int clamp = w->clamp;
   c->selfslot = dest >= VM_NREG ? (int)(dest - VM_NREG) : -1;
@@ -1088,7 +1087,7 @@ static void compile_block(struct comp *c)
                          .plane = (uint8_t)plane_of(c, b)};
   int mo = motion_of(c, b);
   c->given = c->isconst = c->badslot = 0;
-  c->depth = c->peak = 0;
+  c->need = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
 
   int g07 = G(7), srch = (G(10) || G(11)) && M(12);
@@ -1128,6 +1127,8 @@ static void compile_block(struct comp *c)
     case WK_AWR:
       if (b->bad || !w->e)
         break;
+      if (w->e->need > c->need)
+        c->need = w->e->need;
       gen(c, w->e);
       emit(c, OP_AWR, w->idx, w->col);
       break;
@@ -1155,11 +1156,12 @@ static void compile_block(struct comp *c)
   if (arc >= 0 && at->plane)
     check_arc_const(c, at->plane, b->gcol[arc]);
   if (b->cond && PC && !b->bad) {
+    if (b->cond->need > c->need)
+      c->need = b->cond->need;
     gen(c, b->cond);
     size_t last = c->p->ncode - 1;
     if (b->cond->kind == EX_CMP && c->p->ncode > 0 && INS_OP(c->p->code[last]) == OP_CMP) {
       c->p->code[last] = INS(OP_CMPC, INS_A(c->p->code[last]));   /* CMP; COND */
-      c->depth += stack_delta[OP_CMPC] - stack_delta[OP_CMP];
       fuse_compare(c);
     } else
       emit(c, OP_COND, 0, PC->col);
@@ -1244,7 +1246,9 @@ static void compile_block(struct comp *c)
   if (M(17) && !c->oom && c->p->ncode == c->bstart + 4 && code[1] == INS(OP_SYNC, 0) &&
       code[2] == INS(OP_COMMIT, 0) && code[3] == INS(OP_RET, 0))
     c->p->code[c->bstart] = INS(OP_BLOCKR, (uint32_t)bi);
-  if ((uint32_t)c->peak > c->p->max_stack || c->peak > 500) {
+  if (L && !c->need)
+    c->need = 1;   /* the count of a call */
+  if (c->need > c->p->max_stack || c->need > 500) {
     uint32_t need = block_stack(c);
     if (need > c->p->max_stack)
       c->p->max_stack = need;

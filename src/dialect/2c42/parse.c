@@ -225,8 +225,22 @@ HOT struct expr *node(struct pstate *s, int kind, unsigned col)
     if (!e)
       longjmp(s->jb, 2);   /* out of memory (arena_alloc goes there itself while a block is parsed) */
   }
-  *e = (struct expr){.kind = (uint8_t)kind, .col = col};
+  *e = (struct expr){.kind = (uint8_t)kind, .need = 1, .col = col};
   return e;
+}
+
+/* The stack n's code needs at most, once its operands are in: an
+ * operator needs its left operand's, or one more than its right's
+ * beside the left's value -- but for a number or a parameter on the
+ * right of + - % /, which the code generator fuses into the operator
+ * (gen: a superinstruction), pushing nothing more.  A bound: folding
+ * constants only lowers it. */
+HOT void need2(struct expr *n)
+{
+  unsigned r = n->b->need + 1u;
+  if (n->kind == EX_BIN && n->op != OP_POW && (n->b->kind == EX_NUM || n->b->kind == EX_REG))
+    r = 1;
+  n->need = (uint16_t)(n->a->need > r ? n->a->need : r > 0xffff ? 0xffff : r);
 }
 
 static struct expr *expr(struct pstate *s);
@@ -240,6 +254,7 @@ static struct expr *call(struct pstate *s, int op, unsigned col, int skip)
   struct expr *e = node(s, EX_FN, col);
   e->op = (uint8_t)op;
   e->a = expr(s);
+  e->need = e->a->need;
   expect(s, ')', "')' closing the function argument");
   return e;
 }
@@ -371,6 +386,7 @@ static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struc
   e->op = OP_POW;
   e->a = b;
   e->b = unary(s);
+  need2(e);
   return e;
 }
 
@@ -409,6 +425,7 @@ HOT struct expr *unary_inner(struct pstate *s)
       return u;
     struct expr *e = node(s, EX_NEG, col);
     e->a = u;
+    e->need = u->need;
     return e;
   }
   if (c == '(') {
@@ -448,6 +465,7 @@ static struct expr *expr(struct pstate *s)
     e = operand(s);
     if (mul) {
       mul->b = e;
+      need2(mul);
       e = mul;
       mul = NULL;
     }
@@ -464,6 +482,7 @@ static struct expr *expr(struct pstate *s)
     }
     if (top) {   /* the term is whole: the right operand of the + or - */
       top->b = e;
+      need2(top);
       e = top;
       top = NULL;
     }
@@ -545,6 +564,7 @@ static struct expr *prim(struct pstate *s)
     adv(s);
     e->op = (uint8_t)mask;
     e->b = expr(s);
+    need2(e);
     expect(s, ')', "')' closing the comparison");
   } else {
     adv(s);
@@ -564,6 +584,7 @@ static struct expr *conjunction(struct pstate *s)
     struct expr *n = node(s, EX_AND, col);
     n->a = e;
     n->b = prim(s);
+    need2(n);
     e = n;
   }
   return e;
@@ -578,6 +599,7 @@ static struct expr *cond(struct pstate *s)
     struct expr *n = node(s, EX_OR, col);
     n->a = e;
     n->b = conjunction(s);
+    need2(n);
     e = n;
   }
   return e;
