@@ -114,7 +114,11 @@ static const char *show(int32_t c, char *buf)
 HOT int32_t peek(struct pstate *s) { return lex_peek(&s->p->lx); }
 /* The column of the character peek() returns. */
 HOT unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return lex_col(&s->p->lx); }
-HOT void adv(struct pstate *s) { lex_peek(&s->p->lx); lex_adv(&s->p->lx); }
+/* The column of the character peek() returned, right after it. */
+HOT unsigned here(struct pstate *s) { return lex_col(&s->p->lx); }
+/* Consume the character peek() returned (every adv follows a peek or a
+ * peek2 of its character: the window holds it). */
+HOT void adv(struct pstate *s) { lex_adv(&s->p->lx); }
 
 static void expect(struct pstate *s, int32_t c, const char *what)
 {
@@ -350,7 +354,7 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
 HOT struct expr *primary(struct pstate *s)
 {
   int32_t c = peek(s);
-  unsigned col = pcol(s);
+  unsigned col = here(s);
   struct expr *e;
   if (isdig(c)) {
     e = node(s, EX_NUM, col);
@@ -404,7 +408,7 @@ HOT struct expr *unary_inner(struct pstate *s)
 {
   int32_t c = peek(s);
   if (c == '+' || c == '-') {
-    unsigned col = pcol(s);
+    unsigned col = here(s);
     adv(s);
     /* two levels for a sign, both told at the sign's column */
     if ((s->p->depth += 2) > MAX_DEPTH)
@@ -473,7 +477,7 @@ static struct expr *expr(struct pstate *s)
     if (c == '/' && s->p->slash_ends && s->p->paren == 0)
       ;   /* the slash that closes G28 /min:max/: the term ends */
     else if (c == '/' || (c == '%' && lex_peek2(&s->p->lx) != '%')) {
-      unsigned col = pcol(s);
+      unsigned col = here(s);
       adv(s);
       mul = node(s, EX_BIN, col);
       mul->op = c == '/' ? OP_DIV : OP_MUL;
@@ -488,7 +492,7 @@ static struct expr *expr(struct pstate *s)
     }
     if (c != '+' && c != '-')
       return e;
-    unsigned col = pcol(s);
+    unsigned col = here(s);
     adv(s);
     top = node(s, EX_BIN, col);
     top->op = c == '+' ? OP_ADD : OP_SUB;
@@ -805,8 +809,8 @@ static inline __attribute__((always_inline)) void word(struct pstate *s)
 {
   char buf[32];
   struct block *b = s->b;
-  unsigned col = pcol(s);
   int32_t c = peek(s);
+  unsigned col = here(s);
   struct word *w;
   switch (c) {
   case 'G': case 'M': {
