@@ -78,6 +78,7 @@ struct block {
   int hasD;                   /* a D1 word */
   uint8_t gw[64];             /* the indices of the G words, in text order */
   int ngw;
+  int slashed;                /* a word with a slash argument (struct kp_more may be needed) */
   unsigned slotcol[SL__COUNT];  /* the column of the word filling each slot in wslots */
   struct expr *cond;        /* P(cond) */
   /* slash arguments */

@@ -1090,12 +1090,11 @@ static void compile_block(struct comp *c)
   c->need = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
 
-  int g07 = G(7), srch = (G(10) || G(11)) && M(12);
-  int has_motion_words = 0;
   for (int i = 0; i < b->nw; i++) {
     const struct word *w = &b->w[i];
     switch (w->kind) {
     case WK_REG: {
+      int g07 = G(7), srch = (G(10) || G(11)) && M(12);
       if (w->letter == 'F' && (g07 || srch)) {
         store(c, w->e, VM_NREG + (g07 ? SL_OSCF : SL_SRCHF), g07 ? RK_OSCF : RK_SRCHF, w->col);
         at->slots |= (uint16_t)(1u << (g07 ? SL_OSCF : SL_SRCHF));
@@ -1115,7 +1114,6 @@ static void compile_block(struct comp *c)
       store(c, w->e, VM_NREG + w->idx, slot_rule(b, (int)w->idx), w->col);
       at->slots |= (uint16_t)(1u << w->idx);
       if (w->idx <= SL_A) {
-        has_motion_words = 1;
         /* M19 teach-in: a bare parameter (+Rn / -Rn) receives the move */
         const struct expr *e = w->e;
         int sign = 1;
@@ -1139,8 +1137,8 @@ static void compile_block(struct comp *c)
       break;
     }
   }
-  if (mo == MO_NONE && has_motion_words)
-    mo = MO_G01;
+  if (mo == MO_NONE && (b->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A)))
+    mo = MO_G01;   /* axis words and nothing else that moves */
   at->motion = (uint8_t)mo;
   if (G(28) && b->g28min && b->g28max) {
     store(c, b->g28min, VM_NREG + SL_MIN, RK_MIN, b->g28col);
@@ -1176,13 +1174,13 @@ static void compile_block(struct comp *c)
    * is nothing to the host when they already stand so: MACHS lets the VM
    * see that from the switches the session publishes (vm.sw). */
   const uint32_t sws = 1u << 22 | 1u << 23 | 1u << 25 | 1u << 26;
-  uint32_t swmask = (b->m & (1u << 22 | 1u << 23) ? KP_SW_CORR : 0) | (b->m & (1u << 25 | 1u << 26) ? KP_SW_OVERRIDE : 0);
-  uint32_t swon = (M(22) ? KP_SW_CORR : 0) | (M(26) ? KP_SW_OVERRIDE : 0);
   int switches = mo == MO_NONE && !at->has_f && !b->g && !at->slots && !at->plugins &&
                  (b->m & sws) && !(b->m & ~(sws | 1u << 17 | 1u << 20));
-  if (switches)
+  if (switches) {
+    uint32_t swmask = (b->m & (1u << 22 | 1u << 23) ? KP_SW_CORR : 0) | (b->m & (1u << 25 | 1u << 26) ? KP_SW_OVERRIDE : 0);
+    uint32_t swon = (M(22) ? KP_SW_CORR : 0) | (M(26) ? KP_SW_OVERRIDE : 0);
     emit(c, OP_MACHS, swmask | swon << 12, b->col);
-  else
+  } else
     emit(c, machine ? OP_MACH : OP_SYNC, 0, b->col);
   if (peep_block(c->p, c->bstart))   /* the block's work is all emitted: fuse it (peep.c) */
     c->oom = 1;
@@ -1257,9 +1255,8 @@ static void compile_block(struct comp *c)
   }
 
   /* keep the texts and what else few blocks have (struct kp_more) */
-  if (G(27) || G(33) || M(18) || b->ng29 || b->nm16 || b->g28reg != -1 || b->g27form || b->g37axis)
-    if (!keep_more(c, b, at))
-      return;
+  if (b->slashed && !keep_more(c, b, at))   /* (the parser's: a word with a slash argument) */
+    return;
   if (M(10) && (G(10) || G(11)))
     c->x->has_m10 = 1;
   c->prev_g27 = G(27);

@@ -841,8 +841,10 @@ static inline __attribute__((always_inline)) void word(struct pstate *s)
     w->num = (int)n;
     if (c == 'G')
       b->gw[b->ngw++] = (uint8_t)(b->nw - 1);
-    if (kw && kw->slash != KP_SA_NONE)
+    if (kw && kw->slash != KP_SA_NONE) {
+      b->slashed = 1;
       slash_arg(s, b, kw);
+    }
     return;
   }
   case 'X': case 'Y': case 'Z': case 'A': case 'I': case 'J': case 'K': case 'H': {
@@ -1012,6 +1014,7 @@ static inline void clear_block(struct block *b)
   b->wF = -1;
   b->hasD = 0;
   b->ngw = 0;
+  b->slashed = 0;
   b->cond = NULL;
   memset(&b->g27, 0, sizeof b->g27);
   memset(&b->g33, 0, sizeof b->g33);
