@@ -462,7 +462,7 @@ static struct expr *__attribute__((noinline)) unary(struct pstate *s)
 /* The same left-deep trees as term inside expr, made in the same order:
  * `mul` is the / or % waiting for its right operand, `top` the + or -
  * waiting for its right term. */
-static struct expr *expr(struct pstate *s)
+HOT struct expr *expr_in(struct pstate *s)
 {
   struct expr *e, *top = NULL, *mul = NULL;
   for (;;) {
@@ -500,6 +500,12 @@ static struct expr *expr(struct pstate *s)
   }
 }
 
+/* expr(), out of line: where expressions nest */
+static struct expr *__attribute__((noinline)) expr(struct pstate *s)
+{
+  return expr_in(s);
+}
+
 /* A word's value: its sign (required when `sign` is set) starts the first
  * term: X-R3+100 is (-R3)+100. */
 HOT struct expr *word_value(struct pstate *s, const char *word, int sign)
@@ -511,7 +517,7 @@ HOT struct expr *word_value(struct pstate *s, const char *word, int sign)
          show(c, buf));
   if (c == LX_EOB || c == LX_EOF)
     fail(s, S42_E_SYNTAX, pcol(s), "%s needs a value", word);
-  return expr(s);
+  return expr_in(s);
 }
 
 /* ---- conditions ---- */
