@@ -69,7 +69,7 @@ struct block {
   uint32_t m;               /* bit n: Mn present */
   unsigned gcol[64], mcol[32];
   struct word w[MAX_WORDS];
-  int nw;
+  size_t nw;                  /* (size_t: no alias of the int and unsigned stores into its words) */
   /* the words indexed as the parser adds them (the compiler's questions) */
   uint16_t wslots;            /* bit s: a word fills slot s (WK_SLOT) */
   uint16_t wkinds;            /* bit k: a word of kind k (enum word_kind) */

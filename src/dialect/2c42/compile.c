@@ -784,7 +784,7 @@ static void plugin_function(struct comp *c, char kind, int n, unsigned col, int 
   if (!fn->operands)
     return;
   static const char letters[] = "XYZAIJK";
-  for (int w = 0; w < b->nw; w++) {
+  for (size_t w = 0; w < b->nw; w++) {
     char l = 0;
     if (b->w[w].kind == WK_SLOT && b->w[w].idx < 7)
       l = letters[b->w[w].idx];
@@ -1090,7 +1090,7 @@ static void compile_block(struct comp *c)
   c->need = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
 
-  for (int i = 0; i < b->nw; i++) {
+  for (size_t i = 0; i < b->nw; i++) {
     const struct word *w = &b->w[i];
     switch (w->kind) {
     case WK_REG: {

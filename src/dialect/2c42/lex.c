@@ -168,7 +168,7 @@ static void fill(struct lex *l)
 {
   const unsigned char *s = (const unsigned char *)l->s;
   size_t pos = l->pos, lim = l->n;
-  unsigned n = l->wn, start = n;
+  size_t n = l->wn, start = n;
   int32_t *wc = l->wc;
   unsigned *wcol = l->wcol;
   if (lim - pos > LX_WIN - 1 - n)   /* a byte makes one entry at most, and a ^ newline two */
@@ -227,7 +227,7 @@ static void room(struct lex *l)
 {
   if (l->wn < LX_WIN)
     return;
-  unsigned k = l->wn - l->wi;
+  size_t k = l->wn - l->wi;
   memmove(l->wc, l->wc + l->wi, k * sizeof *l->wc);
   memmove(l->wcol, l->wcol + l->wi, k * sizeof *l->wcol);
   l->cyr = l->cyr > l->wi ? l->cyr - l->wi : 0;

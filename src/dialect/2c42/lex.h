@@ -37,7 +37,7 @@ struct lex {
   int note_here;          /* ... during the current block (the parser clears it) */
   int cr_noted;           /* CR-only line ends noted */
   unsigned blen;          /* significant characters lexed in the current block */
-  unsigned wi, wn;        /* the window: next to read, end */
+  size_t wi, wn;          /* the window: next to read, end (size_t: no int or unsigned store aliases them) */
   unsigned cyr;           /* 1 + the window index of a Cyrillic look-alike lexed, 0 none */
   int32_t wc[LX_WIN];     /* the characters (mapped), LX_EOB or LX_EOF */
   unsigned wcol[LX_WIN];  /* their columns */

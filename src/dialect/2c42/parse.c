@@ -178,7 +178,7 @@ HOT long number(struct pstate *s, int maxdig, const char *what)
   long v = 0;
   int nd = 0;
   for (;;) {
-    unsigned i = l->wi, n = l->wn;
+    size_t i = l->wi, n = l->wn;
     const int32_t *w = l->wc;
     for (; i < n && isdig(w[i]); i++) {
       int dig = w[i] - '0';
@@ -794,7 +794,7 @@ HOT struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
   struct block *b = s->b;
   if (b->nw >= MAX_WORDS)
     fail(s, S42_E_BLOCKLEN, col, "too many words in one block");
-  int i = b->nw++;
+  size_t i = b->nw++;
   struct word *w = &b->w[i];
   *w = (struct word){.kind = (uint8_t)kind, .letter = letter, .col = col};
   if (!(b->wkinds & (1u << kind))) {

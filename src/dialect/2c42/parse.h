@@ -11,10 +11,12 @@ struct parser {
   struct lex lx;
   struct arena ar;
   struct diag_list *d;
-  int depth;              /* expression nesting, bounded */
-  int paren;              /* open parentheses in the current expression */
-  int nodes;              /* expression nodes in the current block, bounded */
-  int slash_ends;         /* G28 /min:max/: a '/' outside parentheses closes it */
+  /* size_t: the int and unsigned stores of the parse (nodes, words) are
+   * no aliases of these, which the compiler then keeps in registers */
+  size_t depth;           /* expression nesting, bounded */
+  size_t paren;           /* open parentheses in the current expression */
+  size_t nodes;           /* expression nodes in the current block, bounded */
+  size_t slash_ends;      /* G28 /min:max/: a '/' outside parentheses closes it */
   const struct plug_set *plugins;  /* functions plugins add (src/core/plugin.h), or NULL */
 };
 
