@@ -79,6 +79,7 @@ struct block {
   uint8_t gw[64];             /* the indices of the G words, in text order */
   int ngw;
   int slashed;                /* a word with a slash argument (struct kp_more may be needed) */
+  int slotrd;                 /* an operand X Y Z or A (an expression may read the slot it stores) */
   unsigned slotcol[SL__COUNT];  /* the column of the word filling each slot in wslots */
   struct expr *cond;        /* P(cond) */
   /* slash arguments */

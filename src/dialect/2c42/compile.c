@@ -59,9 +59,9 @@ struct comp {
   uint16_t badslot;        /* a slot whose word was refused (its checks would cascade) */
   /* store() folds an expression, then generates its code: gen reads the
    * fold of each node from the node (memo) instead of folding each subtree
-   * again -- unless the expression reads the slot being stored (selfslot),
-   * whose given and constant bits change in between (selfref) */
-  int memo, selfslot, selfref;
+   * again -- unless the expression reads the slot being stored, whose
+   * given and constant bits change in between (reads_slot) */
+  int memo;
   uint64_t core_g;         /* the functions no plugin has (core_masks) */
   uint32_t core_m;
   /* the G and M numbers by what their rows say (core_masks): the questions
@@ -214,8 +214,6 @@ static int fold_node(struct comp *c, const struct expr *e, double *v, int *faile
     *v = e->v;
     return 1;
   case EX_SLOT:
-    if ((int)e->idx == c->selfslot)
-      c->selfref = 1;
     if (!(c->given & (1u << e->idx))) {
       *v = 0;
       return 1;
@@ -499,6 +497,21 @@ static inline double round_half_away(double v)
   return copysign(t, v);
 }
 
+/* Does e read word slot `slot`? */
+static int reads_slot(const struct expr *e, unsigned slot)
+{
+  switch (e->kind) {
+  case EX_SLOT:
+    return e->idx == slot;
+  case EX_NEG: case EX_FN:
+    return reads_slot(e->a, slot);
+  case EX_BIN: case EX_CMP: case EX_AND: case EX_OR:
+    return reads_slot(e->a, slot) || reads_slot(e->b, slot);
+  default:
+    return 0;
+  }
+}
+
 /* Emit value + SET into dest (register < VM_NREG, or VM_NREG + slot) by
  * the rule of kind rk; check a constant value now, as `s42 check` must. */
 static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigned col)
@@ -511,10 +524,7 @@ static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigne
     c->need = e->need;
   const struct wrule *w = &wrules[rk];
   int clamp = w->clamp;
-  c->selfslot = dest >= VM_NREG ? (int)(dest - VM_NREG) : -1;
-  c->selfref = 0;
   int k = fold(c, e, &v, &failed);
-  c->selfslot = -1;
   /* a refused word is reported once: the checks that need its value (the
    * arc's radius) skip it rather than report a second, false error */
   uint16_t bit = dest >= VM_NREG ? (uint16_t)(1u << (dest - VM_NREG)) : 0;
@@ -549,7 +559,10 @@ static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigne
       c->isconst &= (uint16_t)~(1u << s);
     }
   }
-  c->memo = !c->selfref;   /* failed returned above: the folds hold */
+  /* failed returned above: the folds hold, unless the expression reads
+   * the slot just stored (only X Y Z A are operands; the parser says
+   * whether the block has any) */
+  c->memo = !(c->b->slotrd && dest >= VM_NREG && dest - VM_NREG <= SL_A && reads_slot(e, dest - VM_NREG));
   gen_in(c, e);
   c->memo = 0;
   if (rk == RK_PARAM) {
@@ -1697,7 +1710,6 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
 {
   struct comp c;
   memset(&c, 0, sizeof c);
-  c.selfslot = -1;
   c.p = p;
   c.d = d;
   c.x = calloc(1, sizeof *c.x);

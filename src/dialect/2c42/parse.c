@@ -282,6 +282,7 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
     if (c2 == 'C') { adv(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1); }
     if (c2 == 'T') { adv(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1); }
     adv(s);
+    s->b->slotrd = 1;
     e = node(s, EX_SLOT, col);
     e->idx = SL_A;
     return e;
@@ -372,6 +373,7 @@ HOT struct expr *primary(struct pstate *s)
   }
   if (c == 'X' || c == 'Y' || c == 'Z') {
     adv(s);
+    s->b->slotrd = 1;
     e = node(s, EX_SLOT, col);
     e->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : SL_Z;
     return e;
@@ -1021,6 +1023,7 @@ static inline void clear_block(struct block *b)
   b->hasD = 0;
   b->ngw = 0;
   b->slashed = 0;
+  b->slotrd = 0;
   b->cond = NULL;
   memset(&b->g27, 0, sizeof b->g27);
   memset(&b->g33, 0, sizeof b->g33);
