@@ -135,6 +135,23 @@ static void warn(struct comp *c, unsigned col, const char *fmt, ...)
 #define STACK_DELTA(name, opd, ext, pop, push, doc) [OP_##name] = (push) - (pop),
 static const int8_t stack_delta[256] = {S42_OPCODES(STACK_DELTA)};   /* vm_ops' push - pop, by opcode */
 
+/* The peephole rules on the instruction at the end (peep.c): called
+ * where the second part of a pair they fuse is made -- a function (SIN,
+ * COS), an arithmetic with an operand (gen's fusion), CMPCK
+ * (fuse_compare), SETP (store) -- when the pair can fuse. */
+static void __attribute__((noinline)) peep(struct comp *c)
+{
+  if (peep_last(c->p, c->bstart))
+    c->oom = 1;
+}
+
+static inline void peep_end(struct comp *c)
+{
+  size_t n = c->p->ncode;
+  if (n > c->bstart + 1 && peep_pair(c->p->code[n - 2], c->p->code[n - 1]))
+    peep(c);
+}
+
 static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, unsigned col)
 {
   long i = prog_emit_grow(c->p, ins, col);
@@ -319,6 +336,7 @@ static void fuse_compare(struct comp *c)
   c->p->code[n - 2] = INS(op, rel | (uint32_t)idx << 3);
   c->p->cols[n - 2] = c->p->cols[n - 1];
   c->p->ncode = n - 1;
+  peep_end(c);
 }
 
 static void gen(struct comp *c, struct expr *e);
@@ -383,6 +401,7 @@ static void gen(struct comp *c, struct expr *e)
   case EX_FN:
     gen_in(c, e->a);
     emit(c, e->op, 0, e->col);
+    peep_end(c);
     return;
   case EX_BIN: {
     gen_in(c, e->a);
@@ -404,6 +423,7 @@ static void gen(struct comp *c, struct expr *e)
       }
       c->p->code[mark] = INS(fused, INS_A(last));
       c->p->cols[mark] = (uint16_t)(e->col > 0xffff ? 0xffff : e->col);
+      peep_end(c);
       return;
     }
     emit(c, e->op, 0, e->col);
@@ -567,6 +587,7 @@ static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigne
   c->memo = 0;
   if (rk == RK_PARAM) {
     emit(c, OP_SETP, dest, col);   /* a parameter: its rule is implied */
+    peep_end(c);
     return;
   }
   uint32_t r = rule(c, rk, clamp);
@@ -1195,8 +1216,6 @@ static void compile_block(struct comp *c)
     emit(c, OP_MACHS, swmask | swon << 12, b->col);
   } else
     emit(c, machine ? OP_MACH : OP_SYNC, 0, b->col);
-  if (peep_block(c->p, c->bstart))   /* the block's work is all emitted: fuse it (peep.c) */
-    c->oom = 1;
   for (int i = 0; i < b->nm20; i++)
     emit(c, OP_TRUNC, b->m20[i], b->m20col[i]);
   emit(c, OP_COMMIT, 0, b->col);
