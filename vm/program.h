@@ -58,6 +58,8 @@ struct program {
   uint32_t *code;  size_t ncode, capcode;
   uint16_t *cols;                     /* column of each instruction */
   double *k;       size_t nk, capk;
+  uint32_t kseen[64];                 /* prog_const's memory: 1 + the index of the latest constant
+                                         of each hash of its bits (a hint, checked), 0 none */
   struct prog_rule *rules; size_t nrules, caprules;
   struct prog_block *blocks; size_t nblocks, capblocks;
   uint32_t entry;                     /* pc where execution starts */

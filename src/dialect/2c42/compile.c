@@ -341,10 +341,10 @@ static void fuse_compare(struct comp *c)
 
 static void gen(struct comp *c, struct expr *e);
 
-static void gen_reg(struct comp *c, const struct expr *e)
+/* The first place TK or UG is read (for the warning when no M10 sets them). */
+static void __attribute__((noinline)) uses_tk(struct comp *c, const struct expr *e)
 {
-  emit(c, OP_REG, e->idx, e->col);
-  if ((e->idx == REG_TK || e->idx == REG_UG) && !c->x->uses_tk) {
+  if (!c->x->uses_tk) {
     c->x->uses_tk = 1;
     c->x->tk_line = c->b->line;
     c->x->tk_col = e->col;
@@ -352,9 +352,16 @@ static void gen_reg(struct comp *c, const struct expr *e)
   }
 }
 
+static inline __attribute__((always_inline)) void gen_reg(struct comp *c, const struct expr *e)
+{
+  emit(c, OP_REG, e->idx, e->col);
+  if (e->idx == REG_TK || e->idx == REG_UG)
+    uses_tk(c, e);
+}
+
 /* gen() of e, its leaves without a call: with the folds kept (memo), a
  * constant node and a register are one push. */
-static inline void gen_in(struct comp *c, struct expr *e)
+static inline __attribute__((always_inline)) void gen_in(struct comp *c, struct expr *e)
 {
   if (c->memo) {
     if (e->kind <= EX_FN && e->fk == 1) {
