@@ -229,7 +229,12 @@ HOT struct expr *node(struct pstate *s, int kind, unsigned col)
     if (!e)
       longjmp(s->jb, 2);   /* out of memory (arena_alloc goes there itself while a block is parsed) */
   }
-  *e = (struct expr){.kind = (uint8_t)kind, .need = 1, .col = col};
+  /* the fields a node of this kind has are set by the caller: its value,
+   * index, operator, operands (fk by the compiler's fold, which visits
+   * every node before anything reads it) */
+  e->kind = (uint8_t)kind;
+  e->need = 1;
+  e->col = col;
   return e;
 }
 
@@ -508,17 +513,31 @@ static struct expr *__attribute__((noinline)) expr(struct pstate *s)
   return expr_in(s);
 }
 
-/* A word's value: its sign (required when `sign` is set) starts the first
- * term: X-R3+100 is (-R3)+100. */
-HOT struct expr *word_value(struct pstate *s, const char *word, int sign)
+/* word_value's errors, out of its way; a parameter's name (rn >= 0, R12)
+ * made only here. */
+static void __attribute__((noinline, cold, noreturn)) no_value(struct pstate *s, const char *word, int rn, int sign)
 {
-  char buf[32];
+  char buf[32], name[8];
+  if (rn >= 0) {
+    name[0] = 'R';
+    fmt_uint(name + 1, (unsigned)rn);
+    word = name;
+  }
   int32_t c = peek(s);
   if (sign && c != '+' && c != '-')
     fail(s, S42_E_SYNTAX, pcol(s), "%s needs a sign and a value (%s+... or %s-...), found %s", word, word, word,
          show(c, buf));
-  if (c == LX_EOB || c == LX_EOF)
-    fail(s, S42_E_SYNTAX, pcol(s), "%s needs a value", word);
+  fail(s, S42_E_SYNTAX, pcol(s), "%s needs a value", word);
+}
+
+/* A word's value: its sign (required when `sign` is set) starts the first
+ * term: X-R3+100 is (-R3)+100.  The word's name for the errors, or rn for
+ * a parameter's. */
+HOT struct expr *word_value(struct pstate *s, const char *word, int rn, int sign)
+{
+  int32_t c = peek(s);
+  if ((sign && c != '+' && c != '-') || c == LX_EOB || c == LX_EOF)
+    no_value(s, word, rn, sign);
   return expr_in(s);
 }
 
@@ -798,7 +817,12 @@ HOT struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
     fail(s, S42_E_BLOCKLEN, col, "too many words in one block");
   size_t i = b->nw++;
   struct word *w = &b->w[i];
-  *w = (struct word){.kind = (uint8_t)kind, .letter = letter, .col = col};
+  /* what else a word of this kind has is set by the caller, but a jump's
+   * target number, read even when it did not parse */
+  w->kind = (uint8_t)kind;
+  w->letter = letter;
+  w->col = col;
+  w->num = 0;
   if (!(b->wkinds & (1u << kind))) {
     b->wkinds |= (uint16_t)(1u << kind);
     b->wfirst[kind] = (uint8_t)i;
@@ -861,7 +885,7 @@ static inline __attribute__((always_inline)) void word(struct pstate *s)
                   : c == 'I' ? SL_I : c == 'J' ? SL_J : c == 'K' ? SL_K : SL_H;
     once(s, b->wslots & (1u << slot), name, col);
     adv(s);
-    struct expr *e = word_value(s, name, c != 'H');
+    struct expr *e = word_value(s, name, -1, c != 'H');
     w = new_word(s, WK_SLOT, (char)c, col);
     w->e = e;
     w->idx = slot;
@@ -872,7 +896,7 @@ static inline __attribute__((always_inline)) void word(struct pstate *s)
   case 'F': {
     once(s, b->wF >= 0, "F", col);
     adv(s);
-    struct expr *e = word_value(s, "F", 0);
+    struct expr *e = word_value(s, "F", -1, 0);
     w = new_word(s, WK_REG, 'F', col);
     w->e = e;
     w->idx = REG_F;
@@ -892,13 +916,11 @@ static inline __attribute__((always_inline)) void word(struct pstate *s)
     long n = number(s, 3, "a parameter number after R");
     if (n > 113)
       fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
-    char name[8] = {'R'};   /* "R12", without printf: this runs for every R word */
-    fmt_uint(name + 1, (unsigned)n);
     if (b->g28reg == -2) {        /* G28 /min:max/ Rn: where the answer goes */
       b->g28reg = (int)n;
       return;
     }
-    struct expr *e = word_value(s, name, 1);
+    struct expr *e = word_value(s, NULL, (int)n, 1);
     w = new_word(s, WK_REG, 'R', col);
     w->num = (int)n;
     w->idx = (unsigned)n;
@@ -911,7 +933,7 @@ static inline __attribute__((always_inline)) void word(struct pstate *s)
       fail(s, S42_E_SYNTAX, col, "the only D word is D1 (tool diameter)");
     adv(s);
     once(s, b->hasD, "D1", col);
-    struct expr *e = word_value(s, "D1", 1);
+    struct expr *e = word_value(s, "D1", -1, 1);
     w = new_word(s, WK_REG, 'D', col);
     b->hasD = 1;
     w->idx = REG_D1;
@@ -953,7 +975,7 @@ static inline __attribute__((always_inline)) void word(struct pstate *s)
       fail(s, S42_E_SYNTAX, col, "T%d%s is not an array word (T11 T21 T31 T12 T22 T32)", d1,
            d2 >= 0 ? (char[]){(char)('0' + d2), 0} : "");
     char name[4] = {'T', (char)('0' + d1), (char)('0' + d2), 0};
-    struct expr *e = word_value(s, name, 1);
+    struct expr *e = word_value(s, name, -1, 1);
     w = new_word(s, WK_AWR, 'T', col);
     w->idx = (unsigned)(d2 - 1) | (unsigned)d1 << 2;
     w->e = e;
