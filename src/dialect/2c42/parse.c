@@ -214,21 +214,29 @@ static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct psta
   fail(s, S42_E_BLOCKLEN, col, "block too long to analyse (over %d terms)", MAX_NODES);
 }
 
+/* The block's nodes are in one array of MAX_NODES, made at the first
+ * node (as arena_alloc would: out of memory leaves the block); its end is
+ * the bound on them. */
+static size_t __attribute__((noinline, cold)) node_room(struct pstate *s, unsigned col)
+{
+  struct parser *p = s->p;
+  if (p->nodes >= MAX_NODES)
+    too_many_nodes(s, col);
+  p->nodebuf = malloc(MAX_NODES * sizeof *p->nodebuf);
+  if (!p->nodebuf)
+    longjmp(s->jb, 2);
+  p->nodecap = MAX_NODES;
+  return p->nodes;
+}
+
 HOT struct expr *node(struct pstate *s, int kind, unsigned col)
 {
-  enum { SIZE = (sizeof(struct expr) + 15) & ~(size_t)15 };   /* as arena_alloc rounds it */
-  if (++s->p->nodes > MAX_NODES)
-    too_many_nodes(s, col);
-  struct arena *a = &s->p->ar;
-  struct expr *e;
-  if (a->used + SIZE <= a->cap) {   /* arena_alloc's common case, inline */
-    e = (struct expr *)(a->buf + a->used);
-    a->used += SIZE;
-  } else {
-    e = arena_alloc(a, sizeof *e);
-    if (!e)
-      longjmp(s->jb, 2);   /* out of memory (arena_alloc goes there itself while a block is parsed) */
-  }
+  struct parser *p = s->p;
+  size_t k = p->nodes;
+  if (k >= p->nodecap)
+    k = node_room(s, col);
+  p->nodes = k + 1;
+  struct expr *e = &p->nodebuf[k];
   /* the fields a node of this kind has are set by the caller: its value,
    * index, operator, operands (fk by the compiler's fold, which visits
    * every node before anything reads it) */
@@ -1027,6 +1035,9 @@ void parse_init(struct parser *p, const char *src, size_t n, struct diag_list *d
 
 void parse_free(struct parser *p)
 {
+  free(p->nodebuf);
+  p->nodebuf = NULL;
+  p->nodecap = 0;
   arena_free(&p->ar);
 }
 

@@ -16,6 +16,8 @@ struct parser {
   size_t depth;           /* expression nesting, bounded */
   size_t paren;           /* open parentheses in the current expression */
   size_t nodes;           /* expression nodes in the current block, bounded */
+  struct expr *nodebuf;   /* the block's nodes (MAX_NODES of them, from the first), or NULL */
+  size_t nodecap;         /* MAX_NODES once nodebuf is made, 0 before */
   size_t slash_ends;      /* G28 /min:max/: a '/' outside parentheses closes it */
   const struct plug_set *plugins;  /* functions plugins add (src/core/plugin.h), or NULL */
 };
