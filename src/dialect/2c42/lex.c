@@ -372,8 +372,10 @@ int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col,
   *enc = NULL;
   size_t bad = n, highs = 0, len;
   for (size_t p = l.pos; p < n; p += len) {
-    /* ASCII, eight bytes at a time: most programs are nothing else */
-    uint64_t w8;
+    /* ASCII, 32 and then eight bytes at a time: most programs are nothing else */
+    uint64_t w8, w[4];
+    while (p + 32 <= n && (memcpy(w, text + p, 32), !((w[0] | w[1] | w[2] | w[3]) & 0x8080808080808080ull)))
+      p += 32;
     while (p + 8 <= n && (memcpy(&w8, text + p, 8), !(w8 & 0x8080808080808080ull)))
       p += 8;
     if (p >= n)
