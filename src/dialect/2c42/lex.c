@@ -164,7 +164,7 @@ static void __attribute__((constructor)) lex_class_init(void)
 /* Lex more into the window at wn (which is below LX_WIN): a run of plain
  * characters up to the next one that is not (after a '/', an end of block,
  * or a '^' and the newline right after it), or else that one character. */
-static void fill(struct lex *l)
+static inline __attribute__((always_inline)) void fill(struct lex *l)
 {
   const unsigned char *s = (const unsigned char *)l->s;
   size_t pos = l->pos, lim = l->n;
@@ -182,7 +182,8 @@ static void fill(struct lex *l)
     unsigned b = s[pos], k = lex_class[b];
     if (k == LC_PLAIN) {
       wc[n] = (int32_t)b;
-      wcol[n++] = base + (unsigned)pos;
+      wcol[n] = base + (unsigned)pos;
+      n++;
       continue;
     }
     if (k == LC_SPACE)   /* the space between words: a column, nothing else */
