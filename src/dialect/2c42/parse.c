@@ -260,24 +260,24 @@ HOT void need2(struct expr *n)
   n->need = (uint16_t)(n->a->need > r ? n->a->need : r > 0xffff ? 0xffff : r);
 }
 
-static struct expr *expr(struct pstate *s);
-static struct expr *unary(struct pstate *s);
+static struct expr *expr(struct pstate *s, size_t d);
+static struct expr *unary(struct pstate *s, size_t d);
 
-static struct expr *call(struct pstate *s, int op, unsigned col, int skip)
+static struct expr *call(struct pstate *s, int op, unsigned col, int skip, size_t d)
 {
   for (int i = 0; i < skip; i++)
     adv(s);
   expect(s, '(', "'(' after the function name");
   struct expr *e = node(s, EX_FN, col);
   e->op = (uint8_t)op;
-  e->a = expr(s);
+  e->a = expr(s, d);
   e->need = e->a->need;
   expect(s, ')', "')' closing the function argument");
   return e;
 }
 
 /* The operands that are not a number, a parameter or X Y Z. */
-static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, int32_t c, unsigned col)
+static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, int32_t c, unsigned col, size_t d)
 {
   char buf[32];
   struct expr *e;
@@ -285,15 +285,15 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
   case '(':
     adv(s);
     s->p->paren++;
-    e = expr(s);
+    e = expr(s, d);
     expect(s, ')', "')'");
     s->p->paren--;
     return e;
   case 'A': {
     int32_t c2 = lex_peek2(&s->p->lx);
-    if (c2 == 'S') { adv(s); adv(s); if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ASI(...)?"); return call(s, OP_ASIN, col, 1); }
-    if (c2 == 'C') { adv(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1); }
-    if (c2 == 'T') { adv(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1); }
+    if (c2 == 'S') { adv(s); adv(s); if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ASI(...)?"); return call(s, OP_ASIN, col, 1, d); }
+    if (c2 == 'C') { adv(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1, d); }
+    if (c2 == 'T') { adv(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1, d); }
     adv(s);
     s->b->slotrd = 1;
     e = node(s, EX_SLOT, col);
@@ -303,15 +303,15 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
   case 'S':
     adv(s);
     if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean SI(...)?");
-    return call(s, OP_SIN, col, 1);
+    return call(s, OP_SIN, col, 1, d);
   case 'C':
     adv(s);
     if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean CO(...)?");
-    return call(s, OP_COS, col, 1);
+    return call(s, OP_COS, col, 1, d);
   case 'L':
     adv(s);
     if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean LO(...)?");
-    return call(s, OP_LOG, col, 1);
+    return call(s, OP_LOG, col, 1, d);
   case 'P':
     adv(s);
     if (peek(s) != '1')
@@ -346,7 +346,7 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
       return e;
     }
     if (c2 == 'G')
-      return call(s, OP_TAN, col, 1);
+      return call(s, OP_TAN, col, 1, d);
     if (isdig(c2)) {
       int d1 = c2 - '0';
       adv(s);
@@ -365,7 +365,7 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
   }
 }
 
-HOT struct expr *primary(struct pstate *s)
+HOT struct expr *primary(struct pstate *s, size_t d)
 {
   int32_t c = peek(s);
   unsigned col = here(s);
@@ -391,12 +391,12 @@ HOT struct expr *primary(struct pstate *s)
     e->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : SL_Z;
     return e;
   }
-  return primary_other(s, c, col);
+  return primary_other(s, c, col, d);
 }
 
 /* The %% after the primary b and its exponent (right-associative through
  * unary). */
-static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struct expr *b)
+static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struct expr *b, size_t d)
 {
   unsigned col = pcol(s);
   adv(s);
@@ -404,42 +404,38 @@ static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struc
   struct expr *e = node(s, EX_BIN, col);
   e->op = OP_POW;
   e->a = b;
-  e->b = unary(s);
+  e->b = unary(s, d);
   need2(e);
   return e;
 }
 
 /* power := primary [ %% unary ] */
-HOT struct expr *power(struct pstate *s)
+HOT struct expr *power(struct pstate *s, size_t d)
 {
-  struct expr *b = primary(s);
+  struct expr *b = primary(s, d);
   if (peek(s) == '%' && lex_peek2(&s->p->lx) == '%')
-    return power_rest(s, b);
+    return power_rest(s, b, d);
   return b;
 }
 
 /* A sign applies to the factor that follows, power included: -2%%2 = -4. */
-HOT struct expr *unary_inner(struct pstate *s)
+HOT struct expr *unary_inner(struct pstate *s, size_t d)
 {
   int32_t c = peek(s);
   if (c == '+' || c == '-') {
     unsigned col = here(s);
     adv(s);
     /* two levels for a sign, both told at the sign's column */
-    if ((s->p->depth += 2) > MAX_DEPTH)
+    if (d + 2 > MAX_DEPTH)
       fail(s, S42_E_SYNTAX, col, "expression nested too deeply");
     /* unary() of what follows, without the call when it is no sign and no
      * parenthesis (unary's check, the same as the one above, passes) */
     struct expr *u;
     int32_t c2 = peek(s);
-    if (c2 == '+' || c2 == '-' || c2 == '(') {
-      s->p->depth--;
-      u = unary(s);
-    } else {
-      u = power(s);
-      s->p->depth--;
-    }
-    s->p->depth--;
+    if (c2 == '+' || c2 == '-' || c2 == '(')
+      u = unary(s, d + 1);
+    else
+      u = power(s, d + 2);
     if (c == '+')
       return u;
     struct expr *e = node(s, EX_NEG, col);
@@ -448,40 +444,36 @@ HOT struct expr *unary_inner(struct pstate *s)
     return e;
   }
   if (c == '(') {
-    if (++s->p->depth > MAX_DEPTH)
+    if (d + 1 > MAX_DEPTH)
       fail(s, S42_E_SYNTAX, pcol(s), "expression nested too deeply");
-    struct expr *e = power(s);
-    s->p->depth--;
-    return e;
+    return power(s, d + 1);
   }
-  return power(s);
+  return power(s, d);
 }
 
 /* unary: one level more, checked at the character consumed last (the
  * operator, sign or parenthesis before the operand: at the top of a word's
  * value the depth is 0 and the check passes). */
-HOT struct expr *operand(struct pstate *s)
+HOT struct expr *operand(struct pstate *s, size_t d)
 {
-  if (++s->p->depth > MAX_DEPTH)
+  if (d + 1 > MAX_DEPTH)
     fail(s, S42_E_SYNTAX, lex_prev_col(&s->p->lx), "expression nested too deeply");
-  struct expr *e = unary_inner(s);
-  s->p->depth--;
-  return e;
+  return unary_inner(s, d + 1);
 }
 
-static struct expr *__attribute__((noinline)) unary(struct pstate *s)
+static struct expr *__attribute__((noinline)) unary(struct pstate *s, size_t d)
 {
-  return operand(s);
+  return operand(s, d);
 }
 
 /* The same left-deep trees as term inside expr, made in the same order:
  * `mul` is the / or % waiting for its right operand, `top` the + or -
  * waiting for its right term. */
-HOT struct expr *expr_in(struct pstate *s)
+HOT struct expr *expr_in(struct pstate *s, size_t d)
 {
   struct expr *e, *top = NULL, *mul = NULL;
   for (;;) {
-    e = operand(s);
+    e = operand(s, d);
     if (mul) {
       mul->b = e;
       need2(mul);
@@ -516,9 +508,9 @@ HOT struct expr *expr_in(struct pstate *s)
 }
 
 /* expr(), out of line: where expressions nest */
-static struct expr *__attribute__((noinline)) expr(struct pstate *s)
+static struct expr *__attribute__((noinline)) expr(struct pstate *s, size_t d)
 {
-  return expr_in(s);
+  return expr_in(s, d);
 }
 
 /* word_value's errors, out of its way; a parameter's name (rn >= 0, R12)
@@ -546,12 +538,12 @@ HOT struct expr *word_value(struct pstate *s, const char *word, int rn, int sign
   int32_t c = peek(s);
   if ((sign && c != '+' && c != '-') || c == LX_EOB || c == LX_EOF)
     no_value(s, word, rn, sign);
-  return expr_in(s);
+  return expr_in(s, 0);   /* a word's value: nothing around it */
 }
 
 /* ---- conditions ---- */
 
-static struct expr *cond(struct pstate *s);
+static struct expr *cond(struct pstate *s, size_t d);
 
 /* Does the parenthesis at the cursor hold a comparison (a ':' at its own
  * level) rather than a nested condition? */
@@ -575,19 +567,19 @@ static int is_comparison(struct pstate *s)
   }
 }
 
-static struct expr *prim(struct pstate *s)
+static struct expr *prim(struct pstate *s, size_t d)
 {
   char buf[32];
   unsigned col = pcol(s);
   if (peek(s) != '(')
     fail(s, S42_E_SYNTAX, col, "expected '(' starting a condition, found %s", show(peek(s), buf));
-  if (++s->p->depth > MAX_DEPTH)
+  if (++d > MAX_DEPTH)
     fail(s, S42_E_SYNTAX, col, "condition nested too deeply");
   struct expr *e;
   if (is_comparison(s)) {
     adv(s);
     e = node(s, EX_CMP, col);
-    e->a = expr(s);
+    e->a = expr(s, d);
     expect(s, ':', "':' before the relation");
     unsigned rcol = pcol(s), mask = 0;
     while (peek(s) == 'B' || peek(s) == 'M' || peek(s) == 'R') {
@@ -602,42 +594,41 @@ static struct expr *prim(struct pstate *s)
            show(peek(s), buf));
     adv(s);
     e->op = (uint8_t)mask;
-    e->b = expr(s);
+    e->b = expr(s, d);
     need2(e);
     expect(s, ')', "')' closing the comparison");
   } else {
     adv(s);
-    e = cond(s);
+    e = cond(s, d);
     expect(s, ')', "')' closing the condition");
   }
-  s->p->depth--;
   return e;
 }
 
-static struct expr *conjunction(struct pstate *s)
+static struct expr *conjunction(struct pstate *s, size_t d)
 {
-  struct expr *e = prim(s);
+  struct expr *e = prim(s, d);
   while (peek(s) == 'U') {
     unsigned col = pcol(s);
     adv(s);
     struct expr *n = node(s, EX_AND, col);
     n->a = e;
-    n->b = prim(s);
+    n->b = prim(s, d);
     need2(n);
     e = n;
   }
   return e;
 }
 
-static struct expr *cond(struct pstate *s)
+static struct expr *cond(struct pstate *s, size_t d)
 {
-  struct expr *e = conjunction(s);
+  struct expr *e = conjunction(s, d);
   while (peek(s) == 'S') {
     unsigned col = pcol(s);
     adv(s);
     struct expr *n = node(s, EX_OR, col);
     n->a = e;
-    n->b = conjunction(s);
+    n->b = conjunction(s, d);
     need2(n);
     e = n;
   }
@@ -740,9 +731,9 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
     open_slash(s, fn, S42_E_SYNTAX);
     b->g28col = pcol(s);
     s->p->slash_ends = 1;
-    b->g28min = expr(s);
+    b->g28min = expr(s, 0);
     expect(s, ':', "':' between the G28 bounds /min:max/ (divide inside parentheses: /(R1/2):R2/)");
-    b->g28max = expr(s);
+    b->g28max = expr(s, 0);
     expect(s, '/', "'/' closing the G28 bounds");
     s->p->slash_ends = 0;
     b->g28reg = -2;   /* the R word must follow */
@@ -1001,7 +992,7 @@ static inline __attribute__((always_inline)) void word(struct pstate *s)
     if (b->wkinds & (1u << WK_P | 1u << WK_PCOND))
       fail(s, S42_E_SYNTAX, col, "two jumps P in one block");
     if (peek(s) == '(') {
-      b->cond = cond(s);
+      b->cond = cond(s, 0);
       w = new_word(s, WK_PCOND, 'P', col);
       w->num = (int)number(s, 3, "the target block number after the condition");
       return;
@@ -1149,7 +1140,7 @@ static void block_end(struct parser *p, struct block *b, int jumped)
   }
   if (jumped)
     lex_skip_block(l);
-  p->depth = p->paren = p->slash_ends = p->nodes = 0;
+  p->paren = p->slash_ends = p->nodes = 0;
   b->len = l->blen;
   if (lex_peek(l) == LX_EOB)
     lex_adv(l);

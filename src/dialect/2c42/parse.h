@@ -13,7 +13,6 @@ struct parser {
   struct diag_list *d;
   /* size_t: the int and unsigned stores of the parse (nodes, words) are
    * no aliases of these, which the compiler then keeps in registers */
-  size_t depth;           /* expression nesting, bounded */
   size_t paren;           /* open parentheses in the current expression */
   size_t nodes;           /* expression nodes in the current block, bounded */
   struct expr *nodebuf;   /* the block's nodes (MAX_NODES of them, from the first), or NULL */
