@@ -23,7 +23,8 @@ struct expr {
   uint16_t need;      /* the stack its code needs at most (the parser's count: a bound) */
   unsigned col;
   double v;           /* EX_NUM; the folded value of another constant node */
-  unsigned idx;       /* EX_REG register, EX_SLOT slot, EX_ARR arr | mode << 2 */
+  unsigned idx;       /* EX_REG register, EX_SLOT slot, EX_ARR arr | mode << 2; EX_NUM its
+                         value when an integer of INT's operand (~0u for P1) */
   struct expr *a, *b;
 };
 

@@ -58,10 +58,9 @@ struct comp {
   uint16_t isconst;
   uint16_t badslot;        /* a slot whose word was refused (its checks would cascade) */
   /* store() folds an expression, then generates its code: gen reads the
-   * fold of each node from the node (memo) instead of folding each subtree
+   * fold of each node from the node (its memo argument) instead of folding each subtree
    * again -- unless the expression reads the slot being stored, whose
    * given and constant bits change in between (reads_slot) */
-  int memo;
   uint64_t core_g;         /* the functions no plugin has (core_masks) */
   uint32_t core_m;
   /* the G and M numbers by what their rows say (core_masks): the questions
@@ -339,7 +338,7 @@ static void fuse_compare(struct comp *c)
   peep_end(c);
 }
 
-static void gen(struct comp *c, struct expr *e);
+static void gen(struct comp *c, struct expr *e, int memo);
 
 /* The first place TK or UG is read (for the warning when no M10 sets them). */
 static void __attribute__((noinline)) uses_tk(struct comp *c, const struct expr *e)
@@ -361,9 +360,13 @@ static inline __attribute__((always_inline)) void gen_reg(struct comp *c, const 
 
 /* gen() of e, its leaves without a call: with the folds kept (memo), a
  * constant node and a register are one push. */
-static inline __attribute__((always_inline)) void gen_in(struct comp *c, struct expr *e)
+static inline __attribute__((always_inline)) void gen_in(struct comp *c, struct expr *e, int memo)
 {
-  if (c->memo) {
+  if (memo) {
+    if (e->kind == EX_NUM && e->idx <= INS_AMAX) {   /* emit_num's INT, the parser's integer */
+      emit(c, OP_INT, e->idx, e->col);
+      return;
+    }
     if (e->kind <= EX_FN && e->fk == 1) {
       emit_num(c, e->v, e->col);
       return;
@@ -373,15 +376,15 @@ static inline __attribute__((always_inline)) void gen_in(struct comp *c, struct 
       return;
     }
   }
-  gen(c, e);
+  gen(c, e, memo);
 }
 
-static void gen(struct comp *c, struct expr *e)
+static void gen(struct comp *c, struct expr *e, int memo)
 {
   double v;
   int failed = 0;
   if (e->kind != EX_CMP && e->kind != EX_AND && e->kind != EX_OR &&
-      (c->memo ? e->fk == 1 && (v = e->v, 1) : fold(c, e, &v, &failed))) {
+      (memo ? e->fk == 1 && (v = e->v, 1) : fold(c, e, &v, &failed))) {
     emit_num(c, v, e->col);
     return;
   }
@@ -402,18 +405,18 @@ static void gen(struct comp *c, struct expr *e)
     emit(c, OP_ARD, e->idx, e->col);
     return;
   case EX_NEG:
-    gen_in(c, e->a);
+    gen_in(c, e->a, memo);
     emit(c, OP_NEG, 0, e->col);
     return;
   case EX_FN:
-    gen_in(c, e->a);
+    gen_in(c, e->a, memo);
     emit(c, e->op, 0, e->col);
     peep_end(c);
     return;
   case EX_BIN: {
-    gen_in(c, e->a);
+    gen_in(c, e->a, memo);
     size_t mark = c->p->ncode;
-    gen_in(c, e->b);
+    gen_in(c, e->b, memo);
     /* superinstruction: an operator whose right operand is one push */
     uint32_t last = mark < c->p->ncode ? c->p->code[mark] : 0;
     int fused = fuse_operand(e->op, (int)INS_OP(last));
@@ -437,13 +440,13 @@ static void gen(struct comp *c, struct expr *e)
     return;
   }
   case EX_CMP:
-    gen_in(c, e->a);
-    gen_in(c, e->b);
+    gen_in(c, e->a, memo);
+    gen_in(c, e->b, memo);
     emit(c, OP_CMP, e->op, e->col);
     return;
   case EX_AND: case EX_OR:
-    gen_in(c, e->a);
-    gen_in(c, e->b);
+    gen_in(c, e->a, memo);
+    gen_in(c, e->b, memo);
     emit(c, e->kind == EX_AND ? OP_AND : OP_OR, 0, e->col);
     return;
   }
@@ -560,7 +563,7 @@ static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigne
     return;
   }
   if (k) {
-    if (w->round)
+    if (w->round && !(e->kind == EX_NUM && e->idx <= INS_AMAX))   /* (the parser's integers are whole) */
       v = round_half_away(v);
     if (!(v >= w->lo && v <= w->hi)) {
       if (clamp && v > w->hi) {
@@ -589,9 +592,7 @@ static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigne
   /* failed returned above: the folds hold, unless the expression reads
    * the slot just stored (only X Y Z A are operands; the parser says
    * whether the block has any) */
-  c->memo = !(c->b->slotrd && dest >= VM_NREG && dest - VM_NREG <= SL_A && reads_slot(e, dest - VM_NREG));
-  gen_in(c, e);
-  c->memo = 0;
+  gen_in(c, e, !(c->b->slotrd && dest >= VM_NREG && dest - VM_NREG <= SL_A && reads_slot(e, dest - VM_NREG)));
   if (rk == RK_PARAM) {
     emit(c, OP_SETP, dest, col);   /* a parameter: its rule is implied */
     peep_end(c);
@@ -1168,7 +1169,7 @@ static void compile_block(struct comp *c)
         break;
       if (w->e->need > c->need)
         c->need = w->e->need;
-      gen(c, w->e);
+      gen(c, w->e, 0);
       emit(c, OP_AWR, w->idx, w->col);
       break;
     case WK_AOP:
@@ -1197,7 +1198,7 @@ static void compile_block(struct comp *c)
   if (b->cond && PC && !b->bad) {
     if (b->cond->need > c->need)
       c->need = b->cond->need;
-    gen(c, b->cond);
+    gen(c, b->cond, 0);
     size_t last = c->p->ncode - 1;
     if (b->cond->kind == EX_CMP && c->p->ncode > 0 && INS_OP(c->p->code[last]) == OP_CMP) {
       c->p->code[last] = INS(OP_CMPC, INS_A(c->p->code[last]));   /* CMP; COND */

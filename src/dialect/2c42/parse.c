@@ -321,6 +321,7 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
       fail(s, S42_E_SYNTAX, col, "P1 is the constant pi; P followed by more digits is not an operand");
     e = node(s, EX_NUM, col);
     e->v = 3.141592;   /* the machine's value of P1 */
+    e->idx = ~0u;      /* no integer */
     return e;
   case 'U':
     adv(s);
@@ -372,7 +373,9 @@ HOT struct expr *primary(struct pstate *s, size_t d)
   struct expr *e;
   if (isdig(c)) {
     e = node(s, EX_NUM, col);
-    e->v = (double)number(s, 7, "a number");
+    long n = number(s, 7, "a number");
+    e->v = (double)n;
+    e->idx = (unsigned)n;   /* (seven digits at most: an instruction's INT) */
     return e;
   }
   if (c == 'R') {
