@@ -180,13 +180,15 @@ HOT long number(struct pstate *s, int maxdig, const char *what)
   for (;;) {
     size_t i = l->wi, n = l->wn;
     const int32_t *w = l->wc;
-    for (; i < n && isdig(w[i]); i++) {
-      int dig = w[i] - '0';
-      if (nd || dig) {
-        if (nd < 12)
-          v = v * 10 + dig;
-        nd++;
-      }
+    if (!nd)   /* leading zeros */
+      while (i < n && w[i] == '0')
+        i++;
+    for (; i < n; i++, nd++) {   /* the value from its first 12 digits */
+      unsigned d = (unsigned)(w[i] - '0');
+      if (d > 9)
+        break;
+      if (nd < 12)
+        v = v * 10 + d;
     }
     l->wi = i;
     if (i < n || !isdig(lex_more(l)))   /* the window's end: more digits after it? */
