@@ -63,15 +63,32 @@ long prog_emit_grow(struct program *p, uint32_t ins, unsigned col)
   return (long)p->ncode++;
 }
 
+/* The kseen slot of a constant's bits. */
+static inline unsigned kslot(double v)
+{
+  uint64_t b;
+  memcpy(&b, &v, sizeof b);
+  return (unsigned)((b * 0x9E3779B97F4A7C15ull) >> 58);
+}
+
 long prog_const(struct program *p, double v)
 {
-  /* Reuse the last few constants: programs repeat the same numbers. */
+  /* Reuse the last few constants: programs repeat the same numbers.  The
+   * latest constant of these bits is the one to reuse; kseen remembers it
+   * (unless another of the same slot came since: then the search) */
+  unsigned h = kslot(v);
+  uint32_t s = p->kseen[h];
+  if (s && s + 8 > p->nk && memcmp(&p->k[s - 1], &v, sizeof v) == 0)
+    return (long)s - 1;
   for (size_t i = p->nk, n = 0; i-- > 0 && n < 8; n++)
-    if (memcmp(&p->k[i], &v, sizeof v) == 0)
+    if (memcmp(&p->k[i], &v, sizeof v) == 0) {
+      p->kseen[h] = (uint32_t)i + 1;
       return (long)i;
+    }
   if (p->nk >= INS_AMAX || grow((void **)&p->k, &p->capk, p->nk + 1, sizeof *p->k))
     return -1;
   p->k[p->nk] = v;
+  p->kseen[h] = (uint32_t)p->nk + 1;
   return (long)p->nk++;
 }
 
@@ -80,6 +97,8 @@ long prog_consts(struct program *p, const double *v, size_t n)
   if (p->nk + n > INS_AMAX || grow((void **)&p->k, &p->capk, p->nk + n, sizeof *p->k))
     return -1;
   memcpy(p->k + p->nk, v, n * sizeof *v);
+  for (size_t i = 0; i < n; i++)   /* the latest of their bits now */
+    p->kseen[kslot(v[i])] = (uint32_t)(p->nk + i) + 1;
   p->nk += n;
   return (long)(p->nk - n);
 }

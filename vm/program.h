@@ -58,6 +58,8 @@ struct program {
   uint32_t *code;  size_t ncode, capcode;
   uint16_t *cols;                     /* column of each instruction */
   double *k;       size_t nk, capk;
+  uint32_t kseen[64];                 /* prog_const's memory: 1 + the index of the latest constant
+                                         of each hash of its bits (a hint, checked), 0 none */
   struct prog_rule *rules; size_t nrules, caprules;
   struct prog_block *blocks; size_t nblocks, capblocks;
   uint32_t entry;                     /* pc where execution starts */
@@ -96,6 +98,14 @@ long prog_const(struct program *p, double v);
 long prog_consts(struct program *p, const double *v, size_t n);
 long prog_rule(struct program *p, const struct prog_rule *r);
 long prog_block_add(struct program *p, const struct prog_block *b);
+/* prog_block_add, its common case inline. */
+static inline long prog_block_push(struct program *p, const struct prog_block *b)
+{
+  if (p->nblocks >= p->capblocks || p->nblocks > 0xffffffu)   /* full (or past the 24-bit operands) */
+    return prog_block_add(p, b);
+  p->blocks[p->nblocks] = *b;
+  return (long)p->nblocks++;
+}
 /* Index of the block whose code contains pc (binary search). */
 size_t prog_block_at(const struct program *p, uint32_t pc);
 

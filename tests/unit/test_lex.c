@@ -1,4 +1,4 @@
-/* The lexer cursor (src/dialect/2c42/lex.h): what lex_peek sees, where it is, and what
+/* The lexer (src/dialect/2c42/lex.h): what lex_peek sees, where it is, and what
  * it notes. */
 #include "suites.h"
 #include "lex.h"
@@ -107,12 +107,12 @@ START_TEST(ps_is_one_eob)
   ck_assert_int_eq(next(), '+');
   ck_assert_int_eq(next(), '1');
   ck_assert_int_eq(lex_peek(&l), LX_EOB);
-  ck_assert_uint_eq(l.ccol, 4);
+  ck_assert_uint_eq(lex_col(&l), 4);
   lex_adv(&l);
   /* both letters consumed: Y is the 6th character */
   ck_assert_int_eq(lex_peek(&l), 'Y');
-  ck_assert_uint_eq(l.ccol, 6);
-  ck_assert_uint_eq(l.line, 1);
+  ck_assert_uint_eq(lex_col(&l), 6);
+  ck_assert_uint_eq(lex_line(&l), 1);
   /* ПС is not a look-alike letter: no note */
   ck_assert_uint_eq(d.n, 0);
 }
@@ -188,8 +188,8 @@ START_TEST(columns_count_characters)
   start("ХХХ Y");                  /* three 2-byte letters */
   next(); next(); next();
   ck_assert_int_eq(lex_peek(&l), 'Y');
-  ck_assert_uint_eq(l.ccol, 5);
-  ck_assert_uint_eq(l.pos, 7);      /* but byte 7 */
+  ck_assert_uint_eq(lex_col(&l), 5);
+  ck_assert_uint_eq(l.pos, 8);      /* but byte 7: lexed, the cursor is after it */
 }
 END_TEST
 
@@ -197,15 +197,16 @@ START_TEST(lines_and_columns)
 {
   start("AB\n  C");
   ck_assert_int_eq(lex_peek(&l), 'A');
-  ck_assert_uint_eq(l.line, 1);
-  ck_assert_uint_eq(l.ccol, 1);
+  ck_assert_uint_eq(lex_line(&l), 1);
+  ck_assert_uint_eq(lex_col(&l), 1);
   next(); next();
   ck_assert_int_eq(lex_peek(&l), LX_EOB);
-  ck_assert_uint_eq(l.ccol, 3);
+  ck_assert_uint_eq(lex_line(&l), 1);
+  ck_assert_uint_eq(lex_col(&l), 3);
   lex_adv(&l);
   ck_assert_int_eq(lex_peek(&l), 'C');
-  ck_assert_uint_eq(l.line, 2);
-  ck_assert_uint_eq(l.ccol, 3);
+  ck_assert_uint_eq(lex_line(&l), 2);
+  ck_assert_uint_eq(lex_col(&l), 3);
 }
 END_TEST
 
@@ -214,7 +215,7 @@ START_TEST(invalid_utf8_is_fffd)
   start("\xFFX");
   ck_assert_int_eq(next(), 0xFFFD);
   ck_assert_int_eq(lex_peek(&l), 'X');
-  ck_assert_uint_eq(l.ccol, 2);
+  ck_assert_uint_eq(lex_col(&l), 2);
 }
 END_TEST
 
@@ -245,7 +246,7 @@ START_TEST(four_byte_character)
   start("\xF0\x9F\x98\x80X");       /* U+1F600 */
   ck_assert_int_eq(next(), 0x1F600);
   ck_assert_int_eq(lex_peek(&l), 'X');
-  ck_assert_uint_eq(l.ccol, 2);
+  ck_assert_uint_eq(lex_col(&l), 2);
 }
 END_TEST
 
@@ -253,8 +254,8 @@ START_TEST(bom_skipped)
 {
   start("\xEF\xBB\xBFN1");
   ck_assert_int_eq(lex_peek(&l), 'N');
-  ck_assert_uint_eq(l.ccol, 1);
-  ck_assert_uint_eq(l.line, 1);
+  ck_assert_uint_eq(lex_col(&l), 1);
+  ck_assert_uint_eq(lex_line(&l), 1);
 }
 END_TEST
 
@@ -312,27 +313,64 @@ END_TEST
 
 START_TEST(blen_counts_significant_characters)
 {
-  start("N 1 X+1 ; comment\n");
+  start("N 1 X+1 ; comment\nY ^\nZ");
   l.blen = 0;
   while (lex_peek(&l) != LX_EOB)
     lex_adv(&l);
   ck_assert_uint_eq(l.blen, 5);       /* N1X+1 */
   lex_adv(&l);
   ck_assert_uint_eq(l.blen, 5);       /* the end mark does not count */
+  l.blen = 0;
+  ck_assert_int_eq(next(), 'Y');
+  ck_assert_int_eq(next(), LX_EOB);   /* ^ */
+  ck_assert_int_eq(next(), LX_EOB);   /* and the newline, lexed with it */
+  ck_assert_uint_eq(l.blen, 1);
+  ck_assert_int_eq(lex_peek(&l), 'Z');
+  ck_assert_uint_eq(lex_line(&l), 3);
 }
 END_TEST
 
-START_TEST(mark_and_reset)
+/* The window: a look two ahead and a walk ahead read what lex_peek will */
+START_TEST(peek2_and_ahead)
 {
-  start("AB CD");
+  start("AB C;x\nD");
+  ck_assert_int_eq(lex_peek(&l), 'A');
+  ck_assert_int_eq(lex_peek2(&l), 'B');
   next();
-  struct lex_mark m = lex_mark(&l);
-  next(); next();
-  ck_assert_int_eq(lex_peek(&l), 'D');
-  lex_reset(&l, m);
-  ck_assert_int_eq(lex_peek(&l), 'B');
-  ck_assert_uint_eq(l.ccol, 2);
-  ck_assert_uint_eq(l.blen, 1);
+  ck_assert_int_eq(lex_peek2(&l), 'C');
+  struct lex_ahead a;
+  lex_ahead_start(&l, &a);
+  ck_assert_int_eq(lex_ahead_next(&l, &a), 'B');
+  ck_assert_int_eq(lex_ahead_next(&l, &a), 'C');
+  ck_assert_int_eq(lex_ahead_next(&l, &a), LX_EOB);   /* the comment skipped */
+  ck_assert_int_eq(next(), 'B');
+  ck_assert_int_eq(lex_col(&l), 4);
+  ck_assert_int_eq(next(), 'C');
+  ck_assert_int_eq(next(), LX_EOB);
+  ck_assert_int_eq(next(), 'D');
+}
+END_TEST
+
+/* Past the window's end (LX_WIN characters) the characters keep coming */
+START_TEST(long_run)
+{
+  char buf[3 * LX_WIN + 8];
+  size_t n = 0;
+  for (int i = 0; i < 3 * LX_WIN; i++)
+    buf[n++] = (char)('0' + i % 10);
+  buf[n++] = '/';
+  buf[n++] = ';';
+  buf[n] = 0;
+  start(buf);
+  for (int i = 0; i < 3 * LX_WIN; i++) {
+    ck_assert_int_eq(lex_peek(&l), '0' + i % 10);
+    ck_assert_uint_eq(lex_col(&l), (unsigned)i + 1);
+    if (i % 7 == 0)
+      ck_assert_int_eq(lex_peek2(&l), i + 1 < 3 * LX_WIN ? '0' + (i + 1) % 10 : '/');
+    lex_adv(&l);
+  }
+  ck_assert_int_eq(next(), '/');
+  ck_assert_int_eq(lex_raw_peek(&l), ';');   /* text after the slash: not lexed */
 }
 END_TEST
 
@@ -366,7 +404,7 @@ START_TEST(numero_sign_passes_through)
   ck_assert_int_eq(next(), 0x2116);
   ck_assert_int_eq(next(), '1');
   ck_assert_int_eq(lex_peek(&l), '2');
-  ck_assert_uint_eq(l.ccol, 3);
+  ck_assert_uint_eq(lex_col(&l), 3);
 }
 END_TEST
 
@@ -398,7 +436,8 @@ Suite *suite_lex(void)
   tcase_add_test(tc, raw_keeps_spaces);
   tcase_add_test(tc, raw_stops_at_newline_and_caret);
   tcase_add_test(tc, blen_counts_significant_characters);
-  tcase_add_test(tc, mark_and_reset);
+  tcase_add_test(tc, peek2_and_ahead);
+  tcase_add_test(tc, long_run);
   tcase_add_test(tc, skip_block);
   tcase_add_test(tc, cr_only_line_ends);
   tcase_add_test(tc, cr_lf_file_has_no_cr_note);

@@ -20,9 +20,11 @@ struct expr {
   uint8_t kind;
   uint8_t op;         /* EX_BIN/EX_FN: the vm opcode; EX_CMP: relation mask */
   uint8_t fk;         /* the compiler's last fold of it: 1 constant (v), 2 not, 0 not folded */
+  uint16_t need;      /* the stack its code needs at most (the parser's count: a bound) */
   unsigned col;
   double v;           /* EX_NUM; the folded value of another constant node */
-  unsigned idx;       /* EX_REG register, EX_SLOT slot, EX_ARR arr | mode << 2 */
+  unsigned idx;       /* EX_REG register, EX_SLOT slot, EX_ARR arr | mode << 2; EX_NUM its
+                         value when an integer of INT's operand (~0u for P1) */
   struct expr *a, *b;
 };
 
@@ -68,7 +70,18 @@ struct block {
   uint32_t m;               /* bit n: Mn present */
   unsigned gcol[64], mcol[32];
   struct word w[MAX_WORDS];
-  int nw;
+  size_t nw;                  /* (size_t: no alias of the int and unsigned stores into its words) */
+  /* the words indexed as the parser adds them (the compiler's questions) */
+  uint16_t wslots;            /* bit s: a word fills slot s (WK_SLOT) */
+  uint16_t wkinds;            /* bit k: a word of kind k (enum word_kind) */
+  uint8_t wfirst[WK_PP + 1];  /* the index of the first word of each kind in wkinds */
+  int wF;                     /* the index of the F word, -1 none */
+  int hasD;                   /* a D1 word */
+  uint8_t gw[64];             /* the indices of the G words, in text order */
+  int ngw;
+  int slashed;                /* a word with a slash argument (struct kp_more may be needed) */
+  int slotrd;                 /* an operand X Y Z or A (an expression may read the slot it stores) */
+  unsigned slotcol[SL__COUNT];  /* the column of the word filling each slot in wslots */
   struct expr *cond;        /* P(cond) */
   /* slash arguments */
   struct text g27, g33, m18;

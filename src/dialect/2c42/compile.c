@@ -50,6 +50,7 @@ struct comp {
   size_t nj, capj;
   int oom;
   int toolong;             /* the code reached the VM's 24-bit operand space (said at the block) */
+  int toomany;             /* more blocks than COMP_MAX_BLOCKS (said at the block) */
   int seen_g34;            /* text order: a G34 came before */
   int prev_g27;            /* the previous block had G27 */
   /* within a block: which slots are given, with known constant values */
@@ -57,26 +58,23 @@ struct comp {
   uint16_t isconst;
   uint16_t badslot;        /* a slot whose word was refused (its checks would cascade) */
   /* store() folds an expression, then generates its code: gen reads the
-   * fold of each node from the node (memo) instead of folding each subtree
-   * again -- unless the expression reads the slot being stored (selfslot),
-   * whose given and constant bits change in between (selfref) */
-  int memo, selfslot, selfref;
+   * fold of each node from the node (its memo argument) instead of folding each subtree
+   * again -- unless the expression reads the slot being stored, whose
+   * given and constant bits change in between (reads_slot) */
   uint64_t core_g;         /* the functions no plugin has (core_masks) */
   uint32_t core_m;
+  /* the G and M numbers by what their rows say (core_masks): the questions
+   * a block asks of its functions in number order are the lowest bit of
+   * its g (m) and one of these */
+  uint64_t g_table, g_own, g_dialog, g_plane, g_arc, g_sep, g_nodir;
+  uint32_t m_own;
   double kval[SL__COUNT];
   const struct plug_set *plugins;
   uint32_t plugmask;       /* plugins the current block calls */
   int plug_g;              /* a group-1 G of a plugin that is not the language's, 0 none */
   size_t bstart;           /* the current block's first instruction */
-  /* the current block's words, indexed once (index_words): the first word
-   * filling each slot and its column, the first word of each kind, the last F */
-  uint16_t wslots;
-  unsigned slotcol[SL__COUNT];
-  const struct word *wfirst[WK_PP + 1];
-  const struct word *wF;
-#define RCACHE 64          /* a power of two, well over the rules a program has */
-  struct rcache { const char *name; double lo, hi; int round, clamp, code; uint32_t idx; } rcache[RCACHE];
-  int nrcache;
+  unsigned need;           /* the most stack the block's expressions need (the parser's bound) */
+  uint32_t ruleidx[16][2];  /* 1 + the program's rule of each kind (enum rule_kind, clamp 2 or not), 0 none yet */
 };
 
 static uint16_t col16(unsigned col)
@@ -133,6 +131,26 @@ static void warn(struct comp *c, unsigned col, const char *fmt, ...)
   diag_add(c->d, DIAG_WARNING, 0, c->b->line, col ? col : c->b->col, c->b->number, "%s", msg);
 }
 
+#define STACK_DELTA(name, opd, ext, pop, push, doc) [OP_##name] = (push) - (pop),
+static const int8_t stack_delta[256] = {S42_OPCODES(STACK_DELTA)};   /* vm_ops' push - pop, by opcode */
+
+/* The peephole rules on the instruction at the end (peep.c): called
+ * where the second part of a pair they fuse is made -- a function (SIN,
+ * COS), an arithmetic with an operand (gen's fusion), CMPCK
+ * (fuse_compare), SETP (store) -- when the pair can fuse. */
+static void __attribute__((noinline)) peep(struct comp *c)
+{
+  if (peep_last(c->p, c->bstart))
+    c->oom = 1;
+}
+
+static inline void peep_end(struct comp *c)
+{
+  size_t n = c->p->ncode;
+  if (n > c->bstart + 1 && peep_pair(c->p->code[n - 2], c->p->code[n - 1]))
+    peep(c);
+}
+
 static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, unsigned col)
 {
   long i = prog_emit_grow(c->p, ins, col);
@@ -152,19 +170,22 @@ static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, un
 static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
 {
   struct program *p = c->p;
-  if (p->ncode >= p->capcode)   /* full (or at PROG_MAX_CODE) */
+  size_t n = p->ncode;
+  if (__builtin_expect(n >= p->capcode, 0))   /* full (or at PROG_MAX_CODE) */
     return emit_grow(c, INS(op, a), col);
-  p->code[p->ncode] = INS(op, a);
-  p->cols[p->ncode] = (uint16_t)(col > 0xffff ? 0xffff : col);
-  return (long)p->ncode++;
+  uint32_t *code = p->code;
+  uint16_t *cols = p->cols;
+  code[n] = INS(op, a);
+  cols[n] = (uint16_t)(col > 0xffff ? 0xffff : col);
+  p->ncode = n + 1;
+  return (long)n;
 }
 
 /* The deepest stack of the current block's code, from the stack effects of
  * vm/opcodes.h: walked once the block is emitted, superinstructions fused,
  * so the count is exact.  A block's code runs straight through (vm/verify.c
- * proves the same walk safe). */
-#define STACK_DELTA(name, opd, ext, pop, push, doc) [OP_##name] = (push) - (pop),
-static const int8_t stack_delta[256] = {S42_OPCODES(STACK_DELTA)};   /* vm_ops' push - pop, by opcode */
+ * proves the same walk safe).  The walk is needed only when the block's
+ * peak as emit() counts it (struct comp) is over the deepest so far. */
 
 static uint32_t block_stack(const struct comp *c)
 {
@@ -209,8 +230,6 @@ static int fold_node(struct comp *c, const struct expr *e, double *v, int *faile
     *v = e->v;
     return 1;
   case EX_SLOT:
-    if ((int)e->idx == c->selfslot)
-      c->selfref = 1;
     if (!(c->given & (1u << e->idx))) {
       *v = 0;
       return 1;
@@ -316,14 +335,56 @@ static void fuse_compare(struct comp *c)
   c->p->code[n - 2] = INS(op, rel | (uint32_t)idx << 3);
   c->p->cols[n - 2] = c->p->cols[n - 1];
   c->p->ncode = n - 1;
+  peep_end(c);
 }
 
-static void gen(struct comp *c, struct expr *e)
+static void gen(struct comp *c, struct expr *e, int memo);
+
+/* The first place TK or UG is read (for the warning when no M10 sets them). */
+static void __attribute__((noinline)) uses_tk(struct comp *c, const struct expr *e)
+{
+  if (!c->x->uses_tk) {
+    c->x->uses_tk = 1;
+    c->x->tk_line = c->b->line;
+    c->x->tk_col = e->col;
+    c->x->tk_number = c->b->number;
+  }
+}
+
+static inline __attribute__((always_inline)) void gen_reg(struct comp *c, const struct expr *e)
+{
+  emit(c, OP_REG, e->idx, e->col);
+  if (e->idx == REG_TK || e->idx == REG_UG)
+    uses_tk(c, e);
+}
+
+/* gen() of e, its leaves without a call: with the folds kept (memo), a
+ * constant node and a register are one push. */
+static inline __attribute__((always_inline)) void gen_in(struct comp *c, struct expr *e, int memo)
+{
+  if (memo) {
+    if (e->kind == EX_NUM && e->idx <= INS_AMAX) {   /* emit_num's INT, the parser's integer */
+      emit(c, OP_INT, e->idx, e->col);
+      return;
+    }
+    if (e->kind <= EX_FN && e->fk == 1) {
+      emit_num(c, e->v, e->col);
+      return;
+    }
+    if (e->kind == EX_REG) {
+      gen_reg(c, e);
+      return;
+    }
+  }
+  gen(c, e, memo);
+}
+
+static void gen(struct comp *c, struct expr *e, int memo)
 {
   double v;
   int failed = 0;
   if (e->kind != EX_CMP && e->kind != EX_AND && e->kind != EX_OR &&
-      (c->memo ? e->fk == 1 && (v = e->v, 1) : fold(c, e, &v, &failed))) {
+      (memo ? e->fk == 1 && (v = e->v, 1) : fold(c, e, &v, &failed))) {
     emit_num(c, v, e->col);
     return;
   }
@@ -332,13 +393,7 @@ static void gen(struct comp *c, struct expr *e)
     emit_num(c, e->v, e->col);
     return;
   case EX_REG:
-    emit(c, OP_REG, e->idx, e->col);
-    if ((e->idx == REG_TK || e->idx == REG_UG) && !c->x->uses_tk) {
-      c->x->uses_tk = 1;
-      c->x->tk_line = c->b->line;
-      c->x->tk_col = e->col;
-      c->x->tk_number = c->b->number;
-    }
+    gen_reg(c, e);
     return;
   case EX_SLOT:
     if (c->given & (1u << e->idx))
@@ -350,17 +405,18 @@ static void gen(struct comp *c, struct expr *e)
     emit(c, OP_ARD, e->idx, e->col);
     return;
   case EX_NEG:
-    gen(c, e->a);
+    gen_in(c, e->a, memo);
     emit(c, OP_NEG, 0, e->col);
     return;
   case EX_FN:
-    gen(c, e->a);
+    gen_in(c, e->a, memo);
     emit(c, e->op, 0, e->col);
+    peep_end(c);
     return;
   case EX_BIN: {
-    gen(c, e->a);
+    gen_in(c, e->a, memo);
     size_t mark = c->p->ncode;
-    gen(c, e->b);
+    gen_in(c, e->b, memo);
     /* superinstruction: an operator whose right operand is one push */
     uint32_t last = mark < c->p->ncode ? c->p->code[mark] : 0;
     int fused = fuse_operand(e->op, (int)INS_OP(last));
@@ -377,19 +433,20 @@ static void gen(struct comp *c, struct expr *e)
       }
       c->p->code[mark] = INS(fused, INS_A(last));
       c->p->cols[mark] = (uint16_t)(e->col > 0xffff ? 0xffff : e->col);
+      peep_end(c);
       return;
     }
     emit(c, e->op, 0, e->col);
     return;
   }
   case EX_CMP:
-    gen(c, e->a);
-    gen(c, e->b);
+    gen_in(c, e->a, memo);
+    gen_in(c, e->b, memo);
     emit(c, OP_CMP, e->op, e->col);
     return;
   case EX_AND: case EX_OR:
-    gen(c, e->a);
-    gen(c, e->b);
+    gen_in(c, e->a, memo);
+    gen_in(c, e->b, memo);
     emit(c, e->kind == EX_AND ? OP_AND : OP_OR, 0, e->col);
     return;
   }
@@ -397,78 +454,107 @@ static void gen(struct comp *c, struct expr *e)
 
 /* ---- conversion rules ---- */
 
-static uint32_t rule(struct comp *c, const char *name, double lo, double hi, int round_, int clamp, int code)
+/* The rule of each word a block stores: its name (the word, as messages
+ * say it), its range, rounding and clamping.  A parameter's (RK_PARAM) is
+ * implied by SETP and has no name of its own. */
+enum rule_kind { RK_X, RK_Y, RK_Z, RK_A, RK_I, RK_J, RK_K, RK_H, RK_MIN, RK_MAX, RK_OSCF, RK_SRCHF,
+                 RK_G04X, RK_F, RK_D1, RK_PARAM, RK__COUNT };
+_Static_assert((int)RK_X == (int)SL_X && (int)RK_H == (int)SL_H && (int)RK_SRCHF == (int)SL_SRCHF,
+               "a slot's rule kind is its number");
+struct wrule { const char *name; double lo, hi; int round, clamp; };
+static const struct wrule wrules[RK__COUNT] = {
+  [RK_X] = {"X", -999999, 999999, 1, 0},
+  [RK_Y] = {"Y", -999999, 999999, 1, 0},
+  [RK_Z] = {"Z", -999999, 999999, 1, 0},
+  [RK_A] = {"A", -9999999, 9999999, 1, 0},
+  [RK_I] = {"I", -4000000, 4000000, 1, 0},
+  [RK_J] = {"J", -4000000, 4000000, 1, 0},
+  [RK_K] = {"K", -4000000, 4000000, 1, 0},
+  [RK_H] = {"H", 0, 30000, 1, 0},
+  [RK_MIN] = {"G28 min", -9999999, 9999999, 0, 0},
+  [RK_MAX] = {"G28 max", -9999999, 9999999, 0, 0},
+  [RK_OSCF] = {"G07 F", 0, 6000, 1, 1},
+  [RK_SRCHF] = {"M12 F", 0, 6000, 1, 1},
+  [RK_G04X] = {"G04 X", 0, 999999, 1, 0},
+  [RK_F] = {"F", 0, 6000, 1, 1},
+  [RK_D1] = {"D1", 0, 400000, 0, 0},
+  [RK_PARAM] = {NULL, -9999999, 9999999, 0, 0},
+};
+
+/* The rule of word slot `slot` (its kind is the slot's number, but for
+ * G04's X). */
+static inline int slot_rule(const struct block *b, int slot)
 {
-  /* Every axis word asks for its rule: remember each answer by name (the
-   * names are string literals) and limits instead of searching and
-   * formatting again -- open addressing, so that no two names share a
-   * slot and miss in turn. */
-  unsigned h = (unsigned)(((uintptr_t)name * 0x9E3779B97F4A7C15ull) >> 58) % RCACHE;
-  struct rcache *rc;
-  for (;; h = (h + 1) % RCACHE) {
-    rc = &c->rcache[h];
-    if (!rc->name)
-      break;
-    if (rc->name == name && rc->lo == lo && rc->hi == hi && rc->round == round_ && rc->clamp == clamp &&
-        rc->code == code)
-      return rc->idx;
-  }
+  return slot == SL_X && ((b->g >> 4) & 1) ? RK_G04X : slot;
+}
+
+/* The program's rule for kind rk (clamp 2: a clamp already warned of), in
+ * the program's table by the first word that needs it. */
+static uint32_t rule(struct comp *c, int rk, int clamp)
+{
+  uint32_t *idx = &c->ruleidx[rk][clamp == 2];
+  if (*idx)
+    return *idx - 1;
+  const struct wrule *w = &wrules[rk];
   struct prog_rule r;
   memset(&r, 0, sizeof r);
-  r.lo = lo;
-  r.hi = hi;
-  r.round = (uint8_t)round_;
+  r.lo = w->lo;
+  r.hi = w->hi;
+  r.round = (uint8_t)w->round;
   r.clamp_hi = (uint8_t)clamp;
-  r.err = (uint8_t)code;
-  snprintf(r.name, sizeof r.name, "%s", name);
+  r.err = (uint8_t)S42_E_RANGE;
+  snprintf(r.name, sizeof r.name, "%s", w->name);
   long i = prog_rule(c->p, &r);
   if (i < 0) {
     c->oom = 1;
     return 0;
   }
-  if (c->nrcache >= RCACHE / 2) {   /* never full: the probe always ends */
-    memset(c->rcache, 0, sizeof c->rcache);
-    c->nrcache = 0;
-    rc = &c->rcache[((uintptr_t)name * 0x9E3779B97F4A7C15ull) >> 58];
-  }
-  c->nrcache++;
-  *rc = (struct rcache){name, lo, hi, round_, clamp, code, (uint32_t)i};
+  *idx = (uint32_t)i + 1;
   return (uint32_t)i;
 }
 
-struct wrule { const char *name; double lo, hi; int round, clamp; };
-
-static struct wrule slot_rule(const struct block *b, int slot)
+/* round(): half away from zero, the zero's sign kept (an inline: the libm
+ * call costs more than the rounding of the integers it mostly gets). */
+static inline double round_half_away(double v)
 {
-  int g04 = (b->g >> 4) & 1;
-  switch (slot) {
-  case SL_X: if (g04) return (struct wrule){"G04 X", 0, 999999, 1, 0};
-    return (struct wrule){"X", -999999, 999999, 1, 0};
-  case SL_Y: return (struct wrule){"Y", -999999, 999999, 1, 0};
-  case SL_Z: return (struct wrule){"Z", -999999, 999999, 1, 0};
-  case SL_A: return (struct wrule){"A", -9999999, 9999999, 1, 0};
-  case SL_I: return (struct wrule){"I", -4000000, 4000000, 1, 0};
-  case SL_J: return (struct wrule){"J", -4000000, 4000000, 1, 0};
-  case SL_K: return (struct wrule){"K", -4000000, 4000000, 1, 0};
-  case SL_H: return (struct wrule){"H", 0, 30000, 1, 0};
-  case SL_OSCF: return (struct wrule){"G07 F", 0, 6000, 1, 1};
-  case SL_SRCHF: return (struct wrule){"M12 F", 0, 6000, 1, 1};
-  default: return (struct wrule){slot == SL_MIN ? "G28 min" : "G28 max", -9999999, 9999999, 0, 0};
+  if (!(fabs(v) < 4503599627370496.0))   /* 2^52: an integer already; NaN and infinities as they are */
+    return v;
+  double t = (double)(int64_t)v, f = v - t;   /* f: exact */
+  if (f >= 0.5)
+    t += 1;
+  else if (f <= -0.5)
+    t -= 1;
+  return copysign(t, v);
+}
+
+/* Does e read word slot `slot`? */
+static int reads_slot(const struct expr *e, unsigned slot)
+{
+  switch (e->kind) {
+  case EX_SLOT:
+    return e->idx == slot;
+  case EX_NEG: case EX_FN:
+    return reads_slot(e->a, slot);
+  case EX_BIN: case EX_CMP: case EX_AND: case EX_OR:
+    return reads_slot(e->a, slot) || reads_slot(e->b, slot);
+  default:
+    return 0;
   }
 }
 
-/* Emit value + SET into dest (register < VM_NREG, or VM_NREG + slot); check
- * a constant value now, as `s42 check` must. */
-static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w, unsigned col)
+/* Emit value + SET into dest (register < VM_NREG, or VM_NREG + slot) by
+ * the rule of kind rk; check a constant value now, as `s42 check` must. */
+static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigned col)
 {
   double v;
   int failed = 0;
   if (!e || c->b->bad)
     return;   /* a block that did not parse is not compiled: it cannot run */
-  c->selfslot = dest >= VM_NREG ? (int)(dest - VM_NREG) : -1;
-  c->selfref = 0;
+  if (e->need > c->need)
+    c->need = e->need;
+  const struct wrule *w = &wrules[rk];
+  int clamp = w->clamp;
   int k = fold(c, e, &v, &failed);
-  c->selfslot = -1;
   /* a refused word is reported once: the checks that need its value (the
    * arc's radius) skip it rather than report a second, false error */
   uint16_t bit = dest >= VM_NREG ? (uint16_t)(1u << (dest - VM_NREG)) : 0;
@@ -477,17 +563,17 @@ static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w,
     return;
   }
   if (k) {
-    if (w.round)
-      v = round(v);
-    if (!(v >= w.lo && v <= w.hi)) {
-      if (w.clamp && v > w.hi) {
-        warn(c, col, "%s%.10g is over %.0f: clamped to %.0f", w.name, v, w.hi, w.hi);
-        w.clamp = 2;   /* said once, here: not again when it runs */
+    if (w->round && !(e->kind == EX_NUM && e->idx <= INS_AMAX))   /* (the parser's integers are whole) */
+      v = round_half_away(v);
+    if (!(v >= w->lo && v <= w->hi)) {
+      if (clamp && v > w->hi) {
+        warn(c, col, "%s%.10g is over %.0f: clamped to %.0f", w->name, v, w->hi, w->hi);
+        clamp = 2;   /* said once, here: not again when it runs */
       } else {
         char rn[8];   /* a parameter's rule has no name of its own: R12 */
-        if (!w.name)
+        if (!w->name)
           snprintf(rn, sizeof rn, "R%u", dest % 1000);
-        err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w.name ? w.name : rn, v, w.lo, w.hi);
+        err(c, S42_E_RANGE, col, "%s = %.10g is outside %.10g..%.10g", w->name ? w->name : rn, v, w->lo, w->hi);
         c->badslot |= bit;
         return;
       }
@@ -498,21 +584,21 @@ static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w,
     c->given |= (uint16_t)(1u << s);
     if (k) {
       c->isconst |= (uint16_t)(1u << s);
-      c->kval[s] = v;   /* rounded above when the rule rounds */
-      if (w.clamp && c->kval[s] > w.hi)
-        c->kval[s] = w.hi;
+      c->kval[s] = clamp && v > w->hi ? w->hi : v;   /* rounded above when the rule rounds */
     } else {
       c->isconst &= (uint16_t)~(1u << s);
     }
   }
-  c->memo = !c->selfref;   /* failed returned above: the folds hold */
-  gen(c, e);
-  c->memo = 0;
-  if (dest <= 113 && w.lo == -9999999 && w.hi == 9999999 && !w.round && !w.clamp) {
+  /* failed returned above: the folds hold, unless the expression reads
+   * the slot just stored (only X Y Z A are operands; the parser says
+   * whether the block has any) */
+  gen_in(c, e, !(c->b->slotrd && dest >= VM_NREG && dest - VM_NREG <= SL_A && reads_slot(e, dest - VM_NREG)));
+  if (rk == RK_PARAM) {
     emit(c, OP_SETP, dest, col);   /* a parameter: its rule is implied */
+    peep_end(c);
     return;
   }
-  uint32_t r = rule(c, w.name, w.lo, w.hi, w.round, w.clamp, S42_E_RANGE);
+  uint32_t r = rule(c, rk, clamp);
   emit(c, OP_SET, dest | r << 10, col);
 }
 
@@ -521,40 +607,22 @@ static void store(struct comp *c, struct expr *e, unsigned dest, struct wrule w,
 #define G(n) ((b->g >> (n)) & 1)
 #define M(n) ((b->m >> (n)) & 1)
 
-/* One pass over the block's words for the questions the checks and the
- * emitter ask of them many times. */
-static void index_words(struct comp *c)
-{
-  const struct block *b = c->b;
-  c->wslots = 0;
-  c->wF = NULL;
-  memset(c->wfirst, 0, sizeof c->wfirst);
-  for (int i = 0; i < b->nw; i++) {
-    const struct word *w = &b->w[i];
-    if (w->kind == WK_SLOT && w->idx < SL__COUNT && !(c->wslots & (1u << w->idx))) {
-      c->wslots |= (uint16_t)(1u << w->idx);
-      c->slotcol[w->idx] = w->col;
-    }
-    if (w->kind <= WK_PP && !c->wfirst[w->kind])
-      c->wfirst[w->kind] = w;
-    if (w->kind == WK_REG && w->letter == 'F')
-      c->wF = w;
-  }
-}
-
-/* Is there a word for slot (the first one's column in *col)? */
+/* Is there a word for slot (its column in *col)?  The parser indexes the
+ * words as it reads them (struct block: wslots, wkinds, wfirst, wF). */
 static int slot_word(const struct comp *c, int slot, unsigned *col)
 {
-  if (!(c->wslots & (1u << slot)))
+  if (!(c->b->wslots & (1u << slot)))
     return 0;
   if (col)
-    *col = c->slotcol[slot];
+    *col = c->b->slotcol[slot];
   return 1;
 }
 
+/* The first word of a kind, or NULL. */
 static const struct word *find_word(const struct comp *c, int kind)
 {
-  return c->wfirst[kind];
+  const struct block *b = c->b;
+  return b->wkinds & (1u << kind) ? &b->w[b->wfirst[kind]] : NULL;
 }
 
 /* The block's motion (words.h): the first G in number order that is a
@@ -571,48 +639,30 @@ static int take_low(uint64_t *bits)
   return n;
 }
 
-static int motion_of(const struct block *b)
+static int motion_of(const struct comp *c, const struct block *b)
 {
-  int mo = MO_NONE, plugin = 0, dialog = 0;
-  for (uint64_t g = b->g; g;) {
-    const struct kp_word *w = kp_g(take_low(&g));
-    if (!w)
-      plugin = 1;
-    else if (w->motion == MO_DIALOG)
-      dialog = 1;
-    else if (w->motion != MO_NONE && mo == MO_NONE)
-      mo = w->motion;
-  }
-  if (mo == MO_NONE && plugin)
+  uint64_t own = b->g & c->g_own;
+  int mo = own ? kp_g(__builtin_ctzll(own))->motion : MO_NONE;
+  if (mo == MO_NONE && (b->g & ~c->g_table))
     mo = MO_PLUGIN;
-  for (uint64_t m = b->m; m;) {
-    const struct kp_word *w = kp_m(take_low(&m));
-    if (w && w->motion != MO_NONE)
-      return w->motion;
-  }
-  return mo == MO_NONE && dialog ? MO_DIALOG : mo;
+  uint32_t mown = b->m & c->m_own;
+  if (mown)
+    return kp_m(__builtin_ctz(mown))->motion;
+  return mo == MO_NONE && (b->g & c->g_dialog) ? MO_DIALOG : mo;
 }
 
-/* The first G of the block whose row has `flag`, or -1. */
-static int first_g(const struct block *b, unsigned flag)
+/* The first G of the block in `mask` (comp's g_arc, g_sep, g_nodir), or -1. */
+static inline int first_g(const struct block *b, uint64_t mask)
 {
-  for (uint64_t g = b->g; g;) {
-    int n = take_low(&g);
-    if (kp_g(n) && (kp_g(n)->flags & flag))
-      return n;
-  }
-  return -1;
+  uint64_t g = b->g & mask;
+  return g ? __builtin_ctzll(g) : -1;
 }
 
 /* The plane the block selects: its G17, G18 or G19 (the first), or 0. */
-static int plane_of(const struct block *b)
+static inline int plane_of(const struct comp *c, const struct block *b)
 {
-  for (uint64_t g = b->g; g;) {
-    const struct kp_word *w = kp_g(take_low(&g));
-    if (w && w->plane)
-      return w->plane;
-  }
-  return 0;
+  uint64_t g = b->g & c->g_plane;
+  return g ? kp_g(__builtin_ctzll(g))->plane : 0;
 }
 
 static int is_sep(const struct kp_word *w) { return w->kind == 'G' && (w->flags & KP_SEP); }
@@ -776,7 +826,7 @@ static void plugin_function(struct comp *c, char kind, int n, unsigned col, int 
   if (!fn->operands)
     return;
   static const char letters[] = "XYZAIJK";
-  for (int w = 0; w < b->nw; w++) {
+  for (size_t w = 0; w < b->nw; w++) {
     char l = 0;
     if (b->w[w].kind == WK_SLOT && b->w[w].idx < 7)
       l = letters[b->w[w].idx];
@@ -792,24 +842,46 @@ static void plugin_function(struct comp *c, char kind, int n, unsigned col, int 
  * bit n set, from the table. */
 static void core_masks(struct comp *c)
 {
-  for (int n = 0; n < 64; n++)
-    if (kp_g(n) && !kp_g(n)->owner)
-      c->core_g |= 1ull << n;
-  for (int n = 0; n < 32; n++)
+  for (int n = 0; n < 64; n++) {
+    const struct kp_word *w = kp_g(n);
+    if (!w)
+      continue;
+    uint64_t bit = 1ull << n;
+    c->g_table |= bit;
+    if (!w->owner)
+      c->core_g |= bit;
+    if (w->motion == MO_DIALOG)
+      c->g_dialog |= bit;
+    else if (w->motion != MO_NONE)
+      c->g_own |= bit;
+    if (w->plane)
+      c->g_plane |= bit;
+    if (w->flags & KP_ARC)
+      c->g_arc |= bit;
+    if (w->flags & KP_SEP)
+      c->g_sep |= bit;
+    if (w->flags & KP_NODIR)
+      c->g_nodir |= bit;
+  }
+  for (int n = 0; n < 32; n++) {
     if (kp_m(n) && !kp_m(n)->owner)
       c->core_m |= 1u << n;
+    if (kp_m(n) && kp_m(n)->motion != MO_NONE)
+      c->m_own |= 1u << n;
+  }
 }
 
-static void check_block(struct comp *c)
+static void check_dialog(struct comp *c);
+
+static void check_block(struct comp *c, const struct word *L, const struct word *P, const struct word *PC,
+                        const struct word *PP)
 {
   struct block *b = c->b;
   unsigned col;
-  /* groups */
+  /* groups, the G words in text order */
   int seen[5] = {0};
-  for (int i = 0; i < b->nw && b->g; i++) {
-    const struct word *w = &b->w[i];
-    if (w->kind != WK_G)
-      continue;
+  for (int i = 0; i < b->ngw; i++) {
+    const struct word *w = &b->w[b->gw[i]];
     int grp = group_of(c, w->num);
     if (seen[grp])
       err(c, S42_E_GROUP, w->col, "G%02d and G%02d are both group %d functions", seen[grp], w->num, grp);
@@ -818,21 +890,21 @@ static void check_block(struct comp *c)
   }
   /* the axis and centre words, and the column of the first of each in
    * slot order (X Y Z A, I J K) */
-  unsigned axes = c->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
-  unsigned centres = c->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
+  unsigned axes = b->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
+  unsigned centres = b->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
   static const uint8_t nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};   /* (no popcnt call) */
   int naxis = nbits[axes], ncentre = nbits[centres >> SL_I];
-  unsigned axcol = axes ? c->slotcol[__builtin_ctz(axes)] : 0;
-  unsigned cecol = centres ? c->slotcol[__builtin_ctz(centres)] : 0;
+  unsigned axcol = axes ? b->slotcol[__builtin_ctz(axes)] : 0;
+  unsigned cecol = centres ? b->slotcol[__builtin_ctz(centres)] : 0;
   /* a dialog or display function (group 4) stands with no function of
    * groups 1-3 and no axis or centre word: only assignments, array
    * operations and M functions beside it (language.md sec. 8) */
   int g4_words = 0;   /* said: the block's axis or centre words do not belong */
   if (seen[4]) {
     int other = 0;   /* one error a block: the first thing that does not belong */
-    for (int i = 0; i < b->nw && !other; i++) {
-      const struct word *w = &b->w[i];
-      int grp = w->kind == WK_G ? group_of(c, w->num) : 0;
+    for (int i = 0; i < b->ngw && !other; i++) {
+      const struct word *w = &b->w[b->gw[i]];
+      int grp = group_of(c, w->num);
       if (grp >= 1 && grp <= 3) {
         err(c, S42_E_GROUP, w->col, "G%02d (dialog and display, group 4) stands without functions of groups 1-3: "
             "G%02d belongs in another block", seen[4], w->num);
@@ -845,17 +917,13 @@ static void check_block(struct comp *c)
           "G%02d (dialog and display, group 4) stands without axis or centre words", seen[4]);
     }
   }
-  const struct word *F = c->wF;
-  const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PC = find_word(c, WK_PCOND),
-                    *PP = find_word(c, WK_PP);
-  int arc = first_g(b, KP_ARC);   /* its G, or -1 */
+  const struct word *F = b->wF >= 0 ? &b->w[b->wF] : NULL;
+  int arc = first_g(b, c->g_arc);   /* its G, or -1 */
   char list[80];
 
   /* functions that stand in a separate block */
-  for (uint64_t bits = b->g; bits;) {
+  for (uint64_t bits = b->g & c->g_sep; bits;) {
     int g = take_low(&bits);
-    if (!kp_g(g) || !(kp_g(g)->flags & KP_SEP))
-      continue;
     if (g == 7) {
       if (naxis != 1 || ncentre)
         err(c, S42_E_OSC, b->gcol[7], "G07 takes exactly one axis word (the stroke) and F (the speed)");
@@ -870,14 +938,16 @@ static void check_block(struct comp *c)
       err(c, S42_E_BLOCK, axcol ? axcol : cecol, "G%02d stands in a separate block: no axis or centre words beside it", g);
     }
   }
-  if (M(19) && first_g(b, KP_SEP) >= 0)
-    err(c, S42_E_BLOCK, b->mcol[19], "M19 gives the direction of a move: not with %s",
-        kp_codes(list, sizeof list, is_sep));
-  if (M(19) && !naxis)
-    err(c, S42_E_BLOCK, b->mcol[19], "M19 needs the increments that give the direction of the move");
+  if (M(19)) {
+    if (first_g(b, c->g_sep) >= 0)
+      err(c, S42_E_BLOCK, b->mcol[19], "M19 gives the direction of a move: not with %s",
+          kp_codes(list, sizeof list, is_sep));
+    if (!naxis)
+      err(c, S42_E_BLOCK, b->mcol[19], "M19 needs the increments that give the direction of the move");
+  }
 
   /* arcs and planes */
-  int plane = plane_of(b);
+  int plane = plane_of(c, b);
   if (arc >= 0) {
     int g = arc;
     int helix = (kp_g(g)->flags & KP_HELIX) != 0;
@@ -909,8 +979,8 @@ static void check_block(struct comp *c)
       warn(c, b->gcol[plane], "G%d has no effect without an arc (%s)", plane, kp_codes(list, sizeof list, is_arc));
   }
 
-  /* auxiliary functions (none of these is said without an M word) */
-  if (b->m) {
+  /* auxiliary functions (none of these is said without two M words) */
+  if (b->m & (b->m - 1)) {
     int wheel = M(3) + M(4) + M(5);
     if (wheel > 1)
       err(c, S42_E_BLOCK, b->mcol[M(3) ? (M(4) ? 4 : 5) : 5], "only one of M3 M4 M5 in a block");
@@ -924,10 +994,10 @@ static void check_block(struct comp *c)
       err(c, S42_E_BLOCK, b->mcol[21], "M18 shows a directive and M21 erases it: not both in a block");
     if (M(17) && M(2))
       err(c, S42_E_BLOCK, b->mcol[17], "M17 and M2 in one block");
-    if ((P || PC) && (M(17) || M(2)))
-      err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
   }
-  int dg = b->g ? first_g(b, KP_NODIR) : -1, dlg = dg >= 0;
+  if ((P || PC) && (M(17) || M(2)))
+    err(c, S42_E_BLOCK, (P ? P : PC)->col, "a block may not hold both a jump and M%d", M(17) ? 17 : 2);
+  int dg = b->g ? first_g(b, c->g_nodir) : -1, dlg = dg >= 0;
   if (dlg && PP)
     err(c, S42_E_BLOCK, PP->col, "PP is not allowed in a block with G%02d", dg);
   if (dlg && M(18))
@@ -938,14 +1008,40 @@ static void check_block(struct comp *c)
     err(c, S42_E_BLOCK, b->mcol[M(10) ? 10 : 12], "M%d belongs to a tooth-step search (G10 or G11)", M(10) ? 10 : 12);
   if (slot_word(c, SL_H, &col) && !L)
     err(c, S42_E_BLOCK, col, "H (repeat count) without L (sub call)");
-  if (L && (L->num < 2 || L->num > 999))
-    err(c, S42_E_RANGE, L->col, "L%d: a sub's first block is 2..999", L->num);
-  if (!b->bad && ((P && P->num < 1) || (PC && PC->num < 1)))
-    err(c, S42_E_RANGE, (P ? P : PC)->col, "jump target 0: block numbers are 1..999");
-  if (!b->bad && PP && PP->num < 1)
-    err(c, S42_E_RANGE, PP->col, "PP target 0: block numbers are 1..999");
+  if (L || P || PC || PP) {
+    if (L && (L->num < 2 || L->num > 999))
+      err(c, S42_E_RANGE, L->col, "L%d: a sub's first block is 2..999", L->num);
+    if (!b->bad && ((P && P->num < 1) || (PC && PC->num < 1)))
+      err(c, S42_E_RANGE, (P ? P : PC)->col, "jump target 0: block numbers are 1..999");
+    if (!b->bad && PP && PP->num < 1)
+      err(c, S42_E_RANGE, PP->col, "PP target 0: block numbers are 1..999");
+  }
 
   /* group 4: dialog and display */
+  if (b->g & (1ull << 27 | 1ull << 28 | 1ull << 33 | 1ull << 37) || M(18) || b->ng29)
+    check_dialog(c);
+  if (b->len > 320)
+    err(c, S42_E_BLOCKLEN, b->col, "block of %u characters; at most 320 (ten display lines)", b->len);
+
+  /* functions that plugins implement (the core's own have no plugin:
+   * plugin_function returns at once for them, so they are not visited) */
+  c->plugmask = 0;
+  c->plug_g = 0;
+  for (uint64_t bits = b->g & ~c->core_g; bits;) {
+    int n = take_low(&bits);
+    plugin_function(c, 'G', n, b->gcol[n], naxis + ncentre, plane);
+  }
+  for (uint64_t bits = b->m & ~c->core_m; bits;) {
+    int n = take_low(&bits);
+    plugin_function(c, 'M', n, b->mcol[n], naxis + ncentre, plane);
+  }
+}
+
+/* The checks of group 4, dialog and display: G27 G28 G33 G37, and the
+ * texts of M18 and G29. */
+static void check_dialog(struct comp *c)
+{
+  struct block *b = c->b;
   if (G(28) && !c->prev_g27)
     err(c, S42_E_ORDER, b->gcol[28], "G28 must follow a G27 block (it stores the number G27 took)");
   if (G(27) && c->seen_g34)
@@ -985,21 +1081,6 @@ static void check_block(struct comp *c)
   if (G(37) && b->g37axis != 'Y')
     err(c, S42_E_AXIS, b->g37col ? b->g37col : b->gcol[37],
         "G37 returns only Y to its home position: G37 /Y/");
-  if (b->len > 320)
-    err(c, S42_E_BLOCKLEN, b->col, "block of %u characters; at most 320 (ten display lines)", b->len);
-
-  /* functions that plugins implement (the core's own have no plugin:
-   * plugin_function returns at once for them, so they are not visited) */
-  c->plugmask = 0;
-  c->plug_g = 0;
-  for (uint64_t bits = b->g & ~c->core_g; bits;) {
-    int n = take_low(&bits);
-    plugin_function(c, 'G', n, b->gcol[n], naxis + ncentre, plane);
-  }
-  for (uint64_t bits = b->m & ~c->core_m; bits;) {
-    int n = take_low(&bits);
-    plugin_function(c, 'M', n, b->mcol[n], naxis + ncentre, plane);
-  }
 }
 
 /* ---- one block ---- */
@@ -1015,18 +1096,18 @@ static uint32_t add_str(struct comp *c, const struct text *t)
   return (uint32_t)(c->x->nstr - n + 1);
 }
 
+static int keep_more(struct comp *c, const struct block *b, struct kp_attr *at);
+
 static void compile_block(struct comp *c)
 {
   struct block *b = c->b;
-  index_words(c);
-  check_block(c);
+  const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PC = find_word(c, WK_PCOND),
+                    *PP = find_word(c, WK_PP);
+  check_block(c, L, P, PC, PP);
 
-  struct prog_block pb = {0};
-  pb.line = b->line;
-  pb.col = (uint16_t)(b->col > 0xffff ? 0xffff : b->col);
-  pb.number = (uint32_t)(b->number < 0 ? 0 : b->number);
-  pb.code = (uint32_t)c->p->ncode;
-  long bi = prog_block_add(c->p, &pb);
+  struct prog_block pb = {.code = (uint32_t)c->p->ncode, .line = b->line,
+                          .number = (uint32_t)(b->number < 0 ? 0 : b->number), .col = col16(b->col)};
+  long bi = prog_block_push(c->p, &pb);
   if (bi < 0) {
     c->oom = 1;
     return;
@@ -1037,44 +1118,37 @@ static void compile_block(struct comp *c)
     return;
   struct kp_attr *at = &c->x->a[c->x->n++];
   uint8_t *flags = &c->sf[c->ns];
-  struct summ summ = {.i = (uint32_t)c->ns++, .L = -1, .P = -1, .PP = -1, .callpc = NOPC, .jpc = NOPC, .pppc = NOPC};
-  struct summ *sm = &summ;
-  memset(at, 0, sizeof *at);
-  *flags = 0;
+  int jumps = L || P || PC || PP;
+  struct summ summ, *sm = &summ;   /* the block's calls and jumps: made when it has some */
+  if (jumps)
+    summ = (struct summ){.i = (uint32_t)c->ns, .L = -1, .P = -1, .PP = -1, .callpc = NOPC, .jpc = NOPC, .pppc = NOPC};
+  c->ns++;
+  *flags = (uint8_t)((b->bad ? SF_BAD : 0) | (b->badnum ? SF_NONUM : 0));
   c->bstart = pb.code;
-  if (b->bad)
-    *flags |= SF_BAD;
-  if (b->badnum)
-    *flags |= SF_NONUM;
-
-  at->g = b->g;
-  at->m = b->m;
-  at->plugins = c->plugmask;
-  at->plug_g = (uint8_t)c->plug_g;
-  at->plane = (uint8_t)plane_of(b);
-  struct kp_more more = {.g28reg = (int16_t)b->g28reg, .g27form = b->g27form, .g37axis = b->g37axis};
-  int mo = motion_of(b);
+  *at = (struct kp_attr){.g = b->g, .m = b->m, .plugins = c->plugmask, .plug_g = (uint8_t)c->plug_g,
+                         .plane = (uint8_t)plane_of(c, b)};
+  int mo = motion_of(c, b);
   c->given = c->isconst = c->badslot = 0;
+  c->need = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
 
-  int g07 = G(7), srch = (G(10) || G(11)) && M(12);
-  int has_motion_words = 0;
-  for (int i = 0; i < b->nw; i++) {
+  for (size_t i = 0; i < b->nw; i++) {
     const struct word *w = &b->w[i];
     switch (w->kind) {
     case WK_REG: {
+      int g07 = G(7), srch = (G(10) || G(11)) && M(12);
       if (w->letter == 'F' && (g07 || srch)) {
-        store(c, w->e, VM_NREG + (g07 ? SL_OSCF : SL_SRCHF), slot_rule(b, g07 ? SL_OSCF : SL_SRCHF), w->col);
+        store(c, w->e, VM_NREG + (g07 ? SL_OSCF : SL_SRCHF), g07 ? RK_OSCF : RK_SRCHF, w->col);
         at->slots |= (uint16_t)(1u << (g07 ? SL_OSCF : SL_SRCHF));
       } else if (w->letter == 'F') {
-        store(c, w->e, REG_F, (struct wrule){"F", 0, 6000, 1, 1}, w->col);
+        store(c, w->e, REG_F, RK_F, w->col);
         at->has_f = 1;
       } else if (w->letter == 'D') {
-        store(c, w->e, REG_D1, (struct wrule){"D1", 0, 400000, 0, 0}, w->col);
+        store(c, w->e, REG_D1, RK_D1, w->col);
       } else {
         /* a parameter: SETP, whose rule is implied; the name (R12) only
          * when store() reports its value */
-        store(c, w->e, w->idx, (struct wrule){NULL, -9999999, 9999999, 0, 0}, w->col);
+        store(c, w->e, w->idx, RK_PARAM, w->col);
       }
       break;
     }
@@ -1082,7 +1156,6 @@ static void compile_block(struct comp *c)
       store(c, w->e, VM_NREG + w->idx, slot_rule(b, (int)w->idx), w->col);
       at->slots |= (uint16_t)(1u << w->idx);
       if (w->idx <= SL_A) {
-        has_motion_words = 1;
         /* M19 teach-in: a bare parameter (+Rn / -Rn) receives the move */
         const struct expr *e = w->e;
         int sign = 1;
@@ -1094,7 +1167,9 @@ static void compile_block(struct comp *c)
     case WK_AWR:
       if (b->bad || !w->e)
         break;
-      gen(c, w->e);
+      if (w->e->need > c->need)
+        c->need = w->e->need;
+      gen(c, w->e, 0);
       emit(c, OP_AWR, w->idx, w->col);
       break;
     case WK_AOP:
@@ -1104,12 +1179,12 @@ static void compile_block(struct comp *c)
       break;
     }
   }
-  if (mo == MO_NONE && has_motion_words)
-    mo = MO_G01;
+  if (mo == MO_NONE && (b->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A)))
+    mo = MO_G01;   /* axis words and nothing else that moves */
   at->motion = (uint8_t)mo;
   if (G(28) && b->g28min && b->g28max) {
-    store(c, b->g28min, VM_NREG + SL_MIN, slot_rule(b, SL_MIN), b->g28col);
-    store(c, b->g28max, VM_NREG + SL_MAX, slot_rule(b, SL_MAX), b->g28col);
+    store(c, b->g28min, VM_NREG + SL_MIN, RK_MIN, b->g28col);
+    store(c, b->g28max, VM_NREG + SL_MAX, RK_MAX, b->g28col);
     /* |answer| must lie in min..max: bounds the wrong way round refuse
      * every answer, and the operator could never leave the field */
     const uint16_t both = 1u << SL_MIN | 1u << SL_MAX;
@@ -1117,12 +1192,13 @@ static void compile_block(struct comp *c)
       err(c, S42_E_RANGE, b->g28col, "G28 /%.10g:%.10g/: the minimum is over the maximum, so no number can pass",
           c->kval[SL_MIN], c->kval[SL_MAX]);
   }
-  int arc = first_g(b, KP_ARC);
+  int arc = first_g(b, c->g_arc);
   if (arc >= 0 && at->plane)
     check_arc_const(c, at->plane, b->gcol[arc]);
-  const struct word *PC = find_word(c, WK_PCOND);
   if (b->cond && PC && !b->bad) {
-    gen(c, b->cond);
+    if (b->cond->need > c->need)
+      c->need = b->cond->need;
+    gen(c, b->cond, 0);
     size_t last = c->p->ncode - 1;
     if (b->cond->kind == EX_CMP && c->p->ncode > 0 && INS_OP(c->p->code[last]) == OP_CMP) {
       c->p->code[last] = INS(OP_CMPC, INS_A(c->p->code[last]));   /* CMP; COND */
@@ -1140,20 +1216,17 @@ static void compile_block(struct comp *c)
    * is nothing to the host when they already stand so: MACHS lets the VM
    * see that from the switches the session publishes (vm.sw). */
   const uint32_t sws = 1u << 22 | 1u << 23 | 1u << 25 | 1u << 26;
-  uint32_t swmask = (b->m & (1u << 22 | 1u << 23) ? KP_SW_CORR : 0) | (b->m & (1u << 25 | 1u << 26) ? KP_SW_OVERRIDE : 0);
-  uint32_t swon = (M(22) ? KP_SW_CORR : 0) | (M(26) ? KP_SW_OVERRIDE : 0);
   int switches = mo == MO_NONE && !at->has_f && !b->g && !at->slots && !at->plugins &&
                  (b->m & sws) && !(b->m & ~(sws | 1u << 17 | 1u << 20));
-  if (switches)
+  if (switches) {
+    uint32_t swmask = (b->m & (1u << 22 | 1u << 23) ? KP_SW_CORR : 0) | (b->m & (1u << 25 | 1u << 26) ? KP_SW_OVERRIDE : 0);
+    uint32_t swon = (M(22) ? KP_SW_CORR : 0) | (M(26) ? KP_SW_OVERRIDE : 0);
     emit(c, OP_MACHS, swmask | swon << 12, b->col);
-  else
+  } else
     emit(c, machine ? OP_MACH : OP_SYNC, 0, b->col);
-  if (peep_block(c->p, c->bstart))   /* the block's work is all emitted: fuse it (peep.c) */
-    c->oom = 1;
   for (int i = 0; i < b->nm20; i++)
     emit(c, OP_TRUNC, b->m20[i], b->m20col[i]);
   emit(c, OP_COMMIT, 0, b->col);
-  const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PP = find_word(c, WK_PP);
   if (L) {
     int h = (c->given & (1u << SL_H)) != 0;
     sm->L = (int16_t)L->num;
@@ -1199,7 +1272,7 @@ static void compile_block(struct comp *c)
     *flags |= SF_M2;
     emit(c, OP_END, 0, b->mcol[2]);
   }
-  if (L || P || PC || PP) {
+  if (jumps) {
     c->s = grow(c->s, &c->capj, c->nj + 1, sizeof *c->s, &c->oom);
     if (c->oom)
       return;
@@ -1208,16 +1281,34 @@ static void compile_block(struct comp *c)
   }
   /* a sub's lone M17: BLOCK; SYNC; COMMIT; RET, which BLOCKR runs at once */
   const uint32_t *code = c->p->code + c->bstart;
-  if (!c->oom && c->p->ncode == c->bstart + 4 && code[1] == INS(OP_SYNC, 0) && code[2] == INS(OP_COMMIT, 0) &&
-      code[3] == INS(OP_RET, 0))
+  if (M(17) && !c->oom && c->p->ncode == c->bstart + 4 && code[1] == INS(OP_SYNC, 0) &&
+      code[2] == INS(OP_COMMIT, 0) && code[3] == INS(OP_RET, 0))
     c->p->code[c->bstart] = INS(OP_BLOCKR, (uint32_t)bi);
-  uint32_t need = block_stack(c);
-  if (need > c->p->max_stack)
-    c->p->max_stack = need;
-  if (need > 500)
-    err(c, S42_E_SYNTAX, b->col, "expression too complex");
+  if (L && !c->need)
+    c->need = 1;   /* the count of a call */
+  if (c->need > c->p->max_stack || c->need > 500) {
+    uint32_t need = block_stack(c);
+    if (need > c->p->max_stack)
+      c->p->max_stack = need;
+    if (need > 500)
+      err(c, S42_E_SYNTAX, b->col, "expression too complex");
+  }
 
-  /* keep the texts */
+  /* keep the texts and what else few blocks have (struct kp_more) */
+  if (b->slashed && !keep_more(c, b, at))   /* (the parser's: a word with a slash argument) */
+    return;
+  if (M(10) && (G(10) || G(11)))
+    c->x->has_m10 = 1;
+  c->prev_g27 = G(27);
+  if (G(34))
+    c->seen_g34 = 1;
+}
+
+/* The block's texts, dialog forms and M16 list, kept in kp_ext.more; 0
+ * when out of memory. */
+static int keep_more(struct comp *c, const struct block *b, struct kp_attr *at)
+{
+  struct kp_more more = {.g28reg = (int16_t)b->g28reg, .g27form = b->g27form, .g37axis = b->g37axis};
   if (G(27) && b->g27.s) more.g27 = add_str(c, &b->g27);
   if (G(33) && b->g33.s) more.g33 = add_str(c, &b->g33);
   if (M(18) && b->m18.s) more.m18 = add_str(c, &b->m18);
@@ -1229,7 +1320,7 @@ static void compile_block(struct comp *c)
         continue;
       c->x->lines = grow(c->x->lines, &c->x->caplines, c->x->nlines + 1, sizeof *c->x->lines, &c->oom);
       if (c->oom)
-        return;
+        return 0;
       c->x->lines[c->x->nlines++] = add_str(c, &b->g29[i]);
     }
   }
@@ -1238,22 +1329,18 @@ static void compile_block(struct comp *c)
     more.nm16 = (uint32_t)b->nm16;
     c->x->m16 = grow(c->x->m16, &c->x->capm16, c->x->nm16 + (size_t)b->nm16, sizeof *c->x->m16, &c->oom);
     if (c->oom)
-      return;
+      return 0;
     memcpy(c->x->m16 + c->x->nm16, b->m16, (size_t)b->nm16 * sizeof *b->m16);
     c->x->nm16 += (size_t)b->nm16;
   }
   if (b->g28reg != -1 || b->g27form || b->g37axis || more.g27 || more.g33 || more.m18 || more.ng29 || more.nm16) {
     c->x->more = grow(c->x->more, &c->x->capmore, c->x->nmore + 1, sizeof *c->x->more, &c->oom);
     if (c->oom)
-      return;
+      return 0;
     c->x->more[c->x->nmore++] = more;
     at->more = (uint32_t)c->x->nmore;
   }
-  if (M(10) && (G(10) || G(11)))
-    c->x->has_m10 = 1;
-  c->prev_g27 = G(27);
-  if (G(34))
-    c->seen_g34 = 1;
+  return 1;
 }
 
 /* ---- program structure ---- */
@@ -1293,31 +1380,20 @@ static inline int unit_of(const struct prog_block *B, size_t i)
   return B[i].unit == 0xffff ? -1 : (int)B[i].unit;
 }
 
-/* The calls and jumps of block i, which has SF_JUMPS (the list is in
- * block order). */
-static const struct summ *jumps_of(const struct comp *c, size_t i)
-{
-  size_t lo = 0, hi = c->nj;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (c->s[mid].i <= i)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return &c->s[lo];
-}
-
 /* The units that can call themselves, directly or through others: those
  * on a cycle of the call graph (the calls of reachable blocks), found as
  * its strongly connected components (Tarjan's, without recursion): linear
  * in units and calls.  cyc[u] is 1 for such a unit; NULL when out of memory. */
-static char *calls_itself(const struct summ *S, size_t nj, const int *first, const struct prog_block *B, const char *reach,
+/* A block's flags in structure(): it starts a unit; a call lands in the
+ * middle of a unit there; it can run. */
+enum { FL_START = 1, FL_INTO = 2, FL_REACH = 4 };
+
+static char *calls_itself(const struct summ *S, size_t nj, const int *first, const struct prog_block *B, const uint8_t *fl,
                           int nu)
 {
   size_t ne = 0;
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i])
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && (fl[S[k].i] & FL_REACH))
       ne++;
   size_t *off = calloc((size_t)nu + 1, sizeof *off);
   int *dst = malloc((ne ? ne : 1) * sizeof *dst);
@@ -1332,14 +1408,14 @@ static char *calls_itself(const struct summ *S, size_t nj, const int *first, con
   }
   /* the calls by caller (counting sort) */
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i])
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && (fl[S[k].i] & FL_REACH))
       off[unit_of(B, S[k].i) + 1]++;
   for (int u = 0; u < nu; u++)
     off[u + 1] += off[u];
   for (int u = 0; u < nu; u++)
     it[u] = off[u];
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && reach[S[k].i]) {
+    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && (fl[S[k].i] & FL_REACH)) {
       int from = unit_of(B, S[k].i), to = unit_of(B, first[S[k].L]);
       dst[it[from]++] = to;
       if (from == to)
@@ -1399,6 +1475,71 @@ out:
   return cyc;
 }
 
+/* FL_REACH on every block that can run: from each unit's start, on
+ * through the blocks that run on into the next and to the targets of
+ * jumps (the calls' and jumps' list is in block order: walking on, the
+ * next block's are the next in it).  0 when out of memory. */
+static int reach_all(struct comp *c, uint8_t *fl, const int *first)
+{
+  size_t n = c->ns, nj = c->nj, cap = 256, top = 0;
+  const uint8_t *F = c->sf;
+  const struct summ *S = c->s;
+  uint32_t *stk = malloc(cap * sizeof *stk);   /* blocks reached, not yet walked from */
+  if (!stk)
+    return 0;
+  for (size_t i = 0; i < n; i++)
+    if (fl[i] & FL_START) {
+      fl[i] |= FL_REACH;
+      if (top == cap) {
+        uint32_t *t = realloc(stk, 2 * cap * sizeof *stk);
+        if (!t) {
+          free(stk);
+          return 0;
+        }
+        stk = t;
+        cap *= 2;
+      }
+      stk[top++] = (uint32_t)i;
+    }
+  while (top) {
+    size_t i = stk[--top], k = 0, hi = nj;
+    while (k < hi) {   /* the first calls and jumps at or after block i */
+      size_t mid = (k + hi) / 2;
+      if (S[mid].i < i)
+        k = mid + 1;
+      else
+        hi = mid;
+    }
+    for (;;) {
+      if (F[i] & SF_JUMPS) {
+        while (S[k].i < i)
+          k++;
+        int tg[2] = {S[k].P, S[k].PP};
+        for (int t = 0; t < 2; t++) {
+          if (tg[t] <= 0 || tg[t] >= 1000 || first[tg[t]] < 0 || (fl[first[tg[t]]] & FL_REACH))
+            continue;
+          fl[first[tg[t]]] |= FL_REACH;
+          if (top == cap) {
+            uint32_t *s2 = realloc(stk, 2 * cap * sizeof *stk);
+            if (!s2) {
+              free(stk);
+              return 0;
+            }
+            stk = s2;
+            cap *= 2;
+          }
+          stk[top++] = (uint32_t)first[tg[t]];
+        }
+      }
+      if ((F[i] & (SF_M2 | SF_M17 | SF_UNCOND)) || i + 1 >= n || (fl[i + 1] & (FL_START | FL_REACH)))
+        break;
+      fl[++i] |= FL_REACH;   /* runs on into the next */
+    }
+  }
+  free(stk);
+  return 1;
+}
+
 static void structure(struct comp *c)
 {
   size_t n = c->ns, nj = c->nj;
@@ -1415,25 +1556,22 @@ static void structure(struct comp *c)
     first[i] = -1;
     count[i] = 0;
   }
-  for (size_t i = 0; i < n; i++)
+  /* and what a block that did not parse may have held: a number, an M2 */
+  unsigned anyf = 0;
+  for (size_t i = 0; i < n; i++) {
+    anyf |= F[i];
     if (B[i].number > 0 && B[i].number < 1000) {
       if (first[B[i].number] < 0)
         first[B[i].number] = (int)i;
       count[B[i].number]++;
     }
-  /* unit starts: block 1 and every L target */
-  char *start = calloc(n, 1), *into = calloc(n, 1);
-  if (!start || !into) {
-    free(start);
-    free(into);
+  }
+  int nonum = (anyf & SF_NONUM) != 0, anybad = (anyf & SF_BAD) != 0;
+  /* each block's FL_ flags: unit starts (block 1 and every L target) first */
+  uint8_t *fl = calloc(n, 1);
+  if (!fl) {
     c->oom = 1;
     return;
-  }
-  /* what a block that did not parse may have held: a number, an M2 */
-  int nonum = 0, anybad = 0;
-  for (size_t i = 0; i < n; i++) {
-    nonum |= (F[i] & SF_NONUM) != 0;
-    anybad |= (F[i] & SF_BAD) != 0;
   }
   int mp = first[1];
   if (mp < 0 && nonum)
@@ -1446,7 +1584,7 @@ static void structure(struct comp *c)
       if (B[i].number == 1 && (int)i != mp)
         serr(c, i, 0, S42_E_SUB, "block 1 appears twice: the main program starts at block 1");
   if (mp >= 0)
-    start[mp] = 1;
+    fl[mp] = FL_START;
   for (size_t k = 0; k < nj; k++) {
     size_t i = S[k].i;
     if (S[k].L < 0 || S[k].L < 2 || S[k].L > 999)
@@ -1461,25 +1599,27 @@ static void structure(struct comp *c)
            t, t, count[t]);
     else {
       size_t f = (size_t)first[t];
-      if (mp >= 0 && first[t] > mp && !start[f])   /* once a sub, however many call it */
+      if (mp >= 0 && first[t] > mp && !(fl[f] & FL_START))   /* once a sub, however many call it */
         serr(c, f, 0, S42_E_SUB, "sub %d starts after block 1: subs come before the main program", t);
-      else if (f > 0 && !start[f] && !into[f] && (int)f != mp &&
+      else if (f > 0 && !(fl[f] & (FL_START | FL_INTO)) && (int)f != mp &&
                !(F[f - 1] & (SF_M2 | SF_M17 | SF_UNCOND | SF_BAD))) {
         /* a call into the middle of a sub: the block before runs on into
          * it, so the call is the mistake (not that sub's "end") */
-        into[f] = 1;
+        fl[f] |= FL_INTO;
         serr(c, i, S[k].Lcol, S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
              "it); a sub starts after the end (M17, M2 or a jump) of the one before", t, t, B[f - 1].number);
       }
-      start[f] = 1;
+      fl[f] |= FL_START;
     }
   }
-  /* units in text order: 0 = the MP, subs numbered from 1 */
-  int u = -1, nsub = 0;
+  /* units in text order: 0 = the MP, subs numbered from 1; whether a unit
+   * has an M2 */
+  int u = -1, nsub = 0, anym2 = 0;
   for (size_t i = 0; i < n; i++) {
-    if (start[i])
+    if (fl[i] & FL_START)
       u = ((int)i == mp) ? 0 : ++nsub;
     c->p->blocks[i].unit = (uint16_t)(u < 0 ? 0xffff : u);
+    anym2 |= (F[i] & SF_M2) && u >= 0;
   }
   /* jumps */
   for (size_t j = 0; j < nj; j++) {
@@ -1502,16 +1642,12 @@ static void structure(struct comp *c)
              unit_of(B, i) == 0 ? "unit (a sub)" : "unit");
     }
   }
-  int anym2 = 0;
-  for (size_t i = 0; i < n; i++)
-    if ((F[i] & SF_M2) && unit_of(B, i) >= 0)
-      anym2 = 1;
   /* M17 in the MP, running off the end of a unit */
   for (size_t i = 0; i < n; i++) {
     if ((F[i] & SF_M17) && unit_of(B, i) == 0)
       serr(c, i, 0, S42_E_SUB, "M17 (end of sub) in the main program");
-    int last = i + 1 == n || start[i + 1];
-    if (!last || unit_of(B, i) < 0 || (F[i] & SF_BAD) || (i + 1 < n && into[i + 1]))
+    int last = i + 1 == n || (fl[i + 1] & FL_START);
+    if (!last || unit_of(B, i) < 0 || (F[i] & SF_BAD) || (i + 1 < n && (fl[i + 1] & FL_INTO)))
       continue;
     if (unit_of(B, i) == 0 && !anym2)
       continue;   /* the program has no M2 at all: that one error says it */
@@ -1528,53 +1664,26 @@ static void structure(struct comp *c)
              "no M2: the program never ends (its last block needs M2 or an unconditional jump)");
 
   /* reachability, per unit, for the dead-code warning */
-  char *reach = calloc(n, 1);
-  uint32_t *work = malloc(n * sizeof *work);
-  if (reach && work && !c->d->nerr) {
-    size_t top = 0;
+  if (!c->d->nerr && reach_all(c, fl, first)) {
     for (size_t i = 0; i < n; i++)
-      if (start[i]) {
-        reach[i] = 1;
-        work[top++] = (uint32_t)i;
-      }
-    while (top) {
-      size_t i = work[--top];
-      size_t nx[3];
-      int nn = 0;
-      if (!(F[i] & (SF_M2 | SF_M17 | SF_UNCOND)) && i + 1 < n && !start[i + 1])
-        nx[nn++] = i + 1;
-      const struct summ *J = F[i] & SF_JUMPS ? jumps_of(c, i) : NULL;
-      if (J && J->P > 0 && J->P < 1000 && first[J->P] >= 0)
-        nx[nn++] = (size_t)first[J->P];
-      if (J && J->PP > 0 && J->PP < 1000 && first[J->PP] >= 0)
-        nx[nn++] = (size_t)first[J->PP];
-      for (int k = 0; k < nn; k++)
-        if (!reach[nx[k]]) {
-          reach[nx[k]] = 1;
-          work[top++] = (uint32_t)nx[k];
-        }
-    }
-    for (size_t i = 0; i < n; i++)
-      if (!reach[i]) {
+      if (!(fl[i] & FL_REACH)) {
         size_t j = i;
-        while (j + 1 < n && !reach[j + 1])
+        while (j + 1 < n && !(fl[j + 1] & FL_REACH))
           j++;
         serr(c, i, 0, 0, "%s never run%s", unit_of(B, i) < 0 ? "blocks before the first unit are" : "this code is",
              j > i ? " (up to the next reachable block)" : "");
         i = j;
       }
     /* recursion: a sub that can call itself, directly or through others */
-    char *cyc = calls_itself(S, nj, first, B, reach, nsub + 1);
+    char *cyc = calls_itself(S, nj, first, B, fl, nsub + 1);
     if (cyc) {
       for (size_t i = 0; i < n; i++)
-        if (start[i] && unit_of(B, i) > 0 && cyc[unit_of(B, i)])
+        if ((fl[i] & FL_START) && unit_of(B, i) > 0 && cyc[unit_of(B, i)])
           serr(c, i, 0, 0, "sub %d can call itself: more than 8 nested calls stop the run with E-NEST",
                B[i].number);
       free(cyc);
     }
   }
-  free(reach);
-  free(work);
 
   /* patch targets */
   if (!c->d->nerr) {
@@ -1590,8 +1699,7 @@ static void structure(struct comp *c)
     }
     c->p->entry = c->p->blocks[mp].code;
   }
-  free(start);
-  free(into);
+  free(fl);
 }
 
 void comp_setup(struct program *p)
@@ -1605,6 +1713,20 @@ void comp_setup(struct program *p)
   p->msgs = &kp_msgs;
 }
 
+/* parse_all's each: a block parsed, compile it; nonzero to stop. */
+static int compile_one(void *v, struct block *b)
+{
+  struct comp *c = v;
+  if (c->ns >= COMP_MAX_BLOCKS) {
+    diag_add(c->d, DIAG_ERROR, S42_E_LIMIT, b->line, b->col, b->number,
+             "more than %zu blocks: the program is too long", COMP_MAX_BLOCKS);
+    c->toomany = 1;   /* its structure is not checked: it cannot run */
+    return 1;
+  }
+  compile_block(c);
+  return c->oom;
+}
+
 int comp_program(const char *src, size_t n, struct diag_list *d, struct program *p)
 {
   return comp_program_with(src, n, d, p, NULL);
@@ -1615,7 +1737,6 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
 {
   struct comp c;
   memset(&c, 0, sizeof c);
-  c.selfslot = -1;
   c.p = p;
   c.d = d;
   c.x = calloc(1, sizeof *c.x);
@@ -1656,23 +1777,14 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
     return -1;
   }
   struct parser ps;
-  int toolong = 0;
   parse_init(&ps, src, n, d);
   ps.plugins = plugins;
   c.plugins = plugins;
-  while (!c.oom && parse_block(&ps, c.b)) {
-    if (c.ns >= COMP_MAX_BLOCKS) {
-      diag_add(d, DIAG_ERROR, S42_E_LIMIT, c.b->line, c.b->col, c.b->number,
-               "more than %zu blocks: the program is too long", COMP_MAX_BLOCKS);
-      toolong = 1;   /* its structure is not checked: it cannot run */
-      break;
-    }
-    compile_block(&c);
-  }
+  parse_all(&ps, c.b, compile_one, &c);
   /* a last instruction so that nothing runs off the code */
   emit(&c, OP_END, 0, 0);
   parse_free(&ps);
-  if (!c.oom && !toolong)
+  if (!c.oom && !c.toomany)
     structure(&c);
   if (c.x->uses_tk && !c.x->has_m10)
     diag_add(d, DIAG_WARNING, 0, c.x->tk_line, c.x->tk_col, c.x->tk_number,

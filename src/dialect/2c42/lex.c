@@ -38,97 +38,88 @@ static int lone_cr(const struct lex *l, size_t p)
   return l->s[p] == '\r' && (p + 1 >= l->n || l->s[p + 1] != '\n');
 }
 
-static void step(struct lex *l, size_t len, int32_t c)
-{
-  int eol = c == '\n' || (c == '\r' && lone_cr(l, l->pos));
-  l->pos += len;
-  if (eol) {
-    l->line++;
-    l->col = 1;
-  } else {
-    l->col++;
-  }
-}
-
 /* Every ASCII byte but whitespace, ';' '^' CR LF stands for itself. */
-const uint8_t lex_plain[256] = {
+static const uint8_t lex_plain[256] = {
   /* 0x00..0x1F: controls are characters (which no word accepts), but TAB
    * LF VT FF CR are whitespace or line ends */
   1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 0, 1, 1,
   1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
-  /* ' ' is whitespace (lex_peek skips it itself), ';' a comment, '^' an end */
+  /* ' ' is whitespace, ';' a comment, '^' an end */
   0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
   1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1,
   1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
   1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1,
   1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
   1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
-  /* 0x80..0xFF: UTF-8, decoded by lex_peek_slow */
+  /* 0x80..0xFF: UTF-8, decoded by lex_one */
 };
 
-int32_t lex_peek_slow(struct lex *l)
+/* The significant character at the cursor *pos (*line, *col), mapped, or
+ * LX_EOB, LX_EOF; the cursor steps past it (not past the end of the file)
+ * and *ccol gets its column.  *cyr is set for a Cyrillic look-alike.  The
+ * notes (a look-alike, CR line ends) are made here, once a file. */
+static int32_t lex_one(struct lex *l, size_t *ppos, unsigned *pline, unsigned *pcol, unsigned *ccol, int *cyr)
 {
-  if (l->peeked)
-    return l->c;
-  l->peeked = 1;
-  /* the end of nearly every block first: ^ or a newline right here */
-  if (l->pos < l->n && (l->s[l->pos] == '^' || l->s[l->pos] == '\n')) {
-    int nl = l->s[l->pos] == '\n';
-    l->c = LX_EOB;
-    l->ccol = l->col;
-    l->cnext = l->pos + 1;
-    l->cnline = l->line + (unsigned)nl;
-    l->cncol = nl ? 1 : l->col + 1;
-    return LX_EOB;
-  }
+  size_t pos = *ppos, len;
+  unsigned line = *pline, col = *pcol;
+  int32_t c;
   for (;;) {
-    if (l->pos >= l->n) {
-      l->c = LX_EOF;
-      l->cnext = l->pos;
-      l->cnline = l->line;
-      l->ccol = l->cncol = l->col;
-      return LX_EOF;
+    if (pos >= l->n) {
+      *ccol = col;
+      c = LX_EOF;
+      break;
     }
-    size_t len;
-    int32_t c = decode(l, l->pos, &len);
-    if (c == '\r' && lone_cr(l, l->pos)) {
+    unsigned char b = (unsigned char)l->s[pos];
+    if (lex_plain[b]) {
+      *ccol = col++;
+      pos++;
+      c = b;
+      break;
+    }
+    if (b == ' ') {
+      pos++;
+      col++;
+      continue;
+    }
+    c = decode(l, pos, &len);
+    if (c == '\r' && lone_cr(l, pos)) {
       if (!l->cr_noted) {
         l->cr_noted = 1;
-        diag_add(l->d, DIAG_NOTE, 0, l->line, l->col, l->number,
+        diag_add(l->d, DIAG_NOTE, 0, line, col, l->number,
                  "lines end with CR alone (an old Mac OS file): each CR is read as a line end");
       }
       c = '\n';
     }
-    if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
-      step(l, len, c);
+    if (c == '\t' || c == '\r' || c == '\f' || c == '\v') {   /* (a CR here is the CR of CR LF) */
+      pos += len;
+      col++;
       continue;
     }
     if (c == ';') {          /* comment to the end of the line */
-      while (l->pos < l->n && l->s[l->pos] != '\n' && !lone_cr(l, l->pos)) {
-        c = decode(l, l->pos, &len);
-        step(l, len, c);
+      while (pos < l->n && l->s[pos] != '\n' && !lone_cr(l, pos)) {
+        decode(l, pos, &len);
+        pos += len;
+        col++;
       }
       continue;
     }
-    l->c = c;
-    l->ccol = l->col;
-    l->cnext = l->pos + len;
-    l->cnline = l->line;
-    l->cncol = l->col + 1;
+    *ccol = col;
+    pos += len;
+    col++;
     if (c == '\n') {
-      l->cnline = l->line + 1;
-      l->cncol = 1;
-      l->c = LX_EOB;
+      line++;
+      col = 1;
+      c = LX_EOB;
     } else if (c == '^') {
-      l->c = LX_EOB;
+      c = LX_EOB;
     } else if (c == 0x041F) {   /* П: ПС ends the block */
       size_t len2;
-      if (l->cnext < l->n) {
-        int32_t c2 = decode(l, l->cnext, &len2);
+      if (pos < l->n) {
+        int32_t c2 = decode(l, pos, &len2);
         if (c2 == 0x0421 || c2 == 'C') {
-          l->cnext += len2;
-          l->cncol++;
-          l->c = LX_EOB;
+          pos += len2;
+          col++;
+          c = LX_EOB;
         }
       }
     } else {
@@ -138,14 +129,147 @@ int32_t lex_peek_slow(struct lex *l)
           l->noted = 1;
           l->note = l->d->n;
           l->note_here = 1;
-          diag_add(l->d, DIAG_NOTE, 0, l->line, l->col, l->number,
+          diag_add(l->d, DIAG_NOTE, 0, line, *ccol, l->number,
                    "Cyrillic look-alike letters are read as the Latin ones (first here)");
         }
-        l->c = m;
+        *cyr = 1;
+        c = m;
       }
     }
-    return l->c;
+    break;
   }
+  *ppos = pos;
+  *pline = line;
+  *pcol = col;
+  return c;
+}
+
+/* What fill() does with each byte: a plain character is one of its own
+ * (lex_plain); a space is skipped; a '/' ends the run after it (the text
+ * of a slash argument may follow, which is not lexed); '^' and a newline
+ * end the block, and the run after them; anything else is lex_one's. */
+enum { LC_OTHER, LC_PLAIN, LC_SPACE, LC_SLASH, LC_CARET, LC_NL };
+static uint8_t lex_class[256];
+
+static void __attribute__((constructor)) lex_class_init(void)
+{
+  for (int b = 0; b < 256; b++)
+    lex_class[b] = lex_plain[b] ? LC_PLAIN : LC_OTHER;
+  lex_class[' '] = LC_SPACE;
+  lex_class['/'] = LC_SLASH;
+  lex_class['^'] = LC_CARET;
+  lex_class['\n'] = LC_NL;
+}
+
+/* Lex more into the window at wn (which is below LX_WIN): a run of plain
+ * characters up to the next one that is not (after a '/', an end of block,
+ * or a '^' and the newline right after it), or else that one character. */
+static inline __attribute__((always_inline)) void fill(struct lex *l)
+{
+  const unsigned char *s = (const unsigned char *)l->s;
+  size_t pos = l->pos, lim = l->n;
+  size_t n = l->wn, start = n;
+  int32_t *wc = l->wc;
+  unsigned *wcol = l->wcol;
+  if (lim - pos > LX_WIN - 1 - n)   /* a byte makes one entry at most, and a ^ newline two */
+    lim = pos + (LX_WIN - 1 - n);
+  /* ASCII only: the column of byte p is base + p */
+  unsigned base = l->col - (unsigned)pos;
+  int nl = 0;
+  unsigned ends = 0;   /* end marks made: they are not counted in blen */
+  l->wline = l->line;
+  for (; pos < lim; pos++) {
+    unsigned b = s[pos], k = lex_class[b];
+    if (k == LC_PLAIN) {
+      wc[n] = (int32_t)b;
+      wcol[n] = base + (unsigned)pos;
+      n++;
+      continue;
+    }
+    if (k == LC_SPACE)   /* the space between words: a column, nothing else */
+      continue;
+    if (k == LC_OTHER)
+      break;
+    wc[n] = k == LC_SLASH ? '/' : LX_EOB;
+    wcol[n++] = base + (unsigned)pos++;
+    ends = k != LC_SLASH;
+    if (k == LC_CARET && pos < l->n && s[pos] == '\n') {   /* the usual end of a line: ^ and a newline */
+      wc[n] = LX_EOB;
+      wcol[n++] = base + (unsigned)pos++;
+      ends = 2;
+      k = LC_NL;
+    }
+    nl = k == LC_NL;
+    break;
+  }
+  l->blen += n - start - ends;
+  l->pos = pos;
+  if (nl) {
+    l->line++;
+    l->col = 1;
+  } else {
+    l->col = base + (unsigned)pos;
+  }
+  if (n == start) {
+    int cyr = 0;
+    int32_t c = lex_one(l, &l->pos, &l->line, &l->col, &wcol[n], &cyr);
+    wc[n++] = c;
+    if (cyr)
+      l->cyr = n;
+    if (c >= 0)
+      l->blen++;
+  }
+  l->wn = n;
+}
+
+/* Room for one more character in the window: what is unread moves to its
+ * start when it is full. */
+static void room(struct lex *l)
+{
+  if (l->wn < LX_WIN)
+    return;
+  size_t k = l->wn - l->wi;
+  memmove(l->wc, l->wc + l->wi, k * sizeof *l->wc);
+  memmove(l->wcol, l->wcol + l->wi, k * sizeof *l->wcol);
+  l->cyr = l->cyr > l->wi ? l->cyr - l->wi : 0;
+  l->wi = 0;
+  l->wn = k;
+}
+
+int32_t lex_more(struct lex *l)
+{
+  if (l->wi >= l->wn)   /* all read: start again at 0 */
+    l->wi = l->wn = l->cyr = 0;
+  else
+    room(l);
+  fill(l);
+  return l->wc[l->wi];
+}
+
+int32_t lex_peek2(struct lex *l)
+{
+  if (l->wi + 1 >= l->wn) {
+    room(l);
+    fill(l);
+  }
+  return l->wc[l->wi + 1];
+}
+
+void lex_ahead_start(const struct lex *l, struct lex_ahead *a)
+{
+  a->i = l->wi;
+  a->pos = l->pos;
+  a->line = l->line;
+  a->col = l->col;
+}
+
+int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a)
+{
+  if (a->i < l->wn)
+    return l->wc[a->i++];
+  unsigned ccol;
+  int cyr = 0;
+  return lex_one(l, &a->pos, &a->line, &a->col, &ccol, &cyr);
 }
 
 int32_t lex_raw_peek(struct lex *l)
@@ -161,16 +285,21 @@ int32_t lex_raw_peek(struct lex *l)
 
 void lex_raw_adv(struct lex *l)
 {
-  l->peeked = 0;
   size_t len;
   int32_t c = decode(l, l->pos, &len);
   l->blen++;
-  step(l, len, c);
+  l->pos += len;
+  if (c == '\n' || (c == '\r' && lone_cr(l, l->pos - len))) {
+    l->line++;
+    l->col = 1;
+  } else {
+    l->col++;
+  }
 }
 
 int lex_cyrillic(const struct lex *l)
 {
-  return l->peeked && l->pos < l->n && (unsigned char)l->s[l->pos] >= 0x80;
+  return l->cyr == l->wi + 1;
 }
 
 void lex_set_number(struct lex *l, int number)
@@ -189,22 +318,6 @@ void lex_skip_block(struct lex *l)
       return;
     lex_adv(l);
   }
-}
-
-struct lex_mark lex_mark(const struct lex *l)
-{
-  struct lex_mark m = {l->pos, l->line, l->col, l->blen};
-  return m;
-}
-
-void lex_reset(struct lex *l, struct lex_mark m)
-{
-  l->pos = m.pos;
-  l->line = m.line;
-  l->col = m.col;
-  l->blen = m.blen;
-  l->peeked = 0;
-  lex_peek(l);   /* what lex_adv consumes must be this position's character */
 }
 
 /* ---- a file that is not UTF-8 ---- */
@@ -260,8 +373,10 @@ int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col,
   *enc = NULL;
   size_t bad = n, highs = 0, len;
   for (size_t p = l.pos; p < n; p += len) {
-    /* ASCII, eight bytes at a time: most programs are nothing else */
-    uint64_t w8;
+    /* ASCII, 32 and then eight bytes at a time: most programs are nothing else */
+    uint64_t w8, w[4];
+    while (p + 32 <= n && (memcpy(w, text + p, 32), !((w[0] | w[1] | w[2] | w[3]) & 0x8080808080808080ull)))
+      p += 32;
     while (p + 8 <= n && (memcpy(&w8, text + p, 8), !(w8 & 0x8080808080808080ull)))
       p += 8;
     if (p >= n)

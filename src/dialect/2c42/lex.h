@@ -1,8 +1,19 @@
-/* The 2С42 lexer: a cursor over UTF-8 program text, driven by the parser.
- * Outside text it skips spaces, tabs and `;` comments, maps the Cyrillic
- * look-alike letters to Latin (noting it once per file) and turns newline,
- * `^` and `ПС` into an end-of-block mark; inside a slash argument it gives
- * the characters as they are. */
+/* The 2С42 lexer: the significant characters of UTF-8 program text, lexed
+ * ahead into a window the parser reads.  Outside text it skips spaces,
+ * tabs and `;` comments, maps the Cyrillic look-alike letters to Latin
+ * (noting it once per file) and turns newline, `^` and `ПС` into an
+ * end-of-block mark; inside a slash argument it gives the characters as
+ * they are (the lex_raw_ calls, on the bytes after the window).
+ *
+ * The window: wc[wi..wn) are characters lexed and not yet consumed, wcol
+ * their columns.  A run of plain ASCII is lexed in one go; anything else
+ * (whitespace but the space, comments, line ends, UTF-8) one character at
+ * a time and only when the parser asks for it, so that a note about it is
+ * made when the parser first looks at it -- the lexer never lexes a
+ * character the parser would not have looked at yet, but for plain ones,
+ * which note nothing.  A run ends after a '/' (the text of a slash
+ * argument may follow, which is not lexed) and never goes past the end of
+ * the block. */
 #ifndef S42_LEX_H
 #define S42_LEX_H
 
@@ -12,102 +23,71 @@
 
 #define LX_EOB (-1)   /* end of block: newline, ^ or ПС */
 #define LX_EOF (-2)
+#define LX_WIN 256    /* characters the window holds */
 
 struct lex {
   const char *s;
-  size_t n, pos;          /* pos: next unread byte */
+  size_t n, pos;          /* pos: the next byte not lexed */
   unsigned line, col;     /* of pos (1-based, columns count characters) */
+  unsigned wline;         /* the line of the window's characters (a block's are on one) */
   struct diag_list *d;
   int number;             /* the current block's number, for diagnostics */
   int noted;              /* look-alike note given */
   size_t note;            /* its index in d (for the block number), if given */
   int note_here;          /* ... during the current block (the parser clears it) */
   int cr_noted;           /* CR-only line ends noted */
-  unsigned blen;          /* significant characters of the current block */
-  /* what lex_peek saw: c, at pos, line and col (peeking skips to it); ccol
-   * stays its column after it is consumed (for diagnostics).  peeked 2: a
-   * plain ASCII byte, which lex_adv steps over by itself; 1: anything else,
-   * which lex_adv leaves for cnext, cnline, cncol.  A block never spans
-   * lines, so its characters' line is `line` until its newline is consumed. */
-  int peeked;
-  int32_t c;
-  unsigned ccol;
-  size_t cnext;
-  unsigned cnline, cncol;
+  unsigned blen;          /* significant characters lexed in the current block */
+  size_t wi, wn;          /* the window: next to read, end (size_t: no int or unsigned store aliases them) */
+  unsigned cyr;           /* 1 + the window index of a Cyrillic look-alike lexed, 0 none */
+  int32_t wc[LX_WIN];     /* the characters (mapped), LX_EOB or LX_EOF */
+  unsigned wcol[LX_WIN];  /* their columns */
 };
-
-struct lex_mark { size_t pos; unsigned line, col, blen; };
 
 void lex_init(struct lex *l, const char *s, size_t n, struct diag_list *d);
 
-/* lex_peek's fast path, over bytes with no call: 1 for an ASCII byte that
- * is a character of its own -- not whitespace, not ';' '^' CR LF (which
- * lex_peek_slow reads: comments, line ends, UTF-8, the look-alikes, ПС). */
-extern const uint8_t lex_plain[256];
-int32_t lex_peek_slow(struct lex *l);
+/* Lexes at least one more character into the window (at wn); the window
+ * restarts at 0 when everything in it was read.  Returns wc[wi]. */
+int32_t lex_more(struct lex *l);
 
 /* The next significant character (mapped), LX_EOB or LX_EOF; not consumed. */
 static inline int32_t lex_peek(struct lex *l)
 {
-  /* the parser peeks the same character many times: answer from the cache
-   * while the cursor has not moved */
-  if (l->peeked)   /* cleared by everything that moves the cursor */
-    return l->c;
-  size_t pos = l->pos;
-  unsigned col = l->col;
-  while (pos < l->n) {
-    unsigned char b = (unsigned char)l->s[pos];
-    if (b == ' ') {   /* the space between words: a column, nothing else */
-      pos++;
-      col++;
-      continue;
-    }
-    if (!lex_plain[b])
-      break;
-    l->pos = pos;
-    l->col = l->ccol = col;
-    l->peeked = 2;
-    return l->c = b;
-  }
-  l->pos = pos;
-  l->col = col;
-  return lex_peek_slow(l);
+  return l->wi < l->wn ? l->wc[l->wi] : lex_more(l);
 }
-
-/* Consume what lex_peek returned (a whole ПС for LX_EOB); counts it. */
+/* Consume what lex_peek returned. */
 static inline void lex_adv(struct lex *l)
 {
-  if (l->peeked == 2) {   /* a plain byte: one byte, one column */
-    l->pos++;
-    l->col++;
-    l->blen++;
-  } else {
-    if (l->c >= 0)
-      l->blen++;
-    l->pos = l->cnext;
-    l->line = l->cnline;
-    l->col = l->cncol;
-  }
-  l->peeked = 0;
+  l->wi++;
 }
-/* After a lex_peek that returned a digit: consume the ASCII digits that
- * follow one another from there, as lex_peek and lex_adv would one by one;
- * *t gets the first, the count is returned (at least 1). */
-static inline size_t lex_digit_run(struct lex *l, const char **t)
+/* The column of what lex_peek returned (after a lex_peek). */
+static inline unsigned lex_col(const struct lex *l)
 {
-  size_t p = l->pos;   /* the digit peeked: pos is its place */
-  while (p < l->n && l->s[p] >= '0' && l->s[p] <= '9')
-    p++;
-  size_t k = p - l->pos;
-  *t = l->s + l->pos;
-  l->peeked = 0;
-  l->blen += (unsigned)k;
-  l->col += (unsigned)k;
-  l->pos = p;
-  return k;
+  return l->wcol[l->wi];
 }
-/* Raw access inside text: the next character as written, or LX_EOB at a
- * newline or ^ (which end the block even inside text), LX_EOF at the end. */
+/* The column of the character consumed last (right after a lex_adv, before
+ * the next lex_peek, which may restart the window). */
+static inline unsigned lex_prev_col(const struct lex *l)
+{
+  return l->wcol[l->wi - 1];
+}
+/* The line of what lex_peek returned (after a lex_peek). */
+static inline unsigned lex_line(const struct lex *l)
+{
+  return l->wline;
+}
+/* The character after the one lex_peek returned (which is not an end). */
+int32_t lex_peek2(struct lex *l);
+/* Walk the characters from the one lex_peek returned on without consuming
+ * them: lex_ahead_start, then lex_ahead_next for each (the first is that
+ * one), up to an end of block or file (not past it).  Those after the
+ * window are lexed on a copy of the cursor, and lexed again when read:
+ * their notes are made the first time, as lex_peek would. */
+struct lex_ahead { unsigned i; size_t pos; unsigned line, col; };
+void lex_ahead_start(const struct lex *l, struct lex_ahead *a);
+int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a);
+/* Raw access inside text, on the bytes after the window (which must be
+ * read to its end): the next character as written, or LX_EOB at a newline
+ * or ^ (which end the block even inside text), LX_EOF at the end. */
 int32_t lex_raw_peek(struct lex *l);
 void lex_raw_adv(struct lex *l);
 /* The character lex_peek returned was a Cyrillic look-alike. */
@@ -117,8 +97,6 @@ int lex_cyrillic(const struct lex *l);
 void lex_set_number(struct lex *l, int number);
 /* Skip the rest of a malformed block up to (not including) its end mark. */
 void lex_skip_block(struct lex *l);
-struct lex_mark lex_mark(const struct lex *l);
-void lex_reset(struct lex *l, struct lex_mark m);
 /* Is the text UTF-8?  0 when it is; otherwise 1 with the line, column and
  * value of the first byte that is not, and in *enc the 8-bit Cyrillic encoding
  * ("cp1251", "koi8-u", "cp866") the text reads best in, or NULL for a

@@ -83,7 +83,7 @@ static void fail(struct pstate *s, int code, unsigned col, const char *fmt, ...)
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  diag_add(s->p->d, DIAG_ERROR, code, s->p->lx.line, col ? col : s->p->lx.ccol, s->b->number, "%s", msg);
+  diag_add(s->p->d, DIAG_ERROR, code, s->b->line, col, s->b->number, "%s", msg);
   s->b->bad = 1;
   longjmp(s->jb, 1);
 }
@@ -109,18 +109,23 @@ static const char *show(int32_t c, char *buf)
   return buf;
 }
 
-/* Inline everywhere: the cached peek is a load and a compare. */
+/* Inline everywhere: a peek is a load and a compare. */
 #define HOT static inline __attribute__((always_inline))
 HOT int32_t peek(struct pstate *s) { return lex_peek(&s->p->lx); }
-HOT unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return s->p->lx.ccol; }
-HOT void adv(struct pstate *s) { lex_peek(&s->p->lx); lex_adv(&s->p->lx); }
+/* The column of the character peek() returns. */
+HOT unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return lex_col(&s->p->lx); }
+/* The column of the character peek() returned, right after it. */
+HOT unsigned here(struct pstate *s) { return lex_col(&s->p->lx); }
+/* Consume the character peek() returned (every adv follows a peek or a
+ * peek2 of its character: the window holds it). */
+HOT void adv(struct pstate *s) { lex_adv(&s->p->lx); }
 
 static void expect(struct pstate *s, int32_t c, const char *what)
 {
   char buf[32];
   int32_t got = peek(s);
   if (got != c)
-    fail(s, S42_E_SYNTAX, 0, "expected %s, found %s", what, show(got, buf));
+    fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(got, buf));
   adv(s);
 }
 
@@ -150,7 +155,7 @@ static void fmt_uint(char *p, unsigned n)
 static void __attribute__((noinline, cold, noreturn)) no_number(struct pstate *s, const char *what)
 {
   char buf[32];
-  fail(s, S42_E_SYNTAX, 0, "expected %s, found %s", what, show(peek(s), buf));
+  fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(peek(s), buf));
 }
 
 static void __attribute__((noinline, cold, noreturn)) long_number(struct pstate *s, unsigned col, const char *what,
@@ -161,35 +166,34 @@ static void __attribute__((noinline, cold, noreturn)) long_number(struct pstate 
 
 /* An unsigned integer of at most `maxdig` significant digits: leading
  * zeros are insignificant however many (`G001`, `№0002`, language.md
- * sec. 9), and whitespace between digits too, as everywhere outside text. */
+ * sec. 9), and whitespace between digits too, as everywhere outside text
+ * (the window holds the digits without it). */
 HOT long number(struct pstate *s, int maxdig, const char *what)
 {
   struct lex *l = &s->p->lx;
-  unsigned col = pcol(s);
-  if (!isdig(lex_peek(l)))
+  int32_t c = lex_peek(l);
+  unsigned col = lex_col(l);
+  if (!isdig(c))
     no_number(s, what);
   long v = 0;
   int nd = 0;
-  do {
-    /* the digits written together, straight from the bytes (what a peek
-     * and an advance would do for each); a space between digits comes
-     * back here through the peek */
-    const char *t = l->s, *end = l->s + l->n, *p = t + l->pos;
-    const char *q = p;
-    for (; q < end && isdig(*q); q++) {
-      int dig = *q - '0';
-      if (nd || dig) {
-        if (nd < 12)
-          v = v * 10 + dig;
-        nd++;
-      }
+  for (;;) {
+    size_t i = l->wi, n = l->wn;
+    const int32_t *w = l->wc;
+    if (!nd)   /* leading zeros */
+      while (i < n && w[i] == '0')
+        i++;
+    for (; i < n; i++, nd++) {   /* the value from its first 12 digits */
+      unsigned d = (unsigned)(w[i] - '0');
+      if (d > 9)
+        break;
+      if (nd < 12)
+        v = v * 10 + d;
     }
-    unsigned k = (unsigned)(q - p);
-    l->peeked = 0;
-    l->blen += k;
-    l->col += k;
-    l->pos = (size_t)(q - t);
-  } while (isdig(lex_peek(l)));
+    l->wi = i;
+    if (i < n || !isdig(lex_more(l)))   /* the window's end: more digits after it? */
+      break;
+  }
   if (nd > maxdig)
     long_number(s, col, what, nd, maxdig);
   return v;
@@ -197,101 +201,103 @@ HOT long number(struct pstate *s, int maxdig, const char *what)
 
 /* ---- expressions ---- */
 
+/* expr := term { (+|-) term }      term := unary { (/|%) unary }
+ * unary := (+|-) unary | power     power := primary [ %% unary ]
+ * expr() is one loop over its operands; an operand (unary) is parsed
+ * inline, its leaves -- numbers, parameters, X Y Z -- without a call; a
+ * parenthesis, a function, a chain of signs and a power recurse.  Every way
+ * an expression nests passes through unary's depth check, bounded
+ * whatever the text: the depth counts as it always did (a sign two, a
+ * parenthesis at an operand's start one, each operand one), so that deep
+ * nesting fails where and as it did. */
+
 static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct pstate *s, unsigned col)
 {
   fail(s, S42_E_BLOCKLEN, col, "block too long to analyse (over %d terms)", MAX_NODES);
 }
 
+/* The block's nodes are in one array of MAX_NODES, made at the first
+ * node (as arena_alloc would: out of memory leaves the block); its end is
+ * the bound on them. */
+static size_t __attribute__((noinline, cold)) node_room(struct pstate *s, unsigned col)
+{
+  struct parser *p = s->p;
+  if (p->nodes >= MAX_NODES)
+    too_many_nodes(s, col);
+  p->nodebuf = malloc(MAX_NODES * sizeof *p->nodebuf);
+  if (!p->nodebuf)
+    longjmp(s->jb, 2);
+  p->nodecap = MAX_NODES;
+  return p->nodes;
+}
+
 HOT struct expr *node(struct pstate *s, int kind, unsigned col)
 {
-  enum { SIZE = (sizeof(struct expr) + 15) & ~(size_t)15 };   /* as arena_alloc rounds it */
-  if (++s->p->nodes > MAX_NODES)
-    too_many_nodes(s, col);
-  struct arena *a = &s->p->ar;
-  struct expr *e;
-  if (a->used + SIZE <= a->cap) {   /* arena_alloc's common case, inline */
-    e = (struct expr *)(a->buf + a->used);
-    a->used += SIZE;
-  } else {
-    e = arena_alloc(a, sizeof *e);
-    if (!e)
-      longjmp(s->jb, 2);   /* out of memory (arena_alloc goes there itself while a block is parsed) */
-  }
-  *e = (struct expr){.kind = (uint8_t)kind, .col = col};
+  struct parser *p = s->p;
+  size_t k = p->nodes;
+  if (k >= p->nodecap)
+    k = node_room(s, col);
+  p->nodes = k + 1;
+  struct expr *e = &p->nodebuf[k];
+  /* the fields a node of this kind has are set by the caller: its value,
+   * index, operator, operands (fk by the compiler's fold, which visits
+   * every node before anything reads it) */
+  e->kind = (uint8_t)kind;
+  e->need = 1;
+  e->col = col;
   return e;
 }
 
-static struct expr *expr(struct pstate *s);
-static struct expr *unary(struct pstate *s);
+/* The stack n's code needs at most, once its operands are in: an
+ * operator needs its left operand's, or one more than its right's
+ * beside the left's value -- but for a number or a parameter on the
+ * right of + - % /, which the code generator fuses into the operator
+ * (gen: a superinstruction), pushing nothing more.  A bound: folding
+ * constants only lowers it. */
+HOT void need2(struct expr *n)
+{
+  unsigned r = n->b->need + 1u;
+  if (n->kind == EX_BIN && n->op != OP_POW && (n->b->kind == EX_NUM || n->b->kind == EX_REG))
+    r = 1;
+  n->need = (uint16_t)(n->a->need > r ? n->a->need : r > 0xffff ? 0xffff : r);
+}
 
-static struct expr *call(struct pstate *s, int op, unsigned col, int skip)
+static struct expr *expr(struct pstate *s, size_t d);
+static struct expr *unary(struct pstate *s, size_t d);
+
+static struct expr *call(struct pstate *s, int op, unsigned col, int skip, size_t d)
 {
   for (int i = 0; i < skip; i++)
     adv(s);
   expect(s, '(', "'(' after the function name");
   struct expr *e = node(s, EX_FN, col);
   e->op = (uint8_t)op;
-  e->a = expr(s);
+  e->a = expr(s, d);
+  e->need = e->a->need;
   expect(s, ')', "')' closing the function argument");
   return e;
 }
 
-/* The letter after an operand's first letter, to tell SI( from S. */
-static int32_t peek2(struct pstate *s)
-{
-  struct lex *l = &s->p->lx;
-  int32_t c = lex_peek(l);
-  /* the next byte a plain character: it is what an advance and a peek
-   * would give (and they would note nothing) */
-  size_t next = l->peeked == 2 ? l->pos + 1 : l->cnext;
-  if (c >= 0 && next < l->n && lex_plain[(unsigned char)l->s[next]])
-    return (unsigned char)l->s[next];
-  struct lex_mark m = lex_mark(l);
-  adv(s);
-  c = peek(s);
-  lex_reset(l, m);
-  return c;
-}
-
-static struct expr *primary(struct pstate *s)
+/* The operands that are not a number, a parameter or X Y Z. */
+static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, int32_t c, unsigned col, size_t d)
 {
   char buf[32];
-  unsigned col = pcol(s);
-  int32_t c = peek(s);
   struct expr *e;
-  if (isdig(c)) {
-    e = node(s, EX_NUM, col);
-    e->v = (double)number(s, 7, "a number");
-    return e;
-  }
   switch (c) {
   case '(':
     adv(s);
     s->p->paren++;
-    e = expr(s);
+    e = expr(s, d);
     expect(s, ')', "')'");
     s->p->paren--;
     return e;
-  case 'R': {
-    adv(s);
-    long n = number(s, 3, "a parameter number after R");
-    if (n > 113)
-      fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
-    e = node(s, EX_REG, col);
-    e->idx = (unsigned)n;
-    return e;
-  }
-  case 'X': case 'Y': case 'Z':
-    adv(s);
-    e = node(s, EX_SLOT, col);
-    e->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : SL_Z;
-    return e;
   case 'A': {
-    int32_t c2 = peek2(s);
-    if (c2 == 'S') { adv(s); adv(s); if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ASI(...)?"); return call(s, OP_ASIN, col, 1); }
-    if (c2 == 'C') { adv(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1); }
-    if (c2 == 'T') { adv(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1); }
+    int32_t c2 = lex_peek2(&s->p->lx);
+    if (c2 == 'S') { adv(s); adv(s); if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ASI(...)?"); return call(s, OP_ASIN, col, 1, d); }
+    if (c2 == 'C') { adv(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1, d); }
+    if (c2 == 'T') { adv(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1, d); }
     adv(s);
+    s->b->slotrd = 1;
     e = node(s, EX_SLOT, col);
     e->idx = SL_A;
     return e;
@@ -299,15 +305,15 @@ static struct expr *primary(struct pstate *s)
   case 'S':
     adv(s);
     if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean SI(...)?");
-    return call(s, OP_SIN, col, 1);
+    return call(s, OP_SIN, col, 1, d);
   case 'C':
     adv(s);
     if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean CO(...)?");
-    return call(s, OP_COS, col, 1);
+    return call(s, OP_COS, col, 1, d);
   case 'L':
     adv(s);
     if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown operand: did you mean LO(...)?");
-    return call(s, OP_LOG, col, 1);
+    return call(s, OP_LOG, col, 1, d);
   case 'P':
     adv(s);
     if (peek(s) != '1')
@@ -317,6 +323,7 @@ static struct expr *primary(struct pstate *s)
       fail(s, S42_E_SYNTAX, col, "P1 is the constant pi; P followed by more digits is not an operand");
     e = node(s, EX_NUM, col);
     e->v = 3.141592;   /* the machine's value of P1 */
+    e->idx = ~0u;      /* no integer */
     return e;
   case 'U':
     adv(s);
@@ -342,7 +349,7 @@ static struct expr *primary(struct pstate *s)
       return e;
     }
     if (c2 == 'G')
-      return call(s, OP_TAN, col, 1);
+      return call(s, OP_TAN, col, 1, d);
     if (isdig(c2)) {
       int d1 = c2 - '0';
       adv(s);
@@ -357,170 +364,227 @@ static struct expr *primary(struct pstate *s)
     fail(s, S42_E_SYNTAX, col, "as an operand T is TK, TG(...) or an array read T11 T21 T31 T12 T22 T32");
   }
   default:
-    fail(s, S42_E_SYNTAX, 0, "expected a number, parameter or function, found %s", show(c, buf));
+    fail(s, S42_E_SYNTAX, col, "expected a number, parameter or function, found %s", show(c, buf));
   }
 }
 
-/* power := primary [ %% unary ]   (right-associative through unary) */
-static struct expr *power(struct pstate *s)
+HOT struct expr *primary(struct pstate *s, size_t d)
 {
-  struct expr *b = primary(s);
-  if (peek(s) == '%' && peek2(s) == '%') {
-    unsigned col = pcol(s);
-    adv(s);
-    adv(s);
-    struct expr *e = node(s, EX_BIN, col);
-    e->op = OP_POW;
-    e->a = b;
-    e->b = unary(s);
+  int32_t c = peek(s);
+  unsigned col = here(s);
+  struct expr *e;
+  if (isdig(c)) {
+    e = node(s, EX_NUM, col);
+    long n = number(s, 7, "a number");
+    e->v = (double)n;
+    e->idx = (unsigned)n;   /* (seven digits at most: an instruction's INT) */
     return e;
   }
+  if (c == 'R') {
+    adv(s);
+    long n = number(s, 3, "a parameter number after R");
+    if (n > 113)
+      fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
+    e = node(s, EX_REG, col);
+    e->idx = (unsigned)n;
+    return e;
+  }
+  if (c == 'X' || c == 'Y' || c == 'Z') {
+    adv(s);
+    s->b->slotrd = 1;
+    e = node(s, EX_SLOT, col);
+    e->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : SL_Z;
+    return e;
+  }
+  return primary_other(s, c, col, d);
+}
+
+/* The %% after the primary b and its exponent (right-associative through
+ * unary). */
+static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struct expr *b, size_t d)
+{
+  unsigned col = pcol(s);
+  adv(s);
+  adv(s);
+  struct expr *e = node(s, EX_BIN, col);
+  e->op = OP_POW;
+  e->a = b;
+  e->b = unary(s, d);
+  need2(e);
+  return e;
+}
+
+/* power := primary [ %% unary ] */
+HOT struct expr *power(struct pstate *s, size_t d)
+{
+  struct expr *b = primary(s, d);
+  if (peek(s) == '%' && lex_peek2(&s->p->lx) == '%')
+    return power_rest(s, b, d);
   return b;
 }
 
 /* A sign applies to the factor that follows, power included: -2%%2 = -4. */
-HOT struct expr *unary_inner(struct pstate *s)
+HOT struct expr *unary_inner(struct pstate *s, size_t d)
 {
   int32_t c = peek(s);
   if (c == '+' || c == '-') {
-    unsigned col = pcol(s);
+    unsigned col = here(s);
     adv(s);
-    if (++s->p->depth > MAX_DEPTH)
+    /* two levels for a sign, both told at the sign's column */
+    if (d + 2 > MAX_DEPTH)
       fail(s, S42_E_SYNTAX, col, "expression nested too deeply");
     /* unary() of what follows, without the call when it is no sign and no
-     * parenthesis: its depth check first, at the sign's column as there */
+     * parenthesis (unary's check, the same as the one above, passes) */
     struct expr *u;
-    if (++s->p->depth > MAX_DEPTH)
-      fail(s, S42_E_SYNTAX, 0, "expression nested too deeply");
     int32_t c2 = peek(s);
-    if (c2 == '+' || c2 == '-' || c2 == '(') {
-      s->p->depth--;
-      u = unary(s);   /* the same check again, passed */
-    } else {
-      u = power(s);
-      s->p->depth--;
-    }
-    s->p->depth--;
+    if (c2 == '+' || c2 == '-' || c2 == '(')
+      u = unary(s, d + 1);
+    else
+      u = power(s, d + 2);
     if (c == '+')
       return u;
     struct expr *e = node(s, EX_NEG, col);
     e->a = u;
+    e->need = u->need;
     return e;
   }
   if (c == '(') {
-    if (++s->p->depth > MAX_DEPTH)
-      fail(s, S42_E_SYNTAX, 0, "expression nested too deeply");
-    struct expr *e = power(s);
-    s->p->depth--;
-    return e;
+    if (d + 1 > MAX_DEPTH)
+      fail(s, S42_E_SYNTAX, pcol(s), "expression nested too deeply");
+    return power(s, d + 1);
   }
-  return power(s);
+  return power(s, d);
 }
 
-/* Every way an expression nests (signs, parentheses, functions, powers)
- * passes through here: bound the recursion, whatever the text. */
-static struct expr *unary(struct pstate *s)
+/* unary: one level more, checked at the character consumed last (the
+ * operator, sign or parenthesis before the operand: at the top of a word's
+ * value the depth is 0 and the check passes). */
+HOT struct expr *operand(struct pstate *s, size_t d)
 {
-  if (++s->p->depth > MAX_DEPTH)
-    fail(s, S42_E_SYNTAX, 0, "expression nested too deeply");
-  struct expr *e = unary_inner(s);
-  s->p->depth--;
-  return e;
+  if (d + 1 > MAX_DEPTH)
+    fail(s, S42_E_SYNTAX, lex_prev_col(&s->p->lx), "expression nested too deeply");
+  return unary_inner(s, d + 1);
 }
 
-/* expr := term { (+|-) term },  term := unary { (/|%) unary }: one loop
- * for both levels (a call less per operand), building the same left-deep
- * trees in the same order: `top` is the + or - waiting for its right term. */
-static struct expr *expr(struct pstate *s)
+static struct expr *__attribute__((noinline)) unary(struct pstate *s, size_t d)
 {
-  struct expr *e = unary(s), *top = NULL;
+  return operand(s, d);
+}
+
+/* The same left-deep trees as term inside expr, made in the same order:
+ * `mul` is the / or % waiting for its right operand, `top` the + or -
+ * waiting for its right term. */
+HOT struct expr *expr_in(struct pstate *s, size_t d)
+{
+  struct expr *e, *top = NULL, *mul = NULL;
   for (;;) {
+    e = operand(s, d);
+    if (mul) {
+      mul->b = e;
+      need2(mul);
+      e = mul;
+      mul = NULL;
+    }
     int32_t c = peek(s);
     if (c == '/' && s->p->slash_ends && s->p->paren == 0)
       ;   /* the slash that closes G28 /min:max/: the term ends */
-    else if (c == '/' || (c == '%' && peek2(s) != '%')) {
-      unsigned col = pcol(s);
+    else if (c == '/' || (c == '%' && lex_peek2(&s->p->lx) != '%')) {
+      unsigned col = here(s);
       adv(s);
-      struct expr *n = node(s, EX_BIN, col);
-      n->op = c == '/' ? OP_DIV : OP_MUL;
-      n->a = e;
-      n->b = unary(s);
-      e = n;
+      mul = node(s, EX_BIN, col);
+      mul->op = c == '/' ? OP_DIV : OP_MUL;
+      mul->a = e;
       continue;
     }
     if (top) {   /* the term is whole: the right operand of the + or - */
       top->b = e;
+      need2(top);
       e = top;
       top = NULL;
     }
     if (c != '+' && c != '-')
       return e;
-    unsigned col = pcol(s);
+    unsigned col = here(s);
     adv(s);
-    struct expr *n = node(s, EX_BIN, col);
-    n->op = c == '+' ? OP_ADD : OP_SUB;
-    n->a = e;
-    top = n;
-    e = unary(s);
+    top = node(s, EX_BIN, col);
+    top->op = c == '+' ? OP_ADD : OP_SUB;
+    top->a = e;
   }
 }
 
-/* A word's value: its sign (required when `sign` is set) starts the first
- * term: X-R3+100 is (-R3)+100. */
-HOT struct expr *word_value(struct pstate *s, const char *word, int sign)
+/* expr(), out of line: where expressions nest */
+static struct expr *__attribute__((noinline)) expr(struct pstate *s, size_t d)
 {
-  char buf[32];
+  return expr_in(s, d);
+}
+
+/* word_value's errors, out of its way; a parameter's name (rn >= 0, R12)
+ * made only here. */
+static void __attribute__((noinline, cold, noreturn)) no_value(struct pstate *s, const char *word, int rn, int sign)
+{
+  char buf[32], name[8];
+  if (rn >= 0) {
+    name[0] = 'R';
+    fmt_uint(name + 1, (unsigned)rn);
+    word = name;
+  }
   int32_t c = peek(s);
   if (sign && c != '+' && c != '-')
-    fail(s, S42_E_SYNTAX, 0, "%s needs a sign and a value (%s+... or %s-...), found %s", word, word, word,
+    fail(s, S42_E_SYNTAX, pcol(s), "%s needs a sign and a value (%s+... or %s-...), found %s", word, word, word,
          show(c, buf));
-  if (c == LX_EOB || c == LX_EOF)
-    fail(s, S42_E_SYNTAX, 0, "%s needs a value", word);
-  return expr(s);
+  fail(s, S42_E_SYNTAX, pcol(s), "%s needs a value", word);
+}
+
+/* A word's value: its sign (required when `sign` is set) starts the first
+ * term: X-R3+100 is (-R3)+100.  The word's name for the errors, or rn for
+ * a parameter's. */
+HOT struct expr *word_value(struct pstate *s, const char *word, int rn, int sign)
+{
+  int32_t c = peek(s);
+  if ((sign && c != '+' && c != '-') || c == LX_EOB || c == LX_EOF)
+    no_value(s, word, rn, sign);
+  return expr_in(s, 0);   /* a word's value: nothing around it */
 }
 
 /* ---- conditions ---- */
 
-static struct expr *cond(struct pstate *s);
+static struct expr *cond(struct pstate *s, size_t d);
 
 /* Does the parenthesis at the cursor hold a comparison (a ':' at its own
  * level) rather than a nested condition? */
 static int is_comparison(struct pstate *s)
 {
-  struct lex_mark m = lex_mark(&s->p->lx);
-  int depth = 0, found = 0;
+  struct lex_ahead a;
+  lex_ahead_start(&s->p->lx, &a);
+  int depth = 0;
   for (;;) {
-    int32_t c = peek(s);
+    int32_t c = lex_ahead_next(&s->p->lx, &a);
     if (c == LX_EOB || c == LX_EOF)
-      break;
+      return 0;
     if (c == '(') {
       depth++;
     } else if (c == ')') {
       if (--depth == 0)
-        break;
+        return 0;
     } else if (c == ':' && depth == 1) {
-      found = 1;
-      break;
+      return 1;
     }
-    adv(s);
   }
-  lex_reset(&s->p->lx, m);
-  return found;
 }
 
-static struct expr *prim(struct pstate *s)
+static struct expr *prim(struct pstate *s, size_t d)
 {
   char buf[32];
   unsigned col = pcol(s);
   if (peek(s) != '(')
-    fail(s, S42_E_SYNTAX, 0, "expected '(' starting a condition, found %s", show(peek(s), buf));
-  if (++s->p->depth > MAX_DEPTH)
+    fail(s, S42_E_SYNTAX, col, "expected '(' starting a condition, found %s", show(peek(s), buf));
+  if (++d > MAX_DEPTH)
     fail(s, S42_E_SYNTAX, col, "condition nested too deeply");
   struct expr *e;
   if (is_comparison(s)) {
     adv(s);
     e = node(s, EX_CMP, col);
-    e->a = expr(s);
+    e->a = expr(s, d);
     expect(s, ':', "':' before the relation");
     unsigned rcol = pcol(s), mask = 0;
     while (peek(s) == 'B' || peek(s) == 'M' || peek(s) == 'R') {
@@ -531,44 +595,46 @@ static struct expr *prim(struct pstate *s)
       adv(s);
     }
     if (peek(s) != ':')
-      fail(s, S42_E_SYNTAX, 0, "relation must be R, B, M, BR or RB, MR or RM, BM, BMR or empty, found %s",
+      fail(s, S42_E_SYNTAX, pcol(s), "relation must be R, B, M, BR or RB, MR or RM, BM, BMR or empty, found %s",
            show(peek(s), buf));
     adv(s);
     e->op = (uint8_t)mask;
-    e->b = expr(s);
+    e->b = expr(s, d);
+    need2(e);
     expect(s, ')', "')' closing the comparison");
   } else {
     adv(s);
-    e = cond(s);
+    e = cond(s, d);
     expect(s, ')', "')' closing the condition");
   }
-  s->p->depth--;
   return e;
 }
 
-static struct expr *conjunction(struct pstate *s)
+static struct expr *conjunction(struct pstate *s, size_t d)
 {
-  struct expr *e = prim(s);
+  struct expr *e = prim(s, d);
   while (peek(s) == 'U') {
     unsigned col = pcol(s);
     adv(s);
     struct expr *n = node(s, EX_AND, col);
     n->a = e;
-    n->b = prim(s);
+    n->b = prim(s, d);
+    need2(n);
     e = n;
   }
   return e;
 }
 
-static struct expr *cond(struct pstate *s)
+static struct expr *cond(struct pstate *s, size_t d)
 {
-  struct expr *e = conjunction(s);
+  struct expr *e = conjunction(s, d);
   while (peek(s) == 'S') {
     unsigned col = pcol(s);
     adv(s);
     struct expr *n = node(s, EX_OR, col);
     n->a = e;
-    n->b = conjunction(s);
+    n->b = conjunction(s, d);
+    need2(n);
     e = n;
   }
   return e;
@@ -615,12 +681,15 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
   t->nchars = nch;
 }
 
-static void open_slash(struct pstate *s, const char *fn, int code)
+/* The opening slash; its column. */
+static unsigned open_slash(struct pstate *s, const char *fn, int code)
 {
   char buf[32];
+  unsigned col = pcol(s);
   if (peek(s) != '/')
-    fail(s, code, 0, "%s needs its argument in slashes (/.../), found %s", fn, show(peek(s), buf));
+    fail(s, code, col, "%s needs its argument in slashes (/.../), found %s", fn, show(peek(s), buf));
   adv(s);
+  return col;
 }
 
 /* Where a text argument goes: each has its own place in the block. */
@@ -647,11 +716,11 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
     }
     break;
   }
-  case KP_SA_LINES:
-    open_slash(s, fn, S42_E_TEXT);
+  case KP_SA_LINES: {
+    unsigned scol = open_slash(s, fn, S42_E_TEXT);
     for (;;) {
-      if (b->ng29 >= MAX_LINES)
-        fail(s, S42_E_TEXT, 0, "G29: more than %d lines", MAX_LINES);
+      if (b->ng29 >= MAX_LINES)   /* said at the opening slash, the character last looked at outside text */
+        fail(s, S42_E_TEXT, scol, "G29: more than %d lines", MAX_LINES);
       struct text *t = &b->g29[b->ng29++];
       memset(t, 0, sizeof *t);   /* no stale text from an earlier block if this one fails */
       raw_text(s, t, fn);
@@ -662,13 +731,14 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
       }
     }
     break;
+  }
   case KP_SA_BOUNDS:
     open_slash(s, fn, S42_E_SYNTAX);
     b->g28col = pcol(s);
     s->p->slash_ends = 1;
-    b->g28min = expr(s);
+    b->g28min = expr(s, 0);
     expect(s, ':', "':' between the G28 bounds /min:max/ (divide inside parentheses: /(R1/2):R2/)");
-    b->g28max = expr(s);
+    b->g28max = expr(s, 0);
     expect(s, '/', "'/' closing the G28 bounds");
     s->p->slash_ends = 0;
     b->g28reg = -2;   /* the R word must follow */
@@ -681,7 +751,7 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
       b->g37axis = (char)c;
       adv(s);
     } else if (c != '/') {
-      fail(s, S42_E_AXIS, 0, "G37 takes one axis letter: G37 /Y/");
+      fail(s, S42_E_AXIS, pcol(s), "G37 takes one axis letter: G37 /Y/");
     }
     expect(s, '/', "'/' closing G37 /Y/");
     break;
@@ -700,7 +770,7 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
       b->m20[b->nm20++] = (unsigned)r;
     }
     if (b->nm20 == 0)
-      fail(s, S42_E_SYNTAX, 0, "M20 lists parameters: M20 /R12R15/");
+      fail(s, S42_E_SYNTAX, pcol(s), "M20 lists parameters: M20 /R12R15/");
     expect(s, '/', "'/' closing the M20 list");
     break;
   case KP_SA_CORR:
@@ -714,11 +784,11 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
         fail(s, S42_E_RANGE, it.col, "parameter R%ld does not exist (R0..R113)", r);
       int32_t sg = peek(s);
       if (sg != '+' && sg != '-')
-        fail(s, S42_E_SYNTAX, 0, "M16: expected + or - and an axis after R%ld", r);
+        fail(s, S42_E_SYNTAX, pcol(s), "M16: expected + or - and an axis after R%ld", r);
       adv(s);
       int32_t ax = peek(s);
       if (ax != 'X' && ax != 'Y' && ax != 'Z' && ax != 'A')
-        fail(s, S42_E_AXIS, 0, "M16: expected an axis X, Y, Z or A after R%ld%c", r, (char)sg);
+        fail(s, S42_E_AXIS, pcol(s), "M16: expected an axis X, Y, Z or A after R%ld%c", r, (char)sg);
       adv(s);
       it.reg = (unsigned)r;
       it.sign = sg == '-' ? -1 : 1;
@@ -728,7 +798,7 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
       b->m16[b->nm16++] = it;
     }
     if (b->nm16 == 0)
-      fail(s, S42_E_SYNTAX, 0, "M16 lists corrections to store: M16 /R1+X R2-Z//");
+      fail(s, S42_E_SYNTAX, pcol(s), "M16 lists corrections to store: M16 /R1+X R2-Z//");
     expect(s, '/', "'//' closing the M16 list");
     accept(s, '/');
     break;
@@ -749,34 +819,34 @@ HOT struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
   struct block *b = s->b;
   if (b->nw >= MAX_WORDS)
     fail(s, S42_E_BLOCKLEN, col, "too many words in one block");
-  struct word *w = &b->w[b->nw++];
-  memset(w, 0, sizeof *w);
+  size_t i = b->nw++;
+  struct word *w = &b->w[i];
+  /* what else a word of this kind has is set by the caller, but a jump's
+   * target number, read even when it did not parse */
   w->kind = (uint8_t)kind;
   w->letter = letter;
   w->col = col;
+  w->num = 0;
+  if (!(b->wkinds & (1u << kind))) {
+    b->wkinds |= (uint16_t)(1u << kind);
+    b->wfirst[kind] = (uint8_t)i;
+  }
   return w;
 }
 
-HOT int has_word(const struct block *b, int kind, char letter)
+/* A word the block may have once: `there` says it has it already. */
+HOT void once(struct pstate *s, int there, const char *name, unsigned col)
 {
-  for (int i = 0; i < b->nw; i++)
-    if (b->w[i].kind == kind && b->w[i].letter == letter)
-      return 1;
-  return 0;
-}
-
-HOT void once(struct pstate *s, int kind, char letter, const char *name, unsigned col)
-{
-  if (has_word(s->b, kind, letter))
+  if (there)
     fail(s, S42_E_SYNTAX, col, "%s appears twice in the block", name);
 }
 
-static void word(struct pstate *s)
+static inline __attribute__((always_inline)) void word(struct pstate *s)
 {
   char buf[32];
   struct block *b = s->b;
-  unsigned col = pcol(s);
   int32_t c = peek(s);
+  unsigned col = here(s);
   struct word *w;
   switch (c) {
   case 'G': case 'M': {
@@ -787,7 +857,7 @@ static void word(struct pstate *s)
     if (!valid && n < (c == 'G' ? 64 : 32))   /* a function a plugin adds */
       valid = plug_find(s->p->plugins, (char)c, (int)n, NULL) >= 0;
     if (!valid) {
-      diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, s->p->lx.line, col, b->number,
+      diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, b->line, col, b->number,
                "%c%02ld is not a function of the 2С42 or of a plugin found", (char)c, n);
       b->bad = 1;
       return;
@@ -805,33 +875,40 @@ static void word(struct pstate *s)
     }
     w = new_word(s, c == 'G' ? WK_G : WK_M, (char)c, col);
     w->num = (int)n;
-    if (kw && kw->slash != KP_SA_NONE)
+    if (c == 'G')
+      b->gw[b->ngw++] = (uint8_t)(b->nw - 1);
+    if (kw && kw->slash != KP_SA_NONE) {
+      b->slashed = 1;
       slash_arg(s, b, kw);
+    }
     return;
   }
-  case 'X': case 'Y': case 'Z': case 'A': case 'I': case 'J': case 'K': {
+  case 'X': case 'Y': case 'Z': case 'A': case 'I': case 'J': case 'K': case 'H': {
     char name[2] = {(char)c, 0};
-    once(s, WK_SLOT, (char)c, name, col);
+    unsigned slot = c == 'X' ? SL_X : c == 'Y' ? SL_Y : c == 'Z' ? SL_Z : c == 'A' ? SL_A
+                  : c == 'I' ? SL_I : c == 'J' ? SL_J : c == 'K' ? SL_K : SL_H;
+    once(s, b->wslots & (1u << slot), name, col);
     adv(s);
-    struct expr *e = word_value(s, name, 1);
+    struct expr *e = word_value(s, name, -1, c != 'H');
     w = new_word(s, WK_SLOT, (char)c, col);
     w->e = e;
-    w->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : c == 'Z' ? SL_Z : c == 'A' ? SL_A
-           : c == 'I' ? SL_I : c == 'J' ? SL_J : SL_K;
+    w->idx = slot;
+    b->wslots |= (uint16_t)(1u << slot);
+    b->slotcol[slot] = col;
     return;
   }
-  case 'F': case 'H': {
-    char name[2] = {(char)c, 0};
-    once(s, c == 'F' ? WK_REG : WK_SLOT, (char)c, name, col);
+  case 'F': {
+    once(s, b->wF >= 0, "F", col);
     adv(s);
-    struct expr *e = word_value(s, name, 0);
-    w = new_word(s, c == 'F' ? WK_REG : WK_SLOT, (char)c, col);
+    struct expr *e = word_value(s, "F", -1, 0);
+    w = new_word(s, WK_REG, 'F', col);
     w->e = e;
-    w->idx = c == 'F' ? REG_F : SL_H;
+    w->idx = REG_F;
+    b->wF = b->nw - 1;
     return;
   }
   case 'L': {
-    once(s, WK_L, 'L', "L", col);
+    once(s, b->wkinds & (1u << WK_L), "L", col);
     adv(s);
     long n = number(s, 3, "the first block number of a sub after L");
     w = new_word(s, WK_L, 'L', col);
@@ -843,13 +920,11 @@ static void word(struct pstate *s)
     long n = number(s, 3, "a parameter number after R");
     if (n > 113)
       fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
-    char name[8] = {'R'};   /* "R12", without printf: this runs for every R word */
-    fmt_uint(name + 1, (unsigned)n);
     if (b->g28reg == -2) {        /* G28 /min:max/ Rn: where the answer goes */
       b->g28reg = (int)n;
       return;
     }
-    struct expr *e = word_value(s, name, 1);
+    struct expr *e = word_value(s, NULL, (int)n, 1);
     w = new_word(s, WK_REG, 'R', col);
     w->num = (int)n;
     w->idx = (unsigned)n;
@@ -861,9 +936,10 @@ static void word(struct pstate *s)
     if (peek(s) != '1')
       fail(s, S42_E_SYNTAX, col, "the only D word is D1 (tool diameter)");
     adv(s);
-    once(s, WK_REG, 'D', "D1", col);
-    struct expr *e = word_value(s, "D1", 1);
+    once(s, b->hasD, "D1", col);
+    struct expr *e = word_value(s, "D1", -1, 1);
     w = new_word(s, WK_REG, 'D', col);
+    b->hasD = 1;
     w->idx = REG_D1;
     w->e = e;
     return;
@@ -903,7 +979,7 @@ static void word(struct pstate *s)
       fail(s, S42_E_SYNTAX, col, "T%d%s is not an array word (T11 T21 T31 T12 T22 T32)", d1,
            d2 >= 0 ? (char[]){(char)('0' + d2), 0} : "");
     char name[4] = {'T', (char)('0' + d1), (char)('0' + d2), 0};
-    struct expr *e = word_value(s, name, 1);
+    struct expr *e = word_value(s, name, -1, 1);
     w = new_word(s, WK_AWR, 'T', col);
     w->idx = (unsigned)(d2 - 1) | (unsigned)d1 << 2;
     w->e = e;
@@ -913,15 +989,15 @@ static void word(struct pstate *s)
     adv(s);
     if (peek(s) == 'P') {
       adv(s);
-      once(s, WK_PP, 'P', "PP", col);
+      once(s, b->wkinds & (1u << WK_PP), "PP", col);
       w = new_word(s, WK_PP, 'P', col);
       w->num = (int)number(s, 3, "the target block number after PP");
       return;
     }
-    if (has_word(b, WK_P, 'P') || has_word(b, WK_PCOND, 'P'))
+    if (b->wkinds & (1u << WK_P | 1u << WK_PCOND))
       fail(s, S42_E_SYNTAX, col, "two jumps P in one block");
     if (peek(s) == '(') {
-      b->cond = cond(s);
+      b->cond = cond(s, 0);
       w = new_word(s, WK_PCOND, 'P', col);
       w->num = (int)number(s, 3, "the target block number after the condition");
       return;
@@ -955,10 +1031,13 @@ void parse_init(struct parser *p, const char *src, size_t n, struct diag_list *d
 
 void parse_free(struct parser *p)
 {
+  free(p->nodebuf);
+  p->nodebuf = NULL;
+  p->nodecap = 0;
   arena_free(&p->ar);
 }
 
-static void clear_block(struct block *b)
+static inline void clear_block(struct block *b)
 {
   /* Only the header needs zeroing: words are counted by nw. */
   b->number = -1;
@@ -968,6 +1047,12 @@ static void clear_block(struct block *b)
   b->g = 0;
   b->m = 0;
   b->nw = 0;
+  b->wslots = b->wkinds = 0;
+  b->wF = -1;
+  b->hasD = 0;
+  b->ngw = 0;
+  b->slashed = 0;
+  b->slotrd = 0;
   b->cond = NULL;
   memset(&b->g27, 0, sizeof b->g27);
   memset(&b->g33, 0, sizeof b->g33);
@@ -992,26 +1077,65 @@ static int32_t first_char(struct lex *l)
   }
 }
 
-int parse_block(struct parser *p, struct block *b)
+/* The start of the next non-empty block: 0 at the end of the text. */
+static int block_start(struct parser *p, struct block *b)
 {
   struct lex *l = &p->lx;
-  struct pstate s;
-  s.p = p;
-  s.b = b;
   arena_reset(&p->ar);
   clear_block(b);
   p->nodes = 0;
   l->number = -1;   /* before the first peek: a note there is this block's */
   l->note_here = 0;
-  const int32_t c = first_char(l);   /* set once, before the setjmp */
-  if (c == LX_EOF)
+  l->blen = 0;      /* the block's characters are counted as they are lexed */
+  if (first_char(l) == LX_EOF)
     return 0;
-  l->blen = 0;
-  b->line = l->line;
-  b->col = l->ccol;
+  b->line = lex_line(l);
+  b->col = lex_col(l);
   b->badnum = 0;
-  p->ar.oom = &s.jb;
-  int jumped = setjmp(s.jb);
+  return 1;
+}
+
+/* The block's number and words, after block_start: an error leaves by
+ * longjmp (fail). */
+static void block_words(struct pstate *s)
+{
+  struct lex *l = &s->p->lx;
+  struct block *b = s->b;
+  int32_t c = lex_peek(l);
+  if (c == 'H' && lex_cyrillic(l)) {
+    /* Н, the Cyrillic N, looks like a Latin H: a block number meant */
+    if (isdig(lex_peek2(l))) {
+      b->badnum = 1;
+      fail(s, S42_E_SYNTAX, b->col, "Cyrillic Н at the block start reads as the letter H: did you mean N "
+           "(the block number, N1 or №1)?");
+    }
+  }
+  if (c == 'N' || c == 0x2116) {   /* N12, №12, № 12 */
+    b->ncol = lex_col(l);
+    b->badnum = 1;
+    lex_adv(l);
+    long n = number(s, 3, "a block number");
+    if (n < 1 || n > 999)
+      fail(s, S42_E_RANGE, b->ncol, "block number %ld outside 1..999", n);
+    b->number = (int)n;
+    b->badnum = 0;
+    lex_set_number(l, (int)n);
+  }
+  for (;;) {
+    int32_t w = lex_peek(l);
+    if (w == LX_EOB || w == LX_EOF)
+      break;
+    word(s);
+  }
+  if (b->g28reg == -2)
+    fail(s, S42_E_SYNTAX, b->g28col, "G28 /min:max/ must be followed by the parameter: G28 /min:max/ R3");
+}
+
+/* The block's end, after its words or a longjmp out of them (`jumped` 1:
+ * a syntax error; 2: out of memory). */
+static void block_end(struct parser *p, struct block *b, int jumped)
+{
+  struct lex *l = &p->lx;
   if (jumped == 2) {   /* said once: the blocks after it are not read either */
     if (!p->d->oom)
       diag_add(p->d, DIAG_ERROR, S42_E_SYNTAX, b->line, b->col, b->number,
@@ -1019,45 +1143,51 @@ int parse_block(struct parser *p, struct block *b)
     p->d->oom = 1;
     b->bad = 1;
   }
-  if (jumped == 0) {
-    if (c == 'H' && lex_cyrillic(l)) {
-      /* Н, the Cyrillic N, looks like a Latin H: a block number meant */
-      struct lex_mark m = lex_mark(l);
-      lex_adv(l);
-      int dig = isdig(lex_peek(l));
-      lex_reset(l, m);
-      if (dig) {
-        b->badnum = 1;
-        fail(&s, S42_E_SYNTAX, b->col, "Cyrillic Н at the block start reads as the letter H: did you mean N "
-             "(the block number, N1 or №1)?");
-      }
-    }
-    if (c == 'N' || c == 0x2116) {   /* N12, №12, № 12 */
-      b->ncol = l->ccol;
-      b->badnum = 1;
-      lex_adv(l);
-      long n = number(&s, 3, "a block number");
-      if (n < 1 || n > 999)
-        fail(&s, S42_E_RANGE, b->ncol, "block number %ld outside 1..999", n);
-      b->number = (int)n;
-      b->badnum = 0;
-      lex_set_number(l, (int)n);
-    }
-    for (;;) {
-      int32_t w = lex_peek(l);   /* not c: nothing set after the setjmp is read after a longjmp */
-      if (w == LX_EOB || w == LX_EOF)
-        break;
-      word(&s);
-    }
-    if (b->g28reg == -2)
-      fail(&s, S42_E_SYNTAX, b->g28col, "G28 /min:max/ must be followed by the parameter: G28 /min:max/ R3");
-  } else {
+  if (jumped)
     lex_skip_block(l);
-  }
-  p->ar.oom = NULL;
-  p->depth = p->paren = p->slash_ends = p->nodes = 0;
+  p->paren = p->slash_ends = p->nodes = 0;
   b->len = l->blen;
   if (lex_peek(l) == LX_EOB)
     lex_adv(l);
+}
+
+int parse_block(struct parser *p, struct block *b)
+{
+  struct pstate s;
+  s.p = p;
+  s.b = b;
+  if (!block_start(p, b))
+    return 0;
+  p->ar.oom = &s.jb;
+  int jumped = setjmp(s.jb);
+  if (!jumped)
+    block_words(&s);
+  block_end(p, b, jumped);
+  p->ar.oom = NULL;
   return 1;
+}
+
+void parse_all(struct parser *p, struct block *b, int (*each)(void *ctx, struct block *b), void *ctx)
+{
+  /* one setjmp for the whole text: after a longjmp out of a block's words
+   * the loop goes on from that block's end (nothing here changes after
+   * the setjmp but what p and b point to) */
+  struct pstate s;
+  s.p = p;
+  s.b = b;
+  p->ar.oom = &s.jb;
+  int jumped = setjmp(s.jb);
+  if (jumped) {
+    block_end(p, b, jumped);
+    if (each(ctx, b))
+      goto out;
+  }
+  while (block_start(p, b)) {
+    block_words(&s);
+    block_end(p, b, 0);
+    if (each(ctx, b))
+      break;
+  }
+out:
+  p->ar.oom = NULL;
 }

@@ -11,10 +11,13 @@ struct parser {
   struct lex lx;
   struct arena ar;
   struct diag_list *d;
-  int depth;              /* expression nesting, bounded */
-  int paren;              /* open parentheses in the current expression */
-  int nodes;              /* expression nodes in the current block, bounded */
-  int slash_ends;         /* G28 /min:max/: a '/' outside parentheses closes it */
+  /* size_t: the int and unsigned stores of the parse (nodes, words) are
+   * no aliases of these, which the compiler then keeps in registers */
+  size_t paren;           /* open parentheses in the current expression */
+  size_t nodes;           /* expression nodes in the current block, bounded */
+  struct expr *nodebuf;   /* the block's nodes (MAX_NODES of them, from the first), or NULL */
+  size_t nodecap;         /* MAX_NODES once nodebuf is made, 0 before */
+  size_t slash_ends;      /* G28 /min:max/: a '/' outside parentheses closes it */
   const struct plug_set *plugins;  /* functions plugins add (src/core/plugin.h), or NULL */
 };
 
@@ -23,5 +26,8 @@ void parse_free(struct parser *p);
 /* Parse the next non-empty block into b.  Returns 1 when a block was read,
  * 0 at the end of the text.  Errors are reported and set b->bad. */
 int parse_block(struct parser *p, struct block *b);
+/* Every block, each one into b and then to each(ctx, b), which returns
+ * nonzero to stop: parse_block over the whole text, with one setjmp. */
+void parse_all(struct parser *p, struct block *b, int (*each)(void *ctx, struct block *b), void *ctx);
 
 #endif

@@ -1,5 +1,6 @@
-/* The 2С42's peephole pass (peep.h): a block's straight-line code, fused
- * into the VM's register forms (vm/opcodes.h, "register forms").
+/* The 2С42's peephole rules (peep.h): a block's straight-line code, fused
+ * into the VM's register forms (vm/opcodes.h, "register forms") as it is
+ * emitted.
  *
  *   REG a; ADDI x; SETP d        RADDIP a|x<<7, EXT d    (and SUB MUL DIV, I K R)
  *   REG a; ADDI x                RADDI a|x<<7
@@ -9,6 +10,14 @@
  *   REG a; SIN / COS             RSIN a / RCOS a
  *   REG a; SIN; REG a; COS       RSINCOS a               (COS first: RCOSSIN a)
  *   SIN; SETP d                  SINP, EXT d             (and COS ASIN ACOS ATAN)
+ *
+ * Each instruction, as it is emitted (or rewritten in place at the end),
+ * is fused with those before it: REG a; ADDI x becomes RADDI when the ADDI
+ * comes, and RADDI; SETP then RADDIP; RSIN a; REG a; COS becomes RSINCOS.
+ * No rule's result is the first part of another but these two, and a REG
+ * is the second part of none: taken one instruction at a time from the
+ * left, the rules fuse what a pass over the finished code, from the left
+ * and longest first, would.
  *
  * Why each is safe: a block's code runs straight through (vm/verify.c), no
  * jump lands inside it, and the parts touch nothing between them that the
@@ -25,33 +34,21 @@
 
 #define XMAX (1u << 17)   /* the x of a|x<<7 */
 
-/* What each opcode is to the pass, one lookup (the pass looks at every
- * instruction of every block): ADDI..DIVR by arithmetic (0 ADD .. 3 DIV)
- * and operand (0 I, 1 K, 2 R) as 1 + kind * 4 + row; ADD..DIV as 1 + row. */
+/* What each opcode is to the rules, one lookup: ADDI..DIVR by arithmetic
+ * (0 ADD .. 3 DIV) and operand (0 I, 1 K, 2 R) as 1 + kind * 4 + row;
+ * ADD..DIV as 1 + row; RADDI..RDIVR likewise (the register push forms). */
 #define AX(op, kind, row) [op] = 1 + (kind) * 4 + (row)
 static const uint8_t arith_x_tab[256] = {
   AX(OP_ADDI, 0, 0), AX(OP_SUBI, 0, 1), AX(OP_MULI, 0, 2), AX(OP_DIVI, 0, 3),
   AX(OP_ADDK, 1, 0), AX(OP_SUBK, 1, 1), AX(OP_MULK, 1, 2), AX(OP_DIVK, 1, 3),
   AX(OP_ADDR, 2, 0), AX(OP_SUBR, 2, 1), AX(OP_MULR, 2, 2), AX(OP_DIVR, 2, 3),
 };
+static const uint8_t rpush_tab[256] = {
+  AX(OP_RADDI, 0, 0), AX(OP_RSUBI, 0, 1), AX(OP_RMULI, 0, 2), AX(OP_RDIVI, 0, 3),
+  AX(OP_RADDK, 1, 0), AX(OP_RSUBK, 1, 1), AX(OP_RMULK, 1, 2), AX(OP_RDIVK, 1, 3),
+  AX(OP_RADDR, 2, 0), AX(OP_RSUBR, 2, 1), AX(OP_RMULR, 2, 2), AX(OP_RDIVR, 2, 3),
+};
 static const uint8_t arith_stack_tab[256] = {[OP_ADD] = 1, [OP_SUB] = 2, [OP_MUL] = 3, [OP_DIV] = 4};
-
-/* The column of the ops ADDI..DIVR: which arithmetic (0 ADD .. 3 DIV) and
- * which operand (0 I, 1 K, 2 R), or -1. */
-static inline int arith_x(unsigned op, int *row, int *kind)
-{
-  unsigned t = arith_x_tab[op & 0xff];
-  if (!t)
-    return -1;
-  *row = (int)(t - 1) % 4;
-  *kind = (int)(t - 1) / 4;
-  return 0;
-}
-
-static inline int arith_stack(unsigned op)
-{
-  return (int)arith_stack_tab[op & 0xff] - 1;
-}
 
 /* The function-and-store form of a function, 0 none. */
 static inline unsigned trig_store(unsigned op)
@@ -78,6 +75,26 @@ static const uint8_t xstore[3][4] = {{OP_ADDIP, OP_SUBIP, OP_MULIP, OP_DIVIP},
                                      {OP_ADDRP, OP_SUBRP, OP_MULRP, OP_DIVRP}};
 static const uint8_t sstore[4] = {OP_ADDP, OP_SUBP, OP_MULP, OP_DIVP};
 
+/* Which pairs a rule can fuse (peep_pair): REG first before an
+ * arithmetic with an operand, CMPCK, SIN or COS second; an arithmetic, a
+ * function of trig_store or a register push form first before SETP. */
+#define RF PEEP_REG_FIRST
+#define SF PEEP_SETP_FIRST
+#define RS PEEP_REG_SECOND
+#define SS PEEP_SETP_SECOND
+const uint8_t peep_pair_tab[256] = {
+  [OP_REG] = RF, [OP_SETP] = SS,
+  [OP_ADDI] = SF | RS, [OP_SUBI] = SF | RS, [OP_MULI] = SF | RS, [OP_DIVI] = SF | RS,
+  [OP_ADDK] = SF | RS, [OP_SUBK] = SF | RS, [OP_MULK] = SF | RS, [OP_DIVK] = SF | RS,
+  [OP_ADDR] = SF | RS, [OP_SUBR] = SF | RS, [OP_MULR] = SF | RS, [OP_DIVR] = SF | RS,
+  [OP_ADD] = SF, [OP_SUB] = SF, [OP_MUL] = SF, [OP_DIV] = SF,
+  [OP_SIN] = SF | RS, [OP_COS] = SF | RS, [OP_ASIN] = SF, [OP_ACOS] = SF, [OP_ATAN] = SF,
+  [OP_CMPCK] = RS,
+  [OP_RADDI] = SF, [OP_RSUBI] = SF, [OP_RMULI] = SF, [OP_RDIVI] = SF,
+  [OP_RADDK] = SF, [OP_RSUBK] = SF, [OP_RMULK] = SF, [OP_RDIVK] = SF,
+  [OP_RADDR] = SF, [OP_RSUBR] = SF, [OP_RMULR] = SF, [OP_RDIVR] = SF,
+};
+
 /* K[b] with its bounds as three constants in a row (the last three reused
  * when they are these); the index, or -1. */
 static long triplet(struct program *p, double b)
@@ -90,95 +107,70 @@ static long triplet(struct program *p, double b)
   return prog_consts(p, t, 3);
 }
 
-int peep_block(struct program *p, size_t from)
+int peep_last(struct program *p, size_t from)
 {
   uint32_t *code = p->code;
   uint16_t *cols = p->cols;
-  size_t n = p->ncode, o = from + 1, i = from + 1;
-  /* nothing to fuse in most blocks: look before writing */
-  while (i + 1 < n) {
-    unsigned op0 = INS_OP(code[i]), op1 = INS_OP(code[i + 1]);
-    if ((op0 == OP_REG && (arith_x_tab[op1] || op1 == OP_CMPCK || op1 == OP_SIN || op1 == OP_COS)) ||
-        (op1 == OP_SETP && (arith_x_tab[op0] || arith_stack_tab[op0] || trig_store(op0))))
-      break;
-    i++;
-  }
-  o = i;
-  while (i < n) {
-    uint32_t w0 = code[i], w1 = i + 1 < n ? code[i + 1] : 0, w2 = i + 2 < n ? code[i + 2] : 0;
-    unsigned op0 = INS_OP(w0), op1 = i + 1 < n ? INS_OP(w1) : OP__COUNT, op2 = i + 2 < n ? INS_OP(w2) : OP__COUNT;
-    unsigned op3 = i + 3 < n ? INS_OP(code[i + 3]) : OP__COUNT;
-    int row, kind;
-    if (op0 == OP_REG && INS_A(w0) < VM_NREG && arith_x(op1, &row, &kind) == 0 && INS_A(w1) < XMAX) {
-      uint32_t a = INS_A(w0) | INS_A(w1) << 7;
-      if (op2 == OP_SETP) {
-        /* REG a; OPx; SETP d */
-        uint16_t c1 = cols[i + 1], c2 = cols[i + 2];
-        code[o] = INS(rstore[kind][row], a);
-        cols[o++] = c1;
-        code[o] = INS(OP_EXT, INS_A(w2));
-        cols[o++] = c2;
-        i += 3;
-      } else {
-        /* REG a; OPx */
-        cols[o] = cols[i + 1];
-        code[o++] = INS(rpush[kind][row], a);
-        i += 2;
+  size_t n = p->ncode;
+  if (n < from + 2)
+    return 0;
+  uint32_t w0 = code[n - 2], w1 = code[n - 1];
+  unsigned op0 = INS_OP(w0), op1 = INS_OP(w1);
+  unsigned t;
+  if (op0 == OP_REG) {
+    if (INS_A(w0) < VM_NREG && (t = arith_x_tab[op1]) != 0 && INS_A(w1) < XMAX) {
+      /* REG a; OPx: the SETP that may follow makes it RADDIP and EXT */
+      code[n - 2] = INS(rpush[(t - 1) / 4][(t - 1) % 4], INS_A(w0) | INS_A(w1) << 7);
+      cols[n - 2] = cols[n - 1];
+      p->ncode = n - 1;
+      return 0;
+    }
+    if (op1 == OP_SIN || op1 == OP_COS) {
+      unsigned first = op1 == OP_SIN ? OP_RCOS : OP_RSIN;
+      if (n >= from + 3 && code[n - 3] == INS(first, INS_A(w0))) {
+        /* REG a; SIN; REG a; COS, the first two already RSIN a: the sine
+         * and the cosine of one angle (the second cannot fail where the
+         * first did not: the same value, the same domain) */
+        code[n - 3] = INS(op1 == OP_COS ? OP_RSINCOS : OP_RCOSSIN, INS_A(w0));
+        p->ncode = n - 2;
+        return 0;
       }
-      continue;
-    }
-    if (op0 == OP_REG && (op1 == OP_SIN || op1 == OP_COS) && w2 == w0 && op3 == (op1 == OP_SIN ? OP_COS : OP_SIN)) {
-      /* REG a; SIN; REG a; COS: the sine and the cosine of one angle (the
-       * second cannot fail where the first did not: the same value, the
-       * same domain) */
-      cols[o] = cols[i + 1];
-      code[o++] = INS(op1 == OP_SIN ? OP_RSINCOS : OP_RCOSSIN, INS_A(w0));
-      i += 4;
-      continue;
-    }
-    if (op0 == OP_REG && (op1 == OP_SIN || op1 == OP_COS)) {
       /* REG a; SIN */
-      cols[o] = cols[i + 1];
-      code[o++] = INS(op1 == OP_SIN ? OP_RSIN : OP_RCOS, INS_A(w0));
-      i += 2;
-      continue;
+      code[n - 2] = INS(op1 == OP_SIN ? OP_RSIN : OP_RCOS, INS_A(w0));
+      cols[n - 2] = cols[n - 1];
+      p->ncode = n - 1;
+      return 0;
     }
-    if (op0 == OP_REG && INS_A(w0) < VM_NREG && op1 == OP_CMPCK && isfinite(p->k[INS_A(w1) >> 3])) {
+    if (INS_A(w0) < VM_NREG && op1 == OP_CMPCK && isfinite(p->k[INS_A(w1) >> 3])) {
       /* REG a; CMPCK rel k */
       long j = triplet(p, p->k[INS_A(w1) >> 3]);
       if (j < 0)
         return -1;
-      uint16_t c1 = cols[i + 1];
-      code[o] = INS(OP_CMPRK, (INS_A(w1) & 7) | INS_A(w0) << 3);
-      cols[o++] = c1;
-      code[o] = INS(OP_EXT, (uint32_t)j);
-      cols[o++] = c1;
-      i += 2;
-      continue;
+      code[n - 2] = INS(OP_CMPRK, (INS_A(w1) & 7) | INS_A(w0) << 3);
+      cols[n - 2] = cols[n - 1];
+      code[n - 1] = INS(OP_EXT, (uint32_t)j);
+      return 0;
     }
-    if (op1 == OP_SETP && trig_store(op0)) {
-      /* SIN; SETP d */
-      uint16_t c0 = cols[i], c1 = cols[i + 1];
-      code[o] = INS(trig_store(op0), 0);
-      cols[o++] = c0;
-      code[o] = INS(OP_EXT, INS_A(w1));
-      cols[o++] = c1;
-      i += 2;
-      continue;
-    }
-    if (op1 == OP_SETP && (arith_x(op0, &row, &kind) == 0 || (kind = -1, row = arith_stack(op0)) >= 0)) {
-      /* OPx; SETP d   or   OP; SETP d */
-      uint16_t c0 = cols[i], c1 = cols[i + 1];
-      code[o] = kind < 0 ? INS(sstore[row], 0) : INS(xstore[kind][row], INS_A(w0));
-      cols[o++] = c0;
-      code[o] = INS(OP_EXT, INS_A(w1));
-      cols[o++] = c1;
-      i += 2;
-      continue;
-    }
-    cols[o] = cols[i];
-    code[o++] = code[i++];
+    return 0;
   }
-  p->ncode = o;
+  if (op1 != OP_SETP)
+    return 0;
+  if ((t = rpush_tab[op0]) != 0) {
+    /* REG a; OPx; SETP d, the first two already fused */
+    code[n - 2] = INS(rstore[(t - 1) / 4][(t - 1) % 4], INS_A(w0));
+    code[n - 1] = INS(OP_EXT, INS_A(w1));
+  } else if (trig_store(op0)) {
+    /* SIN; SETP d */
+    code[n - 2] = INS(trig_store(op0), 0);
+    code[n - 1] = INS(OP_EXT, INS_A(w1));
+  } else if ((t = arith_x_tab[op0]) != 0) {
+    /* OPx; SETP d */
+    code[n - 2] = INS(xstore[(t - 1) / 4][(t - 1) % 4], INS_A(w0));
+    code[n - 1] = INS(OP_EXT, INS_A(w1));
+  } else if ((t = arith_stack_tab[op0]) != 0) {
+    /* OP; SETP d */
+    code[n - 2] = INS(sstore[t - 1], 0);
+    code[n - 1] = INS(OP_EXT, INS_A(w1));
+  }
   return 0;
 }
