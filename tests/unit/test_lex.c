@@ -57,7 +57,8 @@ START_TEST(cr_only_line_ends)
   ck_assert_int_eq(next(), 'Z');
   ck_assert_int_eq(next(), LX_EOB);     /* CR LF: one line end */
   ck_assert_uint_eq(l.line, 5);
-  ck_assert_uint_eq(l.col, 1);
+  ck_assert_int_eq(lex_peek(&l), 'A');
+  ck_assert_uint_eq(lex_col(&l), 1);
   ck_assert_int_eq(next(), 'A');
   ck_assert_int_eq(lex_peek(&l), LX_EOF);
   ck_assert_uint_eq(tp_count(&d, DIAG_NOTE), 1);
@@ -189,7 +190,7 @@ START_TEST(columns_count_characters)
   next(); next(); next();
   ck_assert_int_eq(lex_peek(&l), 'Y');
   ck_assert_uint_eq(lex_col(&l), 5);
-  ck_assert_uint_eq(l.pos, 8);      /* but byte 7: lexed, the cursor is after it */
+  ck_assert_uint_eq(lex_pos(&l), 7);  /* but byte 7 */
 }
 END_TEST
 
@@ -287,7 +288,7 @@ START_TEST(raw_keeps_spaces)
   ck_assert_int_eq(lex_raw_peek(&l), 0x0411);
   lex_raw_adv(&l);
   ck_assert_int_eq(lex_raw_peek(&l), '/');
-  ck_assert_uint_eq(l.col, 5);
+  ck_assert_uint_eq(lex_raw_col(&l), 5);
   ck_assert_uint_eq(d.n, 0);          /* raw text gives no look-alike note */
 }
 END_TEST
@@ -314,19 +315,42 @@ END_TEST
 START_TEST(blen_counts_significant_characters)
 {
   start("N 1 X+1 ; comment\nY ^\nZ");
-  l.blen = 0;
+  ck_assert_int_eq(lex_peek(&l), 'N');
+  unsigned c0 = lex_col(&l);
+  lex_block_begin(&l);
   while (lex_peek(&l) != LX_EOB)
     lex_adv(&l);
-  ck_assert_uint_eq(l.blen, 5);       /* N1X+1 */
+  ck_assert_uint_eq(lex_block_len(&l, c0), 5);   /* N1X+1: the end mark does not count */
   lex_adv(&l);
-  ck_assert_uint_eq(l.blen, 5);       /* the end mark does not count */
-  l.blen = 0;
+  ck_assert_int_eq(lex_peek(&l), 'Y');
+  c0 = lex_col(&l);
+  lex_block_begin(&l);
   ck_assert_int_eq(next(), 'Y');
-  ck_assert_int_eq(next(), LX_EOB);   /* ^ */
-  ck_assert_int_eq(next(), LX_EOB);   /* and the newline, lexed with it */
-  ck_assert_uint_eq(l.blen, 1);
+  ck_assert_int_eq(lex_peek(&l), LX_EOB);   /* ^ */
+  ck_assert_uint_eq(lex_block_len(&l, c0), 1);
+  lex_adv(&l);
+  ck_assert_int_eq(next(), LX_EOB);   /* and the newline */
   ck_assert_int_eq(lex_peek(&l), 'Z');
   ck_assert_uint_eq(lex_line(&l), 3);
+}
+END_TEST
+
+/* Text counts as characters, its spaces too */
+START_TEST(blen_counts_text)
+{
+  start("G27 /А Б/ X+1^");
+  ck_assert_int_eq(lex_peek(&l), 'G');
+  unsigned c0 = lex_col(&l);
+  lex_block_begin(&l);
+  for (int i = 0; i < 4; i++)
+    next();                            /* G 2 7 / */
+  while (lex_raw_peek(&l) != '/')
+    lex_raw_adv(&l);
+  lex_raw_adv(&l);
+  while (lex_peek(&l) != LX_EOB)
+    lex_adv(&l);
+  ck_assert_uint_eq(lex_block_len(&l, c0), 11);   /* G27/А Б/X+1 */
+  ck_assert_uint_eq(lex_col(&l), 14);
 }
 END_TEST
 
@@ -344,6 +368,7 @@ START_TEST(peek2_and_ahead)
   ck_assert_int_eq(lex_ahead_next(&l, &a), 'C');
   ck_assert_int_eq(lex_ahead_next(&l, &a), LX_EOB);   /* the comment skipped */
   ck_assert_int_eq(next(), 'B');
+  ck_assert_int_eq(lex_peek(&l), 'C');
   ck_assert_int_eq(lex_col(&l), 4);
   ck_assert_int_eq(next(), 'C');
   ck_assert_int_eq(next(), LX_EOB);
@@ -351,26 +376,87 @@ START_TEST(peek2_and_ahead)
 }
 END_TEST
 
-/* Past the window's end (LX_WIN characters) the characters keep coming */
-START_TEST(long_run)
+/* A long run of characters, on the last line (read a chunk at a time,
+ * LX_CHUNK bytes) and on one before it */
+static void long_run_in(const char *end)
 {
-  char buf[3 * LX_WIN + 8];
+  enum { RUN = 12 * LX_CHUNK + 5 };
+  static char buf[RUN + 16];
   size_t n = 0;
-  for (int i = 0; i < 3 * LX_WIN; i++)
+  for (int i = 0; i < RUN; i++)
     buf[n++] = (char)('0' + i % 10);
   buf[n++] = '/';
   buf[n++] = ';';
-  buf[n] = 0;
+  strcpy(buf + n, end);
   start(buf);
-  for (int i = 0; i < 3 * LX_WIN; i++) {
+  for (int i = 0; i < RUN; i++) {
     ck_assert_int_eq(lex_peek(&l), '0' + i % 10);
     ck_assert_uint_eq(lex_col(&l), (unsigned)i + 1);
     if (i % 7 == 0)
-      ck_assert_int_eq(lex_peek2(&l), i + 1 < 3 * LX_WIN ? '0' + (i + 1) % 10 : '/');
+      ck_assert_int_eq(lex_peek2(&l), i + 1 < RUN ? '0' + (i + 1) % 10 : '/');
     lex_adv(&l);
   }
   ck_assert_int_eq(next(), '/');
   ck_assert_int_eq(lex_raw_peek(&l), ';');   /* text after the slash: not lexed */
+}
+
+START_TEST(long_run)
+{
+  long_run_in("");
+  long_run_in("\n");
+}
+END_TEST
+
+/* The last line's chunks end anywhere: in a space, a letter of two bytes,
+ * ПС, a number; what is read is the same as on a line before it */
+START_TEST(last_line_chunks)
+{
+  static const char *const piece[] = {"Х", " ", "1", "ПС", "+", " ; c", "\t", "№"};
+  char text[4 * LX_CHUNK + 64], text2[sizeof text + 1];
+  for (int pad = 0; pad < 8; pad++) {
+    for (int k = 0; k < 8; k++) {
+      size_t n = 0;
+      for (int i = 0; i < LX_CHUNK - 4 + pad; i++)
+        text[n++] = 'A';
+      for (int j = 0; j < 6; j++) {
+        const char *q = piece[(k + j) % 8];
+        memcpy(text + n, q, strlen(q));
+        n += strlen(q);
+      }
+      text[n] = 0;
+      memcpy(text2, text, n);
+      text2[n] = '\n';
+      text2[n + 1] = 0;
+      /* each of the two: the characters, their columns and lines */
+      int32_t got[2][64 + LX_CHUNK];
+      unsigned col[2][64 + LX_CHUNK], line[2][64 + LX_CHUNK];
+      int m[2];
+      for (int t = 0; t < 2; t++) {
+        diag_free(&d);
+        diag_init(&d, "t.kp");
+        start(t ? text2 : text);
+        int i = 0;
+        for (;;) {
+          int32_t c = lex_peek(&l);
+          got[t][i] = c;
+          col[t][i] = lex_col(&l);
+          line[t][i] = lex_line(&l);
+          i++;
+          if (c == LX_EOF || (t && c == LX_EOB && line[t][i - 1] == 1 && lex_pos(&l) == n))
+            break;
+          lex_adv(&l);
+        }
+        m[t] = i;
+      }
+      ck_assert_int_eq(m[0], m[1]);
+      for (int i = 0; i + 1 < m[0]; i++) {
+        ck_assert_int_eq(got[0][i], got[1][i]);
+        ck_assert_uint_eq(col[0][i], col[1][i]);
+        ck_assert_uint_eq(line[0][i], line[1][i]);
+      }
+      ck_assert_uint_eq(col[0][m[0] - 1], col[1][m[1] - 1]);   /* the end of the file; the newline */
+    }
+  }
 }
 END_TEST
 
@@ -438,6 +524,8 @@ Suite *suite_lex(void)
   tcase_add_test(tc, blen_counts_significant_characters);
   tcase_add_test(tc, peek2_and_ahead);
   tcase_add_test(tc, long_run);
+  tcase_add_test(tc, last_line_chunks);
+  tcase_add_test(tc, blen_counts_text);
   tcase_add_test(tc, skip_block);
   tcase_add_test(tc, cr_only_line_ends);
   tcase_add_test(tc, cr_lf_file_has_no_cr_note);

@@ -4,40 +4,6 @@
 #include "errors.h"
 #include <string.h>
 
-void lex_init(struct lex *l, const char *s, size_t n, struct diag_list *d)
-{
-  memset(l, 0, sizeof *l);
-  l->s = s;
-  l->n = n;
-  l->line = l->col = 1;
-  l->d = d;
-  l->number = -1;
-  /* A UTF-8 byte-order mark is not part of the program. */
-  if (n >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0)
-    l->pos = 3;
-}
-
-/* Decode one code point at p; *len gets its byte length.  Invalid UTF-8 is
- * returned as U+FFFD (one byte), which no word accepts. */
-static int32_t decode(const struct lex *l, size_t p, size_t *len)
-{
-  return utf8_decode((const unsigned char *)l->s + p, l->n - p, len);
-}
-
-
-/* Cyrillic capitals that look like Latin ones: А В С Е Н К М О Р Т Х. */
-static int32_t lookalike(int32_t c)
-{
-  return utf8_latin_lookalike(c);
-}
-
-/* A CR not followed by LF ends a line (classic Mac OS files); in CR LF the
- * CR is only whitespace and the LF ends the line. */
-static int lone_cr(const struct lex *l, size_t p)
-{
-  return l->s[p] == '\r' && (p + 1 >= l->n || l->s[p + 1] != '\n');
-}
-
 /* Every ASCII byte but whitespace, ';' '^' CR LF stands for itself. */
 static const uint8_t lex_plain[256] = {
   /* 0x00..0x1F: controls are characters (which no word accepts), but TAB
@@ -51,29 +17,115 @@ static const uint8_t lex_plain[256] = {
   1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1,
   1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
   1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
-  /* 0x80..0xFF: UTF-8, decoded by lex_one */
+  /* 0x80..0xFF: UTF-8, decoded by scan */
 };
 
-/* The significant character at the cursor *pos (*line, *col), mapped, or
- * LX_EOB, LX_EOF; the cursor steps past it (not past the end of the file)
- * and *ccol gets its column.  *cyr is set for a Cyrillic look-alike.  The
- * notes (a look-alike, CR line ends) are made here, once a file. */
-static int32_t lex_one(struct lex *l, size_t *ppos, unsigned *pline, unsigned *pcol, unsigned *ccol, int *cyr)
+/* lex.h: a byte's character (lex_plain's, but NUL), LX_EOB ('^' LF), or
+ * LX_SLOW. */
+#define E LX_EOB
+#define S LX_SLOW
+const int16_t lex_val[256] = {
+  S, 1, 2, 3, 4, 5, 6, 7, 8, S, E, S, S, S, 14, 15,
+  16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31,
+  S, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47,
+  48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, S, 60, 61, 62, 63,
+  64, 65, 66, 67, 68, 69, 70, 71, 72, 73, 74, 75, 76, 77, 78, 79,
+  80, 81, 82, 83, 84, 85, 86, 87, 88, 89, 90, 91, 92, 93, E, 95,
+  96, 97, 98, 99, 100, 101, 102, 103, 104, 105, 106, 107, 108, 109, 110, 111,
+  112, 113, 114, 115, 116, 117, 118, 119, 120, 121, 122, 123, 124, 125, 126, 127,
+  S, S, S, S, S, S, S, S, S, S, S, S, S, S, S, S,
+  S, S, S, S, S, S, S, S, S, S, S, S, S, S, S, S,
+  S, S, S, S, S, S, S, S, S, S, S, S, S, S, S, S,
+  S, S, S, S, S, S, S, S, S, S, S, S, S, S, S, S,
+  S, S, S, S, S, S, S, S, S, S, S, S, S, S, S, S,
+  S, S, S, S, S, S, S, S, S, S, S, S, S, S, S, S,
+  S, S, S, S, S, S, S, S, S, S, S, S, S, S, S, S,
+  S, S, S, S, S, S, S, S, S, S, S, S, S, S, S, S,
+};
+#undef E
+#undef S
+
+/* Decode one code point at p; *len gets its byte length.  Invalid UTF-8 is
+ * returned as U+FFFD (one byte), which no word accepts. */
+static int32_t decode(const struct lex *l, size_t p, size_t *len)
 {
-  size_t pos = *ppos, len;
-  unsigned line = *pline, col = *pcol;
+  return utf8_decode((const unsigned char *)l->s + p, l->n - p, len);
+}
+
+/* A CR not followed by LF ends a line (classic Mac OS files); in CR LF the
+ * CR is only whitespace and the LF ends the line. */
+static int lone_cr(const struct lex *l, size_t p)
+{
+  return l->s[p] == '\r' && (p + 1 >= l->n || l->s[p + 1] != '\n');
+}
+
+/* The cursor at byte pos (column col): in the text itself before its last
+ * line, else in a chunk holding the `need` bytes from pos (need >= 1; at
+ * the end of the text an empty one, its NUL at pos). */
+static void setp(struct lex *l, size_t pos, unsigned col, size_t need)
+{
+  const unsigned char *p;
+  if (pos < l->tail) {
+    p = (const unsigned char *)l->s + pos;
+    l->pb = (uintptr_t)l->s;
+  } else {
+    if (pos < l->ca || pos + need > l->ca + l->clen) {
+      size_t k = l->n - pos < LX_CHUNK ? l->n - pos : LX_CHUNK;
+      if (k)
+        memcpy(l->chunk, l->s + pos, k);
+      l->chunk[k] = 0;
+      l->ca = pos;
+      l->clen = k;
+    }
+    p = l->chunk + (pos - l->ca);
+    l->pb = (uintptr_t)l->chunk - l->ca;
+  }
+  l->p = p;
+  l->cb = (uintptr_t)p - col;
+  l->mbend = NULL;
+}
+
+void lex_init(struct lex *l, const char *s, size_t n, struct diag_list *d)
+{
+  memset(l, 0, sizeof *l);
+  l->s = s;
+  l->n = n;
+  l->line = 1;
+  l->d = d;
+  l->number = -1;
+  size_t pos = 0;
+  /* A UTF-8 byte-order mark is not part of the program. */
+  if (n >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0)
+    pos = 3;
+  /* the last line: after the last LF or CR, which only lex_adv passes */
+  size_t t = n;
+  while (t > pos && s[t - 1] != '\n' && s[t - 1] != '\r')
+    t--;
+  l->tail = t;
+  l->ca = n + 1;   /* no chunk yet */
+  setp(l, pos, 1, 1);
+}
+
+/* The significant character from byte pos (column col) on, mapped, or
+ * LX_EOB, LX_EOF: *pos and *col move to its start past what is not
+ * significant, *len gets its bytes (0 at the end; ПС is one end of
+ * block), *cyr is set for a Cyrillic look-alike.  The notes (a look-alike,
+ * CR line ends) are made here, once a file. */
+static int32_t scan(struct lex *l, size_t *ppos, unsigned *pcol, size_t *plen, int *cyr)
+{
+  size_t pos = *ppos, len = 0;
+  unsigned col = *pcol;
   int32_t c;
   for (;;) {
     if (pos >= l->n) {
-      *ccol = col;
       c = LX_EOF;
+      len = 0;
       break;
     }
     unsigned char b = (unsigned char)l->s[pos];
     if (lex_plain[b]) {
-      *ccol = col++;
-      pos++;
       c = b;
+      len = 1;
       break;
     }
     if (b == ' ') {
@@ -85,7 +137,7 @@ static int32_t lex_one(struct lex *l, size_t *ppos, unsigned *pline, unsigned *p
     if (c == '\r' && lone_cr(l, pos)) {
       if (!l->cr_noted) {
         l->cr_noted = 1;
-        diag_add(l->d, DIAG_NOTE, 0, line, col, l->number,
+        diag_add(l->d, DIAG_NOTE, 0, l->line, col, l->number,
                  "lines end with CR alone (an old Mac OS file): each CR is read as a line end");
       }
       c = '\n';
@@ -103,33 +155,25 @@ static int32_t lex_one(struct lex *l, size_t *ppos, unsigned *pline, unsigned *p
       }
       continue;
     }
-    *ccol = col;
-    pos += len;
-    col++;
-    if (c == '\n') {
-      line++;
-      col = 1;
-      c = LX_EOB;
-    } else if (c == '^') {
+    if (c == '\n' || c == '^') {
       c = LX_EOB;
     } else if (c == 0x041F) {   /* П: ПС ends the block */
       size_t len2;
-      if (pos < l->n) {
-        int32_t c2 = decode(l, pos, &len2);
+      if (pos + len < l->n) {
+        int32_t c2 = decode(l, pos + len, &len2);
         if (c2 == 0x0421 || c2 == 'C') {
-          pos += len2;
-          col++;
+          len += len2;
           c = LX_EOB;
         }
       }
     } else {
-      int32_t m = lookalike(c);
+      int32_t m = utf8_latin_lookalike(c);
       if (m) {
         if (!l->noted) {
           l->noted = 1;
           l->note = l->d->n;
           l->note_here = 1;
-          diag_add(l->d, DIAG_NOTE, 0, line, *ccol, l->number,
+          diag_add(l->d, DIAG_NOTE, 0, l->line, col, l->number,
                    "Cyrillic look-alike letters are read as the Latin ones (first here)");
         }
         *cyr = 1;
@@ -139,145 +183,126 @@ static int32_t lex_one(struct lex *l, size_t *ppos, unsigned *pline, unsigned *p
     break;
   }
   *ppos = pos;
-  *pline = line;
   *pcol = col;
+  *plen = len;
   return c;
 }
 
-/* What fill() does with each byte: a plain character is one of its own
- * (lex_plain); a space is skipped; a '/' ends the run after it (the text
- * of a slash argument may follow, which is not lexed); '^' and a newline
- * end the block, and the run after them; anything else is lex_one's. */
-enum { LC_OTHER, LC_PLAIN, LC_SPACE, LC_SLASH, LC_CARET, LC_NL };
-static uint8_t lex_class[256];
-
-static void __attribute__((constructor)) lex_class_init(void)
+/* lex_slow past its short ways: the character from the cursor on, by scan. */
+static int32_t __attribute__((noinline)) lex_general(struct lex *l)
 {
-  for (int b = 0; b < 256; b++)
-    lex_class[b] = lex_plain[b] ? LC_PLAIN : LC_OTHER;
-  lex_class[' '] = LC_SPACE;
-  lex_class['/'] = LC_SLASH;
-  lex_class['^'] = LC_CARET;
-  lex_class['\n'] = LC_NL;
+  size_t pos = lex_pos(l), len;
+  unsigned col = lex_col(l), col0 = col;
+  int cyr = 0;
+  int32_t c = scan(l, &pos, &col, &len, &cyr);
+  l->skipped += col - col0;
+  if (c < 0) {   /* the cursor at the end mark, not consumed */
+    setp(l, pos, col, 1);
+    return c;
+  }
+  setp(l, pos, col, len);
+  /* at the character's last byte, its column kept */
+  l->p += len - 1;
+  l->cb += len - 1;
+  l->mbend = l->p;
+  l->mbc = c;
+  l->mbcyr = cyr;
+  return c;
 }
 
-/* Lex more into the window at wn (which is below LX_WIN): a run of plain
- * characters up to the next one that is not (after a '/', an end of block,
- * or a '^' and the newline right after it), or else that one character. */
-static inline __attribute__((always_inline)) void fill(struct lex *l)
+int32_t lex_slow(struct lex *l)
 {
-  const unsigned char *s = (const unsigned char *)l->s;
-  size_t pos = l->pos, lim = l->n;
-  size_t n = l->wn, start = n;
-  int32_t *wc = l->wc;
-  unsigned *wcol = l->wcol;
-  if (lim - pos > LX_WIN - 1 - n)   /* a byte makes one entry at most, and a ^ newline two */
-    lim = pos + (LX_WIN - 1 - n);
-  /* ASCII only: the column of byte p is base + p */
-  unsigned base = l->col - (unsigned)pos;
-  int nl = 0;
-  unsigned ends = 0;   /* end marks made: they are not counted in blen */
-  l->wline = l->line;
-  for (; pos < lim; pos++) {
-    unsigned b = s[pos], k = lex_class[b];
-    if (k == LC_PLAIN) {
-      wc[n] = (int32_t)b;
-      wcol[n] = base + (unsigned)pos;
-      n++;
-      continue;
-    }
-    if (k == LC_SPACE)   /* the space between words: a column, nothing else */
-      continue;
-    if (k == LC_OTHER)
-      break;
-    wc[n] = k == LC_SLASH ? '/' : LX_EOB;
-    wcol[n++] = base + (unsigned)pos++;
-    ends = k != LC_SLASH;
-    if (k == LC_CARET && pos < l->n && s[pos] == '\n') {   /* the usual end of a line: ^ and a newline */
-      wc[n] = LX_EOB;
-      wcol[n++] = base + (unsigned)pos++;
-      ends = 2;
-      k = LC_NL;
-    }
-    nl = k == LC_NL;
-    break;
+  const unsigned char *p = l->p;
+  if (p == l->mbend)
+    return l->mbc;
+  unsigned b = *p;
+  if (b == ' ') {   /* the space between words */
+    const unsigned char *q = p + 1;
+    while (*q == ' ')
+      q++;
+    l->skipped += (unsigned)(q - p);
+    l->p = q;
+    int32_t c = lex_val[*q];
+    if (c != LX_SLOW)
+      return c;
   }
-  l->blen += n - start - ends;
-  l->pos = pos;
-  if (nl) {
-    l->line++;
-    l->col = 1;
-  } else {
-    l->col = base + (unsigned)pos;
-  }
-  if (n == start) {
-    int cyr = 0;
-    int32_t c = lex_one(l, &l->pos, &l->line, &l->col, &wcol[n], &cyr);
-    wc[n++] = c;
-    if (cyr)
-      l->cyr = n;
-    if (c >= 0)
-      l->blen++;
-  }
-  l->wn = n;
+  return lex_general(l);
 }
 
-/* Room for one more character in the window: what is unread moves to its
- * start when it is full. */
-static void room(struct lex *l)
+void lex_adv(struct lex *l)
 {
-  if (l->wn < LX_WIN)
+  const unsigned char *p = l->p;
+  if (p == l->mbend || lex_val[*p] >= 0 || *p == '^') {
+    l->p = p + 1;
     return;
-  size_t k = l->wn - l->wi;
-  memmove(l->wc, l->wc + l->wi, k * sizeof *l->wc);
-  memmove(l->wcol, l->wcol + l->wi, k * sizeof *l->wcol);
-  l->cyr = l->cyr > l->wi ? l->cyr - l->wi : 0;
-  l->wi = 0;
-  l->wn = k;
-}
-
-int32_t lex_more(struct lex *l)
-{
-  if (l->wi >= l->wn)   /* all read: start again at 0 */
-    l->wi = l->wn = l->cyr = 0;
-  else
-    room(l);
-  fill(l);
-  return l->wc[l->wi];
-}
-
-int32_t lex_peek2(struct lex *l)
-{
-  if (l->wi + 1 >= l->wn) {
-    room(l);
-    fill(l);
   }
-  return l->wc[l->wi + 1];
+  if (*p == '\n') {   /* the usual line end: the next line in the text itself, but the last */
+    size_t pos = lex_pos(l) + 1;
+    l->line++;
+    if (pos < l->tail) {
+      l->p = p + 1;
+      l->cb = (uintptr_t)p;
+    } else {
+      setp(l, pos, 1, 1);
+    }
+    return;
+  }
+  /* an end of block (or of the file, which stays) */
+  size_t pos = lex_pos(l), len;
+  unsigned col = lex_col(l);
+  int cyr = 0;
+  int32_t c = scan(l, &pos, &col, &len, &cyr);
+  if (c == LX_EOF)
+    return;
+  if (l->s[pos] == '\n' || l->s[pos] == '\r') {
+    l->line++;
+    setp(l, pos + len, 1, 1);
+  } else {   /* ^, ПС */
+    setp(l, pos + len, col + (len > 1 ? 2 : 1), 1);
+  }
+}
+
+int32_t lex_peek2_slow(struct lex *l)
+{
+  size_t pos = lex_pos(l) + 1, len;
+  unsigned col = lex_col(l) + 1;
+  int cyr = 0;
+  return scan(l, &pos, &col, &len, &cyr);
 }
 
 void lex_ahead_start(const struct lex *l, struct lex_ahead *a)
 {
-  a->i = l->wi;
-  a->pos = l->pos;
-  a->line = l->line;
-  a->col = l->col;
+  a->pos = lex_pos(l) + 1;
+  a->col = lex_col(l) + 1;
+  a->first = 1;
 }
 
 int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a)
 {
-  if (a->i < l->wn)
-    return l->wc[a->i++];
-  unsigned ccol;
+  if (a->first) {
+    a->first = 0;
+    return lex_peek(l);
+  }
+  size_t len = a->pos;
+  if (len < l->n && lex_plain[(unsigned char)l->s[len]]) {   /* a plain one */
+    a->pos++;
+    a->col++;
+    return (unsigned char)l->s[len];
+  }
   int cyr = 0;
-  return lex_one(l, &a->pos, &a->line, &a->col, &ccol, &cyr);
+  int32_t c = scan(l, &a->pos, &a->col, &len, &cyr);
+  a->pos += len;
+  a->col++;
+  return c;
 }
 
 int32_t lex_raw_peek(struct lex *l)
 {
-  if (l->pos >= l->n)
+  size_t pos = lex_pos(l);
+  if (pos >= l->n)
     return LX_EOF;
   size_t len;
-  int32_t c = decode(l, l->pos, &len);
+  int32_t c = decode(l, pos, &len);
   if (c == '\n' || c == '^' || c == '\r')   /* CR alone, or the CR of CR LF */
     return LX_EOB;
   return c;
@@ -285,21 +310,21 @@ int32_t lex_raw_peek(struct lex *l)
 
 void lex_raw_adv(struct lex *l)
 {
-  size_t len;
-  int32_t c = decode(l, l->pos, &len);
-  l->blen++;
-  l->pos += len;
-  if (c == '\n' || (c == '\r' && lone_cr(l, l->pos - len))) {
+  size_t pos = lex_pos(l), len;
+  unsigned col = lex_col(l);
+  int32_t c = decode(l, pos, &len);
+  if (c == '\n' || (c == '\r' && lone_cr(l, pos))) {
     l->line++;
-    l->col = 1;
+    col = 1;
   } else {
-    l->col++;
+    col++;
   }
+  setp(l, pos + len, col, 1);
 }
 
 int lex_cyrillic(const struct lex *l)
 {
-  return l->cyr == l->wi + 1;
+  return l->p == l->mbend && l->mbcyr;
 }
 
 void lex_set_number(struct lex *l, int number)
@@ -316,7 +341,7 @@ void lex_skip_block(struct lex *l)
     int32_t c = lex_peek(l);
     if (c == LX_EOB || c == LX_EOF)
       return;
-    lex_adv(l);
+    lex_adv1(l);
   }
 }
 
@@ -372,7 +397,7 @@ int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col,
   lex_init(&l, text, n, &none);
   *enc = NULL;
   size_t bad = n, highs = 0, len;
-  for (size_t p = l.pos; p < n; p += len) {
+  for (size_t p = lex_pos(&l); p < n; p += len) {
     /* ASCII, 32 and then eight bytes at a time: most programs are nothing else */
     uint64_t w8, w[4];
     while (p + 32 <= n && (memcpy(w, text + p, 32), !((w[0] | w[1] | w[2] | w[3]) & 0x8080808080808080ull)))
@@ -393,7 +418,7 @@ int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col,
     return 0;
   /* line and column of the first bad byte, as the lexer counts them */
   unsigned ln = 1, cl = 1;
-  for (size_t p = l.pos; p < bad; p += len) {
+  for (size_t p = lex_pos(&l); p < bad; p += len) {
     int32_t c = decode(&l, p, &len);
     if (c == '\n' || (c == '\r' && lone_cr(&l, p))) {
       ln++;

@@ -1,19 +1,23 @@
-/* The 2С42 lexer: the significant characters of UTF-8 program text, lexed
- * ahead into a window the parser reads.  Outside text it skips spaces,
- * tabs and `;` comments, maps the Cyrillic look-alike letters to Latin
- * (noting it once per file) and turns newline, `^` and `ПС` into an
+/* The 2С42 lexer: the significant characters of UTF-8 program text, read
+ * by the parser straight from the text's bytes.  Outside text it skips
+ * spaces, tabs and `;` comments, maps the Cyrillic look-alike letters to
+ * Latin (noting it once per file) and turns newline, `^` and `ПС` into an
  * end-of-block mark; inside a slash argument it gives the characters as
- * they are (the lex_raw_ calls, on the bytes after the window).
+ * they are (the lex_raw_ calls).
  *
- * The window: wc[wi..wn) are characters lexed and not yet consumed, wcol
- * their columns.  A run of plain ASCII is lexed in one go; anything else
- * (whitespace but the space, comments, line ends, UTF-8) one character at
- * a time and only when the parser asks for it, so that a note about it is
- * made when the parser first looks at it -- the lexer never lexes a
- * character the parser would not have looked at yet, but for plain ones,
- * which note nothing.  A run ends after a '/' (the text of a slash
- * argument may follow, which is not lexed) and never goes past the end of
- * the block. */
+ * The cursor p points at the byte of the character lex_peek returns: a
+ * plain ASCII one (lex_val) is that byte, read inline, and so are '^' and
+ * LF as the end of block they are; anything else --
+ * a space before it, whitespace, comments, line ends, UTF-8 -- is lexed
+ * by lex_slow when the parser first looks at it, which makes the notes
+ * about it then, as a character at a time.  A character of several bytes
+ * leaves p at its last byte (its value kept in mbc), so that one step on
+ * from any character is p + 1.  Columns are not counted: the column of p
+ * is p - cb, the base moved only where a character is not one byte (and
+ * at a line end).  The last line of the text (after its last line end,
+ * all of it when it has none) is read from copies of LX_CHUNK bytes ended
+ * by a NUL, so that the inline reads never pass the text's end; p's byte
+ * index in the text is p - pb either way. */
 #ifndef S42_LEX_H
 #define S42_LEX_H
 
@@ -23,73 +27,103 @@
 
 #define LX_EOB (-1)   /* end of block: newline, ^ or ПС */
 #define LX_EOF (-2)
-#define LX_WIN 256    /* characters the window holds */
+#define LX_CHUNK 64   /* bytes of the last line copied at a time */
 
 struct lex {
+  const unsigned char *p;     /* the cursor (see above) */
+  uintptr_t cb;               /* the column of p is p - cb */
+  uintptr_t pb;               /* the byte index of p in s is p - pb */
+  const unsigned char *mbend; /* p when the character there was lexed by lex_slow (NULL none) */
+  int32_t mbc;                /* ... the character's value (mapped) */
+  int mbcyr;                  /* ... it was a Cyrillic look-alike */
   const char *s;
-  size_t n, pos;          /* pos: the next byte not lexed */
-  unsigned line, col;     /* of pos (1-based, columns count characters) */
-  unsigned wline;         /* the line of the window's characters (a block's are on one) */
+  size_t n;
+  size_t tail;                /* the last line starts here: from it on p reads chunk */
+  size_t ca, clen;            /* the bytes in chunk: s[ca .. ca + clen) */
+  unsigned line;              /* of p */
+  unsigned skipped;           /* whitespace and comment characters passed since lex_block_begin */
   struct diag_list *d;
-  int number;             /* the current block's number, for diagnostics */
-  int noted;              /* look-alike note given */
-  size_t note;            /* its index in d (for the block number), if given */
-  int note_here;          /* ... during the current block (the parser clears it) */
-  int cr_noted;           /* CR-only line ends noted */
-  unsigned blen;          /* significant characters lexed in the current block */
-  size_t wi, wn;          /* the window: next to read, end (size_t: no int or unsigned store aliases them) */
-  unsigned cyr;           /* 1 + the window index of a Cyrillic look-alike lexed, 0 none */
-  int32_t wc[LX_WIN];     /* the characters (mapped), LX_EOB or LX_EOF */
-  unsigned wcol[LX_WIN];  /* their columns */
+  int number;                 /* the current block's number, for diagnostics */
+  int noted;                  /* look-alike note given */
+  size_t note;                /* its index in d (for the block number), if given */
+  int note_here;              /* ... during the current block (the parser clears it) */
+  int cr_noted;               /* CR-only line ends noted */
+  unsigned char chunk[LX_CHUNK + 1];
 };
+
+/* What lex_peek makes of a byte at the cursor: an ASCII byte that stands
+ * for itself (all but whitespace, ';' '^' CR LF and NUL) is that
+ * character, '^' and LF are LX_EOB, and anything else is LX_SLOW, lex_slow's
+ * (a NUL is a character too, but ends a chunk: lex_slow tells which). */
+#define LX_SLOW (-3)
+extern const int16_t lex_val[256];
 
 void lex_init(struct lex *l, const char *s, size_t n, struct diag_list *d);
 
-/* Lexes at least one more character into the window (at wn); the window
- * restarts at 0 when everything in it was read.  Returns wc[wi]. */
-int32_t lex_more(struct lex *l);
+/* The character at the cursor when its byte is not a plain one: skips
+ * what is not significant (the cursor moves past it) and returns the next
+ * significant character (mapped), LX_EOB or LX_EOF, not consumed. */
+int32_t lex_slow(struct lex *l);
 
 /* The next significant character (mapped), LX_EOB or LX_EOF; not consumed. */
 static inline int32_t lex_peek(struct lex *l)
 {
-  return l->wi < l->wn ? l->wc[l->wi] : lex_more(l);
+  int32_t c = lex_val[*l->p];
+  return c != LX_SLOW ? c : lex_slow(l);
 }
-/* Consume what lex_peek returned. */
-static inline void lex_adv(struct lex *l)
+/* Consume what lex_peek returned, which is no end of block or file. */
+static inline void lex_adv1(struct lex *l)
 {
-  l->wi++;
+  l->p++;
 }
+/* Consume what lex_peek returned, an end of block too. */
+void lex_adv(struct lex *l);
 /* The column of what lex_peek returned (after a lex_peek). */
 static inline unsigned lex_col(const struct lex *l)
 {
-  return l->wcol[l->wi];
+  return (unsigned)((uintptr_t)l->p - l->cb);
 }
-/* The column of the character consumed last (right after a lex_adv, before
- * the next lex_peek, which may restart the window). */
+/* The column of the character consumed last (right after a lex_adv1,
+ * before the next lex_peek). */
 static inline unsigned lex_prev_col(const struct lex *l)
 {
-  return l->wcol[l->wi - 1];
+  return (unsigned)((uintptr_t)l->p - 1 - l->cb);
 }
 /* The line of what lex_peek returned (after a lex_peek). */
 static inline unsigned lex_line(const struct lex *l)
 {
-  return l->wline;
+  return l->line;
+}
+/* The byte index in the text of what lex_peek returned (of its last byte). */
+static inline size_t lex_pos(const struct lex *l)
+{
+  return (size_t)((uintptr_t)l->p - l->pb);
 }
 /* The character after the one lex_peek returned (which is not an end). */
-int32_t lex_peek2(struct lex *l);
+int32_t lex_peek2_slow(struct lex *l);
+static inline int32_t lex_peek2(struct lex *l)
+{
+  int32_t c = lex_val[l->p[1]];
+  return c != LX_SLOW ? c : lex_peek2_slow(l);
+}
 /* Walk the characters from the one lex_peek returned on without consuming
  * them: lex_ahead_start, then lex_ahead_next for each (the first is that
- * one), up to an end of block or file (not past it).  Those after the
- * window are lexed on a copy of the cursor, and lexed again when read:
- * their notes are made the first time, as lex_peek would. */
-struct lex_ahead { unsigned i; size_t pos; unsigned line, col; };
+ * one), up to an end of block or file (not past it).  Those not looked at
+ * yet are lexed on a copy of the cursor, and lexed again when read: their
+ * notes are made the first time, as lex_peek would. */
+struct lex_ahead { size_t pos; unsigned col; int first; };
 void lex_ahead_start(const struct lex *l, struct lex_ahead *a);
 int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a);
-/* Raw access inside text, on the bytes after the window (which must be
- * read to its end): the next character as written, or LX_EOB at a newline
- * or ^ (which end the block even inside text), LX_EOF at the end. */
+/* Raw access inside text, on the bytes at the cursor (after a consumed
+ * character): the next character as written, or LX_EOB at a newline or ^
+ * (which end the block even inside text), LX_EOF at the end. */
 int32_t lex_raw_peek(struct lex *l);
 void lex_raw_adv(struct lex *l);
+/* The column of the cursor inside text. */
+static inline unsigned lex_raw_col(const struct lex *l)
+{
+  return lex_col(l);
+}
 /* The character lex_peek returned was a Cyrillic look-alike. */
 int lex_cyrillic(const struct lex *l);
 /* The current block's number is known now: diagnostics of this block made
@@ -97,6 +131,17 @@ int lex_cyrillic(const struct lex *l);
 void lex_set_number(struct lex *l, int number);
 /* Skip the rest of a malformed block up to (not including) its end mark. */
 void lex_skip_block(struct lex *l);
+/* A block's significant characters: lex_block_begin at its first one
+ * (after a lex_peek of it), lex_block_len at its end mark (after a lex_peek
+ * of it) with the first one's column; the characters of text count too. */
+static inline void lex_block_begin(struct lex *l)
+{
+  l->skipped = 0;
+}
+static inline unsigned lex_block_len(const struct lex *l, unsigned col)
+{
+  return lex_col(l) - col - l->skipped;
+}
 /* Is the text UTF-8?  0 when it is; otherwise 1 with the line, column and
  * value of the first byte that is not, and in *enc the 8-bit Cyrillic encoding
  * ("cp1251", "koi8-u", "cp866") the text reads best in, or NULL for a

@@ -116,9 +116,9 @@ HOT int32_t peek(struct pstate *s) { return lex_peek(&s->p->lx); }
 HOT unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return lex_col(&s->p->lx); }
 /* The column of the character peek() returned, right after it. */
 HOT unsigned here(struct pstate *s) { return lex_col(&s->p->lx); }
-/* Consume the character peek() returned (every adv follows a peek or a
- * peek2 of its character: the window holds it). */
-HOT void adv(struct pstate *s) { lex_adv(&s->p->lx); }
+/* Consume the character peek() returned (every adv follows a peek of its
+ * character: the cursor is at it, not at the whitespace before it). */
+HOT void adv(struct pstate *s) { lex_adv1(&s->p->lx); }
 
 static void expect(struct pstate *s, int32_t c, const char *what)
 {
@@ -166,8 +166,9 @@ static void __attribute__((noinline, cold, noreturn)) long_number(struct pstate 
 
 /* An unsigned integer of at most `maxdig` significant digits: leading
  * zeros are insignificant however many (`G001`, `№0002`, language.md
- * sec. 9), and whitespace between digits too, as everywhere outside text
- * (the window holds the digits without it). */
+ * sec. 9), and whitespace between digits too, as everywhere outside text.
+ * The digits are read from the text's bytes, up to one that is not plain
+ * (lex_peek's work then: what follows may be more digits). */
 HOT long number(struct pstate *s, int maxdig, const char *what)
 {
   struct lex *l = &s->p->lx;
@@ -175,28 +176,25 @@ HOT long number(struct pstate *s, int maxdig, const char *what)
   unsigned col = lex_col(l);
   if (!isdig(c))
     no_number(s, what);
-  long v = 0;
-  int nd = 0;
+  unsigned long v = 0;   /* (wraps past 20 digits: then too long anyway) */
+  size_t nd = 0;
+  const unsigned char *p = l->p;
   for (;;) {
-    size_t i = l->wi, n = l->wn;
-    const int32_t *w = l->wc;
     if (!nd)   /* leading zeros */
-      while (i < n && w[i] == '0')
-        i++;
-    for (; i < n; i++, nd++) {   /* the value from its first 12 digits */
-      unsigned d = (unsigned)(w[i] - '0');
-      if (d > 9)
-        break;
-      if (nd < 12)
-        v = v * 10 + d;
-    }
-    l->wi = i;
-    if (i < n || !isdig(lex_more(l)))   /* the window's end: more digits after it? */
+      while (*p == '0')
+        p++;
+    const unsigned char *q = p;
+    for (unsigned d; (d = (unsigned)*p - '0') <= 9; p++)
+      v = v * 10 + d;
+    nd += (size_t)(p - q);
+    l->p = p;
+    if (lex_val[*p] != LX_SLOW || !isdig(lex_slow(l)))   /* more digits after what is not significant? */
       break;
+    p = l->p;
   }
-  if (nd > maxdig)
-    long_number(s, col, what, nd, maxdig);
-  return v;
+  if (nd > (size_t)maxdig)
+    long_number(s, col, what, (int)nd, maxdig);
+  return (long)v;
 }
 
 /* ---- expressions ---- */
@@ -293,9 +291,9 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
     return e;
   case 'A': {
     int32_t c2 = lex_peek2(&s->p->lx);
-    if (c2 == 'S') { adv(s); adv(s); if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ASI(...)?"); return call(s, OP_ASIN, col, 1, d); }
-    if (c2 == 'C') { adv(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1, d); }
-    if (c2 == 'T') { adv(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1, d); }
+    if (c2 == 'S') { adv(s); peek(s); adv(s); if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ASI(...)?"); return call(s, OP_ASIN, col, 1, d); }
+    if (c2 == 'C') { adv(s); peek(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1, d); }
+    if (c2 == 'T') { adv(s); peek(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1, d); }
     adv(s);
     s->b->slotrd = 1;
     e = node(s, EX_SLOT, col);
@@ -405,6 +403,7 @@ static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struc
 {
   unsigned col = pcol(s);
   adv(s);
+  peek(s);   /* (the second '%' may follow whitespace: the cursor to it) */
   adv(s);
   struct expr *e = node(s, EX_BIN, col);
   e->op = OP_POW;
@@ -650,7 +649,7 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
   char buf[1024];
   size_t n = 0;
   unsigned nch = 0;
-  t->col = l->col;
+  t->col = lex_raw_col(l);
   for (;;) {
     int32_t c = lex_raw_peek(l);
     if (c == '/')
@@ -660,7 +659,7 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
       fail(s, S42_E_TEXT, t->col, "%s: text not closed with '/' before the end of the block", fn);
     }
     if (c == 0 || c == 0xFFFD) {   /* a C string cannot hold a NUL; U+FFFD stands for bad bytes */
-      unsigned col = l->col;
+      unsigned col = lex_raw_col(l);
       lex_peek(l);
       fail(s, S42_E_TEXT, col, "%s: text holds %s", fn, c ? "invalid UTF-8" : "a NUL byte");
     }
@@ -1073,7 +1072,7 @@ static int32_t first_char(struct lex *l)
     int32_t c = lex_peek(l);
     if (c != LX_EOB)
       return c;
-    lex_adv(l);
+    lex_adv(l);   /* (an end of block: lex_adv, not lex_adv1) */
   }
 }
 
@@ -1086,11 +1085,11 @@ static int block_start(struct parser *p, struct block *b)
   p->nodes = 0;
   l->number = -1;   /* before the first peek: a note there is this block's */
   l->note_here = 0;
-  l->blen = 0;      /* the block's characters are counted as they are lexed */
   if (first_char(l) == LX_EOF)
     return 0;
   b->line = lex_line(l);
   b->col = lex_col(l);
+  lex_block_begin(l);   /* the block's characters are counted from here */
   b->badnum = 0;
   return 1;
 }
@@ -1113,7 +1112,7 @@ static void block_words(struct pstate *s)
   if (c == 'N' || c == 0x2116) {   /* N12, №12, № 12 */
     b->ncol = lex_col(l);
     b->badnum = 1;
-    lex_adv(l);
+    lex_adv1(l);
     long n = number(s, 3, "a block number");
     if (n < 1 || n > 999)
       fail(s, S42_E_RANGE, b->ncol, "block number %ld outside 1..999", n);
@@ -1146,7 +1145,7 @@ static void block_end(struct parser *p, struct block *b, int jumped)
   if (jumped)
     lex_skip_block(l);
   p->paren = p->slash_ends = p->nodes = 0;
-  b->len = l->blen;
+  b->len = lex_block_len(l, b->col);   /* (the cursor at the end mark, looked at) */
   if (lex_peek(l) == LX_EOB)
     lex_adv(l);
 }
