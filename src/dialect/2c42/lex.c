@@ -213,10 +213,7 @@ static int32_t __attribute__((noinline)) lex_general(struct lex *l)
 int32_t lex_slow(struct lex *l)
 {
   const unsigned char *p = l->p;
-  if (p == l->mbend)
-    return l->mbc;
-  unsigned b = *p;
-  if (b == ' ') {   /* the space between words */
+  if (*p == ' ') {   /* the space between words (never a character lexed here) */
     const unsigned char *q = p + 1;
     while (*q == ' ')
       q++;
@@ -225,6 +222,8 @@ int32_t lex_slow(struct lex *l)
     int32_t c = lex_val[*q];
     if (c != LX_SLOW)
       return c;
+  } else if (p == l->mbend) {
+    return l->mbc;
   }
   return lex_general(l);
 }
@@ -260,6 +259,18 @@ void lex_adv(struct lex *l)
   } else {   /* ^, ПС */
     setp(l, pos + len, col + (len > 1 ? 2 : 1), 1);
   }
+}
+
+void lex_end_block(struct lex *l)
+{
+  const unsigned char *p = l->p;
+  if (*p == '^' && p[1] == '\n' && lex_pos(l) + 2 < l->tail) {   /* the usual end of a line */
+    l->line++;
+    l->p = p + 2;
+    l->cb = (uintptr_t)p + 1;
+    return;
+  }
+  lex_adv(l);
 }
 
 int32_t lex_peek2_slow(struct lex *l)

@@ -78,6 +78,9 @@ static inline void lex_adv1(struct lex *l)
 }
 /* Consume what lex_peek returned, an end of block too. */
 void lex_adv(struct lex *l);
+/* Consume the end of block lex_peek returned, and with a ^ the line end
+ * right after it (the end of an empty block: what lex_adv of both does). */
+void lex_end_block(struct lex *l);
 /* The column of what lex_peek returned (after a lex_peek). */
 static inline unsigned lex_col(const struct lex *l)
 {

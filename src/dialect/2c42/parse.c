@@ -164,22 +164,14 @@ static void __attribute__((noinline, cold, noreturn)) long_number(struct pstate 
   fail(s, S42_E_RANGE, col, "%s has %d digits; at most %d are allowed", what, nd, maxdig);
 }
 
-/* An unsigned integer of at most `maxdig` significant digits: leading
- * zeros are insignificant however many (`G001`, `№0002`, language.md
- * sec. 9), and whitespace between digits too, as everywhere outside text.
- * The digits are read from the text's bytes, up to one that is not plain
- * (lex_peek's work then: what follows may be more digits). */
-HOT long number(struct pstate *s, int maxdig, const char *what)
+/* The digits of a number split by whitespace (or by a chunk's end), from
+ * the cursor at the first digit after it; nd digits (but leading zeros) so
+ * far, worth v. */
+static unsigned long __attribute__((noinline)) number_more(struct lex *l, unsigned long v, size_t *pnd)
 {
-  struct lex *l = &s->p->lx;
-  int32_t c = lex_peek(l);
-  unsigned col = lex_col(l);
-  if (!isdig(c))
-    no_number(s, what);
-  unsigned long v = 0;   /* (wraps past 20 digits: then too long anyway) */
-  size_t nd = 0;
-  const unsigned char *p = l->p;
-  for (;;) {
+  size_t nd = *pnd;
+  do {
+    const unsigned char *p = l->p;
     if (!nd)   /* leading zeros */
       while (*p == '0')
         p++;
@@ -188,13 +180,43 @@ HOT long number(struct pstate *s, int maxdig, const char *what)
       v = v * 10 + d;
     nd += (size_t)(p - q);
     l->p = p;
-    if (lex_val[*p] != LX_SLOW || !isdig(lex_slow(l)))   /* more digits after what is not significant? */
-      break;
-    p = l->p;
-  }
+  } while (lex_val[*l->p] == LX_SLOW && isdig(lex_slow(l)));
+  *pnd = nd;
+  return v;
+}
+
+/* An unsigned integer of at most `maxdig` significant digits, whose first
+ * digit lex_peek returned: leading zeros are insignificant however many
+ * (`G001`, `№0002`, language.md sec. 9), and whitespace between digits too,
+ * as everywhere outside text.  The digits are read from the text's bytes,
+ * up to one that is not plain (lex_slow's then: more digits may follow). */
+HOT long digits(struct pstate *s, int maxdig, const char *what)
+{
+  struct lex *l = &s->p->lx;
+  const unsigned char *p = l->p;
+  const unsigned char *first = p;
+  while (*p == '0')   /* leading zeros */
+    p++;
+  const unsigned char *q = p;
+  unsigned long v = 0;   /* (wraps past 20 digits: then too long anyway) */
+  for (unsigned d; (d = (unsigned)*p - '0') <= 9; p++)
+    v = v * 10 + d;
+  size_t nd = (size_t)(p - q);
+  uintptr_t cb = l->cb;
+  l->p = p;
+  if (lex_val[*p] == LX_SLOW && isdig(lex_slow(l)))   /* (a space after it: past it) */
+    v = number_more(l, v, &nd);
   if (nd > (size_t)maxdig)
-    long_number(s, col, what, (int)nd, maxdig);
+    long_number(s, (unsigned)((uintptr_t)first - cb), what, (int)nd, maxdig);
   return (long)v;
+}
+
+/* The same, the first digit not looked at yet. */
+HOT long number(struct pstate *s, int maxdig, const char *what)
+{
+  if (!isdig(lex_peek(&s->p->lx)))
+    no_number(s, what);
+  return digits(s, maxdig, what);
 }
 
 /* ---- expressions ---- */
@@ -366,14 +388,14 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
   }
 }
 
-HOT struct expr *primary(struct pstate *s, size_t d)
+/* An operand; c is its first character, which peek() returned. */
+HOT struct expr *primary(struct pstate *s, int32_t c, size_t d)
 {
-  int32_t c = peek(s);
   unsigned col = here(s);
   struct expr *e;
   if (isdig(c)) {
     e = node(s, EX_NUM, col);
-    long n = number(s, 7, "a number");
+    long n = digits(s, 7, "a number");
     e->v = (double)n;
     e->idx = (unsigned)n;   /* (seven digits at most: an instruction's INT) */
     return e;
@@ -413,19 +435,20 @@ static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struc
   return e;
 }
 
-/* power := primary [ %% unary ] */
-HOT struct expr *power(struct pstate *s, size_t d)
+/* power := primary [ %% unary ]; c the primary's first character, which
+ * peek() returned */
+HOT struct expr *power(struct pstate *s, int32_t c, size_t d)
 {
-  struct expr *b = primary(s, d);
+  struct expr *b = primary(s, c, d);
   if (peek(s) == '%' && lex_peek2(&s->p->lx) == '%')
     return power_rest(s, b, d);
   return b;
 }
 
-/* A sign applies to the factor that follows, power included: -2%%2 = -4. */
-HOT struct expr *unary_inner(struct pstate *s, size_t d)
+/* A sign applies to the factor that follows, power included: -2%%2 = -4.
+ * c is the operand's first character, which peek() returned. */
+HOT struct expr *unary_inner(struct pstate *s, int32_t c, size_t d)
 {
-  int32_t c = peek(s);
   if (c == '+' || c == '-') {
     unsigned col = here(s);
     adv(s);
@@ -439,7 +462,7 @@ HOT struct expr *unary_inner(struct pstate *s, size_t d)
     if (c2 == '+' || c2 == '-' || c2 == '(')
       u = unary(s, d + 1);
     else
-      u = power(s, d + 2);
+      u = power(s, c2, d + 2);
     if (c == '+')
       return u;
     struct expr *e = node(s, EX_NEG, col);
@@ -450,9 +473,9 @@ HOT struct expr *unary_inner(struct pstate *s, size_t d)
   if (c == '(') {
     if (d + 1 > MAX_DEPTH)
       fail(s, S42_E_SYNTAX, pcol(s), "expression nested too deeply");
-    return power(s, d + 1);
+    return power(s, c, d + 1);
   }
-  return power(s, d);
+  return power(s, c, d);
 }
 
 /* unary: one level more, checked at the character consumed last (the
@@ -462,7 +485,7 @@ HOT struct expr *operand(struct pstate *s, size_t d)
 {
   if (d + 1 > MAX_DEPTH)
     fail(s, S42_E_SYNTAX, lex_prev_col(&s->p->lx), "expression nested too deeply");
-  return unary_inner(s, d + 1);
+  return unary_inner(s, peek(s), d + 1);
 }
 
 static struct expr *__attribute__((noinline)) unary(struct pstate *s, size_t d)
@@ -472,12 +495,11 @@ static struct expr *__attribute__((noinline)) unary(struct pstate *s, size_t d)
 
 /* The same left-deep trees as term inside expr, made in the same order:
  * `mul` is the / or % waiting for its right operand, `top` the + or -
- * waiting for its right term. */
-HOT struct expr *expr_in(struct pstate *s, size_t d)
+ * waiting for its right term.  e is the first operand, parsed. */
+HOT struct expr *expr_rest(struct pstate *s, struct expr *e, size_t d)
 {
-  struct expr *e, *top = NULL, *mul = NULL;
+  struct expr *top = NULL, *mul = NULL;
   for (;;) {
-    e = operand(s, d);
     if (mul) {
       mul->b = e;
       need2(mul);
@@ -493,6 +515,7 @@ HOT struct expr *expr_in(struct pstate *s, size_t d)
       mul = node(s, EX_BIN, col);
       mul->op = c == '/' ? OP_DIV : OP_MUL;
       mul->a = e;
+      e = operand(s, d);
       continue;
     }
     if (top) {   /* the term is whole: the right operand of the + or - */
@@ -508,7 +531,13 @@ HOT struct expr *expr_in(struct pstate *s, size_t d)
     top = node(s, EX_BIN, col);
     top->op = c == '+' ? OP_ADD : OP_SUB;
     top->a = e;
+    e = operand(s, d);
   }
+}
+
+HOT struct expr *expr_in(struct pstate *s, size_t d)
+{
+  return expr_rest(s, operand(s, d), d);
 }
 
 /* expr(), out of line: where expressions nest */
@@ -542,7 +571,8 @@ HOT struct expr *word_value(struct pstate *s, const char *word, int rn, int sign
   int32_t c = peek(s);
   if ((sign && c != '+' && c != '-') || c == LX_EOB || c == LX_EOF)
     no_value(s, word, rn, sign);
-  return expr_in(s, 0);   /* a word's value: nothing around it */
+  /* a word's value: nothing around it (operand()'s check at depth 0 passes) */
+  return expr_rest(s, unary_inner(s, c, 1), 0);
 }
 
 /* ---- conditions ---- */
@@ -840,11 +870,11 @@ HOT void once(struct pstate *s, int there, const char *name, unsigned col)
     fail(s, S42_E_SYNTAX, col, "%s appears twice in the block", name);
 }
 
-static inline __attribute__((always_inline)) void word(struct pstate *s)
+/* A word; c its first character, which peek() returned. */
+static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t c)
 {
   char buf[32];
   struct block *b = s->b;
-  int32_t c = peek(s);
   unsigned col = here(s);
   struct word *w;
   switch (c) {
@@ -1124,7 +1154,7 @@ static void block_words(struct pstate *s)
     int32_t w = lex_peek(l);
     if (w == LX_EOB || w == LX_EOF)
       break;
-    word(s);
+    word(s, w);
   }
   if (b->g28reg == -2)
     fail(s, S42_E_SYNTAX, b->g28col, "G28 /min:max/ must be followed by the parameter: G28 /min:max/ R3");
@@ -1147,7 +1177,7 @@ static void block_end(struct parser *p, struct block *b, int jumped)
   p->paren = p->slash_ends = p->nodes = 0;
   b->len = lex_block_len(l, b->col);   /* (the cursor at the end mark, looked at) */
   if (lex_peek(l) == LX_EOB)
-    lex_adv(l);
+    lex_end_block(l);   /* (the empty block of a line end after a ^ too, which first_char would skip) */
 }
 
 int parse_block(struct parser *p, struct block *b)
