@@ -75,6 +75,7 @@ struct comp {
   size_t bstart;           /* the current block's first instruction */
   unsigned need;           /* the most stack the block's expressions need (the parser's bound) */
   uint32_t ruleidx[16][2];  /* 1 + the program's rule of each kind (enum rule_kind, clamp 2 or not), 0 none yet */
+  struct aslot *ah;        /* the attributes kept lately (keep_attr) */
 };
 
 static uint16_t col16(unsigned col)
@@ -1098,6 +1099,71 @@ static uint32_t add_str(struct comp *c, const struct text *t)
 
 static int keep_more(struct comp *c, const struct block *b, struct kp_attr *at);
 
+/* The attributes kept lately, by a hash of their bits (2^AH_BITS slots, 64
+ * KiB: in cache): a block whose attributes are in its slot takes that
+ * index, another is kept anew and takes the slot.  A program has few
+ * different attributes, which stay; one whose every block differs (texts)
+ * costs a look into this table a block, not into kp_ext.a. */
+#define AH_BITS 13
+struct aslot { uint32_t fp, e; };   /* the hash's low bits; 1 + the index in kp_ext.a, 0 none */
+
+static inline uint64_t attr_hash(const struct kp_attr *at)
+{
+  uint64_t w[4];
+  memcpy(w, at, sizeof w);
+  return (w[0] ^ (w[1] << 23 | w[1] >> 41)) * 0x9E3779B97F4A7C15ull +
+         (w[2] ^ (w[3] << 37 | w[3] >> 27)) * 0xBF58476D1CE4E5B9ull;
+}
+
+/* The block's attributes: its index into kp_ext.a, where an equal record
+ * is kept once (mostly: see struct aslot). */
+static void keep_attr(struct comp *c, const struct kp_attr *at)
+{
+  struct kp_ext *x = c->x;
+  if (!c->ah && !(c->ah = calloc((size_t)1 << AH_BITS, sizeof *c->ah))) {
+    c->oom = 1;
+    return;
+  }
+  uint64_t h = attr_hash(at);
+  struct aslot *sl = &c->ah[h >> (64 - AH_BITS)];
+  uint32_t e = sl->e;
+  if (!e || sl->fp != (uint32_t)h || memcmp(&x->a[e - 1], at, sizeof *at) != 0) {
+    x->a = grow(x->a, &x->cap, x->n + 1, sizeof *x->a, &c->oom);
+    if (c->oom)
+      return;
+    x->a[x->n++] = *at;
+    e = (uint32_t)x->n;
+    sl->fp = (uint32_t)h;
+    sl->e = e;
+  }
+  if (!x->ai32 && e > 0x10000) {   /* past 16 bits: 32 from here on */
+    uint32_t *w = malloc((x->capai ? x->capai : 1) * sizeof *w);
+    if (!w) {
+      c->oom = 1;
+      return;
+    }
+    for (size_t k = 0; k < x->nai; k++)
+      w[k] = x->ai16[k];
+    free(x->ai16);
+    x->ai16 = NULL;
+    x->ai32 = w;
+  }
+  if (x->nai >= x->capai) {
+    size_t cap = x->capai;
+    if (x->ai32)
+      x->ai32 = grow(x->ai32, &cap, x->nai + 1, sizeof *x->ai32, &c->oom);
+    else
+      x->ai16 = grow(x->ai16, &cap, x->nai + 1, sizeof *x->ai16, &c->oom);
+    if (c->oom)
+      return;
+    x->capai = cap;
+  }
+  if (x->ai32)
+    x->ai32[x->nai++] = e - 1;
+  else
+    x->ai16[x->nai++] = (uint16_t)(e - 1);
+}
+
 static void compile_block(struct comp *c)
 {
   struct block *b = c->b;
@@ -1112,11 +1178,10 @@ static void compile_block(struct comp *c)
     c->oom = 1;
     return;
   }
-  c->x->a = grow(c->x->a, &c->x->cap, c->x->n + 1, sizeof *c->x->a, &c->oom);
   c->sf = grow(c->sf, &c->capsf, c->ns + 1, sizeof *c->sf, &c->oom);
   if (c->oom)
     return;
-  struct kp_attr *at = &c->x->a[c->x->n++];
+  struct kp_attr attr, *at = &attr;   /* kept (keep_attr) once the block is compiled */
   uint8_t *flags = &c->sf[c->ns];
   int jumps = L || P || PC || PP;
   struct summ summ, *sm = &summ;   /* the block's calls and jumps: made when it has some */
@@ -1302,6 +1367,7 @@ static void compile_block(struct comp *c)
   c->prev_g27 = G(27);
   if (G(34))
     c->seen_g34 = 1;
+  keep_attr(c, at);
 }
 
 /* The block's texts, dialog forms and M16 list, kept in kp_ext.more; 0
@@ -1365,6 +1431,8 @@ static void ext_free(void *v)
   if (!x)
     return;
   free(x->a);
+  free(x->ai16);
+  free(x->ai32);
   free(x->more);
   free(x->str);
   free(x->lines);
@@ -1793,6 +1861,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
     diag_add(d, DIAG_ERROR, S42_E_LIMIT, 1, 1, -1, "out of memory");
   free(c.sf);
   free(c.s);
+  free(c.ah);
   free(c.b);
   diag_sort(d);
   return d->nerr ? -1 : 0;
