@@ -172,12 +172,12 @@ static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
 {
   struct program *p = c->p;
   size_t n = p->ncode;
-  if (__builtin_expect(n >= p->capcode, 0))   /* full (or at PROG_MAX_CODE) */
+  if (__builtin_expect(n >= p->capcode || col >= PROG_COLBIG, 0))   /* full (or at PROG_MAX_CODE); a column for colx */
     return emit_grow(c, INS(op, a), col);
   uint32_t *code = p->code;
-  uint16_t *cols = p->cols;
+  uint8_t *cols = p->cols;
   code[n] = INS(op, a);
-  cols[n] = (uint16_t)(col > 0xffff ? 0xffff : col);
+  cols[n] = (uint8_t)col;
   p->ncode = n + 1;
   return (long)n;
 }
@@ -334,7 +334,8 @@ static void fuse_compare(struct comp *c)
   if (idx < 0 || (uint32_t)idx > INS_AMAX >> 3)
     return;
   c->p->code[n - 2] = INS(op, rel | (uint32_t)idx << 3);
-  c->p->cols[n - 2] = c->p->cols[n - 1];
+  if (prog_col_copy(c->p, n - 2, n - 1))
+    c->oom = 1;
   c->p->ncode = n - 1;
   peep_end(c);
 }
@@ -433,7 +434,8 @@ static void gen(struct comp *c, struct expr *e, int memo)
         }
       }
       c->p->code[mark] = INS(fused, INS_A(last));
-      c->p->cols[mark] = (uint16_t)(e->col > 0xffff ? 0xffff : e->col);
+      if (prog_col_set(c->p, mark, e->col))
+        c->oom = 1;
       peep_end(c);
       return;
     }
@@ -1299,7 +1301,8 @@ static void compile_block(struct comp *c)
     if (!h && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
       /* COMMIT; INT 1; CALL in one instruction */
       c->p->code[c->p->ncode - 1] = INS(OP_CCALL, 0);
-      c->p->cols[c->p->ncode - 1] = col16(L->col);
+      if (prog_col_set(c->p, c->p->ncode - 1, L->col))
+        c->oom = 1;
       sm->callpc = boff(c, (long)c->p->ncode - 1);
     } else {
       emit(c, h ? OP_WORD : OP_INT, h ? SL_H : 1, L->col);   /* the count: H's value, or once */
@@ -1323,7 +1326,8 @@ static void compile_block(struct comp *c)
     if (!L && !PP && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
       /* COMMIT; JMP / JCOND in one instruction */
       c->p->code[c->p->ncode - 1] = INS(P ? OP_CJMP : OP_CJCOND, 0);
-      c->p->cols[c->p->ncode - 1] = col16(j->col);
+      if (prog_col_set(c->p, c->p->ncode - 1, j->col))
+        c->oom = 1;
       sm->jpc = boff(c, (long)c->p->ncode - 1);
     } else {
       sm->jpc = boff(c, emit(c, P ? OP_JMP : OP_JCOND, 0, j->col));
