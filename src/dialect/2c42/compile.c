@@ -74,6 +74,7 @@ struct comp {
   int plug_g;              /* a group-1 G of a plugin that is not the language's, 0 none */
   size_t bstart;           /* the current block's first instruction */
   unsigned need;           /* the most stack the block's expressions need (the parser's bound) */
+  int plane, arc;          /* the block's plane (plane_of) and arc G (first_g of g_arc, -1 none): check_block's */
   uint32_t ruleidx[16][2];  /* 1 + the program's rule of each kind (enum rule_kind, clamp 2 or not), 0 none yet */
   struct aslot *ah;        /* the attributes kept lately (keep_attr) */
 };
@@ -881,6 +882,24 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
 {
   struct block *b = c->b;
   unsigned col;
+  int plane = 0;
+  char list[80];
+  /* the axis and centre words, and the column of the first of each in
+   * slot order (X Y Z A, I J K) */
+  unsigned axes = b->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
+  unsigned centres = b->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
+  static const uint8_t nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};   /* (no popcnt call) */
+  int naxis = nbits[axes], ncentre = nbits[centres >> SL_I];
+  unsigned cecol = centres ? b->slotcol[__builtin_ctz(centres)] : 0;
+  if (!(b->g | b->m) && !b->ngw) {
+    /* no G or M function: of the checks below only the centre words',
+     * H's, the calls' and jumps' and the length apply */
+    c->arc = -1;
+    c->plane = 0;
+    if (ncentre)
+      err(c, S42_E_BLOCK, cecol, "centre words I J K belong to an arc (%s)", kp_codes(list, sizeof list, is_arc));
+    goto words;
+  }
   /* groups, the G words in text order */
   int seen[5] = {0};
   for (int i = 0; i < b->ngw; i++) {
@@ -891,14 +910,7 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
     else
       seen[grp] = w->num;
   }
-  /* the axis and centre words, and the column of the first of each in
-   * slot order (X Y Z A, I J K) */
-  unsigned axes = b->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
-  unsigned centres = b->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
-  static const uint8_t nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};   /* (no popcnt call) */
-  int naxis = nbits[axes], ncentre = nbits[centres >> SL_I];
   unsigned axcol = axes ? b->slotcol[__builtin_ctz(axes)] : 0;
-  unsigned cecol = centres ? b->slotcol[__builtin_ctz(centres)] : 0;
   /* a dialog or display function (group 4) stands with no function of
    * groups 1-3 and no axis or centre word: only assignments, array
    * operations and M functions beside it (language.md sec. 8) */
@@ -921,8 +933,7 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
     }
   }
   const struct word *F = b->wF >= 0 ? &b->w[b->wF] : NULL;
-  int arc = first_g(b, c->g_arc);   /* its G, or -1 */
-  char list[80];
+  int arc = c->arc = first_g(b, c->g_arc);   /* its G, or -1 */
 
   /* functions that stand in a separate block */
   for (uint64_t bits = b->g & c->g_sep; bits;) {
@@ -950,7 +961,7 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
   }
 
   /* arcs and planes */
-  int plane = plane_of(c, b);
+  plane = c->plane = plane_of(c, b);
   if (arc >= 0) {
     int g = arc;
     int helix = (kp_g(g)->flags & KP_HELIX) != 0;
@@ -1009,6 +1020,7 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
     err(c, S42_E_BLOCK, b->mcol[21], "M21 is not allowed in a block with G%02d", dg);
   if ((M(10) || M(12)) && !(G(10) || G(11)))
     err(c, S42_E_BLOCK, b->mcol[M(10) ? 10 : 12], "M%d belongs to a tooth-step search (G10 or G11)", M(10) ? 10 : 12);
+words:
   if (slot_word(c, SL_H, &col) && !L)
     err(c, S42_E_BLOCK, col, "H (repeat count) without L (sub call)");
   if (L || P || PC || PP) {
@@ -1166,11 +1178,17 @@ static void keep_attr(struct comp *c, const struct kp_attr *at)
     x->ai16[x->nai++] = (uint16_t)(e - 1);
 }
 
-static void compile_block(struct comp *c)
+static inline __attribute__((always_inline)) void compile_block(struct comp *c)
 {
   struct block *b = c->b;
-  const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PC = find_word(c, WK_PCOND),
-                    *PP = find_word(c, WK_PP);
+  const struct word *L = NULL, *P = NULL, *PC = NULL, *PP = NULL;
+  int jumps = (b->wkinds & (1u << WK_L | 1u << WK_P | 1u << WK_PCOND | 1u << WK_PP)) != 0;
+  if (jumps) {
+    L = find_word(c, WK_L);
+    P = find_word(c, WK_P);
+    PC = find_word(c, WK_PCOND);
+    PP = find_word(c, WK_PP);
+  }
   check_block(c, L, P, PC, PP);
 
   struct prog_block pb = {.code = (uint32_t)c->p->ncode, .line = b->line,
@@ -1185,7 +1203,6 @@ static void compile_block(struct comp *c)
     return;
   struct kp_attr attr, *at = &attr;   /* kept (keep_attr) once the block is compiled */
   uint8_t *flags = &c->sf[c->ns];
-  int jumps = L || P || PC || PP;
   struct summ summ, *sm = &summ;   /* the block's calls and jumps: made when it has some */
   if (jumps)
     summ = (struct summ){.i = (uint32_t)c->ns, .L = -1, .P = -1, .PP = -1, .callpc = NOPC, .jpc = NOPC, .pppc = NOPC};
@@ -1193,7 +1210,7 @@ static void compile_block(struct comp *c)
   *flags = (uint8_t)((b->bad ? SF_BAD : 0) | (b->badnum ? SF_NONUM : 0));
   c->bstart = pb.code;
   *at = (struct kp_attr){.g = b->g, .m = b->m, .plugins = c->plugmask, .plug_g = (uint8_t)c->plug_g,
-                         .plane = (uint8_t)plane_of(c, b)};
+                         .plane = (uint8_t)c->plane};
   int mo = motion_of(c, b);
   c->given = c->isconst = c->badslot = 0;
   c->need = 0;
@@ -1259,9 +1276,8 @@ static void compile_block(struct comp *c)
       err(c, S42_E_RANGE, b->g28col, "G28 /%.10g:%.10g/: the minimum is over the maximum, so no number can pass",
           c->kval[SL_MIN], c->kval[SL_MAX]);
   }
-  int arc = first_g(b, c->g_arc);
-  if (arc >= 0 && at->plane)
-    check_arc_const(c, at->plane, b->gcol[arc]);
+  if (c->arc >= 0 && at->plane)
+    check_arc_const(c, at->plane, b->gcol[c->arc]);
   if (b->cond && PC && !b->bad) {
     if (b->cond->need > c->need)
       c->need = b->cond->need;
