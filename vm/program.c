@@ -20,6 +20,7 @@ void prog_free(struct program *p)
 {
   free(p->code);
   free(p->cols);
+  free(p->colx);
   free(p->k);
   free(p->rules);
   free(p->blocks);
@@ -53,14 +54,56 @@ long prog_emit_grow(struct program *p, uint32_t ins, unsigned col)
   if (p->capcode > PROG_MAX_CODE)
     p->capcode = PROG_MAX_CODE;   /* prog_emit's fast path stops there */
   if (cap != p->capcode) {
-    uint16_t *c = realloc(p->cols, p->capcode * sizeof *c);
+    uint8_t *c = realloc(p->cols, p->capcode * sizeof *c);
     if (!c)
       return -1;
     p->cols = c;
   }
+  if (prog_col_set(p, p->ncode, col))
+    return -1;
   p->code[p->ncode] = ins;
-  p->cols[p->ncode] = (uint16_t)(col > 0xffff ? 0xffff : col);
   return (long)p->ncode++;
+}
+
+/* The first entry of colx at or after pc. */
+static size_t colx_at(const struct program *p, size_t pc)
+{
+  size_t lo = 0, hi = p->ncolx;
+  if (hi && p->colx[hi - 1].pc < pc)
+    return hi;   /* (the common case: a column added at the end) */
+  while (lo < hi) {
+    size_t mid = (lo + hi) / 2;
+    if (p->colx[mid].pc < pc)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+unsigned prog_col_big(const struct program *p, size_t pc)
+{
+  size_t i = colx_at(p, pc);
+  return i < p->ncolx && p->colx[i].pc == pc ? p->colx[i].col : 0;
+}
+
+int prog_col_set_big(struct program *p, size_t pc, unsigned col)
+{
+  if (col < PROG_COLBIG) {
+    p->cols[pc] = (uint8_t)col;
+    return 0;
+  }
+  size_t i = colx_at(p, pc);
+  if (i == p->ncolx || p->colx[i].pc != pc) {
+    if (grow((void **)&p->colx, &p->capcolx, p->ncolx + 1, sizeof *p->colx))
+      return -1;
+    memmove(&p->colx[i + 1], &p->colx[i], (p->ncolx - i) * sizeof *p->colx);
+    p->ncolx++;
+    p->colx[i].pc = (uint32_t)pc;
+  }
+  p->colx[i].col = (uint16_t)(col > 0xffff ? 0xffff : col);
+  p->cols[pc] = PROG_COLBIG;
+  return 0;
 }
 
 /* The kseen slot of a constant's bits. */

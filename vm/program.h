@@ -1,5 +1,6 @@
 /* A compiled program: bytecode, constants, conversion rules, the block table
- * (bytecode -> block number, line, column) and a per-instruction column map,
+ * (bytecode -> block number, line, column) and a per-instruction column map
+ * (prog_col),
  * and what the VM is to enforce and say for it: the dialect's limits
  * (`lim`: call depth, arrays, value ranges, the angle unit and the
  * functions' domains) and its message texts (`msgs`, vm/msgs.h).
@@ -54,9 +55,15 @@ struct prog_limits {
 
 struct vm_msgs;   /* vm/msgs.h */
 
+/* A column of 255 or more (few: a block is at most 320 characters) is
+ * PROG_COLBIG in program.cols and kept in program.colx by its pc. */
+#define PROG_COLBIG 255u
+struct prog_colx { uint32_t pc; uint16_t col; };
+
 struct program {
   uint32_t *code;  size_t ncode, capcode;
-  uint16_t *cols;                     /* column of each instruction */
+  uint8_t *cols;                      /* column of each instruction (prog_col), PROG_COLBIG: in colx */
+  struct prog_colx *colx;  size_t ncolx, capcolx;   /* the columns of PROG_COLBIG or more, by pc */
   double *k;       size_t nk, capk;
   uint32_t kseen[64];                 /* prog_const's memory: 1 + the index of the latest constant
                                          of each hash of its bits (a hint, checked), 0 none */
@@ -87,11 +94,36 @@ void prog_free(struct program *p);
 long prog_emit_grow(struct program *p, uint32_t ins, unsigned col);
 static inline long prog_emit(struct program *p, uint32_t ins, unsigned col)
 {
-  if (p->ncode >= p->capcode)   /* full (or at PROG_MAX_CODE) */
+  if (p->ncode >= p->capcode || col >= PROG_COLBIG)   /* full (or at PROG_MAX_CODE); a column for colx */
     return prog_emit_grow(p, ins, col);
   p->code[p->ncode] = ins;
-  p->cols[p->ncode] = (uint16_t)(col > 0xffff ? 0xffff : col);
+  p->cols[p->ncode] = (uint8_t)col;
   return (long)p->ncode++;
+}
+
+/* The column of instruction pc (< ncode): 1.., 0 none; at most 65535. */
+unsigned prog_col_big(const struct program *p, size_t pc);
+static inline unsigned prog_col(const struct program *p, size_t pc)
+{
+  unsigned c = p->cols[pc];
+  return c != PROG_COLBIG ? c : prog_col_big(p, pc);
+}
+/* Set the column of instruction pc (< capcode); 0, or -1 out of memory. */
+int prog_col_set_big(struct program *p, size_t pc, unsigned col);
+static inline int prog_col_set(struct program *p, size_t pc, unsigned col)
+{
+  if (col >= PROG_COLBIG)
+    return prog_col_set_big(p, pc, col);
+  p->cols[pc] = (uint8_t)col;
+  return 0;
+}
+/* Instruction `to` takes the column of `from`. */
+static inline int prog_col_copy(struct program *p, size_t to, size_t from)
+{
+  if (p->cols[from] == PROG_COLBIG)
+    return prog_col_set_big(p, to, prog_col_big(p, from));
+  p->cols[to] = p->cols[from];
+  return 0;
 }
 long prog_const(struct program *p, double v);
 /* n constants in a row, none reused; the index of the first, or -1. */

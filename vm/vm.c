@@ -87,7 +87,7 @@ static void raise_at(struct vm *vm, uint32_t pc, int code, const char *fmt, ...)
 {
   va_list ap;
   va_start(ap, fmt);
-  verr(vm, code, pc < vm->p->ncode ? vm->p->cols[pc] : 0, fmt, ap);
+  verr(vm, code, pc < vm->p->ncode ? prog_col(vm->p, pc) : 0, fmt, ap);
   va_end(ap);
 }
 

@@ -74,7 +74,9 @@ struct comp {
   int plug_g;              /* a group-1 G of a plugin that is not the language's, 0 none */
   size_t bstart;           /* the current block's first instruction */
   unsigned need;           /* the most stack the block's expressions need (the parser's bound) */
+  int plane, arc;          /* the block's plane (plane_of) and arc G (first_g of g_arc, -1 none): check_block's */
   uint32_t ruleidx[16][2];  /* 1 + the program's rule of each kind (enum rule_kind, clamp 2 or not), 0 none yet */
+  struct aslot *ah;        /* the attributes kept lately (keep_attr) */
 };
 
 static uint16_t col16(unsigned col)
@@ -171,12 +173,12 @@ static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
 {
   struct program *p = c->p;
   size_t n = p->ncode;
-  if (__builtin_expect(n >= p->capcode, 0))   /* full (or at PROG_MAX_CODE) */
+  if (__builtin_expect(n >= p->capcode || col >= PROG_COLBIG, 0))   /* full (or at PROG_MAX_CODE); a column for colx */
     return emit_grow(c, INS(op, a), col);
   uint32_t *code = p->code;
-  uint16_t *cols = p->cols;
+  uint8_t *cols = p->cols;
   code[n] = INS(op, a);
-  cols[n] = (uint16_t)(col > 0xffff ? 0xffff : col);
+  cols[n] = (uint8_t)col;
   p->ncode = n + 1;
   return (long)n;
 }
@@ -333,7 +335,8 @@ static void fuse_compare(struct comp *c)
   if (idx < 0 || (uint32_t)idx > INS_AMAX >> 3)
     return;
   c->p->code[n - 2] = INS(op, rel | (uint32_t)idx << 3);
-  c->p->cols[n - 2] = c->p->cols[n - 1];
+  if (prog_col_copy(c->p, n - 2, n - 1))
+    c->oom = 1;
   c->p->ncode = n - 1;
   peep_end(c);
 }
@@ -432,7 +435,8 @@ static void gen(struct comp *c, struct expr *e, int memo)
         }
       }
       c->p->code[mark] = INS(fused, INS_A(last));
-      c->p->cols[mark] = (uint16_t)(e->col > 0xffff ? 0xffff : e->col);
+      if (prog_col_set(c->p, mark, e->col))
+        c->oom = 1;
       peep_end(c);
       return;
     }
@@ -878,6 +882,24 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
 {
   struct block *b = c->b;
   unsigned col;
+  int plane = 0;
+  char list[80];
+  /* the axis and centre words, and the column of the first of each in
+   * slot order (X Y Z A, I J K) */
+  unsigned axes = b->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
+  unsigned centres = b->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
+  static const uint8_t nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};   /* (no popcnt call) */
+  int naxis = nbits[axes], ncentre = nbits[centres >> SL_I];
+  unsigned cecol = centres ? b->slotcol[__builtin_ctz(centres)] : 0;
+  if (!(b->g | b->m) && !b->ngw) {
+    /* no G or M function: of the checks below only the centre words',
+     * H's, the calls' and jumps' and the length apply */
+    c->arc = -1;
+    c->plane = 0;
+    if (ncentre)
+      err(c, S42_E_BLOCK, cecol, "centre words I J K belong to an arc (%s)", kp_codes(list, sizeof list, is_arc));
+    goto words;
+  }
   /* groups, the G words in text order */
   int seen[5] = {0};
   for (int i = 0; i < b->ngw; i++) {
@@ -888,14 +910,7 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
     else
       seen[grp] = w->num;
   }
-  /* the axis and centre words, and the column of the first of each in
-   * slot order (X Y Z A, I J K) */
-  unsigned axes = b->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
-  unsigned centres = b->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
-  static const uint8_t nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};   /* (no popcnt call) */
-  int naxis = nbits[axes], ncentre = nbits[centres >> SL_I];
   unsigned axcol = axes ? b->slotcol[__builtin_ctz(axes)] : 0;
-  unsigned cecol = centres ? b->slotcol[__builtin_ctz(centres)] : 0;
   /* a dialog or display function (group 4) stands with no function of
    * groups 1-3 and no axis or centre word: only assignments, array
    * operations and M functions beside it (language.md sec. 8) */
@@ -918,8 +933,7 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
     }
   }
   const struct word *F = b->wF >= 0 ? &b->w[b->wF] : NULL;
-  int arc = first_g(b, c->g_arc);   /* its G, or -1 */
-  char list[80];
+  int arc = c->arc = first_g(b, c->g_arc);   /* its G, or -1 */
 
   /* functions that stand in a separate block */
   for (uint64_t bits = b->g & c->g_sep; bits;) {
@@ -947,7 +961,7 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
   }
 
   /* arcs and planes */
-  int plane = plane_of(c, b);
+  plane = c->plane = plane_of(c, b);
   if (arc >= 0) {
     int g = arc;
     int helix = (kp_g(g)->flags & KP_HELIX) != 0;
@@ -1006,6 +1020,7 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
     err(c, S42_E_BLOCK, b->mcol[21], "M21 is not allowed in a block with G%02d", dg);
   if ((M(10) || M(12)) && !(G(10) || G(11)))
     err(c, S42_E_BLOCK, b->mcol[M(10) ? 10 : 12], "M%d belongs to a tooth-step search (G10 or G11)", M(10) ? 10 : 12);
+words:
   if (slot_word(c, SL_H, &col) && !L)
     err(c, S42_E_BLOCK, col, "H (repeat count) without L (sub call)");
   if (L || P || PC || PP) {
@@ -1098,11 +1113,82 @@ static uint32_t add_str(struct comp *c, const struct text *t)
 
 static int keep_more(struct comp *c, const struct block *b, struct kp_attr *at);
 
-static void compile_block(struct comp *c)
+/* The attributes kept lately, by a hash of their bits (2^AH_BITS slots, 64
+ * KiB: in cache): a block whose attributes are in its slot takes that
+ * index, another is kept anew and takes the slot.  A program has few
+ * different attributes, which stay; one whose every block differs (texts)
+ * costs a look into this table a block, not into kp_ext.a. */
+#define AH_BITS 13
+struct aslot { uint32_t fp, e; };   /* the hash's low bits; 1 + the index in kp_ext.a, 0 none */
+
+static inline uint64_t attr_hash(const struct kp_attr *at)
+{
+  uint64_t w[4];
+  memcpy(w, at, sizeof w);
+  return (w[0] ^ (w[1] << 23 | w[1] >> 41)) * 0x9E3779B97F4A7C15ull +
+         (w[2] ^ (w[3] << 37 | w[3] >> 27)) * 0xBF58476D1CE4E5B9ull;
+}
+
+/* The block's attributes: its index into kp_ext.a, where an equal record
+ * is kept once (mostly: see struct aslot). */
+static void keep_attr(struct comp *c, const struct kp_attr *at)
+{
+  struct kp_ext *x = c->x;
+  if (!c->ah && !(c->ah = calloc((size_t)1 << AH_BITS, sizeof *c->ah))) {
+    c->oom = 1;
+    return;
+  }
+  uint64_t h = attr_hash(at);
+  struct aslot *sl = &c->ah[h >> (64 - AH_BITS)];
+  uint32_t e = sl->e;
+  if (!e || sl->fp != (uint32_t)h || memcmp(&x->a[e - 1], at, sizeof *at) != 0) {
+    x->a = grow(x->a, &x->cap, x->n + 1, sizeof *x->a, &c->oom);
+    if (c->oom)
+      return;
+    x->a[x->n++] = *at;
+    e = (uint32_t)x->n;
+    sl->fp = (uint32_t)h;
+    sl->e = e;
+  }
+  if (!x->ai32 && e > 0x10000) {   /* past 16 bits: 32 from here on */
+    uint32_t *w = malloc((x->capai ? x->capai : 1) * sizeof *w);
+    if (!w) {
+      c->oom = 1;
+      return;
+    }
+    for (size_t k = 0; k < x->nai; k++)
+      w[k] = x->ai16[k];
+    free(x->ai16);
+    x->ai16 = NULL;
+    x->ai32 = w;
+  }
+  if (x->nai >= x->capai) {
+    size_t cap = x->capai;
+    if (x->ai32)
+      x->ai32 = grow(x->ai32, &cap, x->nai + 1, sizeof *x->ai32, &c->oom);
+    else
+      x->ai16 = grow(x->ai16, &cap, x->nai + 1, sizeof *x->ai16, &c->oom);
+    if (c->oom)
+      return;
+    x->capai = cap;
+  }
+  if (x->ai32)
+    x->ai32[x->nai++] = e - 1;
+  else
+    x->ai16[x->nai++] = (uint16_t)(e - 1);
+}
+
+static inline __attribute__((always_inline)) void compile_block(struct comp *c)
 {
   struct block *b = c->b;
-  const struct word *L = find_word(c, WK_L), *P = find_word(c, WK_P), *PC = find_word(c, WK_PCOND),
-                    *PP = find_word(c, WK_PP);
+  const struct word *L = NULL, *P = NULL, *PC = NULL, *PP = NULL;
+  int jumps = (b->wkinds & (1u << WK_L | 1u << WK_P | 1u << WK_PCOND | 1u << WK_PP)) != 0;
+  if (jumps) {
+    L = find_word(c, WK_L);
+    P = find_word(c, WK_P);
+    PC = find_word(c, WK_PCOND);
+    PP = find_word(c, WK_PP);
+  }
   check_block(c, L, P, PC, PP);
 
   struct prog_block pb = {.code = (uint32_t)c->p->ncode, .line = b->line,
@@ -1112,13 +1198,11 @@ static void compile_block(struct comp *c)
     c->oom = 1;
     return;
   }
-  c->x->a = grow(c->x->a, &c->x->cap, c->x->n + 1, sizeof *c->x->a, &c->oom);
   c->sf = grow(c->sf, &c->capsf, c->ns + 1, sizeof *c->sf, &c->oom);
   if (c->oom)
     return;
-  struct kp_attr *at = &c->x->a[c->x->n++];
+  struct kp_attr attr, *at = &attr;   /* kept (keep_attr) once the block is compiled */
   uint8_t *flags = &c->sf[c->ns];
-  int jumps = L || P || PC || PP;
   struct summ summ, *sm = &summ;   /* the block's calls and jumps: made when it has some */
   if (jumps)
     summ = (struct summ){.i = (uint32_t)c->ns, .L = -1, .P = -1, .PP = -1, .callpc = NOPC, .jpc = NOPC, .pppc = NOPC};
@@ -1126,7 +1210,7 @@ static void compile_block(struct comp *c)
   *flags = (uint8_t)((b->bad ? SF_BAD : 0) | (b->badnum ? SF_NONUM : 0));
   c->bstart = pb.code;
   *at = (struct kp_attr){.g = b->g, .m = b->m, .plugins = c->plugmask, .plug_g = (uint8_t)c->plug_g,
-                         .plane = (uint8_t)plane_of(c, b)};
+                         .plane = (uint8_t)c->plane};
   int mo = motion_of(c, b);
   c->given = c->isconst = c->badslot = 0;
   c->need = 0;
@@ -1192,9 +1276,8 @@ static void compile_block(struct comp *c)
       err(c, S42_E_RANGE, b->g28col, "G28 /%.10g:%.10g/: the minimum is over the maximum, so no number can pass",
           c->kval[SL_MIN], c->kval[SL_MAX]);
   }
-  int arc = first_g(b, c->g_arc);
-  if (arc >= 0 && at->plane)
-    check_arc_const(c, at->plane, b->gcol[arc]);
+  if (c->arc >= 0 && at->plane)
+    check_arc_const(c, at->plane, b->gcol[c->arc]);
   if (b->cond && PC && !b->bad) {
     if (b->cond->need > c->need)
       c->need = b->cond->need;
@@ -1234,7 +1317,8 @@ static void compile_block(struct comp *c)
     if (!h && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
       /* COMMIT; INT 1; CALL in one instruction */
       c->p->code[c->p->ncode - 1] = INS(OP_CCALL, 0);
-      c->p->cols[c->p->ncode - 1] = col16(L->col);
+      if (prog_col_set(c->p, c->p->ncode - 1, L->col))
+        c->oom = 1;
       sm->callpc = boff(c, (long)c->p->ncode - 1);
     } else {
       emit(c, h ? OP_WORD : OP_INT, h ? SL_H : 1, L->col);   /* the count: H's value, or once */
@@ -1258,7 +1342,8 @@ static void compile_block(struct comp *c)
     if (!L && !PP && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
       /* COMMIT; JMP / JCOND in one instruction */
       c->p->code[c->p->ncode - 1] = INS(P ? OP_CJMP : OP_CJCOND, 0);
-      c->p->cols[c->p->ncode - 1] = col16(j->col);
+      if (prog_col_set(c->p, c->p->ncode - 1, j->col))
+        c->oom = 1;
       sm->jpc = boff(c, (long)c->p->ncode - 1);
     } else {
       sm->jpc = boff(c, emit(c, P ? OP_JMP : OP_JCOND, 0, j->col));
@@ -1302,6 +1387,7 @@ static void compile_block(struct comp *c)
   c->prev_g27 = G(27);
   if (G(34))
     c->seen_g34 = 1;
+  keep_attr(c, at);
 }
 
 /* The block's texts, dialog forms and M16 list, kept in kp_ext.more; 0
@@ -1365,6 +1451,8 @@ static void ext_free(void *v)
   if (!x)
     return;
   free(x->a);
+  free(x->ai16);
+  free(x->ai32);
   free(x->more);
   free(x->str);
   free(x->lines);
@@ -1793,6 +1881,7 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
     diag_add(d, DIAG_ERROR, S42_E_LIMIT, 1, 1, -1, "out of memory");
   free(c.sf);
   free(c.s);
+  free(c.ah);
   free(c.b);
   diag_sort(d);
   return d->nerr ? -1 : 0;

@@ -29,18 +29,27 @@ struct kp_attr {
   uint8_t has_f;       /* the block sets the contour speed */
   uint8_t plug_g;      /* MO_PLUGIN: the plugin's group-1 G number */
   int8_t bare[4];      /* M19: axis word X Y Z A is +Rn (n+1) or -Rn (-(n+1)); 0 not bare */
+  uint8_t zero[2];     /* 0: the record has no padding (the compiler compares records whole) */
   uint32_t plugins;    /* bit i: plugin i of the session's set runs in this block */
   uint32_t more;       /* 1 + its index in kp_ext.more; 0: none (kp_more: a record of nothing) */
 };
+_Static_assert(sizeof(struct kp_attr) == 32, "struct kp_attr: 32 bytes, no padding");
 
 /* The machine's switches as the session publishes them to the VM (vm.sw),
  * for a block that sets nothing else (MACHS: compile.c, session.c). */
 #define KP_SW_CORR 1u       /* M22 on, M23 off: the operational corrections allowed */
 #define KP_SW_OVERRIDE 2u   /* M26 on, M25 off: the feed override allowed */
 
+/* Blocks share their attributes: a program has few different ones (the
+ * same kinds of block over and over), so kp_ext.a holds each once and a
+ * block has only its index there -- 16 bits while there are at most 65,536
+ * (ai16), 32 beyond (ai32, ai16 then NULL). */
 struct kp_ext {
-  struct kp_attr *a;
+  struct kp_attr *a;   /* the different attributes */
   size_t n, cap;
+  uint16_t *ai16;      /* each block's index in a */
+  uint32_t *ai32;
+  size_t nai, capai;
   struct kp_more *more;
   size_t nmore, capmore;
   char *str;
@@ -56,7 +65,8 @@ struct kp_ext {
 
 static inline const struct kp_attr *kp_attr(const struct program *p, size_t b)
 {
-  return &((const struct kp_ext *)p->ext)->a[b];
+  const struct kp_ext *x = p->ext;
+  return &x->a[x->ai32 ? x->ai32[b] : x->ai16[b]];
 }
 
 /* The block's texts, dialog forms and M16 list (all none for most). */

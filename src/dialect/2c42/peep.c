@@ -110,7 +110,6 @@ static long triplet(struct program *p, double b)
 int peep_last(struct program *p, size_t from)
 {
   uint32_t *code = p->code;
-  uint16_t *cols = p->cols;
   size_t n = p->ncode;
   if (n < from + 2)
     return 0;
@@ -120,8 +119,9 @@ int peep_last(struct program *p, size_t from)
   if (op0 == OP_REG) {
     if (INS_A(w0) < VM_NREG && (t = arith_x_tab[op1]) != 0 && INS_A(w1) < XMAX) {
       /* REG a; OPx: the SETP that may follow makes it RADDIP and EXT */
+      if (prog_col_copy(p, n - 2, n - 1))
+        return -1;
       code[n - 2] = INS(rpush[(t - 1) / 4][(t - 1) % 4], INS_A(w0) | INS_A(w1) << 7);
-      cols[n - 2] = cols[n - 1];
       p->ncode = n - 1;
       return 0;
     }
@@ -136,8 +136,9 @@ int peep_last(struct program *p, size_t from)
         return 0;
       }
       /* REG a; SIN */
+      if (prog_col_copy(p, n - 2, n - 1))
+        return -1;
       code[n - 2] = INS(op1 == OP_SIN ? OP_RSIN : OP_RCOS, INS_A(w0));
-      cols[n - 2] = cols[n - 1];
       p->ncode = n - 1;
       return 0;
     }
@@ -146,8 +147,9 @@ int peep_last(struct program *p, size_t from)
       long j = triplet(p, p->k[INS_A(w1) >> 3]);
       if (j < 0)
         return -1;
+      if (prog_col_copy(p, n - 2, n - 1))
+        return -1;
       code[n - 2] = INS(OP_CMPRK, (INS_A(w1) & 7) | INS_A(w0) << 3);
-      cols[n - 2] = cols[n - 1];
       code[n - 1] = INS(OP_EXT, (uint32_t)j);
       return 0;
     }

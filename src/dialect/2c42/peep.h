@@ -9,7 +9,7 @@
 
 /* Fuse the instruction last emitted (or rewritten in place), at
  * p->ncode - 1, with those before it back to from (the block's BLOCK) into
- * the register forms of vm/opcodes.h: p->ncode shrinks, p->cols follows.
+ * the register forms of vm/opcodes.h: p->ncode shrinks, the columns follow.
  * Every fusion is exact (the VM raises each error of a fused instruction
  * with the code, message and column of the part that raised it).  Returns
  * 0, or -1 out of memory (the code is then left as it was). */
