@@ -1563,6 +1563,23 @@ out:
   return cyc;
 }
 
+/* Push block v on reach_all's stack, doubling it when full: -1 when out
+ * of memory (the stack freed). */
+static int reach_push(uint32_t **stk, size_t *top, size_t *cap, uint32_t v)
+{
+  if (*top == *cap) {
+    uint32_t *t = realloc(*stk, 2 * *cap * sizeof **stk);
+    if (!t) {
+      free(*stk);
+      return -1;
+    }
+    *stk = t;
+    *cap *= 2;
+  }
+  (*stk)[(*top)++] = v;
+  return 0;
+}
+
 /* FL_REACH on every block that can run: from each unit's start, on
  * through the blocks that run on into the next and to the targets of
  * jumps (the calls' and jumps' list is in block order: walking on, the
@@ -1578,16 +1595,8 @@ static int reach_all(struct comp *c, uint8_t *fl, const int *first)
   for (size_t i = 0; i < n; i++)
     if (fl[i] & FL_START) {
       fl[i] |= FL_REACH;
-      if (top == cap) {
-        uint32_t *t = realloc(stk, 2 * cap * sizeof *stk);
-        if (!t) {
-          free(stk);
-          return 0;
-        }
-        stk = t;
-        cap *= 2;
-      }
-      stk[top++] = (uint32_t)i;
+      if (reach_push(&stk, &top, &cap, (uint32_t)i))
+        return 0;
     }
   while (top) {
     size_t i = stk[--top], k = 0, hi = nj;
@@ -1607,16 +1616,8 @@ static int reach_all(struct comp *c, uint8_t *fl, const int *first)
           if (tg[t] <= 0 || tg[t] >= 1000 || first[tg[t]] < 0 || (fl[first[tg[t]]] & FL_REACH))
             continue;
           fl[first[tg[t]]] |= FL_REACH;
-          if (top == cap) {
-            uint32_t *s2 = realloc(stk, 2 * cap * sizeof *stk);
-            if (!s2) {
-              free(stk);
-              return 0;
-            }
-            stk = s2;
-            cap *= 2;
-          }
-          stk[top++] = (uint32_t)first[tg[t]];
+          if (reach_push(&stk, &top, &cap, (uint32_t)first[tg[t]]))
+            return 0;
         }
       }
       if ((F[i] & (SF_M2 | SF_M17 | SF_UNCOND)) || i + 1 >= n || (fl[i + 1] & (FL_START | FL_REACH)))
