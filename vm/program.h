@@ -9,6 +9,7 @@
 #ifndef S42_PROGRAM_H
 #define S42_PROGRAM_H
 
+#include "opcodes.h"
 #include <stddef.h>
 #include <stdint.h>
 
@@ -133,7 +134,7 @@ long prog_block_add(struct program *p, const struct prog_block *b);
 /* prog_block_add, its common case inline. */
 static inline long prog_block_push(struct program *p, const struct prog_block *b)
 {
-  if (p->nblocks >= p->capblocks || p->nblocks > 0xffffffu)   /* full (or past the 24-bit operands) */
+  if (p->nblocks >= p->capblocks || p->nblocks > INS_AMAX)   /* full (or past the 24-bit operands) */
     return prog_block_add(p, b);
   p->blocks[p->nblocks] = *b;
   return (long)p->nblocks++;

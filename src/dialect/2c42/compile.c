@@ -877,6 +877,9 @@ static void core_masks(struct comp *c)
 
 static void check_dialog(struct comp *c);
 
+/* The word slots of the axes X Y Z A (struct block's wslots). */
+#define AXIS_SLOTS (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A)
+
 static void check_block(struct comp *c, const struct word *L, const struct word *P, const struct word *PC,
                         const struct word *PP)
 {
@@ -886,7 +889,7 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
   char list[80];
   /* the axis and centre words, and the column of the first of each in
    * slot order (X Y Z A, I J K) */
-  unsigned axes = b->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A);
+  unsigned axes = b->wslots & AXIS_SLOTS;
   unsigned centres = b->wslots & (1u << SL_I | 1u << SL_J | 1u << SL_K);
   static const uint8_t nbits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};   /* (no popcnt call) */
   int naxis = nbits[axes], ncentre = nbits[centres >> SL_I];
@@ -1263,7 +1266,7 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
       break;
     }
   }
-  if (mo == MO_NONE && (b->wslots & (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A)))
+  if (mo == MO_NONE && (b->wslots & AXIS_SLOTS))
     mo = MO_G01;   /* axis words and nothing else that moves */
   at->motion = (uint8_t)mo;
   if (G(28) && b->g28min && b->g28max) {
@@ -1468,20 +1471,27 @@ static inline int unit_of(const struct prog_block *B, size_t i)
   return B[i].unit == 0xffff ? -1 : (int)B[i].unit;
 }
 
-/* The units that can call themselves, directly or through others: those
- * on a cycle of the call graph (the calls of reachable blocks), found as
- * its strongly connected components (Tarjan's, without recursion): linear
- * in units and calls.  cyc[u] is 1 for such a unit; NULL when out of memory. */
 /* A block's flags in structure(): it starts a unit; a call lands in the
  * middle of a unit there; it can run. */
 enum { FL_START = 1, FL_INTO = 2, FL_REACH = 4 };
 
+/* Is call s an edge of the call graph: to a sub that exists, from a block
+ * of a unit that can run? */
+static inline int graph_call(const struct summ *s, const int *first, const struct prog_block *B, const uint8_t *fl)
+{
+  return s->L >= 2 && s->L < 1000 && first[s->L] >= 0 && unit_of(B, s->i) >= 0 && (fl[s->i] & FL_REACH);
+}
+
+/* The units that can call themselves, directly or through others: those
+ * on a cycle of the call graph (the calls of reachable blocks), found as
+ * its strongly connected components (Tarjan's, without recursion): linear
+ * in units and calls.  cyc[u] is 1 for such a unit; NULL when out of memory. */
 static char *calls_itself(const struct summ *S, size_t nj, const int *first, const struct prog_block *B, const uint8_t *fl,
                           int nu)
 {
   size_t ne = 0;
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && (fl[S[k].i] & FL_REACH))
+    if (graph_call(&S[k], first, B, fl))
       ne++;
   size_t *off = calloc((size_t)nu + 1, sizeof *off);
   int *dst = malloc((ne ? ne : 1) * sizeof *dst);
@@ -1496,14 +1506,14 @@ static char *calls_itself(const struct summ *S, size_t nj, const int *first, con
   }
   /* the calls by caller (counting sort) */
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && (fl[S[k].i] & FL_REACH))
+    if (graph_call(&S[k], first, B, fl))
       off[unit_of(B, S[k].i) + 1]++;
   for (int u = 0; u < nu; u++)
     off[u + 1] += off[u];
   for (int u = 0; u < nu; u++)
     it[u] = off[u];
   for (size_t k = 0; k < nj; k++)
-    if (S[k].L >= 2 && S[k].L < 1000 && first[S[k].L] >= 0 && unit_of(B, S[k].i) >= 0 && (fl[S[k].i] & FL_REACH)) {
+    if (graph_call(&S[k], first, B, fl)) {
       int from = unit_of(B, S[k].i), to = unit_of(B, first[S[k].L]);
       dst[it[from]++] = to;
       if (from == to)
