@@ -4,24 +4,11 @@
 #include "errors.h"
 #include <string.h>
 
-/* Every ASCII byte but whitespace, ';' '^' CR LF stands for itself. */
-static const uint8_t lex_plain[256] = {
-  /* 0x00..0x1F: controls are characters (which no word accepts), but TAB
-   * LF VT FF CR are whitespace or line ends */
-  1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 0, 1, 1,
-  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
-  /* ' ' is whitespace, ';' a comment, '^' an end */
-  0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
-  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1,
-  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
-  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1,
-  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
-  1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
-  /* 0x80..0xFF: UTF-8, decoded by scan */
-};
-
-/* lex.h: a byte's character (lex_plain's, but NUL), LX_EOB ('^' LF), or
- * LX_SLOW. */
+/* lex.h: a byte's character, LX_EOB ('^' LF), or LX_SLOW: every ASCII
+ * byte but whitespace (TAB LF VT FF CR, the space), ';' (a comment) and
+ * '^' stands for itself; controls are characters (which no word accepts);
+ * 0x80..0xFF are UTF-8, decoded by scan.  NUL is a character too, but
+ * LX_SLOW here: it ends a chunk (lex_slow tells which). */
 #define E LX_EOB
 #define S LX_SLOW
 const int16_t lex_val[256] = {
@@ -44,6 +31,12 @@ const int16_t lex_val[256] = {
 };
 #undef E
 #undef S
+
+/* Does byte b stand for itself? */
+static inline int plain(unsigned char b)
+{
+  return lex_val[b] >= 0 || b == 0;
+}
 
 /* Decode one code point at p; *len gets its byte length.  Invalid UTF-8 is
  * returned as U+FFFD (one byte), which no word accepts. */
@@ -123,7 +116,7 @@ static int32_t scan(struct lex *l, size_t *ppos, unsigned *pcol, size_t *plen, i
       break;
     }
     unsigned char b = (unsigned char)l->s[pos];
-    if (lex_plain[b]) {
+    if (plain(b)) {
       c = b;
       len = 1;
       break;
@@ -295,7 +288,7 @@ int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a)
     return lex_peek(l);
   }
   size_t len = a->pos;
-  if (len < l->n && lex_plain[(unsigned char)l->s[len]]) {   /* a plain one */
+  if (len < l->n && plain((unsigned char)l->s[len])) {   /* a plain one */
     a->pos++;
     a->col++;
     return (unsigned char)l->s[len];
