@@ -265,12 +265,20 @@ static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, doubl
 #endif
 
 #define RAISED goto fail
+#define LEAVE(ev)                                    \
+  do {                                               \
+    vm->pc = pc;                                     \
+    vm->depth = (int)depth;                          \
+    vm->blocks = blocks0 + (uint64_t)(left0 - left); \
+    vm->jflag = (uint8_t)jflag;                      \
+    return (ev);                                     \
+  } while (0)
 /* BLOCK's part in every form of it: the block is current, and counted
  * against the budget (E-LIMIT past it) */
 #define BLOCK_ENTER()                                                              \
   do {                                                                             \
     vm->cur = INS_A(ins);                                                          \
-    if (vm->blocks >= limit) {                                                     \
+    if (left <= 0) {                                                               \
       raise_msg(vm, pc - 1, S42_E_LIMIT, VMSG_BUDGET, (unsigned long long)vm->max_blocks); \
       RAISED;                                                                      \
     }                                                                              \
@@ -281,7 +289,7 @@ static int math_at(struct vm *vm, uint32_t pc, int op, double a, double b, doubl
   do {                     \
     vm->nundo = 0;         \
     vm->arr_saved = 0;     \
-    vm->blocks++;          \
+    left--;                \
   } while (0)
 /* An opcode whose plain-table entry is its one handler. */
 #ifdef VM_GOTO
@@ -348,6 +356,19 @@ enum vm_event vm_run(struct vm *vm)
   const uint32_t depth_max = p->lim.depth;
   double no_saved = 0.0;
   double *const saved = p->saved_reg >= 0 ? &vm->reg[p->saved_reg] : &no_saved;
+  /* The call depth, the budget and the jump condition live in locals
+   * while the VM runs: a call, a return and a block then keep them in
+   * registers, not in a store and a load through vm.  LEAVE writes them
+   * back (with the pc) at every return to the host. */
+  uint32_t depth = (uint32_t)vm->depth;
+  /* The blocks the budget has left: a block counts down and tests for 0,
+   * not against a limit in another register.  Signed, so that a block the
+   * host began before it lowered the budget still counts (below 0). */
+  const uint64_t blocks0 = vm->blocks;
+  const int64_t left0 = blocks0 >= limit ? 0
+                        : limit - blocks0 > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)(limit - blocks0);
+  int64_t left = left0;
+  unsigned jflag = vm->jflag;
 
   if (vm->done)
     return vm->err.code ? VM_EV_ERROR : VM_EV_END;
@@ -375,8 +396,7 @@ enum vm_event vm_run(struct vm *vm)
       vmcase(BLOCK) {
         BLOCK_ENTER();
         if (watching && (vm->start_all || vm->watch[vm->cur])) {
-          vm->pc = pc;
-          return VM_EV_START;
+          LEAVE(VM_EV_START);
         }
         vmbreak;
       }
@@ -397,8 +417,7 @@ enum vm_event vm_run(struct vm *vm)
       vmcase(BLOCKR) {
         BLOCK_ENTER();
         if (watching && (vm->start_all || vm->watch[vm->cur])) {
-          vm->pc = pc;
-          return VM_EV_START;
+          LEAVE(VM_EV_START);
         }
         if (yield_all)
           vmbreak;   /* its SYNC yields: the three run one by one */
@@ -574,22 +593,19 @@ enum vm_event vm_run(struct vm *vm)
       }
       vmcase1(AND) { b = POP(); tos = (tos != 0.0 && b != 0.0); vmbreak; }
       vmcase1(OR) { b = POP(); tos = (tos != 0.0 || b != 0.0); vmbreak; }
-      vmcase1(COND) { vm->jflag = POP() != 0.0; vmbreak; }
+      vmcase1(COND) { jflag = POP() != 0.0; vmbreak; }
       vmcase1(MACH) {
-        vm->pc = pc;
-        return VM_EV_BLOCK;
+        LEAVE(VM_EV_BLOCK);
       }
       vmcase1(MACHS) {
         uint32_t sw = INS_A(ins);
         if (!yield_all && (vm->sw & ((sw & 0xfffu) | VM_SW_HELD)) == ((sw >> 12) | VM_SW_HELD))
           vmbreak;   /* the switches stand so already: nothing for the host */
-        vm->pc = pc;
-        return VM_EV_BLOCK;
+        LEAVE(VM_EV_BLOCK);
       }
       vmcase(SYNC) {   /* the plain table's SYNC is above, after BLOCK */
         if (yield_all) {
-          vm->pc = pc;
-          return VM_EV_BLOCK;
+          LEAVE(VM_EV_BLOCK);
         }
         vmbreak;
       }
@@ -611,17 +627,17 @@ enum vm_event vm_run(struct vm *vm)
         if (times == 0)
           vmbreak;
       call:
-        if ((uint32_t)vm->depth >= depth_max) {
-          raise_msg(vm, pc - 1, S42_E_NEST, VMSG_NEST, vm->depth + 1, (int)depth_max);
+        if (depth >= depth_max) {
+          raise_msg(vm, pc - 1, S42_E_NEST, VMSG_NEST, (int)depth + 1, (int)depth_max);
           RAISED;
         }
-        struct vm_frame *f = &vm->frames[vm->depth++];
+        struct vm_frame *f = &vm->frames[depth++];
         f->ret = pc;
         f->start = blk[INS_A(ins)].code;
         f->left = times - 1;
         f->block = vm->cur;
         f->saved = *saved;
-        f->jflag = vm->jflag;
+        f->jflag = jflag;
         pc = f->start;
         vmbreak;
       }
@@ -635,42 +651,46 @@ enum vm_event vm_run(struct vm *vm)
       }
       vmcase1(JMP) { pc = blk[INS_A(ins)].code; vmbreak; }
       vmcase1(JCOND) {
-        if (vm->jflag)
+        if (jflag)
           pc = blk[INS_A(ins)].code;
         vmbreak;
       }
       vmcase1(RET) {
       ret:   /* BLOCKR's RET and RETEND in a called sub come here: the same return */
-        if (vm->depth == 0) {
+        if (depth == 0) {
           raise_msg(vm, pc - 1, S42_E_SUB, VMSG_RETMAIN);
           RAISED;
         }
-        struct vm_frame *f = &vm->frames[vm->depth - 1];
+        struct vm_frame *f = &vm->frames[depth - 1];
         *saved = f->saved;
         if (f->left > 0) {
           f->left--;
           pc = f->start;
         } else {
-          vm->depth--;
-          vm->jflag = f->jflag;
+          depth--;
+          jflag = f->jflag;
           pc = f->ret;
+          /* the calling block's jump, when one follows the call (L10
+           * P(...)2): taken here, exactly as JCOND takes it, a dispatch
+           * sooner */
+          ins = code[pc];
+          if (INS_OP(ins) == OP_JCOND)
+            pc = jflag ? blk[INS_A(ins)].code : pc + 1;
         }
         vmbreak;
       }
       vmcase1(END) {
-        vm->pc = pc;
         vm->exit_latch = 0;
         vm->done = 1;
-        return VM_EV_END;
+        LEAVE(VM_EV_END);
       }
       /* return when called, end otherwise (Bosch M2, FMS-3000 M99) */
       vmcase1(RETEND) {
-        if (vm->depth > 0)
+        if (depth > 0)
           goto ret;
-        vm->pc = pc;
         vm->exit_latch = 0;
         vm->done = 1;
-        return VM_EV_END;
+        LEAVE(VM_EV_END);
       }
       /* superinstructions: exactly what their two instructions did */
       BINARY(ADDI, OP_ADD, +, (double)INS_A(ins))
@@ -700,17 +720,17 @@ enum vm_event vm_run(struct vm *vm)
       }
       vmcase1(CMPC) {
         b = POP(); a = POP();
-        vm->jflag = (uint8_t)vm_rel(a, b, INS_A(ins));
+        jflag = (uint8_t)vm_rel(a, b, INS_A(ins));
         vmbreak;
       }
       vmcase1(CMPCK) {
         a = POP();
-        vm->jflag = (uint8_t)vm_rel(a, k[INS_A(ins) >> 3], INS_A(ins) & 7);
+        jflag = (uint8_t)vm_rel(a, k[INS_A(ins) >> 3], INS_A(ins) & 7);
         vmbreak;
       }
       vmcase1(CMPCR) {
         a = POP();
-        vm->jflag = (uint8_t)vm_rel(a, vm->reg[INS_A(ins) >> 3], INS_A(ins) & 7);
+        jflag = (uint8_t)vm_rel(a, vm->reg[INS_A(ins) >> 3], INS_A(ins) & 7);
         vmbreak;
       }
       vmcase1(CJMP) {
@@ -720,7 +740,7 @@ enum vm_event vm_run(struct vm *vm)
       }
       vmcase1(CJCOND) {
         BLOCK_COMMIT();
-        if (vm->jflag)
+        if (jflag)
           pc = blk[INS_A(ins)].code;
         vmbreak;
       }
@@ -787,7 +807,7 @@ enum vm_event vm_run(struct vm *vm)
           got = 4;
         else
           got = vm_rel_got(x, kb[0]);
-        vm->jflag = (INS_A(ins) & got) != 0;
+        jflag = (INS_A(ins) & got) != 0;
         pc++;
         vmbreak;
       }
@@ -796,6 +816,5 @@ enum vm_event vm_run(struct vm *vm)
   }
 #endif
 fail:
-  vm->pc = pc;
-  return VM_EV_ERROR;
+  LEAVE(VM_EV_ERROR);
 }

@@ -435,23 +435,23 @@ START_TEST(sincos_is_sin_and_cos)
   uint64_t x = 88172645463325252ULL;
   long differ = 0, n = 0;
   for (long i = -2304000; i <= 2304000 + 2000000; i += 7) {
-    double t;
+    double arg;
     if (i <= 2304000)
-      t = (i % 2 ? i + 0.5 : i) * rad;
+      arg = (i % 2 ? i + 0.5 : i) * rad;
     else {
       x ^= x << 13, x ^= x >> 7, x ^= x << 17;
       uint64_t bits = x;
       if (i % 2)
-        memcpy(&t, &bits, sizeof t);   /* any double */
+        memcpy(&arg, &bits, sizeof arg);   /* any double */
       else
-        t = ((double)(bits >> 11) / 9007199254740992.0 * 2 - 1) * 2304000 * rad;
+        arg = ((double)(bits >> 11) / 9007199254740992.0 * 2 - 1) * 2304000 * rad;
     }
-    double s, c, s1 = fs(t), c1 = fc(t);
-    sincos(t, &s, &c);
+    double s, c, s1 = fs(arg), c1 = fc(arg);
+    sincos(arg, &s, &c);
     n++;
     if (memcmp(&s, &s1, sizeof s) != 0 || memcmp(&c, &c1, sizeof c) != 0) {
       if (differ++ < 3)
-        fprintf(stderr, "sincos(%a) = %a, %a; sin, cos = %a, %a\n", t, s, c, s1, c1);
+        fprintf(stderr, "sincos(%a) = %a, %a; sin, cos = %a, %a\n", arg, s, c, s1, c1);
     }
   }
   ck_assert_msg(differ == 0, "sincos differs from sin and cos for %ld of %ld arguments", differ, n);
@@ -867,6 +867,21 @@ START_TEST(sub_keeps_caller_condition)
 }
 END_TEST
 
+START_TEST(caller_jump_after_return)
+{
+  /* the return takes the calling block's jump itself (RET then JCOND in
+   * one): by the caller's condition, not the sub's, either way */
+  ck_assert_int_eq(run("N5 P(R1:R:1)6\nN6 M17\nN1 R1+1 L5 P(R1:R:0)3\nN2 R2+2 M2\nN3 R2+1 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(2), 2);
+  /* a sub repeated H times returns to the jump once, after the last */
+  ck_assert_int_eq(run("N5 R3+R3+1 M17\nN1 R1+R1+1 L5 H3 P(R1:M:4)1\nN2 M2\n"), VM_EV_END);
+  ck_assert_double_eq(R(1), 4);
+  ck_assert_double_eq(R(3), 12);
+  ck_assert_uint_eq(vm->blocks, 4 + 12 + 1);
+  ck_assert_int_eq(vm->depth, 0);
+}
+END_TEST
+
 START_TEST(h_out_of_range_at_run_time)
 {
   ck_assert_int_eq(run("N5 M17\nN1 R1-1\nN2 L5 H+R1\nN3 M2\n"), VM_EV_ERROR);
@@ -1076,6 +1091,30 @@ START_TEST(limit_exactly_enough)
   vm->max_blocks = 5;
   ck_assert_int_eq(tp_run(vm), VM_EV_END);
   ck_assert_uint_eq(vm->blocks, 5);
+}
+END_TEST
+
+START_TEST(limit_lowered_between_runs)
+{
+  /* the host lowers the budget below the blocks run while a block is
+   * open: that block still counts, and the next one is refused */
+  load("N1 R1+1 M3\nN2 R1+R1+1 M3\nN3 R1+R1+1 M3\nN4 M2\n");
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);   /* N1's M3 */
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);   /* N2's M3 */
+  ck_assert_uint_eq(vm->blocks, 1);
+  vm->max_blocks = 1;
+  ck_assert_int_eq(vm_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_LIMIT, 3);
+  ck_assert_uint_eq(vm->blocks, 2);
+  ck_assert_double_eq(R(1), 2);
+  /* and raised again, a budget of exactly the blocks run */
+  load("N1 R1+1 M3\nN2 R1+R1+1 M3\nN3 M2\n");
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);
+  ck_assert_int_eq(vm_run(vm), VM_EV_BLOCK);
+  vm->max_blocks = 2;
+  ck_assert_int_eq(vm_run(vm), VM_EV_ERROR);
+  assert_error(S42_E_LIMIT, 3);
+  ck_assert_uint_eq(vm->blocks, 2);
 }
 END_TEST
 
@@ -1760,6 +1799,7 @@ Suite *suite_vm(void)
   tcase_add_test(tc, seed_subs_nesting_order);
   tcase_add_test(tc, m2_in_sub_ends_program);
   tcase_add_test(tc, sub_keeps_caller_condition);
+  tcase_add_test(tc, caller_jump_after_return);
   tcase_add_test(tc, h_out_of_range_at_run_time);
   tcase_add_test(tc, nest_eight_levels);
   tcase_add_test(tc, nest_ninth_level);
@@ -1769,6 +1809,7 @@ Suite *suite_vm(void)
   tcase_add_checked_fixture(tc, setup, teardown);
   tcase_add_test(tc, limit_max_blocks);
   tcase_add_test(tc, limit_exactly_enough);
+  tcase_add_test(tc, limit_lowered_between_runs);
   tcase_add_test(tc, pp_without_latch);
   tcase_add_test(tc, pp_with_latch_wins_over_p);
   tcase_add_test(tc, pp_latch_taken_by_next_pp_block);
