@@ -12,7 +12,9 @@ How it measures (bench/README.md):
 - a loop's cost per iteration is (run of N iterations - run of 1) / (N - 1),
   so start-up and compilation are not in it; every engine gets its own
   1-iteration run in the same rounds;
-- ratios are taken between figures of the same run;
+- ratios are taken between figures of the same run: the median of the
+  rounds' own ratios (a round's two runs are neighbours in time), with the
+  ratio of the two medians beside it;
 - before the rounds, every program is run once and its result checked (the
   loop really ran N times, the twin printed N, rs274 reached PROGRAM_END),
   so a program that stops early cannot pass for a fast one.
@@ -126,6 +128,17 @@ def rounds(jobs, reps):
 
 def med(xs):
     return statistics.median(xs)
+
+
+def paired(num, den):
+    """The ratio of two figures of the same rounds: the median of the
+    rounds' own ratios (each round's num over its den), the ratio of the
+    two medians, and the rounds' ratios.  A round's two runs are
+    neighbours in time; two medians can come from different rounds, so on
+    a host whose speed jumps from one second to the next they can pair a
+    fast run with a slow one (bench/README.md)."""
+    rr = [a / b for a, b in zip(num, den) if b > 0]
+    return (med(rr) if rr else float("nan")), med(num) / med(den), rr
 
 
 def spread(xs, scale=1.0, fmt="%.1f"):
@@ -516,6 +529,7 @@ def main():
     st = {k: med([r.cpu for r in v]) * 1e3 for k, v in res.items()}
     stw = {k: med([r.wall for r in v]) * 1e3 for k, v in res.items()}
     results["startup"] = st
+    results["startup_ratio"] = paired([r.cpu for r in res["s42"]], [r.cpu for r in res["lua"]]) if "lua" in res else None
     for k in res:
         fig("startup_" + k + "_ms", st[k], "ms CPU", "(%.2f ms wall)" % stw[k])
     libs = [os.path.basename(x) for x in libraries([s42, "run", base2])]
@@ -534,9 +548,10 @@ def main():
         if twin not in per:
             row(what, issue_now, "— (%s not installed)" % label[twin], ">= %gx" % need if need else "", None)
             return
-        r = med(per[twin]) / med(per["s42"])
-        rr = [t / s for t, s in zip(per[twin], per["s42"]) if s > 0]
-        v = "%.2fx (%.1f / %.1f ns; rounds %s)" % (r, med(per[twin]), med(per["s42"]), spread(rr, fmt="%.2f"))
+        r, rm, rr = paired(per[twin], per["s42"])
+        f = "%.0f" if r >= 100 else "%.2f"
+        v = (f + "x (rounds %s; medians %.1f / %.1f ns = " + f + "x)") % (
+            r, spread(rr, fmt=f), med(per[twin]), med(per["s42"]), rm)
         if need:
             row(what, issue_now, v, ">= %gx" % need, r >= need)
         else:
@@ -550,10 +565,9 @@ def main():
     ratio_row("trig", per_trig, "rs274", "trig loop, rs274 / s42", "", 0)
     for key, what, issue_now in (("mblock", "a block with an M word (M23) / a plain block", "~7.8x"),
                                  ("subcall", "a sub call (L10, sub 10 is M17) / a plain block", "~8.5x")):
-        r = med(per_loop[key]) / med(per_loop["s42"])
-        rr = [m / s for m, s in zip(per_loop[key], per_loop["s42"]) if s > 0]
-        row(what, issue_now, "%.2fx (%.1f / %.1f ns; rounds %s)" % (
-            r, med(per_loop[key]), med(per_loop["s42"]), spread(rr, fmt="%.2f")), "<= 2x", r <= 2.0)
+        r, rm, rr = paired(per_loop[key], per_loop["s42"])
+        row(what, issue_now, "%.2fx (rounds %s; medians %.1f / %.1f ns = %.2fx)" % (
+            r, spread(rr, fmt="%.2f"), med(per_loop[key]), med(per_loop["s42"]), rm), "<= 2x", r <= 2.0)
     row("compile", "0.56–0.61 M blocks/s", "%.2f M blocks/s" % (cps / 1e6), ">= 2 M blocks/s", cps >= 2e6)
     row("compile, peak memory", "", "%.0f bytes/block" % bpb, "<= 200 bytes/block", bpb <= 200)
     lim = results["limit"]
@@ -582,9 +596,10 @@ def main():
             "one a save (+1 for the file's creation)", sy <= n + 1)
     rows.append(("M15 saves per second (wall)", "~180/s", "%.0f/s" % results["m15"], "", "info"))
     st = results["startup"]
-    if "lua" in st:
-        r = st["s42"] / st["lua"]
-        row("start-up, s42 run / lua5.4 -e ''", "", "%.2fx (%.2f / %.2f ms)" % (r, st["s42"], st["lua"]), "<= 1.5x", r <= 1.5)
+    if results["startup_ratio"]:
+        r, rm, rr = results["startup_ratio"]
+        row("start-up, s42 run / lua5.4 -e ''", "", "%.2fx (medians %.2f / %.2f ms = %.2fx)" % (r, st["s42"], st["lua"], rm),
+            "<= 1.5x", r <= 1.5)
     else:
         row("start-up, s42 run / lua5.4 -e ''", "", "—", "<= 1.5x", None)
     extra = [x for x in results["startup_libs"] if not re.match(r"(libc|libm|libdl|libpthread|librt|ld-linux.*)\.so", x)]
