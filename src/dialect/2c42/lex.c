@@ -254,18 +254,6 @@ void lex_adv(struct lex *l)
   }
 }
 
-void lex_end_block(struct lex *l)
-{
-  const unsigned char *p = l->p;
-  if (*p == '^' && p[1] == '\n' && lex_pos(l) + 2 < l->tail) {   /* the usual end of a line */
-    l->line++;
-    l->p = p + 2;
-    l->cb = (uintptr_t)p + 1;
-    return;
-  }
-  lex_adv(l);
-}
-
 int32_t lex_peek2_slow(struct lex *l)
 {
   size_t pos = lex_pos(l) + 1, len;
@@ -402,10 +390,11 @@ int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col,
   *enc = NULL;
   size_t bad = n, highs = 0, len;
   for (size_t p = lex_pos(&l); p < n; p += len) {
-    /* ASCII, 32 and then eight bytes at a time: most programs are nothing else */
-    uint64_t w8, w[4];
-    while (p + 32 <= n && (memcpy(w, text + p, 32), !((w[0] | w[1] | w[2] | w[3]) & 0x8080808080808080ull)))
-      p += 32;
+    /* ASCII, 64 and then eight bytes at a time: most programs are nothing else */
+    uint64_t w8, w[8];
+    while (p + 64 <= n && (memcpy(w, text + p, 64),
+                           !((w[0] | w[1] | w[2] | w[3] | w[4] | w[5] | w[6] | w[7]) & 0x8080808080808080ull)))
+      p += 64;
     while (p + 8 <= n && (memcpy(&w8, text + p, 8), !(w8 & 0x8080808080808080ull)))
       p += 8;
     if (p >= n)

@@ -65,11 +65,27 @@ void lex_init(struct lex *l, const char *s, size_t n, struct diag_list *d);
  * significant character (mapped), LX_EOB or LX_EOF, not consumed. */
 int32_t lex_slow(struct lex *l);
 
+/* lex_slow, but the one space between words before a plain character
+ * passed inline, as lex_slow would (the byte after a space is in the
+ * text, or the chunk's NUL at the latest). */
+static inline __attribute__((always_inline)) int32_t lex_unplain(struct lex *l)
+{
+  const unsigned char *p = l->p;
+  if (*p == ' ') {
+    int32_t c = lex_val[p[1]];
+    if (c != LX_SLOW) {
+      l->p = p + 1;
+      l->skipped++;
+      return c;
+    }
+  }
+  return lex_slow(l);
+}
 /* The next significant character (mapped), LX_EOB or LX_EOF; not consumed. */
-static inline int32_t lex_peek(struct lex *l)
+static inline __attribute__((always_inline)) int32_t lex_peek(struct lex *l)
 {
   int32_t c = lex_val[*l->p];
-  return c != LX_SLOW ? c : lex_slow(l);
+  return c != LX_SLOW ? c : lex_unplain(l);
 }
 /* Consume what lex_peek returned, which is no end of block or file. */
 static inline void lex_adv1(struct lex *l)
@@ -78,9 +94,24 @@ static inline void lex_adv1(struct lex *l)
 }
 /* Consume what lex_peek returned, an end of block too. */
 void lex_adv(struct lex *l);
+/* The byte index in the text of what lex_peek returned (of its last byte). */
+static inline size_t lex_pos(const struct lex *l)
+{
+  return (size_t)((uintptr_t)l->p - l->pb);
+}
 /* Consume the end of block lex_peek returned, and with a ^ the line end
  * right after it (the end of an empty block: what lex_adv of both does). */
-void lex_end_block(struct lex *l);
+static inline void lex_end_block(struct lex *l)
+{
+  const unsigned char *p = l->p;
+  if (*p == '^' && p[1] == '\n' && lex_pos(l) + 2 < l->tail) {   /* the usual end of a line */
+    l->line++;
+    l->p = p + 2;
+    l->cb = (uintptr_t)p + 1;
+    return;
+  }
+  lex_adv(l);
+}
 /* The column of what lex_peek returned (after a lex_peek). */
 static inline unsigned lex_col(const struct lex *l)
 {
@@ -96,11 +127,6 @@ static inline unsigned lex_prev_col(const struct lex *l)
 static inline unsigned lex_line(const struct lex *l)
 {
   return l->line;
-}
-/* The byte index in the text of what lex_peek returned (of its last byte). */
-static inline size_t lex_pos(const struct lex *l)
-{
-  return (size_t)((uintptr_t)l->p - l->pb);
 }
 /* The character after the one lex_peek returned (which is not an end). */
 int32_t lex_peek2_slow(struct lex *l);

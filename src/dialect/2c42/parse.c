@@ -180,7 +180,7 @@ static unsigned long __attribute__((noinline)) number_more(struct lex *l, unsign
       v = v * 10 + d;
     nd += (size_t)(p - q);
     l->p = p;
-  } while (lex_val[*l->p] == LX_SLOW && isdig(lex_slow(l)));
+  } while (lex_val[*l->p] == LX_SLOW && isdig(lex_unplain(l)));
   *pnd = nd;
   return v;
 }
@@ -189,8 +189,9 @@ static unsigned long __attribute__((noinline)) number_more(struct lex *l, unsign
  * digit lex_peek returned: leading zeros are insignificant however many
  * (`G001`, `№0002`, language.md sec. 9), and whitespace between digits too,
  * as everywhere outside text.  The digits are read from the text's bytes,
- * up to one that is not plain (lex_slow's then: more digits may follow). */
-HOT long digits(struct pstate *s, int maxdig, const char *what)
+ * up to one that is not plain (lex_slow's then: more digits may follow).
+ * *next gets the character after the number (peek()'s). */
+HOT long digits(struct pstate *s, int maxdig, const char *what, int32_t *next)
 {
   struct lex *l = &s->p->lx;
   const unsigned char *p = l->p;
@@ -204,19 +205,28 @@ HOT long digits(struct pstate *s, int maxdig, const char *what)
   size_t nd = (size_t)(p - q);
   uintptr_t cb = l->cb;
   l->p = p;
-  if (lex_val[*p] == LX_SLOW && isdig(lex_slow(l)))   /* (a space after it: past it) */
+  int32_t c = lex_val[*p];
+  if (c == LX_SLOW && isdig(c = lex_unplain(l))) {   /* (a space after it: past it) */
     v = number_more(l, v, &nd);
+    c = lex_peek(l);
+  }
+  *next = c;
   if (nd > (size_t)maxdig)
     long_number(s, (unsigned)((uintptr_t)first - cb), what, (int)nd, maxdig);
   return (long)v;
 }
 
 /* The same, the first digit not looked at yet. */
-HOT long number(struct pstate *s, int maxdig, const char *what)
+HOT long number_to(struct pstate *s, int maxdig, const char *what, int32_t *next)
 {
   if (!isdig(lex_peek(&s->p->lx)))
     no_number(s, what);
-  return digits(s, maxdig, what);
+  return digits(s, maxdig, what, next);
+}
+HOT long number(struct pstate *s, int maxdig, const char *what)
+{
+  int32_t next;
+  return number_to(s, maxdig, what, &next);
 }
 
 /* ---- expressions ---- */
@@ -388,21 +398,22 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
   }
 }
 
-/* An operand; c is its first character, which peek() returned. */
-HOT struct expr *primary(struct pstate *s, int32_t c, size_t d)
+/* An operand; c is its first character, which peek() returned.  *next
+ * gets the character after it. */
+HOT struct expr *primary(struct pstate *s, int32_t c, size_t d, int32_t *next)
 {
   unsigned col = here(s);
   struct expr *e;
   if (isdig(c)) {
     e = node(s, EX_NUM, col);
-    long n = digits(s, 7, "a number");
+    long n = digits(s, 7, "a number", next);
     e->v = (double)n;
     e->idx = (unsigned)n;   /* (seven digits at most: an instruction's INT) */
     return e;
   }
   if (c == 'R') {
     adv(s);
-    long n = number(s, 3, "a parameter number after R");
+    long n = number_to(s, 3, "a parameter number after R", next);
     if (n > 113)
       fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
     e = node(s, EX_REG, col);
@@ -414,9 +425,12 @@ HOT struct expr *primary(struct pstate *s, int32_t c, size_t d)
     s->b->slotrd = 1;
     e = node(s, EX_SLOT, col);
     e->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : SL_Z;
+    *next = peek(s);
     return e;
   }
-  return primary_other(s, c, col, d);
+  e = primary_other(s, c, col, d);
+  *next = peek(s);
+  return e;
 }
 
 /* The %% after the primary b and its exponent (right-associative through
@@ -436,18 +450,23 @@ static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struc
 }
 
 /* power := primary [ %% unary ]; c the primary's first character, which
- * peek() returned */
-HOT struct expr *power(struct pstate *s, int32_t c, size_t d)
+ * peek() returned.  *next gets the character after it (peek()'s: the
+ * operand parsers hand it on, and their callers look at it no more). */
+HOT struct expr *power(struct pstate *s, int32_t c, size_t d, int32_t *next)
 {
-  struct expr *b = primary(s, c, d);
-  if (peek(s) == '%' && lex_peek2(&s->p->lx) == '%')
-    return power_rest(s, b, d);
+  int32_t n;
+  struct expr *b = primary(s, c, d, &n);
+  if (n == '%' && lex_peek2(&s->p->lx) == '%') {
+    b = power_rest(s, b, d);
+    n = peek(s);
+  }
+  *next = n;
   return b;
 }
 
 /* A sign applies to the factor that follows, power included: -2%%2 = -4.
  * c is the operand's first character, which peek() returned. */
-HOT struct expr *unary_inner(struct pstate *s, int32_t c, size_t d)
+HOT struct expr *unary_inner(struct pstate *s, int32_t c, size_t d, int32_t *next)
 {
   if (c == '+' || c == '-') {
     unsigned col = here(s);
@@ -459,10 +478,12 @@ HOT struct expr *unary_inner(struct pstate *s, int32_t c, size_t d)
      * parenthesis (unary's check, the same as the one above, passes) */
     struct expr *u;
     int32_t c2 = peek(s);
-    if (c2 == '+' || c2 == '-' || c2 == '(')
+    if (c2 == '+' || c2 == '-' || c2 == '(') {
       u = unary(s, d + 1);
-    else
-      u = power(s, c2, d + 2);
+      *next = peek(s);
+    } else {
+      u = power(s, c2, d + 2, next);
+    }
     if (c == '+')
       return u;
     struct expr *e = node(s, EX_NEG, col);
@@ -473,30 +494,32 @@ HOT struct expr *unary_inner(struct pstate *s, int32_t c, size_t d)
   if (c == '(') {
     if (d + 1 > MAX_DEPTH)
       fail(s, S42_E_SYNTAX, pcol(s), "expression nested too deeply");
-    return power(s, c, d + 1);
+    return power(s, c, d + 1, next);
   }
-  return power(s, c, d);
+  return power(s, c, d, next);
 }
 
 /* unary: one level more, checked at the character consumed last (the
  * operator, sign or parenthesis before the operand: at the top of a word's
  * value the depth is 0 and the check passes). */
-HOT struct expr *operand(struct pstate *s, size_t d)
+HOT struct expr *operand(struct pstate *s, size_t d, int32_t *next)
 {
   if (d + 1 > MAX_DEPTH)
     fail(s, S42_E_SYNTAX, lex_prev_col(&s->p->lx), "expression nested too deeply");
-  return unary_inner(s, peek(s), d + 1);
+  return unary_inner(s, peek(s), d + 1, next);
 }
 
 static struct expr *__attribute__((noinline)) unary(struct pstate *s, size_t d)
 {
-  return operand(s, d);
+  int32_t next;
+  return operand(s, d, &next);
 }
 
 /* The same left-deep trees as term inside expr, made in the same order:
  * `mul` is the / or % waiting for its right operand, `top` the + or -
- * waiting for its right term.  e is the first operand, parsed. */
-HOT struct expr *expr_rest(struct pstate *s, struct expr *e, size_t d)
+ * waiting for its right term.  e is the first operand, parsed, and c the
+ * character after it; *next gets the one after the expression. */
+HOT struct expr *expr_rest(struct pstate *s, struct expr *e, int32_t c, size_t d, int32_t *next)
 {
   struct expr *top = NULL, *mul = NULL;
   for (;;) {
@@ -506,7 +529,6 @@ HOT struct expr *expr_rest(struct pstate *s, struct expr *e, size_t d)
       e = mul;
       mul = NULL;
     }
-    int32_t c = peek(s);
     if (c == '/' && s->p->slash_ends && s->p->paren == 0)
       ;   /* the slash that closes G28 /min:max/: the term ends */
     else if (c == '/' || (c == '%' && lex_peek2(&s->p->lx) != '%')) {
@@ -515,7 +537,7 @@ HOT struct expr *expr_rest(struct pstate *s, struct expr *e, size_t d)
       mul = node(s, EX_BIN, col);
       mul->op = c == '/' ? OP_DIV : OP_MUL;
       mul->a = e;
-      e = operand(s, d);
+      e = operand(s, d, &c);
       continue;
     }
     if (top) {   /* the term is whole: the right operand of the + or - */
@@ -524,20 +546,24 @@ HOT struct expr *expr_rest(struct pstate *s, struct expr *e, size_t d)
       e = top;
       top = NULL;
     }
-    if (c != '+' && c != '-')
+    if (c != '+' && c != '-') {
+      *next = c;
       return e;
+    }
     unsigned col = here(s);
     adv(s);
     top = node(s, EX_BIN, col);
     top->op = c == '+' ? OP_ADD : OP_SUB;
     top->a = e;
-    e = operand(s, d);
+    e = operand(s, d, &c);
   }
 }
 
 HOT struct expr *expr_in(struct pstate *s, size_t d)
 {
-  return expr_rest(s, operand(s, d), d);
+  int32_t c;
+  struct expr *e = operand(s, d, &c);
+  return expr_rest(s, e, c, d, &c);
 }
 
 /* expr(), out of line: where expressions nest */
@@ -565,14 +591,15 @@ static void __attribute__((noinline, cold, noreturn)) no_value(struct pstate *s,
 
 /* A word's value: its sign (required when `sign` is set) starts the first
  * term: X-R3+100 is (-R3)+100.  The word's name for the errors, or rn for
- * a parameter's. */
-HOT struct expr *word_value(struct pstate *s, const char *word, int rn, int sign)
+ * a parameter's; *next gets the character after the value. */
+HOT struct expr *word_value(struct pstate *s, const char *word, int rn, int sign, int32_t *next)
 {
   int32_t c = peek(s);
   if ((sign && c != '+' && c != '-') || c == LX_EOB || c == LX_EOF)
     no_value(s, word, rn, sign);
   /* a word's value: nothing around it (operand()'s check at depth 0 passes) */
-  return expr_rest(s, unary_inner(s, c, 1), 0);
+  struct expr *e = unary_inner(s, c, 1, &c);
+  return expr_rest(s, e, c, 0, next);
 }
 
 /* ---- conditions ---- */
@@ -870,8 +897,9 @@ HOT void once(struct pstate *s, int there, const char *name, unsigned col)
     fail(s, S42_E_SYNTAX, col, "%s appears twice in the block", name);
 }
 
-/* A word; c its first character, which peek() returned. */
-static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t c)
+/* A word; c its first character, which peek() returned.  Returns the
+ * character after the word (peek()'s). */
+static inline __attribute__((always_inline)) int32_t word(struct pstate *s, int32_t c)
 {
   char buf[32];
   struct block *b = s->b;
@@ -880,7 +908,8 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
   switch (c) {
   case 'G': case 'M': {
     adv(s);
-    long n = number(s, 2, c == 'G' ? "a G function number" : "an M function number");
+    int32_t next;
+    long n = number_to(s, 2, c == 'G' ? "a G function number" : "an M function number", &next);
     const struct kp_word *kw = kp_word((char)c, (int)n);
     int valid = kw != NULL;
     if (!valid && n < (c == 'G' ? 64 : 32))   /* a function a plugin adds */
@@ -889,7 +918,7 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
       diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, b->line, col, b->number,
                "%c%02ld is not a function of the 2С42 or of a plugin found", (char)c, n);
       b->bad = 1;
-      return;
+      return peek(s);
     }
     if (c == 'G') {
       if (b->g & (1ull << n))
@@ -909,8 +938,9 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
     if (kw && kw->slash != KP_SA_NONE) {
       b->slashed = 1;
       slash_arg(s, b, kw);
+      return peek(s);
     }
-    return;
+    return next;
   }
   case 'X': case 'Y': case 'Z': case 'A': case 'I': case 'J': case 'K': case 'H': {
     char name[2] = {(char)c, 0};
@@ -918,47 +948,51 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
                   : c == 'I' ? SL_I : c == 'J' ? SL_J : c == 'K' ? SL_K : SL_H;
     once(s, b->wslots & (1u << slot), name, col);
     adv(s);
-    struct expr *e = word_value(s, name, -1, c != 'H');
+    int32_t next;
+    struct expr *e = word_value(s, name, -1, c != 'H', &next);
     w = new_word(s, WK_SLOT, (char)c, col);
     w->e = e;
     w->idx = slot;
     b->wslots |= (uint16_t)(1u << slot);
     b->slotcol[slot] = col;
-    return;
+    return next;
   }
   case 'F': {
     once(s, b->wF >= 0, "F", col);
     adv(s);
-    struct expr *e = word_value(s, "F", -1, 0);
+    int32_t next;
+    struct expr *e = word_value(s, "F", -1, 0, &next);
     w = new_word(s, WK_REG, 'F', col);
     w->e = e;
     w->idx = REG_F;
     b->wF = b->nw - 1;
-    return;
+    return next;
   }
   case 'L': {
     once(s, b->wkinds & (1u << WK_L), "L", col);
     adv(s);
-    long n = number(s, 3, "the first block number of a sub after L");
+    int32_t next;
+    long n = number_to(s, 3, "the first block number of a sub after L", &next);
     w = new_word(s, WK_L, 'L', col);
     w->num = (int)n;
-    return;
+    return next;
   }
   case 'R': {
     adv(s);
-    long n = number(s, 3, "a parameter number after R");
+    int32_t next;
+    long n = number_to(s, 3, "a parameter number after R", &next);
     if (n > 113)
       fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
     if (b->g28reg == -2) {        /* G28 /min:max/ Rn: where the answer goes */
       b->g28reg = (int)n;
-      return;
+      return next;
     }
-    struct expr *e = word_value(s, NULL, (int)n, 1);
+    struct expr *e = word_value(s, NULL, (int)n, 1, &next);
     w = new_word(s, WK_REG, 'R', col);
     w->num = (int)n;
     w->idx = (unsigned)n;
     w->e = e;
-    return;
+    return next;
   }
   case 'D': {
     adv(s);
@@ -966,12 +1000,13 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
       fail(s, S42_E_SYNTAX, col, "the only D word is D1 (tool diameter)");
     adv(s);
     once(s, b->hasD, "D1", col);
-    struct expr *e = word_value(s, "D1", -1, 1);
+    int32_t next;
+    struct expr *e = word_value(s, "D1", -1, 1, &next);
     w = new_word(s, WK_REG, 'D', col);
     b->hasD = 1;
     w->idx = REG_D1;
     w->e = e;
-    return;
+    return next;
   }
   case 'T': {
     adv(s);
@@ -985,7 +1020,7 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
       w = new_word(s, WK_AOP, 'T', col);
       w->op = OP_AZERO;
       w->idx = mask;
-      return;
+      return peek(s);
     }
     if (peek(s) == 'K')
       fail(s, S42_E_SYNTAX, col, "TK is read-only: only a tooth-step search with M10 sets it");
@@ -1002,17 +1037,18 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
       else if (d2 == 1 || d2 == 2) { w->op = OP_APTR0; w->idx = (unsigned)d2; }
       else if (d2 == 3 || d2 == 4) { w->op = OP_APTREND; w->idx = (unsigned)d2 - 2; }
       else fail(s, S42_E_SYNTAX, col, "T0%d is not an array operation (T0, T01, T02, T03, T04)", d2);
-      return;
+      return peek(s);
     }
     if (d1 > 3 || (d2 != 1 && d2 != 2))
       fail(s, S42_E_SYNTAX, col, "T%d%s is not an array word (T11 T21 T31 T12 T22 T32)", d1,
            d2 >= 0 ? (char[]){(char)('0' + d2), 0} : "");
     char name[4] = {'T', (char)('0' + d1), (char)('0' + d2), 0};
-    struct expr *e = word_value(s, name, -1, 1);
+    int32_t next;
+    struct expr *e = word_value(s, name, -1, 1, &next);
     w = new_word(s, WK_AWR, 'T', col);
     w->idx = (unsigned)(d2 - 1) | (unsigned)d1 << 2;
     w->e = e;
-    return;
+    return next;
   }
   case 'P': {
     adv(s);
@@ -1020,31 +1056,36 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
       adv(s);
       once(s, b->wkinds & (1u << WK_PP), "PP", col);
       w = new_word(s, WK_PP, 'P', col);
-      w->num = (int)number(s, 3, "the target block number after PP");
-      return;
+      int32_t next;
+      w->num = (int)number_to(s, 3, "the target block number after PP", &next);
+      return next;
     }
     if (b->wkinds & (1u << WK_P | 1u << WK_PCOND))
       fail(s, S42_E_SYNTAX, col, "two jumps P in one block");
     if (peek(s) == '(') {
       b->cond = cond(s, 0);
       w = new_word(s, WK_PCOND, 'P', col);
-      w->num = (int)number(s, 3, "the target block number after the condition");
-      return;
+      int32_t next;
+      w->num = (int)number_to(s, 3, "the target block number after the condition", &next);
+      return next;
     }
     w = new_word(s, WK_P, 'P', col);
-    w->num = (int)number(s, 3, "the target block number after P");
-    return;
+    int32_t next;
+    w->num = (int)number_to(s, 3, "the target block number after P", &next);
+    return next;
   }
   case '/': {
     char list[160];
     fail(s, S42_E_SYNTAX, col, "a slash argument must follow its function (%s)",
          kp_codes(list, sizeof list, takes_slash));
   }
-  case 'N': case 0x2116:
+  case 'N':
     fail(s, S42_E_SYNTAX, col, "a block number may only start the block");
   case 'U':
     fail(s, S42_E_SYNTAX, col, "UG is read-only: only a tooth-step search with M10 sets it");
-  default:
+  default:   /* (№ here, not as a case: the cases then span '/'..'Z', one bound) */
+    if (c == 0x2116)
+      fail(s, S42_E_SYNTAX, col, "a block number may only start the block");
     if (c >= 'a' && c <= 'z')
       fail(s, S42_E_SYNTAX, col, "unexpected %s: addresses are capital letters", show(c, buf));
     fail(s, S42_E_SYNTAX, col, "unexpected %s: not a word of the 2С42", show(c, buf));
@@ -1066,9 +1107,11 @@ void parse_free(struct parser *p)
   arena_free(&p->ar);
 }
 
-static inline void clear_block(struct block *b)
+/* The block's header cleared (words are counted by nw); its slash
+ * arguments too when `all` is set or it had any (b->slashed): only a
+ * block with a slash argument changes them, from their cleared values. */
+static inline void clear_block(struct block *b, int all)
 {
-  /* Only the header needs zeroing: words are counted by nw. */
   b->number = -1;
   b->ncol = 0;
   b->len = 0;
@@ -1080,9 +1123,11 @@ static inline void clear_block(struct block *b)
   b->wF = -1;
   b->hasD = 0;
   b->ngw = 0;
-  b->slashed = 0;
   b->slotrd = 0;
   b->cond = NULL;
+  if (!all && !b->slashed)
+    return;
+  b->slashed = 0;
   memset(&b->g27, 0, sizeof b->g27);
   memset(&b->g33, 0, sizeof b->g33);
   memset(&b->m18, 0, sizeof b->m18);
@@ -1096,7 +1141,7 @@ static inline void clear_block(struct block *b)
 }
 
 /* The first character of the next non-empty block, or LX_EOF. */
-static int32_t first_char(struct lex *l)
+HOT int32_t first_char(struct lex *l)
 {
   for (;;) {
     int32_t c = lex_peek(l);
@@ -1106,12 +1151,14 @@ static int32_t first_char(struct lex *l)
   }
 }
 
-/* The start of the next non-empty block: 0 at the end of the text. */
-static int block_start(struct parser *p, struct block *b)
+/* The start of the next non-empty block: 0 at the end of the text.  b
+ * is cleared (clear_block's `all`: its slash arguments too, or only if it
+ * had any). */
+HOT int block_start(struct parser *p, struct block *b, int all)
 {
   struct lex *l = &p->lx;
   arena_reset(&p->ar);
-  clear_block(b);
+  clear_block(b, all);
   p->nodes = 0;
   l->number = -1;   /* before the first peek: a note there is this block's */
   l->note_here = 0;
@@ -1150,19 +1197,15 @@ static void block_words(struct pstate *s)
     b->badnum = 0;
     lex_set_number(l, (int)n);
   }
-  for (;;) {
-    int32_t w = lex_peek(l);
-    if (w == LX_EOB || w == LX_EOF)
-      break;
-    word(s, w);
-  }
+  for (int32_t w = lex_peek(l); w != LX_EOB && w != LX_EOF;)
+    w = word(s, w);
   if (b->g28reg == -2)
     fail(s, S42_E_SYNTAX, b->g28col, "G28 /min:max/ must be followed by the parameter: G28 /min:max/ R3");
 }
 
 /* The block's end, after its words or a longjmp out of them (`jumped` 1:
  * a syntax error; 2: out of memory). */
-static void block_end(struct parser *p, struct block *b, int jumped)
+HOT void block_end(struct parser *p, struct block *b, int jumped)
 {
   struct lex *l = &p->lx;
   if (jumped == 2) {   /* said once: the blocks after it are not read either */
@@ -1185,7 +1228,7 @@ int parse_block(struct parser *p, struct block *b)
   struct pstate s;
   s.p = p;
   s.b = b;
-  if (!block_start(p, b))
+  if (!block_start(p, b, 1))
     return 0;
   p->ar.oom = &s.jb;
   int jumped = setjmp(s.jb);
@@ -1205,13 +1248,14 @@ void parse_all(struct parser *p, struct block *b, int (*each)(void *ctx, struct 
   s.p = p;
   s.b = b;
   p->ar.oom = &s.jb;
+  clear_block(b, 1);   /* then each block's clear_block leaves its slash arguments as they are when it had none */
   int jumped = setjmp(s.jb);
   if (jumped) {
     block_end(p, b, jumped);
     if (each(ctx, b))
       goto out;
   }
-  while (block_start(p, b)) {
+  while (block_start(p, b, 0)) {
     block_words(&s);
     block_end(p, b, 0);
     if (each(ctx, b))
