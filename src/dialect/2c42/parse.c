@@ -120,12 +120,18 @@ HOT unsigned here(struct pstate *s) { return lex_col(&s->p->lx); }
  * character: the cursor is at it, not at the whitespace before it). */
 HOT void adv(struct pstate *s) { lex_adv1(&s->p->lx); }
 
-static void expect(struct pstate *s, int32_t c, const char *what)
+/* expect()'s error, out of its way. */
+static void __attribute__((noinline, cold, noreturn)) not_expected(struct pstate *s, int32_t got, const char *what)
 {
   char buf[32];
+  fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(got, buf));
+}
+
+HOT void expect(struct pstate *s, int32_t c, const char *what)
+{
   int32_t got = peek(s);
   if (got != c)
-    fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(got, buf));
+    not_expected(s, got, what);
   adv(s);
 }
 
@@ -1190,15 +1196,15 @@ static void block_words(struct pstate *s)
     b->ncol = lex_col(l);
     b->badnum = 1;
     lex_adv1(l);
-    long n = number(s, 3, "a block number");
+    long n = number_to(s, 3, "a block number", &c);
     if (n < 1 || n > 999)
       fail(s, S42_E_RANGE, b->ncol, "block number %ld outside 1..999", n);
     b->number = (int)n;
     b->badnum = 0;
     lex_set_number(l, (int)n);
   }
-  for (int32_t w = lex_peek(l); w != LX_EOB && w != LX_EOF;)
-    w = word(s, w);
+  while (c != LX_EOB && c != LX_EOF)   /* (c: the character peek() returned) */
+    c = word(s, c);
   if (b->g28reg == -2)
     fail(s, S42_E_SYNTAX, b->g28col, "G28 /min:max/ must be followed by the parameter: G28 /min:max/ R3");
 }
