@@ -262,25 +262,15 @@ int32_t lex_peek2_slow(struct lex *l)
   return scan(l, &pos, &col, &len, &cyr);
 }
 
-void lex_ahead_start(const struct lex *l, struct lex_ahead *a)
-{
-  a->pos = lex_pos(l) + 1;
-  a->col = lex_col(l) + 1;
-  a->first = 1;
-}
-
-int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a)
+/* lex_ahead_next past its plain characters: the first, and what scan
+ * reads. */
+int32_t lex_ahead_slow(struct lex *l, struct lex_ahead *a)
 {
   if (a->first) {
     a->first = 0;
     return lex_peek(l);
   }
-  size_t len = a->pos;
-  if (len < l->n && plain((unsigned char)l->s[len])) {   /* a plain one */
-    a->pos++;
-    a->col++;
-    return (unsigned char)l->s[len];
-  }
+  size_t len;
   int cyr = 0;
   int32_t c = scan(l, &a->pos, &a->col, &len, &cyr);
   a->pos += len;

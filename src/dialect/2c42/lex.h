@@ -141,8 +141,26 @@ static inline int32_t lex_peek2(struct lex *l)
  * yet are lexed on a copy of the cursor, and lexed again when read: their
  * notes are made the first time, as lex_peek would. */
 struct lex_ahead { size_t pos; unsigned col; int first; };
-void lex_ahead_start(const struct lex *l, struct lex_ahead *a);
-int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a);
+static inline void lex_ahead_start(const struct lex *l, struct lex_ahead *a)
+{
+  a->pos = lex_pos(l) + 1;
+  a->col = lex_col(l) + 1;
+  a->first = 1;
+}
+int32_t lex_ahead_slow(struct lex *l, struct lex_ahead *a);
+static inline int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a)
+{
+  size_t pos = a->pos;
+  if (!a->first && pos < l->n) {   /* a plain one (a NUL too) */
+    unsigned char b = (unsigned char)l->s[pos];
+    if (lex_val[b] >= 0 || b == 0) {
+      a->pos = pos + 1;
+      a->col++;
+      return b;
+    }
+  }
+  return lex_ahead_slow(l, a);
+}
 /* Raw access inside text, on the bytes at the cursor (after a consumed
  * character): the next character as written, or LX_EOB at a newline or ^
  * (which end the block even inside text), LX_EOF at the end. */
