@@ -371,6 +371,21 @@ static long score(const unsigned char *s, size_t n, int (*letter)(unsigned))
   return sc;
 }
 
+/* The 64 bytes at t or'ed together eight at a time (in registers). */
+static inline uint64_t high64(const char *t)
+{
+  uint64_t a, b, c, d, e, f, g, h;
+  memcpy(&a, t, 8);
+  memcpy(&b, t + 8, 8);
+  memcpy(&c, t + 16, 8);
+  memcpy(&d, t + 24, 8);
+  memcpy(&e, t + 32, 8);
+  memcpy(&f, t + 40, 8);
+  memcpy(&g, t + 48, 8);
+  memcpy(&h, t + 56, 8);
+  return (a | b) | (c | d) | (e | f) | (g | h);
+}
+
 int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col, unsigned *byte, const char **enc)
 {
   struct lex l;
@@ -381,10 +396,9 @@ int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col,
   size_t bad = n, highs = 0, len;
   for (size_t p = lex_pos(&l); p < n; p += len) {
     /* ASCII, 64 and then eight bytes at a time: most programs are nothing else */
-    uint64_t w8, w[8];
-    while (p + 64 <= n && (memcpy(w, text + p, 64),
-                           !((w[0] | w[1] | w[2] | w[3] | w[4] | w[5] | w[6] | w[7]) & 0x8080808080808080ull)))
+    while (p + 64 <= n && !(high64(text + p) & 0x8080808080808080ull))
       p += 64;
+    uint64_t w8;
     while (p + 8 <= n && (memcpy(&w8, text + p, 8), !(w8 & 0x8080808080808080ull)))
       p += 8;
     if (p >= n)
