@@ -68,22 +68,19 @@ void arena_free(struct arena *a)
 
 /* ---- errors ---- */
 
-struct pstate {
-  struct parser *p;
-  struct block *b;
-  jmp_buf jb;
-};
+/* The parser's state is struct parser (parse.h): s, the parser itself,
+ * with its block (s->b) and where an error leaves to (s->jb). */
 
-static void fail(struct pstate *s, int code, unsigned col, const char *fmt, ...)
+static void fail(struct parser *s, int code, unsigned col, const char *fmt, ...)
   __attribute__((format(printf, 4, 5), noreturn));
-static void fail(struct pstate *s, int code, unsigned col, const char *fmt, ...)
+static void fail(struct parser *s, int code, unsigned col, const char *fmt, ...)
 {
   char msg[240];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  diag_add(s->p->d, DIAG_ERROR, code, s->b->line, col, s->b->number, "%s", msg);
+  diag_add(s->d, DIAG_ERROR, code, s->b->line, col, s->b->number, "%s", msg);
   s->b->bad = 1;
   longjmp(s->jb, 1);
 }
@@ -111,23 +108,23 @@ static const char *show(int32_t c, char *buf)
 
 /* Inline everywhere: a peek is a load and a compare. */
 #define HOT static inline __attribute__((always_inline))
-HOT int32_t peek(struct pstate *s) { return lex_peek(&s->p->lx); }
+HOT int32_t peek(struct parser *s) { return lex_peek(&s->lx); }
 /* The column of the character peek() returns. */
-HOT unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return lex_col(&s->p->lx); }
+HOT unsigned pcol(struct parser *s) { lex_peek(&s->lx); return lex_col(&s->lx); }
 /* The column of the character peek() returned, right after it. */
-HOT unsigned here(struct pstate *s) { return lex_col(&s->p->lx); }
+HOT unsigned here(struct parser *s) { return lex_col(&s->lx); }
 /* Consume the character peek() returned (every adv follows a peek of its
  * character: the cursor is at it, not at the whitespace before it). */
-HOT void adv(struct pstate *s) { lex_adv1(&s->p->lx); }
+HOT void adv(struct parser *s) { lex_adv1(&s->lx); }
 
 /* expect()'s error, out of its way. */
-static void __attribute__((noinline, cold, noreturn)) not_expected(struct pstate *s, int32_t got, const char *what)
+static void __attribute__((noinline, cold, noreturn)) not_expected(struct parser *s, int32_t got, const char *what)
 {
   char buf[32];
   fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(got, buf));
 }
 
-HOT void expect(struct pstate *s, int32_t c, const char *what)
+HOT void expect(struct parser *s, int32_t c, const char *what)
 {
   int32_t got = peek(s);
   if (got != c)
@@ -135,7 +132,7 @@ HOT void expect(struct pstate *s, int32_t c, const char *what)
   adv(s);
 }
 
-static int accept(struct pstate *s, int32_t c)
+static int accept(struct parser *s, int32_t c)
 {
   if (peek(s) == c) {
     adv(s);
@@ -158,13 +155,13 @@ static void fmt_uint(char *p, unsigned n)
 }
 
 /* number()'s errors, out of its way: its frame holds no message buffer. */
-static void __attribute__((noinline, cold, noreturn)) no_number(struct pstate *s, const char *what)
+static void __attribute__((noinline, cold, noreturn)) no_number(struct parser *s, const char *what)
 {
   char buf[32];
   fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(peek(s), buf));
 }
 
-static void __attribute__((noinline, cold, noreturn)) long_number(struct pstate *s, unsigned col, const char *what,
+static void __attribute__((noinline, cold, noreturn)) long_number(struct parser *s, unsigned col, const char *what,
                                                                  int nd, int maxdig)
 {
   fail(s, S42_E_RANGE, col, "%s has %d digits; at most %d are allowed", what, nd, maxdig);
@@ -197,9 +194,9 @@ static unsigned long __attribute__((noinline)) number_more(struct lex *l, unsign
  * as everywhere outside text.  The digits are read from the text's bytes,
  * up to one that is not plain (lex_slow's then: more digits may follow).
  * *next gets the character after the number (peek()'s). */
-HOT long digits(struct pstate *s, int maxdig, const char *what, int32_t *next)
+HOT long digits(struct parser *s, int maxdig, const char *what, int32_t *next)
 {
-  struct lex *l = &s->p->lx;
+  struct lex *l = &s->lx;
   const unsigned char *p = l->p;
   const unsigned char *first = p;
   while (*p == '0')   /* leading zeros */
@@ -223,13 +220,13 @@ HOT long digits(struct pstate *s, int maxdig, const char *what, int32_t *next)
 }
 
 /* The same, the first digit not looked at yet. */
-HOT long number_to(struct pstate *s, int maxdig, const char *what, int32_t *next)
+HOT long number_to(struct parser *s, int maxdig, const char *what, int32_t *next)
 {
-  if (!isdig(lex_peek(&s->p->lx)))
+  if (!isdig(lex_peek(&s->lx)))
     no_number(s, what);
   return digits(s, maxdig, what, next);
 }
-HOT long number(struct pstate *s, int maxdig, const char *what)
+HOT long number(struct parser *s, int maxdig, const char *what)
 {
   int32_t next;
   return number_to(s, maxdig, what, &next);
@@ -247,7 +244,7 @@ HOT long number(struct pstate *s, int maxdig, const char *what)
  * parenthesis at an operand's start one, each operand one), so that deep
  * nesting fails where and as it did. */
 
-static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct pstate *s, unsigned col)
+static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct parser *s, unsigned col)
 {
   fail(s, S42_E_BLOCKLEN, col, "block too long to analyse (over %d terms)", MAX_NODES);
 }
@@ -255,9 +252,9 @@ static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct psta
 /* The block's nodes are in one array of MAX_NODES, made at the first
  * node (as arena_alloc would: out of memory leaves the block); its end is
  * the bound on them. */
-static size_t __attribute__((noinline, cold)) node_room(struct pstate *s, unsigned col)
+static size_t __attribute__((noinline, cold)) node_room(struct parser *s, unsigned col)
 {
-  struct parser *p = s->p;
+  struct parser *p = s;
   if (p->nodes >= MAX_NODES)
     too_many_nodes(s, col);
   p->nodebuf = malloc(MAX_NODES * sizeof *p->nodebuf);
@@ -267,9 +264,9 @@ static size_t __attribute__((noinline, cold)) node_room(struct pstate *s, unsign
   return p->nodes;
 }
 
-HOT struct expr *node(struct pstate *s, int kind, unsigned col)
+HOT struct expr *node(struct parser *s, int kind, unsigned col)
 {
-  struct parser *p = s->p;
+  struct parser *p = s;
   size_t k = p->nodes;
   if (k >= p->nodecap)
     k = node_room(s, col);
@@ -298,10 +295,10 @@ HOT void need2(struct expr *n)
   n->need = (uint16_t)(n->a->need > r ? n->a->need : r > 0xffff ? 0xffff : r);
 }
 
-static struct expr *expr(struct pstate *s, size_t d);
-static struct expr *unary(struct pstate *s, size_t d);
+static struct expr *expr(struct parser *s, size_t d);
+static struct expr *unary(struct parser *s, size_t d);
 
-static struct expr *call(struct pstate *s, int op, unsigned col, int skip, size_t d)
+static struct expr *call(struct parser *s, int op, unsigned col, int skip, size_t d)
 {
   for (int i = 0; i < skip; i++)
     adv(s);
@@ -315,20 +312,20 @@ static struct expr *call(struct pstate *s, int op, unsigned col, int skip, size_
 }
 
 /* The operands that are not a number, a parameter or X Y Z. */
-static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, int32_t c, unsigned col, size_t d)
+static struct expr *__attribute__((noinline)) primary_other(struct parser *s, int32_t c, unsigned col, size_t d)
 {
   char buf[32];
   struct expr *e;
   switch (c) {
   case '(':
     adv(s);
-    s->p->paren++;
+    s->paren++;
     e = expr(s, d);
     expect(s, ')', "')'");
-    s->p->paren--;
+    s->paren--;
     return e;
   case 'A': {
-    int32_t c2 = lex_peek2(&s->p->lx);
+    int32_t c2 = lex_peek2(&s->lx);
     if (c2 == 'S') { adv(s); peek(s); adv(s); if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ASI(...)?"); return call(s, OP_ASIN, col, 1, d); }
     if (c2 == 'C') { adv(s); peek(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1, d); }
     if (c2 == 'T') { adv(s); peek(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1, d); }
@@ -406,7 +403,7 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
 
 /* An operand; c is its first character, which peek() returned.  *next
  * gets the character after it. */
-HOT struct expr *primary(struct pstate *s, int32_t c, size_t d, int32_t *next)
+HOT struct expr *primary(struct parser *s, int32_t c, size_t d, int32_t *next)
 {
   unsigned col = here(s);
   struct expr *e;
@@ -441,7 +438,7 @@ HOT struct expr *primary(struct pstate *s, int32_t c, size_t d, int32_t *next)
 
 /* The %% after the primary b and its exponent (right-associative through
  * unary). */
-static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struct expr *b, size_t d)
+static struct expr *__attribute__((noinline)) power_rest(struct parser *s, struct expr *b, size_t d)
 {
   unsigned col = pcol(s);
   adv(s);
@@ -458,11 +455,11 @@ static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struc
 /* power := primary [ %% unary ]; c the primary's first character, which
  * peek() returned.  *next gets the character after it (peek()'s: the
  * operand parsers hand it on, and their callers look at it no more). */
-HOT struct expr *power(struct pstate *s, int32_t c, size_t d, int32_t *next)
+HOT struct expr *power(struct parser *s, int32_t c, size_t d, int32_t *next)
 {
   int32_t n;
   struct expr *b = primary(s, c, d, &n);
-  if (n == '%' && lex_peek2(&s->p->lx) == '%') {
+  if (n == '%' && lex_peek2(&s->lx) == '%') {
     b = power_rest(s, b, d);
     n = peek(s);
   }
@@ -472,7 +469,7 @@ HOT struct expr *power(struct pstate *s, int32_t c, size_t d, int32_t *next)
 
 /* A sign applies to the factor that follows, power included: -2%%2 = -4.
  * c is the operand's first character, which peek() returned. */
-HOT struct expr *unary_inner(struct pstate *s, int32_t c, size_t d, int32_t *next)
+HOT struct expr *unary_inner(struct parser *s, int32_t c, size_t d, int32_t *next)
 {
   if (c == '+' || c == '-') {
     unsigned col = here(s);
@@ -508,14 +505,14 @@ HOT struct expr *unary_inner(struct pstate *s, int32_t c, size_t d, int32_t *nex
 /* unary: one level more, checked at the character consumed last (the
  * operator, sign or parenthesis before the operand: at the top of a word's
  * value the depth is 0 and the check passes). */
-HOT struct expr *operand(struct pstate *s, size_t d, int32_t *next)
+HOT struct expr *operand(struct parser *s, size_t d, int32_t *next)
 {
   if (d + 1 > MAX_DEPTH)
-    fail(s, S42_E_SYNTAX, lex_prev_col(&s->p->lx), "expression nested too deeply");
+    fail(s, S42_E_SYNTAX, lex_prev_col(&s->lx), "expression nested too deeply");
   return unary_inner(s, peek(s), d + 1, next);
 }
 
-static struct expr *__attribute__((noinline)) unary(struct pstate *s, size_t d)
+static struct expr *__attribute__((noinline)) unary(struct parser *s, size_t d)
 {
   int32_t next;
   return operand(s, d, &next);
@@ -525,7 +522,7 @@ static struct expr *__attribute__((noinline)) unary(struct pstate *s, size_t d)
  * `mul` is the / or % waiting for its right operand, `top` the + or -
  * waiting for its right term.  e is the first operand, parsed, and c the
  * character after it; *next gets the one after the expression. */
-HOT struct expr *expr_rest(struct pstate *s, struct expr *e, int32_t c, size_t d, int32_t *next)
+HOT struct expr *expr_rest(struct parser *s, struct expr *e, int32_t c, size_t d, int32_t *next)
 {
   struct expr *top = NULL, *mul = NULL;
   for (;;) {
@@ -535,9 +532,9 @@ HOT struct expr *expr_rest(struct pstate *s, struct expr *e, int32_t c, size_t d
       e = mul;
       mul = NULL;
     }
-    if (c == '/' && s->p->slash_ends && s->p->paren == 0)
+    if (c == '/' && s->slash_ends && s->paren == 0)
       ;   /* the slash that closes G28 /min:max/: the term ends */
-    else if (c == '/' || (c == '%' && lex_peek2(&s->p->lx) != '%')) {
+    else if (c == '/' || (c == '%' && lex_peek2(&s->lx) != '%')) {
       unsigned col = here(s);
       adv(s);
       mul = node(s, EX_BIN, col);
@@ -565,7 +562,7 @@ HOT struct expr *expr_rest(struct pstate *s, struct expr *e, int32_t c, size_t d
   }
 }
 
-HOT struct expr *expr_in(struct pstate *s, size_t d)
+HOT struct expr *expr_in(struct parser *s, size_t d)
 {
   int32_t c;
   struct expr *e = operand(s, d, &c);
@@ -573,14 +570,14 @@ HOT struct expr *expr_in(struct pstate *s, size_t d)
 }
 
 /* expr(), out of line: where expressions nest */
-static struct expr *__attribute__((noinline)) expr(struct pstate *s, size_t d)
+static struct expr *__attribute__((noinline)) expr(struct parser *s, size_t d)
 {
   return expr_in(s, d);
 }
 
 /* word_value's errors, out of its way; a parameter's name (rn >= 0, R12)
  * made only here. */
-static void __attribute__((noinline, cold, noreturn)) no_value(struct pstate *s, const char *word, int rn, int sign)
+static void __attribute__((noinline, cold, noreturn)) no_value(struct parser *s, const char *word, int rn, int sign)
 {
   char buf[32], name[8];
   if (rn >= 0) {
@@ -598,7 +595,7 @@ static void __attribute__((noinline, cold, noreturn)) no_value(struct pstate *s,
 /* A word's value: its sign (required when `sign` is set) starts the first
  * term: X-R3+100 is (-R3)+100.  The word's name for the errors, or rn for
  * a parameter's; *next gets the character after the value. */
-HOT struct expr *word_value(struct pstate *s, const char *word, int rn, int sign, int32_t *next)
+HOT struct expr *word_value(struct parser *s, const char *word, int rn, int sign, int32_t *next)
 {
   int32_t c = peek(s);
   if ((sign && c != '+' && c != '-') || c == LX_EOB || c == LX_EOF)
@@ -610,17 +607,17 @@ HOT struct expr *word_value(struct pstate *s, const char *word, int rn, int sign
 
 /* ---- conditions ---- */
 
-static struct expr *cond(struct pstate *s, size_t d);
+static struct expr *cond(struct parser *s, size_t d);
 
 /* Does the parenthesis at the cursor hold a comparison (a ':' at its own
  * level) rather than a nested condition? */
-static int is_comparison(struct pstate *s)
+static int is_comparison(struct parser *s)
 {
   struct lex_ahead a;
-  lex_ahead_start(&s->p->lx, &a);
+  lex_ahead_start(&s->lx, &a);
   int depth = 0;
   for (;;) {
-    int32_t c = lex_ahead_next(&s->p->lx, &a);
+    int32_t c = lex_ahead_next(&s->lx, &a);
     if (c == LX_EOB || c == LX_EOF)
       return 0;
     if (c == '(') {
@@ -634,7 +631,7 @@ static int is_comparison(struct pstate *s)
   }
 }
 
-static struct expr *prim(struct pstate *s, size_t d)
+static struct expr *prim(struct parser *s, size_t d)
 {
   char buf[32];
   unsigned col = pcol(s);
@@ -672,7 +669,7 @@ static struct expr *prim(struct pstate *s, size_t d)
   return e;
 }
 
-static struct expr *conjunction(struct pstate *s, size_t d)
+static struct expr *conjunction(struct parser *s, size_t d)
 {
   struct expr *e = prim(s, d);
   while (peek(s) == 'U') {
@@ -687,7 +684,7 @@ static struct expr *conjunction(struct pstate *s, size_t d)
   return e;
 }
 
-static struct expr *cond(struct pstate *s, size_t d)
+static struct expr *cond(struct parser *s, size_t d)
 {
   struct expr *e = conjunction(s, d);
   while (peek(s) == 'S') {
@@ -706,9 +703,9 @@ static struct expr *cond(struct pstate *s, size_t d)
 
 /* Read raw text up to the next '/' (not consumed).  Newline or ^ before it
  * is E-TEXT: the argument was not closed. */
-static void raw_text(struct pstate *s, struct text *t, const char *fn)
+static void raw_text(struct parser *s, struct text *t, const char *fn)
 {
-  struct lex *l = &s->p->lx;
+  struct lex *l = &s->lx;
   char buf[1024];
   size_t n = 0;
   unsigned nch = 0;
@@ -736,7 +733,7 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
     lex_raw_adv(l);
   }
   buf[n] = 0;
-  t->s = arena_alloc(&s->p->ar, n + 1);
+  t->s = arena_alloc(&s->ar, n + 1);
   if (!t->s)
     longjmp(s->jb, 2);
   memcpy(t->s, buf, n + 1);
@@ -744,7 +741,7 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
 }
 
 /* The opening slash; its column. */
-static unsigned open_slash(struct pstate *s, const char *fn, int code)
+static unsigned open_slash(struct parser *s, const char *fn, int code)
 {
   char buf[32];
   unsigned col = pcol(s);
@@ -761,9 +758,9 @@ static struct text *text_of(struct block *b, const struct kp_word *w)
 }
 
 /* The slash argument of the function w (words.h: its kind). */
-static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w)
+static void slash_arg(struct parser *s, struct block *b, const struct kp_word *w)
 {
-  struct lex *l = &s->p->lx;
+  struct lex *l = &s->lx;
   const char *fn = w->code;
   switch (w->slash) {
   case KP_SA_PROMPT: case KP_SA_TEXT: {
@@ -797,12 +794,12 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
   case KP_SA_BOUNDS:
     open_slash(s, fn, S42_E_SYNTAX);
     b->g28col = pcol(s);
-    s->p->slash_ends = 1;
+    s->slash_ends = 1;
     b->g28min = expr(s, 0);
     expect(s, ':', "':' between the G28 bounds /min:max/ (divide inside parentheses: /(R1/2):R2/)");
     b->g28max = expr(s, 0);
     expect(s, '/', "'/' closing the G28 bounds");
-    s->p->slash_ends = 0;
+    s->slash_ends = 0;
     b->g28reg = -2;   /* the R word must follow */
     break;
   case KP_SA_AXIS: {
@@ -876,7 +873,7 @@ static int takes_slash(const struct kp_word *w)
 
 /* ---- words ---- */
 
-HOT struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
+HOT struct word *new_word(struct parser *s, int kind, char letter, unsigned col)
 {
   struct block *b = s->b;
   if (b->nw >= MAX_WORDS)
@@ -897,7 +894,7 @@ HOT struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
 }
 
 /* A word the block may have once: `there` says it has it already. */
-HOT void once(struct pstate *s, int there, const char *name, unsigned col)
+HOT void once(struct parser *s, int there, const char *name, unsigned col)
 {
   if (there)
     fail(s, S42_E_SYNTAX, col, "%s appears twice in the block", name);
@@ -905,7 +902,7 @@ HOT void once(struct pstate *s, int there, const char *name, unsigned col)
 
 /* A word; c its first character, which peek() returned.  Returns the
  * character after the word (peek()'s). */
-static inline __attribute__((always_inline)) int32_t word(struct pstate *s, int32_t c)
+static inline __attribute__((always_inline)) int32_t word(struct parser *s, int32_t c)
 {
   char buf[32];
   struct block *b = s->b;
@@ -919,9 +916,9 @@ static inline __attribute__((always_inline)) int32_t word(struct pstate *s, int3
     const struct kp_word *kw = kp_word((char)c, (int)n);
     int valid = kw != NULL;
     if (!valid && n < (c == 'G' ? 64 : 32))   /* a function a plugin adds */
-      valid = plug_find(s->p->plugins, (char)c, (int)n, NULL) >= 0;
+      valid = plug_find(s->plugins, (char)c, (int)n, NULL) >= 0;
     if (!valid) {
-      diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, b->line, col, b->number,
+      diag_add(s->d, DIAG_ERROR, S42_E_FUNC, b->line, col, b->number,
                "%c%02ld is not a function of the 2С42 or of a plugin found", (char)c, n);
       b->bad = 1;
       return peek(s);
@@ -1179,9 +1176,9 @@ HOT int block_start(struct parser *p, struct block *b, int all)
 
 /* The block's number and words, after block_start: an error leaves by
  * longjmp (fail). */
-static void block_words(struct pstate *s)
+static void block_words(struct parser *s)
 {
-  struct lex *l = &s->p->lx;
+  struct lex *l = &s->lx;
   struct block *b = s->b;
   int32_t c = lex_peek(l);
   if (c == 'H' && lex_cyrillic(l)) {
@@ -1231,15 +1228,13 @@ HOT void block_end(struct parser *p, struct block *b, int jumped)
 
 int parse_block(struct parser *p, struct block *b)
 {
-  struct pstate s;
-  s.p = p;
-  s.b = b;
+  p->b = b;
   if (!block_start(p, b, 1))
     return 0;
-  p->ar.oom = &s.jb;
-  int jumped = setjmp(s.jb);
+  p->ar.oom = &p->jb;
+  int jumped = setjmp(p->jb);
   if (!jumped)
-    block_words(&s);
+    block_words(p);
   block_end(p, b, jumped);
   p->ar.oom = NULL;
   return 1;
@@ -1250,19 +1245,17 @@ void parse_all(struct parser *p, struct block *b, int (*each)(void *ctx, struct 
   /* one setjmp for the whole text: after a longjmp out of a block's words
    * the loop goes on from that block's end (nothing here changes after
    * the setjmp but what p and b point to) */
-  struct pstate s;
-  s.p = p;
-  s.b = b;
-  p->ar.oom = &s.jb;
+  p->b = b;
+  p->ar.oom = &p->jb;
   clear_block(b, 1);   /* then each block's clear_block leaves its slash arguments as they are when it had none */
-  int jumped = setjmp(s.jb);
+  int jumped = setjmp(p->jb);
   if (jumped) {
     block_end(p, b, jumped);
     if (each(ctx, b))
       goto out;
   }
   while (block_start(p, b, 0)) {
-    block_words(&s);
+    block_words(p);
     block_end(p, b, 0);
     if (each(ctx, b))
       break;
