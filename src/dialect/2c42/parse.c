@@ -287,12 +287,21 @@ HOT struct expr *node(struct parser *s, int kind, unsigned col)
  * right of + - % /, which the code generator fuses into the operator
  * (gen: a superinstruction), pushing nothing more.  A bound: folding
  * constants only lowers it. */
-HOT void need2(struct expr *n)
+HOT void need_of(struct expr *n, int fuses)
 {
   unsigned r = n->b->need + 1u;
-  if (n->kind == EX_BIN && n->op != OP_POW && (n->b->kind == EX_NUM || n->b->kind == EX_REG))
+  if (fuses && (n->b->kind == EX_NUM || n->b->kind == EX_REG))
     r = 1;
   n->need = (uint16_t)(n->a->need > r ? n->a->need : r > 0xffff ? 0xffff : r);
+}
+HOT void need2(struct expr *n)
+{
+  need_of(n, n->kind == EX_BIN && n->op != OP_POW);
+}
+/* The same for a + - / or % node (expr_rest's). */
+HOT void need_arith(struct expr *n)
+{
+  need_of(n, 1);
 }
 
 static struct expr *expr(struct parser *s, size_t d);
@@ -528,7 +537,7 @@ HOT struct expr *expr_rest(struct parser *s, struct expr *e, int32_t c, size_t d
   for (;;) {
     if (mul) {
       mul->b = e;
-      need2(mul);
+      need_arith(mul);
       e = mul;
       mul = NULL;
     }
@@ -545,7 +554,7 @@ HOT struct expr *expr_rest(struct parser *s, struct expr *e, int32_t c, size_t d
     }
     if (top) {   /* the term is whole: the right operand of the + or - */
       top->b = e;
-      need2(top);
+      need_arith(top);
       e = top;
       top = NULL;
     }
