@@ -7,11 +7,12 @@
  *
  * The cursor p points at the byte of the character lex_peek returns: a
  * plain ASCII one (lex_val) is that byte, read inline, and so are '^' and
- * LF as the end of block they are; anything else --
- * a space before it, whitespace, comments, line ends, UTF-8 -- is lexed
- * by lex_slow when the parser first looks at it, which makes the notes
- * about it then, as a character at a time.  A character of several bytes
- * leaves p at its last byte (its value kept in mbc), so that one step on
+ * LF as the end of block they are (one space before a plain one passed
+ * inline too: lex_unplain); anything else -- spaces, whitespace, comments,
+ * line ends, UTF-8 -- is lexed by lex_slow when the parser first looks at
+ * it, which makes the notes about it then, as a character at a time.  A
+ * character of several bytes leaves p at its last byte (its value kept in
+ * mbc), so that one step on
  * from any character is p + 1.  Columns are not counted: the column of p
  * is p - cb, the base moved only where a character is not one byte (and
  * at a line end).  The last line of the text (after its last line end,
