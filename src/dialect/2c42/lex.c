@@ -254,18 +254,6 @@ void lex_adv(struct lex *l)
   }
 }
 
-void lex_end_block(struct lex *l)
-{
-  const unsigned char *p = l->p;
-  if (*p == '^' && p[1] == '\n' && lex_pos(l) + 2 < l->tail) {   /* the usual end of a line */
-    l->line++;
-    l->p = p + 2;
-    l->cb = (uintptr_t)p + 1;
-    return;
-  }
-  lex_adv(l);
-}
-
 int32_t lex_peek2_slow(struct lex *l)
 {
   size_t pos = lex_pos(l) + 1, len;
@@ -274,25 +262,15 @@ int32_t lex_peek2_slow(struct lex *l)
   return scan(l, &pos, &col, &len, &cyr);
 }
 
-void lex_ahead_start(const struct lex *l, struct lex_ahead *a)
-{
-  a->pos = lex_pos(l) + 1;
-  a->col = lex_col(l) + 1;
-  a->first = 1;
-}
-
-int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a)
+/* lex_ahead_next past its plain characters: the first, and what scan
+ * reads. */
+int32_t lex_ahead_slow(struct lex *l, struct lex_ahead *a)
 {
   if (a->first) {
     a->first = 0;
     return lex_peek(l);
   }
-  size_t len = a->pos;
-  if (len < l->n && plain((unsigned char)l->s[len])) {   /* a plain one */
-    a->pos++;
-    a->col++;
-    return (unsigned char)l->s[len];
-  }
+  size_t len;
   int cyr = 0;
   int32_t c = scan(l, &a->pos, &a->col, &len, &cyr);
   a->pos += len;
@@ -393,6 +371,21 @@ static long score(const unsigned char *s, size_t n, int (*letter)(unsigned))
   return sc;
 }
 
+/* The 64 bytes at t or'ed together eight at a time (in registers). */
+static inline uint64_t high64(const char *t)
+{
+  uint64_t a, b, c, d, e, f, g, h;
+  memcpy(&a, t, 8);
+  memcpy(&b, t + 8, 8);
+  memcpy(&c, t + 16, 8);
+  memcpy(&d, t + 24, 8);
+  memcpy(&e, t + 32, 8);
+  memcpy(&f, t + 40, 8);
+  memcpy(&g, t + 48, 8);
+  memcpy(&h, t + 56, 8);
+  return (a | b) | (c | d) | (e | f) | (g | h);
+}
+
 int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col, unsigned *byte, const char **enc)
 {
   struct lex l;
@@ -402,10 +395,10 @@ int lex_find_bad_utf8(const char *text, size_t n, unsigned *line, unsigned *col,
   *enc = NULL;
   size_t bad = n, highs = 0, len;
   for (size_t p = lex_pos(&l); p < n; p += len) {
-    /* ASCII, 32 and then eight bytes at a time: most programs are nothing else */
-    uint64_t w8, w[4];
-    while (p + 32 <= n && (memcpy(w, text + p, 32), !((w[0] | w[1] | w[2] | w[3]) & 0x8080808080808080ull)))
-      p += 32;
+    /* ASCII, 64 and then eight bytes at a time: most programs are nothing else */
+    while (p + 64 <= n && !(high64(text + p) & 0x8080808080808080ull))
+      p += 64;
+    uint64_t w8;
     while (p + 8 <= n && (memcpy(&w8, text + p, 8), !(w8 & 0x8080808080808080ull)))
       p += 8;
     if (p >= n)

@@ -7,11 +7,12 @@
  *
  * The cursor p points at the byte of the character lex_peek returns: a
  * plain ASCII one (lex_val) is that byte, read inline, and so are '^' and
- * LF as the end of block they are; anything else --
- * a space before it, whitespace, comments, line ends, UTF-8 -- is lexed
- * by lex_slow when the parser first looks at it, which makes the notes
- * about it then, as a character at a time.  A character of several bytes
- * leaves p at its last byte (its value kept in mbc), so that one step on
+ * LF as the end of block they are (one space before a plain one passed
+ * inline too: lex_unplain); anything else -- spaces, whitespace, comments,
+ * line ends, UTF-8 -- is lexed by lex_slow when the parser first looks at
+ * it, which makes the notes about it then, as a character at a time.  A
+ * character of several bytes leaves p at its last byte (its value kept in
+ * mbc), so that one step on
  * from any character is p + 1.  Columns are not counted: the column of p
  * is p - cb, the base moved only where a character is not one byte (and
  * at a line end).  The last line of the text (after its last line end,
@@ -65,11 +66,27 @@ void lex_init(struct lex *l, const char *s, size_t n, struct diag_list *d);
  * significant character (mapped), LX_EOB or LX_EOF, not consumed. */
 int32_t lex_slow(struct lex *l);
 
+/* lex_slow, but the one space between words before a plain character
+ * passed inline, as lex_slow would (the byte after a space is in the
+ * text, or the chunk's NUL at the latest). */
+static inline __attribute__((always_inline)) int32_t lex_unplain(struct lex *l)
+{
+  const unsigned char *p = l->p;
+  if (*p == ' ') {
+    int32_t c = lex_val[p[1]];
+    if (c != LX_SLOW) {
+      l->p = p + 1;
+      l->skipped++;
+      return c;
+    }
+  }
+  return lex_slow(l);
+}
 /* The next significant character (mapped), LX_EOB or LX_EOF; not consumed. */
-static inline int32_t lex_peek(struct lex *l)
+static inline __attribute__((always_inline)) int32_t lex_peek(struct lex *l)
 {
   int32_t c = lex_val[*l->p];
-  return c != LX_SLOW ? c : lex_slow(l);
+  return c != LX_SLOW ? c : lex_unplain(l);
 }
 /* Consume what lex_peek returned, which is no end of block or file. */
 static inline void lex_adv1(struct lex *l)
@@ -78,9 +95,24 @@ static inline void lex_adv1(struct lex *l)
 }
 /* Consume what lex_peek returned, an end of block too. */
 void lex_adv(struct lex *l);
+/* The byte index in the text of what lex_peek returned (of its last byte). */
+static inline size_t lex_pos(const struct lex *l)
+{
+  return (size_t)((uintptr_t)l->p - l->pb);
+}
 /* Consume the end of block lex_peek returned, and with a ^ the line end
  * right after it (the end of an empty block: what lex_adv of both does). */
-void lex_end_block(struct lex *l);
+static inline void lex_end_block(struct lex *l)
+{
+  const unsigned char *p = l->p;
+  if (*p == '^' && p[1] == '\n' && lex_pos(l) + 2 < l->tail) {   /* the usual end of a line */
+    l->line++;
+    l->p = p + 2;
+    l->cb = (uintptr_t)p + 1;
+    return;
+  }
+  lex_adv(l);
+}
 /* The column of what lex_peek returned (after a lex_peek). */
 static inline unsigned lex_col(const struct lex *l)
 {
@@ -97,11 +129,6 @@ static inline unsigned lex_line(const struct lex *l)
 {
   return l->line;
 }
-/* The byte index in the text of what lex_peek returned (of its last byte). */
-static inline size_t lex_pos(const struct lex *l)
-{
-  return (size_t)((uintptr_t)l->p - l->pb);
-}
 /* The character after the one lex_peek returned (which is not an end). */
 int32_t lex_peek2_slow(struct lex *l);
 static inline int32_t lex_peek2(struct lex *l)
@@ -115,8 +142,26 @@ static inline int32_t lex_peek2(struct lex *l)
  * yet are lexed on a copy of the cursor, and lexed again when read: their
  * notes are made the first time, as lex_peek would. */
 struct lex_ahead { size_t pos; unsigned col; int first; };
-void lex_ahead_start(const struct lex *l, struct lex_ahead *a);
-int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a);
+static inline void lex_ahead_start(const struct lex *l, struct lex_ahead *a)
+{
+  a->pos = lex_pos(l) + 1;
+  a->col = lex_col(l) + 1;
+  a->first = 1;
+}
+int32_t lex_ahead_slow(struct lex *l, struct lex_ahead *a);
+static inline int32_t lex_ahead_next(struct lex *l, struct lex_ahead *a)
+{
+  size_t pos = a->pos;
+  if (!a->first && pos < l->n) {   /* a plain one (a NUL too) */
+    unsigned char b = (unsigned char)l->s[pos];
+    if (lex_val[b] >= 0 || b == 0) {
+      a->pos = pos + 1;
+      a->col++;
+      return b;
+    }
+  }
+  return lex_ahead_slow(l, a);
+}
 /* Raw access inside text, on the bytes at the cursor (after a consumed
  * character): the next character as written, or LX_EOB at a newline or ^
  * (which end the block even inside text), LX_EOF at the end. */

@@ -68,22 +68,19 @@ void arena_free(struct arena *a)
 
 /* ---- errors ---- */
 
-struct pstate {
-  struct parser *p;
-  struct block *b;
-  jmp_buf jb;
-};
+/* The parser's state is struct parser (parse.h): s, the parser itself,
+ * with its block (s->b) and where an error leaves to (s->jb). */
 
-static void fail(struct pstate *s, int code, unsigned col, const char *fmt, ...)
+static void fail(struct parser *s, int code, unsigned col, const char *fmt, ...)
   __attribute__((format(printf, 4, 5), noreturn));
-static void fail(struct pstate *s, int code, unsigned col, const char *fmt, ...)
+static void fail(struct parser *s, int code, unsigned col, const char *fmt, ...)
 {
   char msg[240];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  diag_add(s->p->d, DIAG_ERROR, code, s->b->line, col, s->b->number, "%s", msg);
+  diag_add(s->d, DIAG_ERROR, code, s->b->line, col, s->b->number, "%s", msg);
   s->b->bad = 1;
   longjmp(s->jb, 1);
 }
@@ -111,25 +108,31 @@ static const char *show(int32_t c, char *buf)
 
 /* Inline everywhere: a peek is a load and a compare. */
 #define HOT static inline __attribute__((always_inline))
-HOT int32_t peek(struct pstate *s) { return lex_peek(&s->p->lx); }
+HOT int32_t peek(struct parser *s) { return lex_peek(&s->lx); }
 /* The column of the character peek() returns. */
-HOT unsigned pcol(struct pstate *s) { lex_peek(&s->p->lx); return lex_col(&s->p->lx); }
+HOT unsigned pcol(struct parser *s) { lex_peek(&s->lx); return lex_col(&s->lx); }
 /* The column of the character peek() returned, right after it. */
-HOT unsigned here(struct pstate *s) { return lex_col(&s->p->lx); }
+HOT unsigned here(struct parser *s) { return lex_col(&s->lx); }
 /* Consume the character peek() returned (every adv follows a peek of its
  * character: the cursor is at it, not at the whitespace before it). */
-HOT void adv(struct pstate *s) { lex_adv1(&s->p->lx); }
+HOT void adv(struct parser *s) { lex_adv1(&s->lx); }
 
-static void expect(struct pstate *s, int32_t c, const char *what)
+/* expect()'s error, out of its way. */
+static void __attribute__((noinline, cold, noreturn)) not_expected(struct parser *s, int32_t got, const char *what)
 {
   char buf[32];
+  fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(got, buf));
+}
+
+HOT void expect(struct parser *s, int32_t c, const char *what)
+{
   int32_t got = peek(s);
   if (got != c)
-    fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(got, buf));
+    not_expected(s, got, what);
   adv(s);
 }
 
-static int accept(struct pstate *s, int32_t c)
+static int accept(struct parser *s, int32_t c)
 {
   if (peek(s) == c) {
     adv(s);
@@ -152,13 +155,13 @@ static void fmt_uint(char *p, unsigned n)
 }
 
 /* number()'s errors, out of its way: its frame holds no message buffer. */
-static void __attribute__((noinline, cold, noreturn)) no_number(struct pstate *s, const char *what)
+static void __attribute__((noinline, cold, noreturn)) no_number(struct parser *s, const char *what)
 {
   char buf[32];
   fail(s, S42_E_SYNTAX, pcol(s), "expected %s, found %s", what, show(peek(s), buf));
 }
 
-static void __attribute__((noinline, cold, noreturn)) long_number(struct pstate *s, unsigned col, const char *what,
+static void __attribute__((noinline, cold, noreturn)) long_number(struct parser *s, unsigned col, const char *what,
                                                                  int nd, int maxdig)
 {
   fail(s, S42_E_RANGE, col, "%s has %d digits; at most %d are allowed", what, nd, maxdig);
@@ -180,7 +183,7 @@ static unsigned long __attribute__((noinline)) number_more(struct lex *l, unsign
       v = v * 10 + d;
     nd += (size_t)(p - q);
     l->p = p;
-  } while (lex_val[*l->p] == LX_SLOW && isdig(lex_slow(l)));
+  } while (lex_val[*l->p] == LX_SLOW && isdig(lex_unplain(l)));
   *pnd = nd;
   return v;
 }
@@ -189,10 +192,11 @@ static unsigned long __attribute__((noinline)) number_more(struct lex *l, unsign
  * digit lex_peek returned: leading zeros are insignificant however many
  * (`G001`, `№0002`, language.md sec. 9), and whitespace between digits too,
  * as everywhere outside text.  The digits are read from the text's bytes,
- * up to one that is not plain (lex_slow's then: more digits may follow). */
-HOT long digits(struct pstate *s, int maxdig, const char *what)
+ * up to one that is not plain (lex_slow's then: more digits may follow).
+ * *next gets the character after the number (peek()'s). */
+HOT long digits(struct parser *s, int maxdig, const char *what, int32_t *next)
 {
-  struct lex *l = &s->p->lx;
+  struct lex *l = &s->lx;
   const unsigned char *p = l->p;
   const unsigned char *first = p;
   while (*p == '0')   /* leading zeros */
@@ -204,19 +208,28 @@ HOT long digits(struct pstate *s, int maxdig, const char *what)
   size_t nd = (size_t)(p - q);
   uintptr_t cb = l->cb;
   l->p = p;
-  if (lex_val[*p] == LX_SLOW && isdig(lex_slow(l)))   /* (a space after it: past it) */
+  int32_t c = lex_val[*p];
+  if (c == LX_SLOW && isdig(c = lex_unplain(l))) {   /* (a space after it: past it) */
     v = number_more(l, v, &nd);
+    c = lex_peek(l);
+  }
+  *next = c;
   if (nd > (size_t)maxdig)
     long_number(s, (unsigned)((uintptr_t)first - cb), what, (int)nd, maxdig);
   return (long)v;
 }
 
 /* The same, the first digit not looked at yet. */
-HOT long number(struct pstate *s, int maxdig, const char *what)
+HOT long number_to(struct parser *s, int maxdig, const char *what, int32_t *next)
 {
-  if (!isdig(lex_peek(&s->p->lx)))
+  if (!isdig(lex_peek(&s->lx)))
     no_number(s, what);
-  return digits(s, maxdig, what);
+  return digits(s, maxdig, what, next);
+}
+HOT long number(struct parser *s, int maxdig, const char *what)
+{
+  int32_t next;
+  return number_to(s, maxdig, what, &next);
 }
 
 /* ---- expressions ---- */
@@ -231,7 +244,7 @@ HOT long number(struct pstate *s, int maxdig, const char *what)
  * parenthesis at an operand's start one, each operand one), so that deep
  * nesting fails where and as it did. */
 
-static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct pstate *s, unsigned col)
+static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct parser *s, unsigned col)
 {
   fail(s, S42_E_BLOCKLEN, col, "block too long to analyse (over %d terms)", MAX_NODES);
 }
@@ -239,9 +252,9 @@ static void __attribute__((noinline, cold, noreturn)) too_many_nodes(struct psta
 /* The block's nodes are in one array of MAX_NODES, made at the first
  * node (as arena_alloc would: out of memory leaves the block); its end is
  * the bound on them. */
-static size_t __attribute__((noinline, cold)) node_room(struct pstate *s, unsigned col)
+static size_t __attribute__((noinline, cold)) node_room(struct parser *s, unsigned col)
 {
-  struct parser *p = s->p;
+  struct parser *p = s;
   if (p->nodes >= MAX_NODES)
     too_many_nodes(s, col);
   p->nodebuf = malloc(MAX_NODES * sizeof *p->nodebuf);
@@ -251,9 +264,9 @@ static size_t __attribute__((noinline, cold)) node_room(struct pstate *s, unsign
   return p->nodes;
 }
 
-HOT struct expr *node(struct pstate *s, int kind, unsigned col)
+HOT struct expr *node(struct parser *s, int kind, unsigned col)
 {
-  struct parser *p = s->p;
+  struct parser *p = s;
   size_t k = p->nodes;
   if (k >= p->nodecap)
     k = node_room(s, col);
@@ -274,18 +287,27 @@ HOT struct expr *node(struct pstate *s, int kind, unsigned col)
  * right of + - % /, which the code generator fuses into the operator
  * (gen: a superinstruction), pushing nothing more.  A bound: folding
  * constants only lowers it. */
-HOT void need2(struct expr *n)
+HOT void need_of(struct expr *n, int fuses)
 {
   unsigned r = n->b->need + 1u;
-  if (n->kind == EX_BIN && n->op != OP_POW && (n->b->kind == EX_NUM || n->b->kind == EX_REG))
+  if (fuses && (n->b->kind == EX_NUM || n->b->kind == EX_REG))
     r = 1;
   n->need = (uint16_t)(n->a->need > r ? n->a->need : r > 0xffff ? 0xffff : r);
 }
+HOT void need2(struct expr *n)
+{
+  need_of(n, n->kind == EX_BIN && n->op != OP_POW);
+}
+/* The same for a + - / or % node (expr_rest's). */
+HOT void need_arith(struct expr *n)
+{
+  need_of(n, 1);
+}
 
-static struct expr *expr(struct pstate *s, size_t d);
-static struct expr *unary(struct pstate *s, size_t d);
+static struct expr *expr(struct parser *s, size_t d);
+static struct expr *unary(struct parser *s, size_t d);
 
-static struct expr *call(struct pstate *s, int op, unsigned col, int skip, size_t d)
+static struct expr *call(struct parser *s, int op, unsigned col, int skip, size_t d)
 {
   for (int i = 0; i < skip; i++)
     adv(s);
@@ -299,20 +321,20 @@ static struct expr *call(struct pstate *s, int op, unsigned col, int skip, size_
 }
 
 /* The operands that are not a number, a parameter or X Y Z. */
-static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, int32_t c, unsigned col, size_t d)
+static struct expr *__attribute__((noinline)) primary_other(struct parser *s, int32_t c, unsigned col, size_t d)
 {
   char buf[32];
   struct expr *e;
   switch (c) {
   case '(':
     adv(s);
-    s->p->paren++;
+    s->paren++;
     e = expr(s, d);
     expect(s, ')', "')'");
-    s->p->paren--;
+    s->paren--;
     return e;
   case 'A': {
-    int32_t c2 = lex_peek2(&s->p->lx);
+    int32_t c2 = lex_peek2(&s->lx);
     if (c2 == 'S') { adv(s); peek(s); adv(s); if (peek(s) != 'I') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ASI(...)?"); return call(s, OP_ASIN, col, 1, d); }
     if (c2 == 'C') { adv(s); peek(s); adv(s); if (peek(s) != 'O') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ACO(...)?"); return call(s, OP_ACOS, col, 1, d); }
     if (c2 == 'T') { adv(s); peek(s); adv(s); if (peek(s) != 'G') fail(s, S42_E_SYNTAX, col, "unknown function: did you mean ATG(...)?"); return call(s, OP_ATAN, col, 1, d); }
@@ -388,21 +410,22 @@ static struct expr *__attribute__((noinline)) primary_other(struct pstate *s, in
   }
 }
 
-/* An operand; c is its first character, which peek() returned. */
-HOT struct expr *primary(struct pstate *s, int32_t c, size_t d)
+/* An operand; c is its first character, which peek() returned.  *next
+ * gets the character after it. */
+HOT struct expr *primary(struct parser *s, int32_t c, size_t d, int32_t *next)
 {
   unsigned col = here(s);
   struct expr *e;
   if (isdig(c)) {
     e = node(s, EX_NUM, col);
-    long n = digits(s, 7, "a number");
+    long n = digits(s, 7, "a number", next);
     e->v = (double)n;
     e->idx = (unsigned)n;   /* (seven digits at most: an instruction's INT) */
     return e;
   }
   if (c == 'R') {
     adv(s);
-    long n = number(s, 3, "a parameter number after R");
+    long n = number_to(s, 3, "a parameter number after R", next);
     if (n > 113)
       fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
     e = node(s, EX_REG, col);
@@ -414,14 +437,17 @@ HOT struct expr *primary(struct pstate *s, int32_t c, size_t d)
     s->b->slotrd = 1;
     e = node(s, EX_SLOT, col);
     e->idx = c == 'X' ? SL_X : c == 'Y' ? SL_Y : SL_Z;
+    *next = peek(s);
     return e;
   }
-  return primary_other(s, c, col, d);
+  e = primary_other(s, c, col, d);
+  *next = peek(s);
+  return e;
 }
 
 /* The %% after the primary b and its exponent (right-associative through
  * unary). */
-static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struct expr *b, size_t d)
+static struct expr *__attribute__((noinline)) power_rest(struct parser *s, struct expr *b, size_t d)
 {
   unsigned col = pcol(s);
   adv(s);
@@ -436,18 +462,23 @@ static struct expr *__attribute__((noinline)) power_rest(struct pstate *s, struc
 }
 
 /* power := primary [ %% unary ]; c the primary's first character, which
- * peek() returned */
-HOT struct expr *power(struct pstate *s, int32_t c, size_t d)
+ * peek() returned.  *next gets the character after it (peek()'s: the
+ * operand parsers hand it on, and their callers look at it no more). */
+HOT struct expr *power(struct parser *s, int32_t c, size_t d, int32_t *next)
 {
-  struct expr *b = primary(s, c, d);
-  if (peek(s) == '%' && lex_peek2(&s->p->lx) == '%')
-    return power_rest(s, b, d);
+  int32_t n;
+  struct expr *b = primary(s, c, d, &n);
+  if (n == '%' && lex_peek2(&s->lx) == '%') {
+    b = power_rest(s, b, d);
+    n = peek(s);
+  }
+  *next = n;
   return b;
 }
 
 /* A sign applies to the factor that follows, power included: -2%%2 = -4.
  * c is the operand's first character, which peek() returned. */
-HOT struct expr *unary_inner(struct pstate *s, int32_t c, size_t d)
+HOT struct expr *unary_inner(struct parser *s, int32_t c, size_t d, int32_t *next)
 {
   if (c == '+' || c == '-') {
     unsigned col = here(s);
@@ -459,10 +490,12 @@ HOT struct expr *unary_inner(struct pstate *s, int32_t c, size_t d)
      * parenthesis (unary's check, the same as the one above, passes) */
     struct expr *u;
     int32_t c2 = peek(s);
-    if (c2 == '+' || c2 == '-' || c2 == '(')
+    if (c2 == '+' || c2 == '-' || c2 == '(') {
       u = unary(s, d + 1);
-    else
-      u = power(s, c2, d + 2);
+      *next = peek(s);
+    } else {
+      u = power(s, c2, d + 2, next);
+    }
     if (c == '+')
       return u;
     struct expr *e = node(s, EX_NEG, col);
@@ -473,82 +506,87 @@ HOT struct expr *unary_inner(struct pstate *s, int32_t c, size_t d)
   if (c == '(') {
     if (d + 1 > MAX_DEPTH)
       fail(s, S42_E_SYNTAX, pcol(s), "expression nested too deeply");
-    return power(s, c, d + 1);
+    return power(s, c, d + 1, next);
   }
-  return power(s, c, d);
+  return power(s, c, d, next);
 }
 
 /* unary: one level more, checked at the character consumed last (the
  * operator, sign or parenthesis before the operand: at the top of a word's
  * value the depth is 0 and the check passes). */
-HOT struct expr *operand(struct pstate *s, size_t d)
+HOT struct expr *operand(struct parser *s, size_t d, int32_t *next)
 {
   if (d + 1 > MAX_DEPTH)
-    fail(s, S42_E_SYNTAX, lex_prev_col(&s->p->lx), "expression nested too deeply");
-  return unary_inner(s, peek(s), d + 1);
+    fail(s, S42_E_SYNTAX, lex_prev_col(&s->lx), "expression nested too deeply");
+  return unary_inner(s, peek(s), d + 1, next);
 }
 
-static struct expr *__attribute__((noinline)) unary(struct pstate *s, size_t d)
+static struct expr *__attribute__((noinline)) unary(struct parser *s, size_t d)
 {
-  return operand(s, d);
+  int32_t next;
+  return operand(s, d, &next);
 }
 
 /* The same left-deep trees as term inside expr, made in the same order:
  * `mul` is the / or % waiting for its right operand, `top` the + or -
- * waiting for its right term.  e is the first operand, parsed. */
-HOT struct expr *expr_rest(struct pstate *s, struct expr *e, size_t d)
+ * waiting for its right term.  e is the first operand, parsed, and c the
+ * character after it; *next gets the one after the expression. */
+HOT struct expr *expr_rest(struct parser *s, struct expr *e, int32_t c, size_t d, int32_t *next)
 {
   struct expr *top = NULL, *mul = NULL;
   for (;;) {
     if (mul) {
       mul->b = e;
-      need2(mul);
+      need_arith(mul);
       e = mul;
       mul = NULL;
     }
-    int32_t c = peek(s);
-    if (c == '/' && s->p->slash_ends && s->p->paren == 0)
+    if (c == '/' && s->slash_ends && s->paren == 0)
       ;   /* the slash that closes G28 /min:max/: the term ends */
-    else if (c == '/' || (c == '%' && lex_peek2(&s->p->lx) != '%')) {
+    else if (c == '/' || (c == '%' && lex_peek2(&s->lx) != '%')) {
       unsigned col = here(s);
       adv(s);
       mul = node(s, EX_BIN, col);
       mul->op = c == '/' ? OP_DIV : OP_MUL;
       mul->a = e;
-      e = operand(s, d);
+      e = operand(s, d, &c);
       continue;
     }
     if (top) {   /* the term is whole: the right operand of the + or - */
       top->b = e;
-      need2(top);
+      need_arith(top);
       e = top;
       top = NULL;
     }
-    if (c != '+' && c != '-')
+    if (c != '+' && c != '-') {
+      *next = c;
       return e;
+    }
     unsigned col = here(s);
     adv(s);
     top = node(s, EX_BIN, col);
     top->op = c == '+' ? OP_ADD : OP_SUB;
     top->a = e;
-    e = operand(s, d);
+    e = operand(s, d, &c);
   }
 }
 
-HOT struct expr *expr_in(struct pstate *s, size_t d)
+HOT struct expr *expr_in(struct parser *s, size_t d)
 {
-  return expr_rest(s, operand(s, d), d);
+  int32_t c;
+  struct expr *e = operand(s, d, &c);
+  return expr_rest(s, e, c, d, &c);
 }
 
 /* expr(), out of line: where expressions nest */
-static struct expr *__attribute__((noinline)) expr(struct pstate *s, size_t d)
+static struct expr *__attribute__((noinline)) expr(struct parser *s, size_t d)
 {
   return expr_in(s, d);
 }
 
 /* word_value's errors, out of its way; a parameter's name (rn >= 0, R12)
  * made only here. */
-static void __attribute__((noinline, cold, noreturn)) no_value(struct pstate *s, const char *word, int rn, int sign)
+static void __attribute__((noinline, cold, noreturn)) no_value(struct parser *s, const char *word, int rn, int sign)
 {
   char buf[32], name[8];
   if (rn >= 0) {
@@ -565,29 +603,30 @@ static void __attribute__((noinline, cold, noreturn)) no_value(struct pstate *s,
 
 /* A word's value: its sign (required when `sign` is set) starts the first
  * term: X-R3+100 is (-R3)+100.  The word's name for the errors, or rn for
- * a parameter's. */
-HOT struct expr *word_value(struct pstate *s, const char *word, int rn, int sign)
+ * a parameter's; *next gets the character after the value. */
+HOT struct expr *word_value(struct parser *s, const char *word, int rn, int sign, int32_t *next)
 {
   int32_t c = peek(s);
   if ((sign && c != '+' && c != '-') || c == LX_EOB || c == LX_EOF)
     no_value(s, word, rn, sign);
   /* a word's value: nothing around it (operand()'s check at depth 0 passes) */
-  return expr_rest(s, unary_inner(s, c, 1), 0);
+  struct expr *e = unary_inner(s, c, 1, &c);
+  return expr_rest(s, e, c, 0, next);
 }
 
 /* ---- conditions ---- */
 
-static struct expr *cond(struct pstate *s, size_t d);
+static struct expr *cond(struct parser *s, size_t d);
 
 /* Does the parenthesis at the cursor hold a comparison (a ':' at its own
  * level) rather than a nested condition? */
-static int is_comparison(struct pstate *s)
+static int is_comparison(struct parser *s)
 {
   struct lex_ahead a;
-  lex_ahead_start(&s->p->lx, &a);
+  lex_ahead_start(&s->lx, &a);
   int depth = 0;
   for (;;) {
-    int32_t c = lex_ahead_next(&s->p->lx, &a);
+    int32_t c = lex_ahead_next(&s->lx, &a);
     if (c == LX_EOB || c == LX_EOF)
       return 0;
     if (c == '(') {
@@ -601,7 +640,7 @@ static int is_comparison(struct pstate *s)
   }
 }
 
-static struct expr *prim(struct pstate *s, size_t d)
+static struct expr *prim(struct parser *s, size_t d)
 {
   char buf[32];
   unsigned col = pcol(s);
@@ -639,7 +678,7 @@ static struct expr *prim(struct pstate *s, size_t d)
   return e;
 }
 
-static struct expr *conjunction(struct pstate *s, size_t d)
+static struct expr *conjunction(struct parser *s, size_t d)
 {
   struct expr *e = prim(s, d);
   while (peek(s) == 'U') {
@@ -654,7 +693,7 @@ static struct expr *conjunction(struct pstate *s, size_t d)
   return e;
 }
 
-static struct expr *cond(struct pstate *s, size_t d)
+static struct expr *cond(struct parser *s, size_t d)
 {
   struct expr *e = conjunction(s, d);
   while (peek(s) == 'S') {
@@ -673,9 +712,9 @@ static struct expr *cond(struct pstate *s, size_t d)
 
 /* Read raw text up to the next '/' (not consumed).  Newline or ^ before it
  * is E-TEXT: the argument was not closed. */
-static void raw_text(struct pstate *s, struct text *t, const char *fn)
+static void raw_text(struct parser *s, struct text *t, const char *fn)
 {
-  struct lex *l = &s->p->lx;
+  struct lex *l = &s->lx;
   char buf[1024];
   size_t n = 0;
   unsigned nch = 0;
@@ -703,7 +742,7 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
     lex_raw_adv(l);
   }
   buf[n] = 0;
-  t->s = arena_alloc(&s->p->ar, n + 1);
+  t->s = arena_alloc(&s->ar, n + 1);
   if (!t->s)
     longjmp(s->jb, 2);
   memcpy(t->s, buf, n + 1);
@@ -711,7 +750,7 @@ static void raw_text(struct pstate *s, struct text *t, const char *fn)
 }
 
 /* The opening slash; its column. */
-static unsigned open_slash(struct pstate *s, const char *fn, int code)
+static unsigned open_slash(struct parser *s, const char *fn, int code)
 {
   char buf[32];
   unsigned col = pcol(s);
@@ -728,9 +767,9 @@ static struct text *text_of(struct block *b, const struct kp_word *w)
 }
 
 /* The slash argument of the function w (words.h: its kind). */
-static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w)
+static void slash_arg(struct parser *s, struct block *b, const struct kp_word *w)
 {
-  struct lex *l = &s->p->lx;
+  struct lex *l = &s->lx;
   const char *fn = w->code;
   switch (w->slash) {
   case KP_SA_PROMPT: case KP_SA_TEXT: {
@@ -764,12 +803,12 @@ static void slash_arg(struct pstate *s, struct block *b, const struct kp_word *w
   case KP_SA_BOUNDS:
     open_slash(s, fn, S42_E_SYNTAX);
     b->g28col = pcol(s);
-    s->p->slash_ends = 1;
+    s->slash_ends = 1;
     b->g28min = expr(s, 0);
     expect(s, ':', "':' between the G28 bounds /min:max/ (divide inside parentheses: /(R1/2):R2/)");
     b->g28max = expr(s, 0);
     expect(s, '/', "'/' closing the G28 bounds");
-    s->p->slash_ends = 0;
+    s->slash_ends = 0;
     b->g28reg = -2;   /* the R word must follow */
     break;
   case KP_SA_AXIS: {
@@ -843,7 +882,7 @@ static int takes_slash(const struct kp_word *w)
 
 /* ---- words ---- */
 
-HOT struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
+HOT struct word *new_word(struct parser *s, int kind, char letter, unsigned col)
 {
   struct block *b = s->b;
   if (b->nw >= MAX_WORDS)
@@ -864,14 +903,15 @@ HOT struct word *new_word(struct pstate *s, int kind, char letter, unsigned col)
 }
 
 /* A word the block may have once: `there` says it has it already. */
-HOT void once(struct pstate *s, int there, const char *name, unsigned col)
+HOT void once(struct parser *s, int there, const char *name, unsigned col)
 {
   if (there)
     fail(s, S42_E_SYNTAX, col, "%s appears twice in the block", name);
 }
 
-/* A word; c its first character, which peek() returned. */
-static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t c)
+/* A word; c its first character, which peek() returned.  Returns the
+ * character after the word (peek()'s). */
+static inline __attribute__((always_inline)) int32_t word(struct parser *s, int32_t c)
 {
   char buf[32];
   struct block *b = s->b;
@@ -880,16 +920,17 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
   switch (c) {
   case 'G': case 'M': {
     adv(s);
-    long n = number(s, 2, c == 'G' ? "a G function number" : "an M function number");
+    int32_t next;
+    long n = number_to(s, 2, c == 'G' ? "a G function number" : "an M function number", &next);
     const struct kp_word *kw = kp_word((char)c, (int)n);
     int valid = kw != NULL;
     if (!valid && n < (c == 'G' ? 64 : 32))   /* a function a plugin adds */
-      valid = plug_find(s->p->plugins, (char)c, (int)n, NULL) >= 0;
+      valid = plug_find(s->plugins, (char)c, (int)n, NULL) >= 0;
     if (!valid) {
-      diag_add(s->p->d, DIAG_ERROR, S42_E_FUNC, b->line, col, b->number,
+      diag_add(s->d, DIAG_ERROR, S42_E_FUNC, b->line, col, b->number,
                "%c%02ld is not a function of the 2С42 or of a plugin found", (char)c, n);
       b->bad = 1;
-      return;
+      return peek(s);
     }
     if (c == 'G') {
       if (b->g & (1ull << n))
@@ -909,8 +950,9 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
     if (kw && kw->slash != KP_SA_NONE) {
       b->slashed = 1;
       slash_arg(s, b, kw);
+      return peek(s);
     }
-    return;
+    return next;
   }
   case 'X': case 'Y': case 'Z': case 'A': case 'I': case 'J': case 'K': case 'H': {
     char name[2] = {(char)c, 0};
@@ -918,47 +960,51 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
                   : c == 'I' ? SL_I : c == 'J' ? SL_J : c == 'K' ? SL_K : SL_H;
     once(s, b->wslots & (1u << slot), name, col);
     adv(s);
-    struct expr *e = word_value(s, name, -1, c != 'H');
+    int32_t next;
+    struct expr *e = word_value(s, name, -1, c != 'H', &next);
     w = new_word(s, WK_SLOT, (char)c, col);
     w->e = e;
     w->idx = slot;
     b->wslots |= (uint16_t)(1u << slot);
     b->slotcol[slot] = col;
-    return;
+    return next;
   }
   case 'F': {
     once(s, b->wF >= 0, "F", col);
     adv(s);
-    struct expr *e = word_value(s, "F", -1, 0);
+    int32_t next;
+    struct expr *e = word_value(s, "F", -1, 0, &next);
     w = new_word(s, WK_REG, 'F', col);
     w->e = e;
     w->idx = REG_F;
     b->wF = b->nw - 1;
-    return;
+    return next;
   }
   case 'L': {
     once(s, b->wkinds & (1u << WK_L), "L", col);
     adv(s);
-    long n = number(s, 3, "the first block number of a sub after L");
+    int32_t next;
+    long n = number_to(s, 3, "the first block number of a sub after L", &next);
     w = new_word(s, WK_L, 'L', col);
     w->num = (int)n;
-    return;
+    return next;
   }
   case 'R': {
     adv(s);
-    long n = number(s, 3, "a parameter number after R");
+    int32_t next;
+    long n = number_to(s, 3, "a parameter number after R", &next);
     if (n > 113)
       fail(s, S42_E_RANGE, col, "parameter R%ld does not exist (R0..R113)", n);
     if (b->g28reg == -2) {        /* G28 /min:max/ Rn: where the answer goes */
       b->g28reg = (int)n;
-      return;
+      return next;
     }
-    struct expr *e = word_value(s, NULL, (int)n, 1);
+    struct expr *e = word_value(s, NULL, (int)n, 1, &next);
     w = new_word(s, WK_REG, 'R', col);
     w->num = (int)n;
     w->idx = (unsigned)n;
     w->e = e;
-    return;
+    return next;
   }
   case 'D': {
     adv(s);
@@ -966,12 +1012,13 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
       fail(s, S42_E_SYNTAX, col, "the only D word is D1 (tool diameter)");
     adv(s);
     once(s, b->hasD, "D1", col);
-    struct expr *e = word_value(s, "D1", -1, 1);
+    int32_t next;
+    struct expr *e = word_value(s, "D1", -1, 1, &next);
     w = new_word(s, WK_REG, 'D', col);
     b->hasD = 1;
     w->idx = REG_D1;
     w->e = e;
-    return;
+    return next;
   }
   case 'T': {
     adv(s);
@@ -985,7 +1032,7 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
       w = new_word(s, WK_AOP, 'T', col);
       w->op = OP_AZERO;
       w->idx = mask;
-      return;
+      return peek(s);
     }
     if (peek(s) == 'K')
       fail(s, S42_E_SYNTAX, col, "TK is read-only: only a tooth-step search with M10 sets it");
@@ -1002,17 +1049,18 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
       else if (d2 == 1 || d2 == 2) { w->op = OP_APTR0; w->idx = (unsigned)d2; }
       else if (d2 == 3 || d2 == 4) { w->op = OP_APTREND; w->idx = (unsigned)d2 - 2; }
       else fail(s, S42_E_SYNTAX, col, "T0%d is not an array operation (T0, T01, T02, T03, T04)", d2);
-      return;
+      return peek(s);
     }
     if (d1 > 3 || (d2 != 1 && d2 != 2))
       fail(s, S42_E_SYNTAX, col, "T%d%s is not an array word (T11 T21 T31 T12 T22 T32)", d1,
            d2 >= 0 ? (char[]){(char)('0' + d2), 0} : "");
     char name[4] = {'T', (char)('0' + d1), (char)('0' + d2), 0};
-    struct expr *e = word_value(s, name, -1, 1);
+    int32_t next;
+    struct expr *e = word_value(s, name, -1, 1, &next);
     w = new_word(s, WK_AWR, 'T', col);
     w->idx = (unsigned)(d2 - 1) | (unsigned)d1 << 2;
     w->e = e;
-    return;
+    return next;
   }
   case 'P': {
     adv(s);
@@ -1020,31 +1068,36 @@ static inline __attribute__((always_inline)) void word(struct pstate *s, int32_t
       adv(s);
       once(s, b->wkinds & (1u << WK_PP), "PP", col);
       w = new_word(s, WK_PP, 'P', col);
-      w->num = (int)number(s, 3, "the target block number after PP");
-      return;
+      int32_t next;
+      w->num = (int)number_to(s, 3, "the target block number after PP", &next);
+      return next;
     }
     if (b->wkinds & (1u << WK_P | 1u << WK_PCOND))
       fail(s, S42_E_SYNTAX, col, "two jumps P in one block");
     if (peek(s) == '(') {
       b->cond = cond(s, 0);
       w = new_word(s, WK_PCOND, 'P', col);
-      w->num = (int)number(s, 3, "the target block number after the condition");
-      return;
+      int32_t next;
+      w->num = (int)number_to(s, 3, "the target block number after the condition", &next);
+      return next;
     }
     w = new_word(s, WK_P, 'P', col);
-    w->num = (int)number(s, 3, "the target block number after P");
-    return;
+    int32_t next;
+    w->num = (int)number_to(s, 3, "the target block number after P", &next);
+    return next;
   }
   case '/': {
     char list[160];
     fail(s, S42_E_SYNTAX, col, "a slash argument must follow its function (%s)",
          kp_codes(list, sizeof list, takes_slash));
   }
-  case 'N': case 0x2116:
+  case 'N':
     fail(s, S42_E_SYNTAX, col, "a block number may only start the block");
   case 'U':
     fail(s, S42_E_SYNTAX, col, "UG is read-only: only a tooth-step search with M10 sets it");
-  default:
+  default:   /* (№ here, not as a case: the cases then span '/'..'Z', one bound) */
+    if (c == 0x2116)
+      fail(s, S42_E_SYNTAX, col, "a block number may only start the block");
     if (c >= 'a' && c <= 'z')
       fail(s, S42_E_SYNTAX, col, "unexpected %s: addresses are capital letters", show(c, buf));
     fail(s, S42_E_SYNTAX, col, "unexpected %s: not a word of the 2С42", show(c, buf));
@@ -1066,9 +1119,11 @@ void parse_free(struct parser *p)
   arena_free(&p->ar);
 }
 
-static inline void clear_block(struct block *b)
+/* The block's header cleared (words are counted by nw); its slash
+ * arguments too when `all` is set or it had any (b->slashed): only a
+ * block with a slash argument changes them, from their cleared values. */
+static inline void clear_block(struct block *b, int all)
 {
-  /* Only the header needs zeroing: words are counted by nw. */
   b->number = -1;
   b->ncol = 0;
   b->len = 0;
@@ -1080,9 +1135,11 @@ static inline void clear_block(struct block *b)
   b->wF = -1;
   b->hasD = 0;
   b->ngw = 0;
-  b->slashed = 0;
   b->slotrd = 0;
   b->cond = NULL;
+  if (!all && !b->slashed)
+    return;
+  b->slashed = 0;
   memset(&b->g27, 0, sizeof b->g27);
   memset(&b->g33, 0, sizeof b->g33);
   memset(&b->m18, 0, sizeof b->m18);
@@ -1096,7 +1153,7 @@ static inline void clear_block(struct block *b)
 }
 
 /* The first character of the next non-empty block, or LX_EOF. */
-static int32_t first_char(struct lex *l)
+HOT int32_t first_char(struct lex *l)
 {
   for (;;) {
     int32_t c = lex_peek(l);
@@ -1106,12 +1163,14 @@ static int32_t first_char(struct lex *l)
   }
 }
 
-/* The start of the next non-empty block: 0 at the end of the text. */
-static int block_start(struct parser *p, struct block *b)
+/* The start of the next non-empty block: 0 at the end of the text.  b
+ * is cleared (clear_block's `all`: its slash arguments too, or only if it
+ * had any). */
+HOT int block_start(struct parser *p, struct block *b, int all)
 {
   struct lex *l = &p->lx;
   arena_reset(&p->ar);
-  clear_block(b);
+  clear_block(b, all);
   p->nodes = 0;
   l->number = -1;   /* before the first peek: a note there is this block's */
   l->note_here = 0;
@@ -1126,9 +1185,9 @@ static int block_start(struct parser *p, struct block *b)
 
 /* The block's number and words, after block_start: an error leaves by
  * longjmp (fail). */
-static void block_words(struct pstate *s)
+static void block_words(struct parser *s)
 {
-  struct lex *l = &s->p->lx;
+  struct lex *l = &s->lx;
   struct block *b = s->b;
   int32_t c = lex_peek(l);
   if (c == 'H' && lex_cyrillic(l)) {
@@ -1143,26 +1202,22 @@ static void block_words(struct pstate *s)
     b->ncol = lex_col(l);
     b->badnum = 1;
     lex_adv1(l);
-    long n = number(s, 3, "a block number");
+    long n = number_to(s, 3, "a block number", &c);
     if (n < 1 || n > 999)
       fail(s, S42_E_RANGE, b->ncol, "block number %ld outside 1..999", n);
     b->number = (int)n;
     b->badnum = 0;
     lex_set_number(l, (int)n);
   }
-  for (;;) {
-    int32_t w = lex_peek(l);
-    if (w == LX_EOB || w == LX_EOF)
-      break;
-    word(s, w);
-  }
+  while (c != LX_EOB && c != LX_EOF)   /* (c: the character peek() returned) */
+    c = word(s, c);
   if (b->g28reg == -2)
     fail(s, S42_E_SYNTAX, b->g28col, "G28 /min:max/ must be followed by the parameter: G28 /min:max/ R3");
 }
 
 /* The block's end, after its words or a longjmp out of them (`jumped` 1:
  * a syntax error; 2: out of memory). */
-static void block_end(struct parser *p, struct block *b, int jumped)
+HOT void block_end(struct parser *p, struct block *b, int jumped)
 {
   struct lex *l = &p->lx;
   if (jumped == 2) {   /* said once: the blocks after it are not read either */
@@ -1182,15 +1237,13 @@ static void block_end(struct parser *p, struct block *b, int jumped)
 
 int parse_block(struct parser *p, struct block *b)
 {
-  struct pstate s;
-  s.p = p;
-  s.b = b;
-  if (!block_start(p, b))
+  p->b = b;
+  if (!block_start(p, b, 1))
     return 0;
-  p->ar.oom = &s.jb;
-  int jumped = setjmp(s.jb);
+  p->ar.oom = &p->jb;
+  int jumped = setjmp(p->jb);
   if (!jumped)
-    block_words(&s);
+    block_words(p);
   block_end(p, b, jumped);
   p->ar.oom = NULL;
   return 1;
@@ -1201,18 +1254,17 @@ void parse_all(struct parser *p, struct block *b, int (*each)(void *ctx, struct 
   /* one setjmp for the whole text: after a longjmp out of a block's words
    * the loop goes on from that block's end (nothing here changes after
    * the setjmp but what p and b point to) */
-  struct pstate s;
-  s.p = p;
-  s.b = b;
-  p->ar.oom = &s.jb;
-  int jumped = setjmp(s.jb);
+  p->b = b;
+  p->ar.oom = &p->jb;
+  clear_block(b, 1);   /* then each block's clear_block leaves its slash arguments as they are when it had none */
+  int jumped = setjmp(p->jb);
   if (jumped) {
     block_end(p, b, jumped);
     if (each(ctx, b))
       goto out;
   }
-  while (block_start(p, b)) {
-    block_words(&s);
+  while (block_start(p, b, 0)) {
+    block_words(p);
     block_end(p, b, 0);
     if (each(ctx, b))
       break;

@@ -19,6 +19,9 @@ struct parser {
   size_t nodecap;         /* MAX_NODES once nodebuf is made, 0 before */
   size_t slash_ends;      /* G28 /min:max/: a '/' outside parentheses closes it */
   const struct plug_set *plugins;  /* functions plugins add (src/core/plugin.h), or NULL */
+  /* the block being parsed, and where a syntax error leaves it (parse.c's fail) */
+  struct block *b;
+  jmp_buf jb;
 };
 
 void parse_init(struct parser *p, const char *src, size_t n, struct diag_list *d);
