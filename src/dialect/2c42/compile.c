@@ -35,8 +35,9 @@ enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8, SF_NONUM = 16, SF_JUMPS
 struct summ {
   uint32_t i;              /* the block */
   int16_t L, P, PP;        /* targets, -1 none */
-  uint16_t Lcol, Pcol, PPcol;
-  uint16_t callpc, jpc, pppc;  /* instructions to patch, from the block's first; NOPC none */
+  uint16_t callpc, jpc, pppc;  /* instructions to patch, from the block's first; NOPC none.
+                                  Each has the column of its word (L, P or P(...), PP): the
+                                  structure checks' errors read it there (summ_col) */
 };
 
 struct comp {
@@ -294,6 +295,13 @@ static inline int fold(struct comp *c, struct expr *e, double *v, int *failed)
     k = 1;
   } else if (e->kind == EX_REG || e->kind == EX_ARR) {
     k = 0;
+  } else if (e->kind == EX_NEG && (e->a->kind == EX_NUM || e->a->kind == EX_REG || e->a->kind == EX_ARR)) {
+    /* a sign on a leaf (X-2000, -R3): fold_node's EX_NEG without the call */
+    struct expr *a = e->a;
+    k = a->kind == EX_NUM;
+    a->fk = k ? 1 : 2;
+    if (k)
+      e->v = *v = -a->v;
   } else {
     k = fold_node(c, e, v, failed);
     if (k)
@@ -1316,7 +1324,6 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
   if (L) {
     int h = (c->given & (1u << SL_H)) != 0;
     sm->L = (int16_t)L->num;
-    sm->Lcol = col16(L->col);
     if (!h && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
       /* COMMIT; INT 1; CALL in one instruction */
       c->p->code[c->p->ncode - 1] = INS(OP_CCALL, 0);
@@ -1330,13 +1337,11 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
   }
   if (PP) {
     sm->PP = (int16_t)PP->num;
-    sm->PPcol = col16(PP->col);
     sm->pppc = boff(c, emit(c, OP_PPJ, 0, PP->col));
   }
   if (P || PC) {
     const struct word *j = P ? P : PC;
     sm->P = (int16_t)j->num;
-    sm->Pcol = col16(j->col);
     double v;
     int failed = 0;
     int always = P || (b->cond && fold(c, b->cond, &v, &failed) && v != 0);
@@ -1433,6 +1438,12 @@ static int keep_more(struct comp *c, const struct block *b, struct kp_attr *at)
 }
 
 /* ---- program structure ---- */
+
+/* The column of a call's or jump's word: its instruction's (struct summ). */
+static unsigned summ_col(const struct comp *c, const struct summ *s, uint16_t pc)
+{
+  return prog_col(c->p, c->p->blocks[s->i].code + (size_t)pc);
+}
 
 static void serr(struct comp *c, size_t i, unsigned col, int code, const char *fmt, ...)
   __attribute__((format(printf, 5, 6)));
@@ -1691,10 +1702,10 @@ static void structure(struct comp *c)
     int t = S[k].L;
     if (count[t] == 0) {
       if (!nonum)
-        serr(c, i, S[k].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
+        serr(c, i, summ_col(c, &S[k], S[k].callpc), S42_E_TARGET, "L%d: there is no block %d to call", t, t);
     }
     else if (count[t] > 1)
-      serr(c, i, S[k].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
+      serr(c, i, summ_col(c, &S[k], S[k].callpc), S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
            t, t, count[t]);
     else {
       size_t f = (size_t)first[t];
@@ -1705,7 +1716,7 @@ static void structure(struct comp *c)
         /* a call into the middle of a sub: the block before runs on into
          * it, so the call is the mistake (not that sub's "end") */
         fl[f] |= FL_INTO;
-        serr(c, i, S[k].Lcol, S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
+        serr(c, i, summ_col(c, &S[k], S[k].callpc), S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
              "it); a sub starts after the end (M17, M2 or a jump) of the one before", t, t, B[f - 1].number);
       }
       fl[f] |= FL_START;
@@ -1724,20 +1735,20 @@ static void structure(struct comp *c)
   for (size_t j = 0; j < nj; j++) {
     size_t i = S[j].i;
     int tg[2] = {S[j].P, S[j].PP};
-    unsigned tc[2] = {S[j].Pcol, S[j].PPcol};
+    uint16_t tpc[2] = {S[j].jpc, S[j].pppc};
     for (int k = 0; k < 2; k++) {
       int t = tg[k];
       if (t < 1)
         continue;
       if (t > 999 || count[t] == 0) {
         if (!nonum)
-          serr(c, i, tc[k], S42_E_TARGET, "%s%d: there is no block %d", k ? "PP" : "P", t, t);
+          serr(c, i, summ_col(c, &S[j], tpc[k]), S42_E_TARGET, "%s%d: there is no block %d", k ? "PP" : "P", t, t);
       }
       else if (count[t] > 1)
-        serr(c, i, tc[k], S42_E_TARGET, "%s%d: block %d appears %d times; a jump target must be unique",
+        serr(c, i, summ_col(c, &S[j], tpc[k]), S42_E_TARGET, "%s%d: block %d appears %d times; a jump target must be unique",
              k ? "PP" : "P", t, t, count[t]);
       else if (unit_of(B, first[t]) != unit_of(B, i))
-        serr(c, i, tc[k], S42_E_SCOPE, "%s%d: block %d is in another %s", k ? "PP" : "P", t, t,
+        serr(c, i, summ_col(c, &S[j], tpc[k]), S42_E_SCOPE, "%s%d: block %d is in another %s", k ? "PP" : "P", t, t,
              unit_of(B, i) == 0 ? "unit (a sub)" : "unit");
     }
   }
