@@ -311,6 +311,17 @@ static inline int fold(struct comp *c, struct expr *e, double *v, int *failed)
   return k;
 }
 
+/* Is v (> 0) a power of two, as frexp(v) == 0.5 says, from its bits
+ * (without the call): a normal number with no mantissa bits, or a
+ * subnormal one with one; not the infinity. */
+static inline int is_pow2(double v)
+{
+  uint64_t b;
+  memcpy(&b, &v, sizeof b);
+  uint64_t ex = b >> 52 & 0x7ff, man = b & ((1ull << 52) - 1);
+  return ex == 0 ? man && !(man & (man - 1)) : ex < 0x7ff && !man;
+}
+
 /* The superinstruction for binary `op` with a right operand pushed by
  * `push` (INT, CONST or REG), or -1. */
 static int fuse_operand(int op, int push)
@@ -434,8 +445,7 @@ static void gen(struct comp *c, struct expr *e, int memo)
     if (c->p->ncode == mark + 1 && fused >= 0) {
       /* x / 2^n is x * 2^-n to the bit: a multiplication is cheaper */
       double dv = fused == OP_DIVI ? (double)INS_A(last) : fused == OP_DIVK ? c->p->k[INS_A(last)] : 0;
-      int ex;
-      if (dv > 0 && frexp(dv, &ex) == 0.5) {
+      if (dv > 0 && is_pow2(dv)) {
         long k = prog_const(c->p, 1.0 / dv);
         if (k >= 0) {
           fused = OP_MULK;
