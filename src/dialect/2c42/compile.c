@@ -170,7 +170,7 @@ static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, un
 }
 
 /* prog_emit, inline: a block emits a dozen instructions */
-static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
+static inline __attribute__((always_inline)) long emit(struct comp *c, int op, uint32_t a, unsigned col)
 {
   struct program *p = c->p;
   size_t n = p->ncode;
@@ -511,12 +511,9 @@ static inline int slot_rule(const struct block *b, int slot)
 }
 
 /* The program's rule for kind rk (clamp 2: a clamp already warned of), in
- * the program's table by the first word that needs it. */
-static uint32_t rule(struct comp *c, int rk, int clamp)
+ * the program's table by the first word that needs it (rule_add). */
+static uint32_t __attribute__((noinline)) rule_add(struct comp *c, int rk, int clamp, uint32_t *idx)
 {
-  uint32_t *idx = &c->ruleidx[rk][clamp == 2];
-  if (*idx)
-    return *idx - 1;
   const struct wrule *w = &wrules[rk];
   struct prog_rule r;
   memset(&r, 0, sizeof r);
@@ -533,6 +530,12 @@ static uint32_t rule(struct comp *c, int rk, int clamp)
   }
   *idx = (uint32_t)i + 1;
   return (uint32_t)i;
+}
+
+static inline __attribute__((always_inline)) uint32_t rule(struct comp *c, int rk, int clamp)
+{
+  uint32_t *idx = &c->ruleidx[rk][clamp == 2];
+  return *idx ? *idx - 1 : rule_add(c, rk, clamp, idx);
 }
 
 /* round(): half away from zero, the zero's sign kept (an inline: the libm
@@ -622,6 +625,44 @@ static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigne
   }
   uint32_t r = rule(c, rk, clamp);
   emit(c, OP_SET, dest | r << 10, col);
+}
+
+/* store() of a word, inline for its most common value: a whole literal,
+ * signed or not (X+1000, Y-500, F2000), within its rule's range -- what
+ * store() would do, without the call and the general fold and gen.
+ * Anything else (an expression, a value out of range, a parameter's SETP,
+ * a block that did not parse) goes to store(). */
+static inline __attribute__((always_inline)) void store_word(struct comp *c, struct expr *e, unsigned dest, int rk,
+                                                             unsigned col)
+{
+  struct expr *n = e && e->kind == EX_NEG ? e->a : e;
+  if (n && n->kind == EX_NUM && n->idx <= INS_AMAX && rk != RK_PARAM && !c->b->bad) {
+    /* the parser's integer, so whole: a rule's rounding keeps it */
+    double v = n == e ? n->v : -n->v;
+    const struct wrule *w = &wrules[rk];
+    if (v >= w->lo && v <= w->hi) {
+      if (e->need > c->need)
+        c->need = e->need;
+      n->fk = 1;   /* fold's marks */
+      if (n != e) {
+        e->fk = 1;
+        e->v = v;
+      }
+      if (dest >= VM_NREG) {
+        unsigned sl = dest - VM_NREG;
+        c->given |= (uint16_t)(1u << sl);
+        c->isconst |= (uint16_t)(1u << sl);
+        c->kval[sl] = v;
+      }
+      if (n == e)
+        emit(c, OP_INT, n->idx, n->col);
+      else
+        emit_num(c, v, e->col);
+      emit(c, OP_SET, dest | rule(c, rk, w->clamp) << 10, col);
+      return;
+    }
+  }
+  store(c, e, dest, rk, col);
 }
 
 /* ---- static checks of one block ---- */
@@ -898,7 +939,7 @@ static void check_dialog(struct comp *c);
 /* The word slots of the axes X Y Z A (struct block's wslots). */
 #define AXIS_SLOTS (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A)
 
-static void check_block(struct comp *c, const struct word *L, const struct word *P, const struct word *PC,
+static inline __attribute__((always_inline)) void check_block(struct comp *c, const struct word *L, const struct word *P, const struct word *PC,
                         const struct word *PP)
 {
   struct block *b = c->b;
@@ -1243,10 +1284,10 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
     case WK_REG: {
       int g07 = G(7), srch = (G(10) || G(11)) && M(12);
       if (w->letter == 'F' && (g07 || srch)) {
-        store(c, w->e, VM_NREG + (g07 ? SL_OSCF : SL_SRCHF), g07 ? RK_OSCF : RK_SRCHF, w->col);
+        store_word(c, w->e, VM_NREG + (g07 ? SL_OSCF : SL_SRCHF), g07 ? RK_OSCF : RK_SRCHF, w->col);
         at->slots |= (uint16_t)(1u << (g07 ? SL_OSCF : SL_SRCHF));
       } else if (w->letter == 'F') {
-        store(c, w->e, REG_F, RK_F, w->col);
+        store_word(c, w->e, REG_F, RK_F, w->col);
         at->has_f = 1;
       } else if (w->letter == 'D') {
         store(c, w->e, REG_D1, RK_D1, w->col);
@@ -1258,7 +1299,7 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
       break;
     }
     case WK_SLOT:
-      store(c, w->e, VM_NREG + w->idx, slot_rule(b, (int)w->idx), w->col);
+      store_word(c, w->e, VM_NREG + w->idx, slot_rule(b, (int)w->idx), w->col);
       at->slots |= (uint16_t)(1u << w->idx);
       if (w->idx <= SL_A) {
         /* M19 teach-in: a bare parameter (+Rn / -Rn) receives the move */
