@@ -78,6 +78,12 @@ struct comp {
   int plane, arc;          /* the block's plane (plane_of) and arc G (first_g of g_arc, -1 none): check_block's */
   uint32_t ruleidx[16][2];  /* 1 + the program's rule of each kind (enum rule_kind, clamp 2 or not), 0 none yet */
   struct aslot *ah;        /* the attributes kept lately (keep_attr) */
+  struct fcache {          /* blocks whose functions passed check_block's checks (fcache_key) */
+    uint64_t g;
+    uint32_t m, k;
+    int8_t arc;
+    uint8_t plane;
+  } fc[64];
 };
 
 static uint16_t col16(unsigned col)
@@ -962,6 +968,20 @@ static inline __attribute__((always_inline)) void check_block(struct comp *c, co
       err(c, S42_E_BLOCK, cecol, "centre words I J K belong to an arc (%s)", kp_codes(list, sizeof list, is_arc));
     goto words;
   }
+  /* The checks of the block's functions from here to `words` depend on its
+   * G and M functions and which words it has, no more (the key below):
+   * a block that has those of one that passed them passes them too, with
+   * the same arc and plane.  (The G words' order only orders the errors;
+   * the plugins' groups are the session's.) */
+  uint32_t fk = (b->wslots & (AXIS_SLOTS | 1u << SL_I | 1u << SL_J | 1u << SL_K)) | (uint32_t)(b->wF >= 0) << 8 |
+                (uint32_t)(P || PC) << 9 | (uint32_t)(PP != NULL) << 10;
+  struct fcache *fe = &c->fc[(b->g * 0x9E3779B97F4A7C15ull ^ (b->m ^ (uint64_t)fk << 32) * 0xBF58476D1CE4E5B9ull) >> 58];
+  if (fe->g == b->g && fe->m == b->m && fe->k == fk) {   /* (an empty entry: no G and no M, not here) */
+    c->arc = fe->arc;
+    plane = c->plane = fe->plane;
+    goto words;
+  }
+  size_t ndiag = c->d->nerr + c->d->nwarn;
   /* groups, the G words in text order */
   int seen[5] = {0};
   for (int i = 0; i < b->ngw; i++) {
@@ -1082,6 +1102,8 @@ static inline __attribute__((always_inline)) void check_block(struct comp *c, co
     err(c, S42_E_BLOCK, b->mcol[21], "M21 is not allowed in a block with G%02d", dg);
   if ((M(10) || M(12)) && !(G(10) || G(11)))
     err(c, S42_E_BLOCK, b->mcol[M(10) ? 10 : 12], "M%d belongs to a tooth-step search (G10 or G11)", M(10) ? 10 : 12);
+  if (c->d->nerr + c->d->nwarn == ndiag)
+    *fe = (struct fcache){.g = b->g, .m = b->m, .k = fk, .arc = (int8_t)c->arc, .plane = (uint8_t)plane};
 words:
   if (slot_word(c, SL_H, &col) && !L)
     err(c, S42_E_BLOCK, col, "H (repeat count) without L (sub call)");
