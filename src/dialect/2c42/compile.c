@@ -84,6 +84,12 @@ struct comp {
     int8_t arc;
     uint8_t plane;
   } fc[64];
+  /* structure's index of the block numbers, made as the blocks come: the
+   * first block of each number 1..999 (1 + its index, 0 none) and how many
+   * have it; and the SF_ flags any block had at its start (SF_BAD, SF_NONUM) */
+  uint32_t first1[1000];
+  uint32_t count[1000];
+  unsigned anyf;
 };
 
 static uint16_t col16(unsigned col)
@@ -147,17 +153,11 @@ static const int8_t stack_delta[256] = {S42_OPCODES(STACK_DELTA)};   /* vm_ops' 
  * where the second part of a pair they fuse is made -- a function (SIN,
  * COS), an arithmetic with an operand (gen's fusion), CMPCK
  * (fuse_compare), SETP (store) -- when the pair can fuse. */
-static void __attribute__((noinline)) peep(struct comp *c)
-{
-  if (peep_last(c->p, c->bstart))
-    c->oom = 1;
-}
-
 static inline void peep_end(struct comp *c)
 {
   size_t n = c->p->ncode;
-  if (n > c->bstart + 1 && peep_pair(c->p->code[n - 2], c->p->code[n - 1]))
-    peep(c);
+  if (n > c->bstart + 1 && peep_pair(c->p->code[n - 2], c->p->code[n - 1]) && peep_last(c->p, c->bstart))
+    c->oom = 1;
 }
 
 static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, unsigned col)
@@ -1290,8 +1290,14 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
   struct summ summ, *sm = &summ;   /* the block's calls and jumps: made when it has some */
   if (jumps)
     summ = (struct summ){.i = (uint32_t)c->ns, .L = -1, .P = -1, .PP = -1, .callpc = NOPC, .jpc = NOPC, .pppc = NOPC};
-  c->ns++;
   *flags = (uint8_t)((b->bad ? SF_BAD : 0) | (b->badnum ? SF_NONUM : 0));
+  c->anyf |= *flags;
+  if (b->number > 0 && b->number < 1000) {
+    if (!c->first1[b->number])
+      c->first1[b->number] = (uint32_t)c->ns + 1;
+    c->count[b->number]++;
+  }
+  c->ns++;
   c->bstart = pb.code;
   *at = (struct kp_attr){.g = b->g, .m = b->m, .plugins = c->plugmask, .plug_g = (uint8_t)c->plug_g,
                          .plane = (uint8_t)c->plane};
@@ -1733,22 +1739,14 @@ static void structure(struct comp *c)
     diag_add(c->d, DIAG_ERROR, S42_E_SUB, 1, 1, -1, "the program is empty: it needs block 1 and M2");
     return;
   }
-  /* index: number -> first block, count */
+  /* index: number -> first block, count (compile_block's) */
   int first[1000], count[1000];
   for (int i = 0; i < 1000; i++) {
-    first[i] = -1;
-    count[i] = 0;
+    first[i] = (int)c->first1[i] - 1;
+    count[i] = (int)c->count[i];
   }
   /* and what a block that did not parse may have held: a number, an M2 */
-  unsigned anyf = 0;
-  for (size_t i = 0; i < n; i++) {
-    anyf |= F[i];
-    if (B[i].number > 0 && B[i].number < 1000) {
-      if (first[B[i].number] < 0)
-        first[B[i].number] = (int)i;
-      count[B[i].number]++;
-    }
-  }
+  unsigned anyf = c->anyf;
   int nonum = (anyf & SF_NONUM) != 0, anybad = (anyf & SF_BAD) != 0;
   /* each block's FL_ flags: unit starts (block 1 and every L target) first */
   uint8_t *fl = calloc(n, 1);
