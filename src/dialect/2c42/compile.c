@@ -1306,8 +1306,22 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
   c->need = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
 
-  for (size_t i = 0; i < b->nw; i++) {
-    const struct word *w = &b->w[i];
+  /* the words that store, in text order (the G and M words, the calls and
+   * the jumps are the checks' and the end's) */
+  for (const struct word *w = b->w, *end = b->w + b->nw; w < end; w++) {
+    if (w->kind == WK_SLOT) {   /* the most: X Y Z A I J K H */
+      store_word(c, w->e, VM_NREG + w->idx, slot_rule(b, (int)w->idx), w->col);
+      at->slots |= (uint16_t)(1u << w->idx);
+      if (w->idx <= SL_A) {
+        /* M19 teach-in: a bare parameter (+Rn / -Rn) receives the move */
+        const struct expr *e = w->e;
+        int sign = 1;
+        if (e->kind == EX_NEG) { sign = -1; e = e->a; }
+        if (e->kind == EX_REG && e->idx <= 113)
+          at->bare[w->idx] = (int8_t)(sign * ((int)e->idx + 1));
+      }
+      continue;
+    }
     switch (w->kind) {
     case WK_REG: {
       int g07 = G(7), srch = (G(10) || G(11)) && M(12);
@@ -1326,18 +1340,6 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
       }
       break;
     }
-    case WK_SLOT:
-      store_word(c, w->e, VM_NREG + w->idx, slot_rule(b, (int)w->idx), w->col);
-      at->slots |= (uint16_t)(1u << w->idx);
-      if (w->idx <= SL_A) {
-        /* M19 teach-in: a bare parameter (+Rn / -Rn) receives the move */
-        const struct expr *e = w->e;
-        int sign = 1;
-        if (e->kind == EX_NEG) { sign = -1; e = e->a; }
-        if (e->kind == EX_REG && e->idx <= 113)
-          at->bare[w->idx] = (int8_t)(sign * ((int)e->idx + 1));
-      }
-      break;
     case WK_AWR:
       if (b->bad || !w->e)
         break;
