@@ -817,6 +817,22 @@ START_TEST(several_errors_sorted)
 }
 END_TEST
 
+/* check_block remembers the blocks whose functions passed its checks
+ * (struct fcache): a block like one that passed still has its arc and plane
+ * (the radii checked on its own values), and one like one that failed fails
+ * again. */
+START_TEST(like_blocks_checked_alike)
+{
+  static const struct want w[] = {
+    {S42_E_ARC, 2, 4},
+    {S42_E_BLOCK, 3, 4},
+    {S42_E_BLOCK, 4, 4},
+  };
+  expect_errors("N1 G02 G17 X+2000 Y+0 I+1000 J+0 F1\nN2 G02 G17 X+2000 Y+0 I+500 J+0 F1\n"
+                "N3 G04 X+5 Y+1\nN4 G04 X+5 Y+1\nN5 M2\n", w, sizeof w / sizeof w[0]);
+}
+END_TEST
+
 START_TEST(errors_name_their_block)
 {
   struct tprog t;
@@ -897,6 +913,7 @@ Suite *suite_compile(void)
   tcase_add_test(tc, err_axis_g37);
   tcase_add_test(tc, err_plugin_g12);
   tcase_add_test(tc, several_errors_sorted);
+  tcase_add_test(tc, like_blocks_checked_alike);
   tcase_add_test(tc, errors_name_their_block);
   tcase_add_test(tc, dead_code_and_recursion_warnings);
   tcase_add_test(tc, empty_program);

@@ -35,8 +35,9 @@ enum { SF_M17 = 1, SF_M2 = 2, SF_UNCOND = 4, SF_BAD = 8, SF_NONUM = 16, SF_JUMPS
 struct summ {
   uint32_t i;              /* the block */
   int16_t L, P, PP;        /* targets, -1 none */
-  uint16_t Lcol, Pcol, PPcol;
-  uint16_t callpc, jpc, pppc;  /* instructions to patch, from the block's first; NOPC none */
+  uint16_t callpc, jpc, pppc;  /* instructions to patch, from the block's first; NOPC none.
+                                  Each has the column of its word (L, P or P(...), PP): the
+                                  structure checks' errors read it there (summ_col) */
 };
 
 struct comp {
@@ -77,6 +78,18 @@ struct comp {
   int plane, arc;          /* the block's plane (plane_of) and arc G (first_g of g_arc, -1 none): check_block's */
   uint32_t ruleidx[16][2];  /* 1 + the program's rule of each kind (enum rule_kind, clamp 2 or not), 0 none yet */
   struct aslot *ah;        /* the attributes kept lately (keep_attr) */
+  struct fcache {          /* blocks whose functions passed check_block's checks (fcache_key) */
+    uint64_t g;
+    uint32_t m, k;
+    int8_t arc;
+    uint8_t plane;
+  } fc[64];
+  /* structure's index of the block numbers, made as the blocks come: the
+   * first block of each number 1..999 (1 + its index, 0 none) and how many
+   * have it; and the SF_ flags any block had at its start (SF_BAD, SF_NONUM) */
+  uint32_t first1[1000];
+  uint32_t count[1000];
+  unsigned anyf;
 };
 
 static uint16_t col16(unsigned col)
@@ -140,17 +153,11 @@ static const int8_t stack_delta[256] = {S42_OPCODES(STACK_DELTA)};   /* vm_ops' 
  * where the second part of a pair they fuse is made -- a function (SIN,
  * COS), an arithmetic with an operand (gen's fusion), CMPCK
  * (fuse_compare), SETP (store) -- when the pair can fuse. */
-static void __attribute__((noinline)) peep(struct comp *c)
-{
-  if (peep_last(c->p, c->bstart))
-    c->oom = 1;
-}
-
 static inline void peep_end(struct comp *c)
 {
   size_t n = c->p->ncode;
-  if (n > c->bstart + 1 && peep_pair(c->p->code[n - 2], c->p->code[n - 1]))
-    peep(c);
+  if (n > c->bstart + 1 && peep_pair(c->p->code[n - 2], c->p->code[n - 1]) && peep_last(c->p, c->bstart))
+    c->oom = 1;
 }
 
 static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, unsigned col)
@@ -169,7 +176,7 @@ static long __attribute__((noinline)) emit_grow(struct comp *c, uint32_t ins, un
 }
 
 /* prog_emit, inline: a block emits a dozen instructions */
-static inline long emit(struct comp *c, int op, uint32_t a, unsigned col)
+static inline __attribute__((always_inline)) long emit(struct comp *c, int op, uint32_t a, unsigned col)
 {
   struct program *p = c->p;
   size_t n = p->ncode;
@@ -294,6 +301,13 @@ static inline int fold(struct comp *c, struct expr *e, double *v, int *failed)
     k = 1;
   } else if (e->kind == EX_REG || e->kind == EX_ARR) {
     k = 0;
+  } else if (e->kind == EX_NEG && (e->a->kind == EX_NUM || e->a->kind == EX_REG || e->a->kind == EX_ARR)) {
+    /* a sign on a leaf (X-2000, -R3): fold_node's EX_NEG without the call */
+    struct expr *a = e->a;
+    k = a->kind == EX_NUM;
+    a->fk = k ? 1 : 2;
+    if (k)
+      e->v = *v = -a->v;
   } else {
     k = fold_node(c, e, v, failed);
     if (k)
@@ -301,6 +315,17 @@ static inline int fold(struct comp *c, struct expr *e, double *v, int *failed)
   }
   e->fk = k ? 1 : 2;
   return k;
+}
+
+/* Is v (> 0) a power of two, as frexp(v) == 0.5 says, from its bits
+ * (without the call): a normal number with no mantissa bits, or a
+ * subnormal one with one; not the infinity. */
+static inline int is_pow2(double v)
+{
+  uint64_t b;
+  memcpy(&b, &v, sizeof b);
+  uint64_t ex = b >> 52 & 0x7ff, man = b & ((1ull << 52) - 1);
+  return ex == 0 ? man && !(man & (man - 1)) : ex < 0x7ff && !man;
 }
 
 /* The superinstruction for binary `op` with a right operand pushed by
@@ -426,8 +451,7 @@ static void gen(struct comp *c, struct expr *e, int memo)
     if (c->p->ncode == mark + 1 && fused >= 0) {
       /* x / 2^n is x * 2^-n to the bit: a multiplication is cheaper */
       double dv = fused == OP_DIVI ? (double)INS_A(last) : fused == OP_DIVK ? c->p->k[INS_A(last)] : 0;
-      int ex;
-      if (dv > 0 && frexp(dv, &ex) == 0.5) {
+      if (dv > 0 && is_pow2(dv)) {
         long k = prog_const(c->p, 1.0 / dv);
         if (k >= 0) {
           fused = OP_MULK;
@@ -493,12 +517,9 @@ static inline int slot_rule(const struct block *b, int slot)
 }
 
 /* The program's rule for kind rk (clamp 2: a clamp already warned of), in
- * the program's table by the first word that needs it. */
-static uint32_t rule(struct comp *c, int rk, int clamp)
+ * the program's table by the first word that needs it (rule_add). */
+static uint32_t __attribute__((noinline)) rule_add(struct comp *c, int rk, int clamp, uint32_t *idx)
 {
-  uint32_t *idx = &c->ruleidx[rk][clamp == 2];
-  if (*idx)
-    return *idx - 1;
   const struct wrule *w = &wrules[rk];
   struct prog_rule r;
   memset(&r, 0, sizeof r);
@@ -515,6 +536,12 @@ static uint32_t rule(struct comp *c, int rk, int clamp)
   }
   *idx = (uint32_t)i + 1;
   return (uint32_t)i;
+}
+
+static inline __attribute__((always_inline)) uint32_t rule(struct comp *c, int rk, int clamp)
+{
+  uint32_t *idx = &c->ruleidx[rk][clamp == 2];
+  return *idx ? *idx - 1 : rule_add(c, rk, clamp, idx);
 }
 
 /* round(): half away from zero, the zero's sign kept (an inline: the libm
@@ -604,6 +631,44 @@ static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigne
   }
   uint32_t r = rule(c, rk, clamp);
   emit(c, OP_SET, dest | r << 10, col);
+}
+
+/* store() of a word, inline for its most common value: a whole literal,
+ * signed or not (X+1000, Y-500, F2000), within its rule's range -- what
+ * store() would do, without the call and the general fold and gen.
+ * Anything else (an expression, a value out of range, a parameter's SETP,
+ * a block that did not parse) goes to store(). */
+static inline __attribute__((always_inline)) void store_word(struct comp *c, struct expr *e, unsigned dest, int rk,
+                                                             unsigned col)
+{
+  struct expr *n = e && e->kind == EX_NEG ? e->a : e;
+  if (n && n->kind == EX_NUM && n->idx <= INS_AMAX && rk != RK_PARAM && !c->b->bad) {
+    /* the parser's integer, so whole: a rule's rounding keeps it */
+    double v = n == e ? n->v : -n->v;
+    const struct wrule *w = &wrules[rk];
+    if (v >= w->lo && v <= w->hi) {
+      if (e->need > c->need)
+        c->need = e->need;
+      n->fk = 1;   /* fold's marks */
+      if (n != e) {
+        e->fk = 1;
+        e->v = v;
+      }
+      if (dest >= VM_NREG) {
+        unsigned sl = dest - VM_NREG;
+        c->given |= (uint16_t)(1u << sl);
+        c->isconst |= (uint16_t)(1u << sl);
+        c->kval[sl] = v;
+      }
+      if (n == e)
+        emit(c, OP_INT, n->idx, n->col);
+      else
+        emit_num(c, v, e->col);
+      emit(c, OP_SET, dest | rule(c, rk, w->clamp) << 10, col);
+      return;
+    }
+  }
+  store(c, e, dest, rk, col);
 }
 
 /* ---- static checks of one block ---- */
@@ -880,7 +945,7 @@ static void check_dialog(struct comp *c);
 /* The word slots of the axes X Y Z A (struct block's wslots). */
 #define AXIS_SLOTS (1u << SL_X | 1u << SL_Y | 1u << SL_Z | 1u << SL_A)
 
-static void check_block(struct comp *c, const struct word *L, const struct word *P, const struct word *PC,
+static inline __attribute__((always_inline)) void check_block(struct comp *c, const struct word *L, const struct word *P, const struct word *PC,
                         const struct word *PP)
 {
   struct block *b = c->b;
@@ -903,6 +968,20 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
       err(c, S42_E_BLOCK, cecol, "centre words I J K belong to an arc (%s)", kp_codes(list, sizeof list, is_arc));
     goto words;
   }
+  /* The checks of the block's functions from here to `words` depend on its
+   * G and M functions and which words it has, no more (the key below):
+   * a block that has those of one that passed them passes them too, with
+   * the same arc and plane.  (The G words' order only orders the errors;
+   * the plugins' groups are the session's.) */
+  uint32_t fk = (b->wslots & (AXIS_SLOTS | 1u << SL_I | 1u << SL_J | 1u << SL_K)) | (uint32_t)(b->wF >= 0) << 8 |
+                (uint32_t)(P || PC) << 9 | (uint32_t)(PP != NULL) << 10;
+  struct fcache *fe = &c->fc[(b->g * 0x9E3779B97F4A7C15ull ^ (b->m ^ (uint64_t)fk << 32) * 0xBF58476D1CE4E5B9ull) >> 58];
+  if (fe->g == b->g && fe->m == b->m && fe->k == fk) {   /* (an empty entry: no G and no M, not here) */
+    c->arc = fe->arc;
+    plane = c->plane = fe->plane;
+    goto words;
+  }
+  size_t ndiag = c->d->nerr + c->d->nwarn;
   /* groups, the G words in text order */
   int seen[5] = {0};
   for (int i = 0; i < b->ngw; i++) {
@@ -1023,6 +1102,8 @@ static void check_block(struct comp *c, const struct word *L, const struct word 
     err(c, S42_E_BLOCK, b->mcol[21], "M21 is not allowed in a block with G%02d", dg);
   if ((M(10) || M(12)) && !(G(10) || G(11)))
     err(c, S42_E_BLOCK, b->mcol[M(10) ? 10 : 12], "M%d belongs to a tooth-step search (G10 or G11)", M(10) ? 10 : 12);
+  if (c->d->nerr + c->d->nwarn == ndiag)
+    *fe = (struct fcache){.g = b->g, .m = b->m, .k = fk, .arc = (int8_t)c->arc, .plane = (uint8_t)plane};
 words:
   if (slot_word(c, SL_H, &col) && !L)
     err(c, S42_E_BLOCK, col, "H (repeat count) without L (sub call)");
@@ -1209,8 +1290,14 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
   struct summ summ, *sm = &summ;   /* the block's calls and jumps: made when it has some */
   if (jumps)
     summ = (struct summ){.i = (uint32_t)c->ns, .L = -1, .P = -1, .PP = -1, .callpc = NOPC, .jpc = NOPC, .pppc = NOPC};
-  c->ns++;
   *flags = (uint8_t)((b->bad ? SF_BAD : 0) | (b->badnum ? SF_NONUM : 0));
+  c->anyf |= *flags;
+  if (b->number > 0 && b->number < 1000) {
+    if (!c->first1[b->number])
+      c->first1[b->number] = (uint32_t)c->ns + 1;
+    c->count[b->number]++;
+  }
+  c->ns++;
   c->bstart = pb.code;
   *at = (struct kp_attr){.g = b->g, .m = b->m, .plugins = c->plugmask, .plug_g = (uint8_t)c->plug_g,
                          .plane = (uint8_t)c->plane};
@@ -1219,16 +1306,30 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
   c->need = 0;
   emit(c, OP_BLOCK, (uint32_t)bi, b->col);
 
-  for (size_t i = 0; i < b->nw; i++) {
-    const struct word *w = &b->w[i];
+  /* the words that store, in text order (the G and M words, the calls and
+   * the jumps are the checks' and the end's) */
+  for (const struct word *w = b->w, *end = b->w + b->nw; w < end; w++) {
+    if (w->kind == WK_SLOT) {   /* the most: X Y Z A I J K H */
+      store_word(c, w->e, VM_NREG + w->idx, slot_rule(b, (int)w->idx), w->col);
+      at->slots |= (uint16_t)(1u << w->idx);
+      if (w->idx <= SL_A) {
+        /* M19 teach-in: a bare parameter (+Rn / -Rn) receives the move */
+        const struct expr *e = w->e;
+        int sign = 1;
+        if (e->kind == EX_NEG) { sign = -1; e = e->a; }
+        if (e->kind == EX_REG && e->idx <= 113)
+          at->bare[w->idx] = (int8_t)(sign * ((int)e->idx + 1));
+      }
+      continue;
+    }
     switch (w->kind) {
     case WK_REG: {
       int g07 = G(7), srch = (G(10) || G(11)) && M(12);
       if (w->letter == 'F' && (g07 || srch)) {
-        store(c, w->e, VM_NREG + (g07 ? SL_OSCF : SL_SRCHF), g07 ? RK_OSCF : RK_SRCHF, w->col);
+        store_word(c, w->e, VM_NREG + (g07 ? SL_OSCF : SL_SRCHF), g07 ? RK_OSCF : RK_SRCHF, w->col);
         at->slots |= (uint16_t)(1u << (g07 ? SL_OSCF : SL_SRCHF));
       } else if (w->letter == 'F') {
-        store(c, w->e, REG_F, RK_F, w->col);
+        store_word(c, w->e, REG_F, RK_F, w->col);
         at->has_f = 1;
       } else if (w->letter == 'D') {
         store(c, w->e, REG_D1, RK_D1, w->col);
@@ -1239,18 +1340,6 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
       }
       break;
     }
-    case WK_SLOT:
-      store(c, w->e, VM_NREG + w->idx, slot_rule(b, (int)w->idx), w->col);
-      at->slots |= (uint16_t)(1u << w->idx);
-      if (w->idx <= SL_A) {
-        /* M19 teach-in: a bare parameter (+Rn / -Rn) receives the move */
-        const struct expr *e = w->e;
-        int sign = 1;
-        if (e->kind == EX_NEG) { sign = -1; e = e->a; }
-        if (e->kind == EX_REG && e->idx <= 113)
-          at->bare[w->idx] = (int8_t)(sign * ((int)e->idx + 1));
-      }
-      break;
     case WK_AWR:
       if (b->bad || !w->e)
         break;
@@ -1316,7 +1405,6 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
   if (L) {
     int h = (c->given & (1u << SL_H)) != 0;
     sm->L = (int16_t)L->num;
-    sm->Lcol = col16(L->col);
     if (!h && INS_OP(c->p->code[c->p->ncode - 1]) == OP_COMMIT) {
       /* COMMIT; INT 1; CALL in one instruction */
       c->p->code[c->p->ncode - 1] = INS(OP_CCALL, 0);
@@ -1330,13 +1418,11 @@ static inline __attribute__((always_inline)) void compile_block(struct comp *c)
   }
   if (PP) {
     sm->PP = (int16_t)PP->num;
-    sm->PPcol = col16(PP->col);
     sm->pppc = boff(c, emit(c, OP_PPJ, 0, PP->col));
   }
   if (P || PC) {
     const struct word *j = P ? P : PC;
     sm->P = (int16_t)j->num;
-    sm->Pcol = col16(j->col);
     double v;
     int failed = 0;
     int always = P || (b->cond && fold(c, b->cond, &v, &failed) && v != 0);
@@ -1433,6 +1519,12 @@ static int keep_more(struct comp *c, const struct block *b, struct kp_attr *at)
 }
 
 /* ---- program structure ---- */
+
+/* The column of a call's or jump's word: its instruction's (struct summ). */
+static unsigned summ_col(const struct comp *c, const struct summ *s, uint16_t pc)
+{
+  return prog_col(c->p, c->p->blocks[s->i].code + (size_t)pc);
+}
 
 static void serr(struct comp *c, size_t i, unsigned col, int code, const char *fmt, ...)
   __attribute__((format(printf, 5, 6)));
@@ -1649,22 +1741,14 @@ static void structure(struct comp *c)
     diag_add(c->d, DIAG_ERROR, S42_E_SUB, 1, 1, -1, "the program is empty: it needs block 1 and M2");
     return;
   }
-  /* index: number -> first block, count */
+  /* index: number -> first block, count (compile_block's) */
   int first[1000], count[1000];
   for (int i = 0; i < 1000; i++) {
-    first[i] = -1;
-    count[i] = 0;
+    first[i] = (int)c->first1[i] - 1;
+    count[i] = (int)c->count[i];
   }
   /* and what a block that did not parse may have held: a number, an M2 */
-  unsigned anyf = 0;
-  for (size_t i = 0; i < n; i++) {
-    anyf |= F[i];
-    if (B[i].number > 0 && B[i].number < 1000) {
-      if (first[B[i].number] < 0)
-        first[B[i].number] = (int)i;
-      count[B[i].number]++;
-    }
-  }
+  unsigned anyf = c->anyf;
   int nonum = (anyf & SF_NONUM) != 0, anybad = (anyf & SF_BAD) != 0;
   /* each block's FL_ flags: unit starts (block 1 and every L target) first */
   uint8_t *fl = calloc(n, 1);
@@ -1691,10 +1775,10 @@ static void structure(struct comp *c)
     int t = S[k].L;
     if (count[t] == 0) {
       if (!nonum)
-        serr(c, i, S[k].Lcol, S42_E_TARGET, "L%d: there is no block %d to call", t, t);
+        serr(c, i, summ_col(c, &S[k], S[k].callpc), S42_E_TARGET, "L%d: there is no block %d to call", t, t);
     }
     else if (count[t] > 1)
-      serr(c, i, S[k].Lcol, S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
+      serr(c, i, summ_col(c, &S[k], S[k].callpc), S42_E_SUB, "L%d: block %d appears %d times; a sub's first block must be unique",
            t, t, count[t]);
     else {
       size_t f = (size_t)first[t];
@@ -1705,7 +1789,7 @@ static void structure(struct comp *c)
         /* a call into the middle of a sub: the block before runs on into
          * it, so the call is the mistake (not that sub's "end") */
         fl[f] |= FL_INTO;
-        serr(c, i, S[k].Lcol, S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
+        serr(c, i, summ_col(c, &S[k], S[k].callpc), S42_E_SUB, "L%d: block %d is in the middle of a sub (block %d before it runs on into "
              "it); a sub starts after the end (M17, M2 or a jump) of the one before", t, t, B[f - 1].number);
       }
       fl[f] |= FL_START;
@@ -1724,20 +1808,20 @@ static void structure(struct comp *c)
   for (size_t j = 0; j < nj; j++) {
     size_t i = S[j].i;
     int tg[2] = {S[j].P, S[j].PP};
-    unsigned tc[2] = {S[j].Pcol, S[j].PPcol};
+    uint16_t tpc[2] = {S[j].jpc, S[j].pppc};
     for (int k = 0; k < 2; k++) {
       int t = tg[k];
       if (t < 1)
         continue;
       if (t > 999 || count[t] == 0) {
         if (!nonum)
-          serr(c, i, tc[k], S42_E_TARGET, "%s%d: there is no block %d", k ? "PP" : "P", t, t);
+          serr(c, i, summ_col(c, &S[j], tpc[k]), S42_E_TARGET, "%s%d: there is no block %d", k ? "PP" : "P", t, t);
       }
       else if (count[t] > 1)
-        serr(c, i, tc[k], S42_E_TARGET, "%s%d: block %d appears %d times; a jump target must be unique",
+        serr(c, i, summ_col(c, &S[j], tpc[k]), S42_E_TARGET, "%s%d: block %d appears %d times; a jump target must be unique",
              k ? "PP" : "P", t, t, count[t]);
       else if (unit_of(B, first[t]) != unit_of(B, i))
-        serr(c, i, tc[k], S42_E_SCOPE, "%s%d: block %d is in another %s", k ? "PP" : "P", t, t,
+        serr(c, i, summ_col(c, &S[j], tpc[k]), S42_E_SCOPE, "%s%d: block %d is in another %s", k ? "PP" : "P", t, t,
              unit_of(B, i) == 0 ? "unit (a sub)" : "unit");
     }
   }
