@@ -78,7 +78,7 @@ struct comp {
   int plane, arc;          /* the block's plane (plane_of) and arc G (first_g of g_arc, -1 none): check_block's */
   uint32_t ruleidx[16][2];  /* 1 + the program's rule of each kind (enum rule_kind, clamp 2 or not), 0 none yet */
   struct aslot *ah;        /* the attributes kept lately (keep_attr) */
-  struct fcache {          /* blocks whose functions passed check_block's checks (fcache_key) */
+  struct fcache {          /* blocks whose functions passed check_block's checks (keyed there) */
     uint64_t g;
     uint32_t m, k;
     int8_t arc;
@@ -573,6 +573,22 @@ static int reads_slot(const struct expr *e, unsigned slot)
   }
 }
 
+/* A word slot (dest past the registers) stored: given, and constant (k)
+ * with the value v or not, for the checks that read it. */
+static inline void slot_stored(struct comp *c, unsigned dest, int k, double v)
+{
+  if (dest < VM_NREG)
+    return;
+  unsigned s = dest - VM_NREG;
+  c->given |= (uint16_t)(1u << s);
+  if (k) {
+    c->isconst |= (uint16_t)(1u << s);
+    c->kval[s] = v;
+  } else {
+    c->isconst &= (uint16_t)~(1u << s);
+  }
+}
+
 /* Emit value + SET into dest (register < VM_NREG, or VM_NREG + slot) by
  * the rule of kind rk; check a constant value now, as `s42 check` must. */
 static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigned col)
@@ -610,16 +626,7 @@ static void store(struct comp *c, struct expr *e, unsigned dest, int rk, unsigne
       }
     }
   }
-  if (dest >= VM_NREG) {
-    unsigned s = dest - VM_NREG;
-    c->given |= (uint16_t)(1u << s);
-    if (k) {
-      c->isconst |= (uint16_t)(1u << s);
-      c->kval[s] = clamp && v > w->hi ? w->hi : v;   /* rounded above when the rule rounds */
-    } else {
-      c->isconst &= (uint16_t)~(1u << s);
-    }
-  }
+  slot_stored(c, dest, k, !k ? 0 : clamp && v > w->hi ? w->hi : v);   /* rounded above when the rule rounds */
   /* failed returned above: the folds hold, unless the expression reads
    * the slot just stored (only X Y Z A are operands; the parser says
    * whether the block has any) */
@@ -654,12 +661,7 @@ static inline __attribute__((always_inline)) void store_word(struct comp *c, str
         e->fk = 1;
         e->v = v;
       }
-      if (dest >= VM_NREG) {
-        unsigned sl = dest - VM_NREG;
-        c->given |= (uint16_t)(1u << sl);
-        c->isconst |= (uint16_t)(1u << sl);
-        c->kval[sl] = v;
-      }
+      slot_stored(c, dest, 1, v);
       if (n == e)
         emit(c, OP_INT, n->idx, n->col);
       else
