@@ -9,7 +9,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
 #include <sys/file.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -184,11 +186,9 @@ int file_open_read(const char *path, int allow, char *err, size_t n)
   return fd;
 }
 
-int file_read_all(const char *path, int allow, size_t max, char **buf, size_t *len, char *err, size_t n)
+/* Read what fd holds (then close it): file_read_all without the open. */
+static int read_fd(int fd, const char *path, size_t max, char **buf, size_t *len, char *err, size_t n)
 {
-  int fd = file_open_read(path, allow, err, n);
-  if (fd < 0)
-    return -1;
   struct stat st;
   /* a regular file is read in one piece of its size; a pipe grows */
   size_t cap = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && (uint64_t)st.st_size <= max ? (size_t)st.st_size + 1
@@ -255,4 +255,121 @@ int file_check_read(const char *path, int allow, char *err, size_t n)
   if (stat(path, &st) != 0)
     return 0;   /* missing: whoever opens it says so in its own words */
   return allowed(path, &st, allow, err, n) ? 0 : -1;
+}
+
+int file_read_all(const char *path, int allow, size_t max, char **buf, size_t *len, char *err, size_t n)
+{
+  int fd = file_open_read(path, allow, err, n);
+  return fd < 0 ? -1 : read_fd(fd, path, max, buf, len, err, n);
+}
+
+/* ---- A large program mapped rather than read ----
+ * Reading copies every byte from the page cache into fresh pages, which
+ * the kernel first clears: for a 25 MB program that is most of the time
+ * the compile spends in the kernel.  A private mapping shares the page
+ * cache's pages instead.  The mapping is the file's pages and then one
+ * page of zeros, so the text is NUL-terminated even when its size is a
+ * multiple of the page size, or when the file grows meanwhile.
+ *
+ * A file cut short while mapped makes its pages past the new end raise
+ * SIGBUS when touched.  The handler puts a page of zeros in place of the
+ * one touched and marks the mapping cut (file_cut): the reader sees the
+ * text end there, and the caller says the file changed under it instead
+ * of crashing.  A SIGBUS anywhere else goes to the disposition there was
+ * before. */
+static struct fmap {
+  char *base;                  /* NULL: a free slot */
+  size_t span;                 /* bytes mapped, the page of zeros included */
+  volatile sig_atomic_t cut;   /* a page was replaced by zeros */
+} fmaps[4];
+static size_t fmap_page;
+static struct sigaction fmap_prev;
+
+static struct fmap *fmap_of(const char *a, int within)
+{
+  for (size_t i = 0; i < sizeof fmaps / sizeof *fmaps; i++) {
+    struct fmap *m = &fmaps[i];
+    if (m->base && (within ? a >= m->base && a < m->base + m->span : a == m->base))
+      return m;
+  }
+  return NULL;
+}
+
+static void fmap_bus(int sig, siginfo_t *si, void *uc)
+{
+  (void)sig;
+  (void)uc;
+  const char *a = si->si_addr;
+  struct fmap *m = si->si_code > 0 ? fmap_of(a, 1) : NULL;   /* (> 0: a fault, not kill(2)) */
+  if (m) {
+    char *page = m->base + ((size_t)(a - m->base) & ~(fmap_page - 1));
+    if (mmap(page, fmap_page, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED, -1, 0) != MAP_FAILED) {
+      m->cut = 1;
+      return;   /* the access is made again, and reads zeros */
+    }
+  }
+  sigaction(SIGBUS, &fmap_prev, NULL);   /* not ours: delivered again, as before */
+  raise(SIGBUS);
+}
+
+/* Map fd's size bytes with a page of zeros after them: 0, or -1 (then
+ * the caller reads the file instead). */
+static int fmap_add(int fd, size_t size, char **buf)
+{
+  struct fmap *m = fmaps;   /* a free slot */
+  while (m < fmaps + sizeof fmaps / sizeof *fmaps && m->base)
+    m++;
+  if (m == fmaps + sizeof fmaps / sizeof *fmaps)
+    return -1;
+  if (!fmap_page) {
+    long pg = sysconf(_SC_PAGESIZE);
+    struct sigaction sa = {.sa_sigaction = fmap_bus, .sa_flags = SA_SIGINFO};
+    sigemptyset(&sa.sa_mask);
+    if (pg <= 0 || (pg & (pg - 1)) || sigaction(SIGBUS, &sa, &fmap_prev) != 0)
+      return -1;
+    fmap_page = (size_t)pg;
+  }
+  size_t span = (size + fmap_page - 1) / fmap_page * fmap_page + fmap_page;
+  char *b = mmap(NULL, span, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (b == MAP_FAILED)
+    return -1;
+  if (mmap(b, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_FIXED, fd, 0) == MAP_FAILED) {
+    munmap(b, span);
+    return -1;
+  }
+  *m = (struct fmap){.base = b, .span = span};
+  *buf = b;
+  return 0;
+}
+
+int file_load(const char *path, int allow, size_t max, char **buf, size_t *len, char *err, size_t n)
+{
+  int fd = file_open_read(path, allow, err, n);
+  if (fd < 0)
+    return -1;
+  struct stat st;
+  if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && (uint64_t)st.st_size >= FILE_MAP_MIN &&
+      (uint64_t)st.st_size <= max && fmap_add(fd, (size_t)st.st_size, buf) == 0) {
+    close(fd);
+    *len = (size_t)st.st_size;
+    return 0;
+  }
+  return read_fd(fd, path, max, buf, len, err, n);
+}
+
+int file_cut(const char *buf)
+{
+  const struct fmap *m = buf ? fmap_of(buf, 0) : NULL;
+  return m && m->cut;
+}
+
+void file_unload(char *buf)
+{
+  struct fmap *m = buf ? fmap_of(buf, 0) : NULL;
+  if (!m) {
+    free(buf);
+    return;
+  }
+  munmap(m->base, m->span);
+  *m = (struct fmap){0};
 }

@@ -49,6 +49,18 @@ int file_open_read(const char *path, int allow, char *err, size_t n);
 /* The whole file, NUL-terminated (*buf, malloc'd; *len without the NUL).
  * 0; -1 with err; -2 when it holds more than max bytes (err says so). */
 int file_read_all(const char *path, int allow, size_t max, char **buf, size_t *len, char *err, size_t n);
+/* file_read_all for a program: a regular file of FILE_MAP_MIN bytes or
+ * more is mapped (private, NUL-terminated by a page of zeros), not read.
+ * Release *buf with file_unload, never free.  If the file is cut short
+ * while mapped, the pages past its new end read as zeros and file_cut
+ * says so (no SIGBUS).  At most four are mapped at once; more are read. */
+#define FILE_MAP_MIN ((size_t)1 << 20)
+int file_load(const char *path, int allow, size_t max, char **buf, size_t *len, char *err, size_t n);
+/* 1: the file of buf (from file_load) was cut short while mapped, and
+ * what buf holds past its new end is zeros, not the file. */
+int file_cut(const char *buf);
+/* Release what file_load (or file_read_all) gave; NULL is nothing. */
+void file_unload(char *buf);
 /* The same rules without opening (for a file someone else opens, such as
  * a plugin's --tool): 0, or -1 with err. */
 int file_check_read(const char *path, int allow, char *err, size_t n);

@@ -164,13 +164,18 @@ struct opts {
 /* Read a whole regular file of at most `max` bytes, NUL-terminated: a
  * FIFO, a device or a socket is refused at once (src/core/atomic.h), a pipe
  * only as standard input (`s42 run /dev/stdin`). */
-static int read_file(const char *path, size_t max, char **buf, size_t *len)
+static int read_file_as(int map, const char *path, size_t max, char **buf, size_t *len)
 {
   char err[600];
-  int r = file_read_all(path, FILE_OR_STDIN, max, buf, len, err, sizeof err);
+  int r = (map ? file_load : file_read_all)(path, FILE_OR_STDIN, max, buf, len, err, sizeof err);
   if (r)
     fprintf(stderr, "s42: %s%s\n", err, r == -2 ? " [E-LIMIT]" : "");
   return r ? -1 : 0;
+}
+
+static int read_file(const char *path, size_t max, char **buf, size_t *len)
+{
+  return read_file_as(0, path, max, buf, len);
 }
 
 static int parse_opts(int argc, char **argv, int i, struct opts *o, int multi)
@@ -435,10 +440,15 @@ static int load_as(const char *path, struct program *p, struct diag_list *d, cha
   prog_init(p);
   diag_init(d, path);
   d->color = diag_want_color(stderr);
-  if (read_file(path, MAX_PROGRAM_BYTES, src, n))
+  /* (mapped when large: release with file_unload) */
+  if (read_file_as(1, path, MAX_PROGRAM_BYTES, src, n))
     return EXIT_IO;
   struct plug_set *ps = plugins_init(NULL);
   int r = dialect_of(path)->compile(*src, *n, d, p, ps);
+  if (file_cut(*src)) {
+    fprintf(stderr, "s42: %s: the file was cut short while it was read (is something writing it?)\n", path);
+    return EXIT_IO;
+  }
   if (r && d->oom) {
     refused_notes(d, ps);
     if (print)
@@ -569,7 +579,7 @@ static int cmd_check(int argc, char **argv)
     io |= r == EXIT_IO;
     prog_free(&p);
     diag_free(&d);
-    free(src);
+    file_unload(src);
   }
   if (!any) {
     fprintf(stderr, "s42: check needs a program file\n");
@@ -596,7 +606,7 @@ static int cmd_disasm(int argc, char **argv)
     vm_disasm(stdout, &p, src, n);
   prog_free(&p);
   diag_free(&d);
-  free(src);
+  file_unload(src);
   return r;
 }
 
@@ -1027,7 +1037,7 @@ static void headless_free(struct runner *r, struct program *p, struct diag_list 
   ops_free(&r->ops);
   prog_free(p);
   diag_free(d);
-  free(src);
+  file_unload(src);
 }
 
 /* The headless run of `s42 run` and `s42 plot` (plot != NULL). */
@@ -1225,7 +1235,7 @@ static int plot_machine(const struct opts *o)
   lplot_free(lp);
   prog_free(&p);
   diag_free(&d);
-  free(src);
+  file_unload(src);
   return rc;
 }
 
@@ -1261,7 +1271,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     rc = run_machine(&o, &p, &d, NULL);
     prog_free(&p);
     diag_free(&d);
-    free(src);
+    file_unload(src);
     ops_free(&r.ops);
     return rc;
   }
@@ -1276,7 +1286,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     rc = run_bare(&o, &p, &d, plot);
     prog_free(&p);
     diag_free(&d);
-    free(src);
+    file_unload(src);
     ops_free(&r.ops);
     return rc;
   }
@@ -1297,7 +1307,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     }
     prog_free(&p);
     diag_free(&d);
-    free(src);
+    file_unload(src);
     ops_free(&r.ops);
     return rc;
   }
@@ -1313,7 +1323,7 @@ static int headless(const struct opts *opt, struct plot *plot)
               o.operator_file);
       prog_free(&p);
       diag_free(&d);
-      free(src);
+      file_unload(src);
       ops_free(&r.ops);
       return EXIT_USAGE;
     }

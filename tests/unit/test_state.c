@@ -12,6 +12,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -528,6 +529,89 @@ START_TEST(read_stdin_pipe)
 }
 END_TEST
 
+/* A file of `size` bytes of a repeating pattern at p. */
+static void write_pattern(const char *p, size_t size)
+{
+  FILE *f = fopen(p, "wb");
+  ck_assert_ptr_nonnull(f);
+  for (size_t i = 0; i < size; i++)
+    fputc("G01 X+1 ^\n"[i % 10], f);
+  ck_assert_int_eq(fclose(f), 0);
+}
+
+START_TEST(load_maps_large_files)
+{
+  char p[160], err[400], *b, *r;
+  size_t n, rn;
+  long pg = sysconf(_SC_PAGESIZE);
+  /* below FILE_MAP_MIN: read (free() would do); from it on: mapped, and
+   * NUL-terminated even at a page boundary */
+  size_t sizes[] = {FILE_MAP_MIN - 1, FILE_MAP_MIN, FILE_MAP_MIN + 123, 2 * FILE_MAP_MIN};
+  for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++) {
+    snprintf(p, sizeof p, "%s/big%zu", dir, k);
+    write_pattern(p, sizes[k]);
+    ck_assert_msg(file_load(p, FILE_REGULAR, FILE_MAX_PROGRAM, &b, &n, err, sizeof err) == 0, "%s", err);
+    ck_assert_msg(file_read_all(p, FILE_REGULAR, FILE_MAX_PROGRAM, &r, &rn, err, sizeof err) == 0, "%s", err);
+    ck_assert_uint_eq(n, sizes[k]);
+    ck_assert_uint_eq(rn, n);
+    ck_assert_int_eq(memcmp(b, r, n + 1), 0);   /* the NUL as well */
+    ck_assert_int_eq(b[n], 0);
+    ck_assert_int_eq(file_cut(b), 0);
+    free(r);
+    file_unload(b);
+  }
+  ck_assert_int_eq(sizes[3] % (size_t)pg, 0);
+  /* the limit still holds for a mapped file */
+  ck_assert_int_eq(file_load(p, FILE_REGULAR, FILE_MAP_MIN, &b, &n, err, sizeof err), -2);
+  ck_assert_msg(strstr(err, "too large"), "%s", err);
+  /* more mapped at once than there are slots: the rest are read */
+  char *m[6];
+  for (int i = 0; i < 6; i++) {
+    ck_assert_msg(file_load(p, FILE_REGULAR, FILE_MAX_PROGRAM, &m[i], &n, err, sizeof err) == 0, "%s", err);
+    ck_assert_int_eq(m[i][n - 1], "G01 X+1 ^\n"[(n - 1) % 10]);
+  }
+  for (int i = 0; i < 6; i++)
+    file_unload(m[i]);
+  file_unload(NULL);
+}
+END_TEST
+
+START_TEST(load_survives_a_cut_file)
+{
+  /* a file cut short while mapped: no SIGBUS, zeros past the new end, and
+   * file_cut says so */
+  char p[160], err[400], *b;
+  size_t n;
+  long pg = sysconf(_SC_PAGESIZE);
+  snprintf(p, sizeof p, "%s/cut", dir);
+  write_pattern(p, 3 * FILE_MAP_MIN);
+  ck_assert_msg(file_load(p, FILE_REGULAR, FILE_MAX_PROGRAM, &b, &n, err, sizeof err) == 0, "%s", err);
+  ck_assert_int_eq(b[0], 'G');
+  ck_assert_int_eq(truncate(p, 100), 0);
+  ck_assert_int_eq(b[53], ' ');   /* still the file */
+  ck_assert_int_eq(file_cut(b), 0);
+  size_t zeros = 0;
+  for (size_t i = (size_t)pg; i < n; i += 4096)
+    zeros += b[i] == 0;
+  ck_assert_uint_eq(zeros, (n - (size_t)pg + 4095) / 4096);
+  ck_assert_int_eq(b[n], 0);
+  ck_assert_int_eq(file_cut(b), 1);
+  file_unload(b);
+  ck_assert_int_eq(file_cut(p), 0);   /* not a mapping */
+}
+END_TEST
+
+START_TEST(load_foreign_sigbus_still_kills)
+{
+  char p[160], err[400], *b;
+  size_t n;
+  snprintf(p, sizeof p, "%s/big", dir);
+  write_pattern(p, FILE_MAP_MIN);
+  ck_assert_msg(file_load(p, FILE_REGULAR, FILE_MAX_PROGRAM, &b, &n, err, sizeof err) == 0, "%s", err);
+  raise(SIGBUS);   /* Check expects this test to die of it */
+}
+END_TEST
+
 Suite *suite_state(void)
 {
   Suite *s_ = suite_create("state");
@@ -546,6 +630,9 @@ Suite *suite_state(void)
   tcase_add_test(tc, read_refuses_fifo_and_devices);
   tcase_add_test(tc, read_sizes);
   tcase_add_test(tc, read_stdin_pipe);
+  tcase_add_test(tc, load_maps_large_files);
+  tcase_add_test(tc, load_survives_a_cut_file);
+  tcase_add_test_raise_signal(tc, load_foreign_sigbus_still_kills, SIGBUS);
   suite_add_tcase(s_, tc);
   return s_;
 }
