@@ -70,16 +70,25 @@ static void operand(FILE *f, const struct program *p, uint32_t ins)
   operand_of(f, p, vm_ops[INS_OP(ins)].opd, INS_A(ins));
 }
 
-static void source_line(FILE *f, const char *src, size_t n, unsigned line)
+/* Where the last source line shown began: blocks come in line order, so
+ * each line is found from the one before (the whole listing is linear in
+ * the text; from the text's start each time it was quadratic: a 100,000-
+ * block program took half a minute). */
+struct srcpos { const char *p; unsigned line; };
+
+static void source_line(FILE *f, const char *src, size_t n, unsigned line, struct srcpos *at)
 {
   if (!src)
     return;
-  const char *p = src, *end = src + n;
-  for (unsigned l = 1; l < line && p < end; l++) {
+  if (!at->p || line < at->line)
+    *at = (struct srcpos){src, 1};
+  const char *p = at->p, *end = src + n;
+  for (unsigned l = at->line; l < line && p < end; l++) {
     const char *q = memchr(p, '\n', (size_t)(end - p));
     if (!q)
       return;
     p = q + 1;
+    *at = (struct srcpos){p, l + 1};
   }
   const char *q = memchr(p, '\n', (size_t)(end - p));
   if (!q)
@@ -94,6 +103,7 @@ void vm_disasm(FILE *f, const struct program *p, const char *src, size_t n)
   fprintf(f, "; %zu blocks, %zu instructions, %zu constants, entry %04u\n", p->nblocks, p->ncode, p->nk, p->entry);
   size_t b = 0;
   int owner = -1;   /* the two-word instruction whose EXT word comes next */
+  struct srcpos at = {NULL, 0};
   for (uint32_t pc = 0; pc < p->ncode; pc++) {
     while (b < p->nblocks && p->blocks[b].code == pc) {
       const struct prog_block *pb = &p->blocks[b];
@@ -103,7 +113,7 @@ void vm_disasm(FILE *f, const struct program *p, const char *src, size_t n)
       else
         fprintf(f, "N-");
       fprintf(f, " line %u", pb->line);
-      source_line(f, src, n, pb->line);
+      source_line(f, src, n, pb->line, &at);
       fputc('\n', f);
       b++;
     }
