@@ -47,7 +47,7 @@ include bench/module.mk
 OBJS := $(VM_OBJS) $(DISP_OBJS) $(SRC_OBJS)
 DEPS := $(OBJS:.o=.d) $(SRC_MAIN_OBJ:.o=.d) $(TEST_OBJS:.o=.d)
 
-.PHONY: canon dialect all check check-switch test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli load
+.PHONY: pgo canon dialect all check check-switch test unit conformance programs regress restart realtime plot plugins tui shared limits toothsearch modbus asan run clean install deps docs errors guide tutorial cli load
 
 all: $(S42) $(PLUGIN_SOS)
 
@@ -108,6 +108,23 @@ $(PGO_OBJS): $(BUILD)/pgo/use/stamp
 -include $(PGO_GEN_OBJS:.o=.d)
 endif
 
+# make check: the counts fit the front end's sources as they are.  A
+# function whose counts GCC cannot find is built as if never trained, with
+# no more than a warning in the build's output; here it is an error.
+ifeq ($(PGO),1)
+pgo: $(BUILD)/pgo/use/stamp
+	@for f in $(PGO_SRCS); do \
+	  case $$f in vm/*) inc="-Ivm";; *) inc="$(C42_INC)";; esac; \
+	  o=$(BUILD)/pgo/check/$${f%.c}.o; mkdir -p $$(dirname $$o); \
+	  $(CC) $(filter-out -MMD -MP,$(CPPFLAGS)) $$inc $(WARN) $(CFLAGS) -fprofile-use=$(abspath $(BUILD)/pgo/use) \
+	    -fprofile-prefix-path=$(abspath $(BUILD)/pgo/check) -fprofile-partial-training $(PGO_BOTH) \
+	    -Werror=missing-profile -Werror=coverage-mismatch -c -o $$o $$f || exit 1; \
+	done; echo "pgo: the counts of the $(words $(PGO_SRCS)) front-end files fit their sources"
+else
+pgo:
+	@echo "pgo: this build has no profile feedback (PGO=0): nothing to check"
+endif
+
 deps:
 	@sh scripts/deps.sh
 
@@ -129,7 +146,7 @@ check: deps
 	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) -Otarget test
 
 # The tests themselves, once everything is built (the longest first).
-test: modbus tutorial toothsearch tui plot restart plugins conformance errors realtime limits regress unit programs guide cli shared dialect canon u22 oracle load
+test: modbus tutorial toothsearch tui plot restart plugins conformance errors realtime limits regress unit programs guide cli shared dialect canon u22 oracle load pgo
 
 # What s42 maps: s42 run none of the libraries of tui, --modbus, plot and
 # the tooth search, which load theirs with dlopen (tests/load/run.sh)

@@ -3,9 +3,10 @@
 #
 # An instrumented s42 (built into BUILD/pgo/gen with -fprofile-generate)
 # compiles every program of the repository: the bundled programs, the
-# error programs, the guide's examples, the tests' programs and the
-# compile fuzzer's corpus -- the benchmarks' programs (bench/) are left
-# out, so that `make bench` measures a build that never saw its input.
+# error programs, the guide's examples and the tests' programs.  Left out:
+# the benchmarks' programs (bench/), so that `make bench` measures a build
+# that never saw its input, and the fuzz corpus, 7.5 MB of mostly broken
+# text that would make the error paths look like the common ones.
 # The counts of the front end's files (PGO_SRCS) are then copied to
 # BUILD/pgo/use, and the stamp touched, only when they changed: the
 # training is deterministic, so an edit elsewhere retrains but recompiles
@@ -49,5 +50,5 @@ for src in "$@"; do
 done
 if [ -n "$changed" ] || [ ! -f "$use/stamp" ]; then
   touch "$use/stamp"
-  echo "pgo-train: new counts for the front end ($#) files in $use"
+  echo "pgo-train: new counts for the front end's $# files in $use"
 fi
