@@ -65,7 +65,7 @@ $(BUILD)/%.o: %.c
 # benchmarks' (scripts/pgo-train.sh); GCC then builds them with the counts,
 # and a program compiles 15-25 % faster.  Only there: the VM's and the
 # session's paths depend on the program run, and a path no training program
-# took would be laid out as cold.  On by default with GCC (10 or later) and
+# took would be laid out as cold.  On by default with GCC (11 or later) and
 # the Makefile's own CFLAGS; PGO=0 turns it off, and a build with CFLAGS of
 # its own (make asan, check-switch, the fuzzers) has none.  The counters
 # count branches only (no value profiles, whose pointer bits change from
