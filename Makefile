@@ -88,11 +88,16 @@ PGO_GEN_OBJS := $(PGO_SRCS:%.c=$(PGO_GEN)/%.o)
 # (the same for the counters and the counts: a static function's counts
 # are found by its number in its file, not by a hash of the object's path)
 PGO_BOTH := -fno-profile-values --param=profile-func-internal-id=1
-PGO_USE   = -fprofile-use=$(abspath $(BUILD)/pgo/use) -fprofile-prefix-path=$(abspath $(BUILD)) \
-            -fprofile-partial-training $(PGO_BOTH) -Wno-error=coverage-mismatch
+# $(call pgo_use,DIR): the counts, for an object under DIR
+pgo_use = -fprofile-use=$(abspath $(BUILD)/pgo/use) -fprofile-prefix-path=$(abspath $1) \
+          -fprofile-partial-training $(PGO_BOTH)
+PGO_USE   = $(call pgo_use,$(BUILD)) -Wno-error=coverage-mismatch
 PGO_TRAIN := $(shell find programs docs tests -type f -name '*.kp')
-$(PGO_GEN)/src/dialect/2c42/%.o: MOD_CPPFLAGS = $(C42_INC)
-$(PGO_GEN)/vm/%.o: MOD_CPPFLAGS = -Ivm
+# the counters' build and make pgo's (below) compile the files as the build does
+PGO_CHECK := $(BUILD)/pgo/check
+PGO_CHECK_OBJS := $(PGO_SRCS:%.c=$(PGO_CHECK)/%.o)
+$(PGO_GEN)/src/dialect/2c42/%.o $(PGO_CHECK)/src/dialect/2c42/%.o: MOD_CPPFLAGS = $(C42_INC)
+$(PGO_GEN)/vm/%.o $(PGO_CHECK)/vm/%.o: MOD_CPPFLAGS = -Ivm
 $(PGO_GEN)/%.o: %.c
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(MOD_CPPFLAGS) $(WARN) $(CFLAGS) -fprofile-generate=$(abspath $(BUILD)/pgo/counts) \
@@ -105,21 +110,19 @@ $(BUILD)/pgo/trained: $(PGO_GEN)/s42 $(PLUGIN_SOS) scripts/pgo-train.sh $(PGO_TR
 # touched by the training only when the counts changed
 $(BUILD)/pgo/use/stamp: $(BUILD)/pgo/trained ;
 $(PGO_OBJS): $(BUILD)/pgo/use/stamp
--include $(PGO_GEN_OBJS:.o=.d)
+-include $(PGO_GEN_OBJS:.o=.d) $(PGO_CHECK_OBJS:.o=.d)
 endif
 
 # make check: the counts fit the front end's sources as they are.  A
 # function whose counts GCC cannot find is built as if never trained, with
 # no more than a warning in the build's output; here it is an error.
 ifeq ($(PGO),1)
-pgo: $(BUILD)/pgo/use/stamp
-	@for f in $(PGO_SRCS); do \
-	  case $$f in vm/*) inc="-Ivm";; *) inc="$(C42_INC)";; esac; \
-	  o=$(BUILD)/pgo/check/$${f%.c}.o; mkdir -p $$(dirname $$o); \
-	  $(CC) $(filter-out -MMD -MP,$(CPPFLAGS)) $$inc $(WARN) $(CFLAGS) -fprofile-use=$(abspath $(BUILD)/pgo/use) \
-	    -fprofile-prefix-path=$(abspath $(BUILD)/pgo/check) -fprofile-partial-training $(PGO_BOTH) \
-	    -Werror=missing-profile -Werror=coverage-mismatch -c -o $$o $$f || exit 1; \
-	done; echo "pgo: the counts of the $(words $(PGO_SRCS)) front-end files fit their sources"
+$(PGO_CHECK)/%.o: %.c $(BUILD)/pgo/use/stamp
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) $(MOD_CPPFLAGS) $(WARN) $(CFLAGS) $(call pgo_use,$(PGO_CHECK)) \
+	  -Werror=missing-profile -Werror=coverage-mismatch -c -o $@ $<
+pgo: $(PGO_CHECK_OBJS)
+	@echo "pgo: the counts of the $(words $(PGO_SRCS)) front-end files fit their sources"
 else
 pgo:
 	@echo "pgo: this build has no profile feedback (PGO=0): nothing to check"
