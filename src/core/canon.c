@@ -1,8 +1,52 @@
-/* The trace sink of the canonical calls (src/core/canon.h). */
+/* The canonical interface's dispatch and its trace sink (src/core/canon.h). */
 #include "canon.h"
+#include "errors.h"
 #include "geom.h"
 #include <stdarg.h>
 #include <stdio.h>
+
+static const char *const names[CANON_NKIND] = {
+  [CANON_FEED_LINE] = "STRAIGHT_FEED", [CANON_FEED_ARC] = "ARC_FEED", [CANON_TRAVERSE] = "STRAIGHT_TRAVERSE",
+  [CANON_DWELL] = "DWELL", [CANON_SPINDLE] = "START_SPINDLE", [CANON_OVERRIDE] = "ENABLE_FEED_OVERRIDE",
+  [CANON_END] = "PROGRAM_END", [CANON_SPINDLE_SPEED] = "SET_SPINDLE_SPEED", [CANON_FEED_MODE] = "SET_FEED_MODE",
+  [CANON_SYNCH_START] = "START_SPEED_FEED_SYNC", [CANON_SYNCH_STOP] = "STOP_SPEED_FEED_SYNCH",
+  [CANON_COOLANT] = "FLOOD_ON", [CANON_TOOL] = "SELECT_TOOL", [CANON_THREAD] = "THREAD",
+  [CANON_HOME] = "HOME", [CANON_SPINDLE_MODE] = "SET_SPINDLE_MODE", [CANON_SPINDLE_RANGE] = "SET_SPINDLE_RANGE",
+  [CANON_TOOL_CHANGE] = "CHANGE_TOOL", [CANON_TOOL_OFFSET] = "USE_TOOL_LENGTH_OFFSET",
+  [CANON_CUTTER_RADIUS] = "START_CUTTER_RADIUS_COMPENSATION", [CANON_ORIGIN] = "SET_G5X_OFFSET",
+  [CANON_AUX] = "SET_AUX_OUTPUT_BIT", [CANON_WAIT_INPUT] = "WAIT", [CANON_STOP] = "PROGRAM_STOP",
+  [CANON_OPTIONAL_STOP] = "OPTIONAL_PROGRAM_STOP", [CANON_SWITCH] = "SET_PANEL_SWITCH",
+  [CANON_UNITS] = "USE_LENGTH_UNITS",
+};
+
+const char *canon_name(int kind)
+{
+  return kind >= 0 && kind < CANON_NKIND && names[kind] ? names[kind] : "UNKNOWN";
+}
+
+int canon_do(const struct canon_dev *d, struct canon_call *c, char *msg, size_t n)
+{
+  if (c->kind < 0 || c->kind >= CANON_NKIND || !d->ops->fn[c->kind]) {
+    struct canon_info in = {0};
+    if (d->ops->info)
+      d->ops->info(d->m, &in);
+    snprintf(msg, n, "the %s has no call %s", in.name ? in.name : "machine", canon_name(c->kind));
+    return S42_E_FUNC;
+  }
+  return d->ops->fn[c->kind](d->m, c, msg, n);
+}
+
+void canon_report(const struct canon_sink *s, const struct canon_call *c)
+{
+  if (s && s->call)
+    s->call(s->ctx, c);
+}
+
+void canon_warn(const struct canon_sink *s, const char *msg)
+{
+  if (s && s->warn && msg[0])
+    s->warn(s->ctx, msg);
+}
 
 static double mm_of(const struct canon_call *c, int axis, int64_t v)
 {
@@ -38,8 +82,8 @@ static void feed_rate(struct canon_trace *t, double f)
 
 static void point(struct canon_trace *t, const char *call, const struct canon_call *c)
 {
-  out(t, "%s(%.4f, %.4f, %.4f, %.4f, 0.0000, 0.0000)", call, mm_of(c, 0, c->pos[0]), mm_of(c, 1, c->pos[1]),
-      mm_of(c, 2, c->pos[2]), mm_of(c, 3, c->pos[3]));
+  out(t, "%s(%.4f, %.4f, %.4f, %.4f, %.4f, %.4f)", call, mm_of(c, 0, c->pos[0]), mm_of(c, 1, c->pos[1]),
+      mm_of(c, 2, c->pos[2]), mm_of(c, 3, c->pos[3]), mm_of(c, 4, c->pos[4]), mm_of(c, 5, c->pos[5]));
 }
 
 /* LinuxCNC's planes: XY (X, Y; axis Z), YZ (Y, Z; axis X), XZ (Z, X; axis
@@ -56,16 +100,18 @@ static void arc(struct canon_trace *t, const struct canon_call *c)
   }
   int p, q;
   geom_plane_axes(pl, &p, &q);
-  int64_t ctr[4] = {0, 0, 0, 0};
+  int64_t ctr[CANON_AXES] = {0};
   ctr[p] = c->centre[0];
   ctr[q] = c->centre[1];
   int rot = c->ccw ? 1 : -1;
   if (pl == GEOM_XZ)
     rot = -rot;
   int f = first[pl], g = second[pl], h = axis[pl];
-  out(t, "ARC_FEED(%.4f, %.4f, %.4f, %.4f, %d, %.4f, %.4f, 0.0000, 0.0000)", mm_of(c, f, c->pos[f]),
+  /* a helix of several turns: LinuxCNC's rotation counts them */
+  rot *= 1 + (c->turns > 0 ? c->turns : 0);
+  out(t, "ARC_FEED(%.4f, %.4f, %.4f, %.4f, %d, %.4f, %.4f, %.4f, %.4f)", mm_of(c, f, c->pos[f]),
       mm_of(c, g, c->pos[g]), mm_of(c, f, ctr[f]), mm_of(c, g, ctr[g]), rot, mm_of(c, h, c->pos[h]),
-      mm_of(c, 3, c->pos[3]));
+      mm_of(c, 3, c->pos[3]), mm_of(c, 4, c->pos[4]), mm_of(c, 5, c->pos[5]));
 }
 
 void canon_trace_call(void *ctx, const struct canon_call *c)
@@ -119,9 +165,45 @@ void canon_trace_call(void *ctx, const struct canon_call *c)
     }
     break;
   case CANON_TOOL:
-    out(t, "SELECT_TOOL(%d)", c->dir);
+    out(t, "SELECT_TOOL(%d)", c->n);
+    break;
+  case CANON_TOOL_CHANGE:
+    out(t, "CHANGE_TOOL(%d)", c->n);
+    break;
+  case CANON_TOOL_OFFSET:
+    out(t, "USE_TOOL_LENGTH_OFFSET(%.4f, %.4f, %.4f, %.4f, %.4f, %.4f, 0.0000, 0.0000, 0.0000)",
+        mm_of(c, 0, c->pos[0]), mm_of(c, 1, c->pos[1]), mm_of(c, 2, c->pos[2]), mm_of(c, 3, c->pos[3]),
+        mm_of(c, 4, c->pos[4]), mm_of(c, 5, c->pos[5]));
+    break;
+  case CANON_CUTTER_RADIUS:
+    if (c->dir)
+      out(t, "START_CUTTER_RADIUS_COMPENSATION(%.4f, %s)", c->v, c->dir > 0 ? "LEFT" : "RIGHT");
+    else
+      out(t, "STOP_CUTTER_RADIUS_COMPENSATION()");
+    break;
+  case CANON_ORIGIN:
+    out(t, "SET_G5X_OFFSET(%d, %.4f, %.4f, %.4f, %.4f, %.4f, %.4f)", c->n, mm_of(c, 0, c->pos[0]),
+        mm_of(c, 1, c->pos[1]), mm_of(c, 2, c->pos[2]), mm_of(c, 3, c->pos[3]), mm_of(c, 4, c->pos[4]),
+        mm_of(c, 5, c->pos[5]));
+    break;
+  case CANON_AUX:
+    out(t, "%s(%d)", c->on ? "SET_AUX_OUTPUT_BIT" : "CLEAR_AUX_OUTPUT_BIT", c->n);
+    break;
+  case CANON_WAIT_INPUT:
+    out(t, "WAIT(%d, 0, %d, %.4f)", c->n, c->on ? 1 : 0, c->v);
+    break;
+  case CANON_STOP:
+    out(t, "PROGRAM_STOP()");
+    break;
+  case CANON_OPTIONAL_STOP:
+    out(t, "OPTIONAL_PROGRAM_STOP()");
+    break;
+  case CANON_UNITS:
+    out(t, "USE_LENGTH_UNITS(%s)", c->on ? "CANON_UNITS_MM" : "CANON_UNITS_INCHES");
     break;
   default:
+    /* CANON_SPINDLE_MODE, CANON_SPINDLE_RANGE, CANON_SWITCH: no line of
+     * LinuxCNC's to print (THREAD and HOME come as the records they make) */
     break;
   }
 }

@@ -48,6 +48,76 @@ void mrun_free(struct mrun *r)
 {
   free(r->st);
   r->st = NULL;
+  free(r->jn.call);
+  free(r->jn.text);
+  memset(&r->jn, 0, sizeof r->jn);
+}
+
+/* ---- the journal ---- */
+
+static void jn_call(void *ctx, const struct canon_call *c)
+{
+  struct mrun_journal *j = &((struct mrun *)ctx)->jn;
+  if (j->ncall == j->capcall) {
+    size_t nc = j->capcall ? j->capcall * 2 : 32;
+    struct canon_call *v = nc > j->capcall ? realloc(j->call, nc * sizeof *v) : NULL;
+    if (!v) {
+      j->oom = 1;
+      return;
+    }
+    j->call = v;
+    j->capcall = nc;
+  }
+  j->call[j->ncall++] = *c;
+}
+
+static void jn_warn(void *ctx, const char *msg)
+{
+  struct mrun_journal *j = &((struct mrun *)ctx)->jn;
+  size_t len = strlen(msg) + 1;
+  if (j->ntext + len > j->captext) {
+    size_t nc = j->captext ? j->captext : 256;
+    while (nc < j->ntext + len)
+      nc *= 2;
+    char *v = realloc(j->text, nc);
+    if (!v) {
+      j->oom = 1;
+      return;
+    }
+    j->text = v;
+    j->captext = nc;
+  }
+  memcpy(j->text + j->ntext, msg, len);
+  j->ntext += len;
+  j->nwarn++;
+}
+
+struct canon_sink mrun_sink(struct mrun *r)
+{
+  struct canon_sink s = {jn_call, jn_warn, r};
+  return s;
+}
+
+static void jn_clear(struct mrun_journal *j)
+{
+  j->ncall = j->ntext = j->nwarn = 0;
+  j->oom = 0;
+}
+
+/* The block committed: its warnings, then its records, to the host. */
+static void jn_release(struct mrun *r)
+{
+  struct mrun_journal *j = &r->jn;
+  for (size_t k = 0, off = 0; k < j->nwarn; k++) {
+    const char *w = j->text + off;
+    off += strlen(w) + 1;
+    if (r->cfg.warn)
+      r->cfg.warn(r->cfg.ctx, r, w);
+  }
+  if (r->cfg.canon)
+    for (size_t k = 0; k < j->ncall; k++)
+      r->cfg.canon(r->cfg.ctx, &j->call[k]);
+  jn_clear(j);
 }
 
 void mrun_fail(struct mrun *r, int code, const char *fmt, ...)
@@ -67,8 +137,7 @@ void mrun_warn(struct mrun *r, const char *fmt, ...)
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  if (r->cfg.warn)
-    r->cfg.warn(r->cfg.ctx, r, msg);
+  jn_warn(r, msg);
 }
 
 int mrun_block_number(const struct mrun *r)
@@ -130,9 +199,18 @@ enum mrun_ev mrun_run(struct mrun *r)
     }
     if (ev == VM_EV_BLOCK) {
       r->go = 0;
+      jn_clear(&r->jn);
       int st = r->rt->block ? r->rt->block(r) : 0;
-      if (st < 0)
+      if (st >= 0 && r->jn.oom) {
+        mrun_fail(r, S42_E_LIMIT, "out of memory for the block's %zu calls and %zu warnings", r->jn.ncall,
+                  r->jn.nwarn);
+        st = -1;
+      }
+      if (st < 0) {
+        jn_clear(&r->jn);  /* a failed block leaves no trace, no call */
         continue;          /* mrun_fail ended the VM: the next vm_run says VM_EV_ERROR */
+      }
+      jn_release(r);
       r->seq++;
       r->stop_after = st > 0;   /* the row is out first; the next call waits */
       r->state = MR_ROW;

@@ -11,6 +11,7 @@
 #ifndef S42_MRUN_H
 #define S42_MRUN_H
 
+#include "canon.h"
 #include "program.h"
 #include "vm.h"
 #include <stddef.h>
@@ -18,7 +19,6 @@
 #include <stdio.h>
 
 struct mrun;
-struct canon_call;
 
 enum mrun_ev {
   MR_ROW,        /* a block ran: its row can be read (mrun_row_json) */
@@ -93,6 +93,20 @@ struct mrun_config {
                                                MRW_NONE: an `at`), or NULL */
 };
 
+/* The open block's journal: the records its machine reported and the
+ * warnings it raised, in order, held until the block commits (then given
+ * to the host: cfg.warn, then cfg.canon) and dropped when it fails.  It
+ * grows with the block; running out of memory fails the block (E-LIMIT),
+ * it never drops an entry. */
+struct mrun_journal {
+  struct canon_call *call;
+  size_t ncall, capcall;
+  char *text;                /* the warnings, each ended by a NUL */
+  size_t ntext, captext;
+  size_t nwarn;
+  int oom;                   /* an entry did not fit in memory: the block fails */
+};
+
 struct mrun {
   const struct program *p;
   const struct mrun_rt *rt;
@@ -106,6 +120,7 @@ struct mrun {
   int go;                    /* the cycle's first block needs no Пуск of its own */
   int stop_after;            /* the row just out ends in a programmed stop */
   uint64_t seq;              /* rows out */
+  struct mrun_journal jn;
 };
 
 /* 0; -1 when out of memory or the program needs more than the VM holds
@@ -123,8 +138,12 @@ int mrun_pusk(struct mrun *r);
 void mrun_stop(struct mrun *r);
 /* The runtime's block failed: roll it back, the run ends with that error. */
 void mrun_fail(struct mrun *r, int code, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-/* A warning from the runtime or its machine, to the host. */
+/* A warning from the runtime or its machine, to the host: into the open
+ * block's journal. */
 void mrun_warn(struct mrun *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Where the runtime's machine reports its records and warnings: the open
+ * block's journal. */
+struct canon_sink mrun_sink(struct mrun *r);
 /* The block being run: its number as written (-1 none). */
 int mrun_block_number(const struct mrun *r);
 /* The row of the block that just ran, a JSON object on one line (no newline). */

@@ -38,7 +38,7 @@ static void count_canon(void *ctx, const struct canon_call *c)
 
 static void on_warn(void *ctx, const char *text)
 {
-  (void)ctx;
+  (void)ctx;   /* the trace sink's: the canon calls' */
   n_warn++;
   size_t k = strlen(warn_buf);
   snprintf(warn_buf + k, sizeof warn_buf - k, "%s\n", text);
@@ -46,12 +46,11 @@ static void on_warn(void *ctx, const char *text)
 
 static void setup(void)
 {
-  lathe_init(&l);
+  lathe_init(&l, &lathe_16b16f3);
   canon_trace_init(&sink, canon_line, NULL);
-  l.canon = count_canon;
-  l.canon_ctx = &sink;
-  l.warn = on_warn;
-  l.warn_ctx = NULL;
+  l.out.call = count_canon;
+  l.out.warn = on_warn;
+  l.out.ctx = &sink;
   canon_buf[0] = warn_buf[0] = msg[0] = 0;
   n_canon = n_warn = 0;
 }
@@ -108,9 +107,10 @@ START_TEST(power_on)
   ck_assert_int_eq(l.css, 0);
   ck_assert(l.t == 0);
   ck_assert(lathe_rpm(&l, 0) == 0);
-  ck_assert(lathe_range_lo[0] == 45 && lathe_range_hi[0] == 1800);
-  ck_assert(lathe_range_lo[1] == 45 && lathe_range_hi[1] == 280);
-  ck_assert(lathe_range_lo[2] == 224 && lathe_range_hi[2] == 1800);
+  ck_assert(l.model.range_lo[0] == 45 && l.model.range_hi[0] == 1800);
+  ck_assert(l.model.range_lo[1] == 45 && l.model.range_hi[1] == 280);
+  ck_assert(l.model.range_lo[2] == 224 && l.model.range_hi[2] == 1800);
+  ck_assert_int_eq(l.model.nranges, 2);
 }
 END_TEST
 
@@ -818,7 +818,7 @@ START_TEST(tools_bad)
       {"T1 Z 1\rT2\n", "t.tools:1:7: expected X or Z, found a carriage return"},
   };
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-    lathe_init(&l);
+    lathe_init(&l, &lathe_16b16f3);
     l.tools[7].has = 1;   /* a table before: kept on an error */
     ck_assert_msg(parse(bad[i].text, strlen(bad[i].text)) == -1, "case %zu parsed", i);
     ck_assert_msg(strcmp(msg, bad[i].err) == 0, "case %zu: \"%s\", expected \"%s\"", i, msg, bad[i].err);
@@ -863,8 +863,7 @@ static double rval(void)
 START_TEST(robust)
 {
   rnd_state = 42;
-  l.canon = NULL;   /* and no warn hook: also allowed */
-  l.warn = NULL;
+  memset(&l.out, 0, sizeof l.out);   /* no sink at all: also allowed */
   static const char tab[] = "T1 X -12.5 Z 40\nT2 X 3 Z -7\n";
   ck_assert_int_eq(parse(tab, strlen(tab)), 0);
   double t = 0;

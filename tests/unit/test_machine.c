@@ -49,7 +49,7 @@ static void exec(void)
 {
   ck_assert_msg(check() == 0, "mach_check: %s", msg);
   kp_mach_modal(&m, &b);
-  kp_mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o, msg, sizeof msg);
 }
 
 /* ---- linear limit ---- */
@@ -359,7 +359,7 @@ END_TEST
 START_TEST(override_within_a_move)
 {
   block(MO_G01, 0, 60, SL_X, 60000.0, -1);   /* 60 mm at 60 mm/min: 60 s */
-  kp_mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o, msg, sizeof msg);
   ck_assert(fabs(m.t - 60) < 1e-9);
   m.override_pct = 50;                       /* at 30 s: 30 mm left at 30 mm/min = 60 s */
   ck_assert(fabs(mach_override_at(&m, 30) - 30) < 1e-9);
@@ -378,7 +378,7 @@ START_TEST(override_within_a_move)
   /* the speed limit holds: 150 % of 6000 mm/min is 6000 */
   setup();
   block(MO_G01, 0, 6000, SL_X, 100000.0, -1);   /* 100 mm at 6000 mm/min: 1 s */
-  kp_mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o, msg, sizeof msg);
   m.override_pct = 150;
   ck_assert(mach_override_at(&m, 0.5) == 0);
   ck_assert(fabs(m.t - 1) < 1e-9);
@@ -386,16 +386,16 @@ START_TEST(override_within_a_move)
   setup();
   m.override_allowed = 0;
   block(MO_G01, 0, 60, SL_X, 60000.0, -1);
-  kp_mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o, msg, sizeof msg);
   m.override_pct = 50;
   ck_assert(mach_override_at(&m, 30) == 0);
   ck_assert(fabs(m.t - 60) < 1e-9);
   /* a dwell is no move: the last move is over */
   setup();
   block(MO_G01, 0, 60, SL_X, 1000.0, -1);
-  kp_mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o, msg, sizeof msg);
   block(MO_G04, 0, 60, SL_X, 100.0, -1);
-  kp_mach_motion(&m, &b, &o);
+  kp_mach_motion(&m, &b, &o, msg, sizeof msg);
   m.override_pct = 50;
   ck_assert(mach_override_at(&m, 5) == 0);
 }
@@ -465,19 +465,46 @@ START_TEST(canonical_calls_traced)
 {
   canon_buf[0] = 0;
   canon_trace_init(&canon_sink, canon_to_buf, NULL);
-  m.canon = canon_trace_call;
-  m.canon_ctx = &canon_sink;
-  struct mach_path pa = {.to = {10000, 0, 0, 0}};
-  mach_feed(&m, &pa, 600, &o);
-  pa.to[0] = 20000;
-  mach_feed(&m, &pa, 600, &o);
-  struct mach_path arc = {.arc = 1, .to = {15000, 0, 5000, 0}, .plane = GEOM_XZ, .cp = -5000, .cq = 0, .ccw = 1};
-  mach_feed(&m, &arc, 300, &o);
-  mach_spindle(&m, 1);
-  mach_dwell(&m, 1.5);
-  mach_spindle(&m, 0);
-  mach_traverse_axis(&m, AX_Z, 0, &o);
-  mach_program_end(&m);
+  m.out.call = canon_trace_call;
+  m.out.ctx = &canon_sink;
+  /* through the table, as a runtime calls it */
+  struct canon_dev d = grinder_dev(&m);
+  struct canon_call c = canon_of(CANON_FEED_LINE);
+  c.pos[0] = 10000;
+  c.f = 600;
+  ck_assert_int_eq(canon_do(&d, &c, msg, sizeof msg), 0);
+  c = canon_of(CANON_FEED_LINE);
+  c.pos[0] = 20000;
+  c.f = 600;
+  ck_assert_int_eq(canon_do(&d, &c, msg, sizeof msg), 0);
+  ck_assert(m.last.feed == 600 && m.last.d[0] == 10000);
+  c = canon_of(CANON_FEED_ARC);
+  c.pos[0] = 15000;
+  c.pos[2] = 5000;
+  c.plane = GEOM_XZ;
+  c.cp = -5000;
+  c.ccw = 1;
+  c.f = 300;
+  ck_assert_int_eq(canon_do(&d, &c, msg, sizeof msg), 0);
+  c = canon_of(CANON_SPINDLE);
+  c.dir = 1;
+  ck_assert_int_eq(canon_do(&d, &c, msg, sizeof msg), 0);
+  c = canon_of(CANON_SPINDLE);
+  c.dir = -1;   /* a reversal without a stop: refused, nothing reported */
+  ck_assert_int_eq(canon_do(&d, &c, msg, sizeof msg), S42_E_WHEEL);
+  c = canon_of(CANON_DWELL);
+  c.v = 1.5;
+  ck_assert_int_eq(canon_do(&d, &c, msg, sizeof msg), 0);
+  c = canon_of(CANON_SPINDLE);
+  ck_assert_int_eq(canon_do(&d, &c, msg, sizeof msg), 0);
+  c = canon_of(CANON_TRAVERSE);
+  c.axes = 1u << AX_Z;
+  ck_assert_int_eq(canon_do(&d, &c, msg, sizeof msg), 0);
+  c = canon_of(CANON_END);
+  ck_assert_int_eq(canon_do(&d, &c, msg, sizeof msg), 0);
+  c = canon_of(CANON_THREAD);   /* a call the grinder does not have: E-FUNC naming it */
+  ck_assert_int_eq(canon_do(&d, &c, msg, sizeof msg), S42_E_FUNC);
+  ck_assert_str_eq(msg, "the ВЗ-208Ф3 has no call THREAD");
   ck_assert_str_eq(canon_buf, "SET_FEED_RATE(600.0000)\n"
                               "STRAIGHT_FEED(10.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
                               "STRAIGHT_FEED(20.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"

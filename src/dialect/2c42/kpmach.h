@@ -33,7 +33,13 @@ int kp_mach_check(const struct machine *m, const struct kp_block *b, char *msg, 
  * changes (the wheel first, M22/M23, M25/M26), then the core's motion or
  * dwell (G01 G02 G03 G04 G37). */
 void kp_mach_modal(struct machine *m, const struct kp_block *b);
-void kp_mach_motion(struct machine *m, const struct kp_block *b, struct mach_out *o);
+/* 0, or the machine's error code with msg (none after a passed check). */
+int kp_mach_motion(struct machine *m, const struct kp_block *b, struct mach_out *o, char *msg, size_t n);
+/* A plugin's contour move (the host's move()): increments d, the length
+ * and speed limit it computed; along: the arc it follows (a helix), NULL a
+ * line.  0, or the machine's error code with msg. */
+int kp_mach_path_move(struct machine *m, const struct mach_path *along, const double d[4], double len,
+                      double limit, double f, struct mach_out *o, char *msg, size_t n);
 /* Arc of a G02/G03 block: length in mm, the largest Y share of the tangent
  * along it (0..1).  Returns 0, or E-ARC with a message. */
 int kp_mach_arc(const struct kp_block *b, double *len_mm, double *yshare, char *msg, size_t n);

@@ -237,7 +237,12 @@ static int exec_block(struct session *s)
   kp_mach_modal(&s->m, &s->mb);
   if (sess_plug_phase(s, at->plugins | s->every, 1))
     return SE_ERROR;
-  kp_mach_motion(&s->m, &s->mb, &s->mo);
+  char msg[200];
+  int e = kp_mach_motion(&s->m, &s->mb, &s->mo, msg, sizeof msg);
+  if (e) {
+    vm_fail(&s->vm, e, "%s", msg);
+    return SE_ERROR;
+  }
   s->run_next = 0;
   s->resumed = 0;
   if (!(at->plugins | s->every)) {   /* what sess_run_plugins does without plugins */

@@ -42,8 +42,8 @@ void sess_configure(struct session *s, const struct sess_config *c)
   s->vm.yield_all = c->yield_all;
   s->vm.start_all = c->start_all || s->single || s->brk;
   s->vm.watch = c->watch;
-  s->m.canon = c->canon;
-  s->m.canon_ctx = c->canon_ctx;
+  s->m.out.call = c->canon;
+  s->m.out.ctx = c->canon_ctx;
 }
 
 void sess_set_start_all(struct session *s, int on)
@@ -323,7 +323,9 @@ static int h_move(struct s42_block *b, const struct s42_move *mv)
   struct kp_block arc = s->mb;   /* a helix follows the block's arc (G12, G13): the trace says so */
   struct mach_path pa;
   int along = (arc.motion == MO_G12 || arc.motion == MO_G13) && kp_path(s->m.pos, &arc, &pa) && pa.arc;
-  mach_move_along(&s->m, along ? &pa : NULL, mv->d, mv->length, lim, s->mb.f, &o);
+  char msg[200];
+  if (kp_mach_path_move(&s->m, along ? &pa : NULL, mv->d, mv->length, lim, s->mb.f, &o, msg, sizeof msg))
+    return -1;
   for (int a = 0; a < 4; a++)
     s->mo.d[a] += o.d[a];
   s->mo.feed = o.feed;
@@ -335,7 +337,7 @@ static void h_displace(struct s42_block *b, int axis, int64_t d)
   struct session *s = b->s;
   if (axis < 0 || axis > 3)
     return;
-  s->m.pos[axis] += d;
+  mach_displace(&s->m, axis, d);
   if (s->sink.moved)
     s->sink.moved(s->sink.ctx, s, axis, d);
 }
@@ -709,8 +711,12 @@ enum sess_ev sess_run(struct session *s)
       if (r >= 0)
         return (enum sess_ev)(s->state = r);
       break;
-    case VM_EV_END:
-      mach_program_end(&s->m);
+    case VM_EV_END: {
+      struct canon_dev d = grinder_dev(&s->m);
+      struct canon_call c = canon_of(CANON_END);
+      char msg[80];
+      canon_do(&d, &c, msg, sizeof msg);
+    }
       return (enum sess_ev)(s->state = SE_END);
     default:
       s->scr.block = sess_block_number(s);   /* the screen names the block that failed */

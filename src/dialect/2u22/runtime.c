@@ -1,23 +1,22 @@
 /* The 2У22 runtime on the neutral runner (src/core/mrun.h): what a block
- * means to the 16Б16Ф3 lathe, as its canonical calls (src/machine/lathe).
+ * means to the 16Б16Ф3 lathe, as calls of the canonical table
+ * (src/core/canon.h) on the lathe (src/machine/lathe).
  *
  * A block runs in the order of D-11: the tool, the spindle's range, speed
  * and direction, coolant and the modal G changes first; then the motion;
  * then G04's dwell; then the stops and the end.  A block is a transaction
- * (D-33): it runs on a copy of the state, with the machine's canonical
- * calls and warnings held back, and only a block that succeeds keeps its
- * changes and lets them out. */
+ * (D-33): it runs on a copy of the state, and only a block that succeeds
+ * keeps its changes; the runner's journal holds the lathe's records and
+ * warnings until the block commits. */
 #include "u22.h"
 #include "canon.h"
 #include "errors.h"
+#include "geom.h"
 #include "lathe.h"
 #include "mrun.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-
-#define HELD_CALLS 16
-#define HELD_WARNS 8
 
 struct u22_state {
   struct lathe l;
@@ -30,30 +29,6 @@ struct u22_state {
   double feed;         /* its effective speed, mm/min */
 };
 
-/* What one block holds back until it succeeds. */
-struct held {
-  struct canon_call call[HELD_CALLS];
-  int ncall, lost;
-  char warn[HELD_WARNS][160];
-  int nwarn;
-};
-
-static void hold_call(void *ctx, const struct canon_call *c)
-{
-  struct held *h = ctx;
-  if (h->ncall < HELD_CALLS)
-    h->call[h->ncall++] = *c;
-  else
-    h->lost++;
-}
-
-static void hold_warn(void *ctx, const char *msg)
-{
-  struct held *h = ctx;
-  if (h->nwarn < HELD_WARNS)
-    snprintf(h->warn[h->nwarn++], sizeof h->warn[0], "%s", msg);
-}
-
 /* The state and the copy a block runs on. */
 struct u22_rt {
   struct u22_state cur, tmp;
@@ -64,7 +39,7 @@ static struct u22_state *state(const struct mrun *r) { return &((struct u22_rt *
 static void reset(struct mrun *r)
 {
   struct u22_state *s = state(r);
-  lathe_init(&s->l);
+  lathe_init(&s->l, &lathe_16b16f3);
   s->motion = UG01;    /* D-7: G01 G23 G90 G94 G97 */
   s->what = "none";
 }
@@ -91,6 +66,28 @@ static int fail(struct mrun *r, int code, const char *msg)
   return -1;
 }
 
+/* A call of the canonical table on the lathe of s (a switch, a setting:
+ * the lathe refuses nothing of these but with a warning). */
+static void set(struct lathe *l, int kind, int n, int on, double v)
+{
+  struct canon_dev d = lathe_dev(l);
+  struct canon_call c = canon_of(kind);
+  char msg[160];
+  c.n = n;
+  c.on = c.dir = on;
+  c.v = v;
+  canon_do(&d, &c, msg, sizeof msg);
+}
+
+/* A motion of kind to `to` (X, Z: part coordinates, µm, X a diameter). */
+static int move(struct lathe *l, struct canon_call *c, const int64_t to[2], char *msg, size_t n)
+{
+  struct canon_dev d = lathe_dev(l);
+  c->pos[0] = to[LX];
+  c->pos[2] = to[LZ];
+  return canon_do(&d, c, msg, n);
+}
+
 /* The block's work on s (a copy); 0, 1 for a programmed stop, -1 failed. */
 static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
 {
@@ -107,12 +104,12 @@ static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
       snprintf(msg, sizeof msg, "T%.0f: the turret's tools are T0..T%d", t, LATHE_TOOLS - 1);
       return fail(r, S42_E_RANGE, msg);
     }
-    lathe_tool(l, (int)t);
+    set(l, CANON_TOOL, (int)t, 0, 0);
   }
   if (HAS_M(a, UM38))
-    lathe_range(l, 1);
+    set(l, CANON_SPINDLE_RANGE, 1, 0, 0);
   if (HAS_M(a, UM39))
-    lathe_range(l, 2);
+    set(l, CANON_SPINDLE_RANGE, 2, 0, 0);
   /* modal G changes before the motion */
   if (HAS_G(a, UG90))
     s->incremental = 0;
@@ -122,24 +119,24 @@ static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
     int per_rev = HAS_G(a, UG95);
     if (per_rev != l->per_rev)
       s->f = 0;        /* a switch cancels F (L672); the same mode again keeps it (D-30) */
-    lathe_feed_mode(l, per_rev);
+    set(l, CANON_FEED_MODE, 0, per_rev, 0);
   }
   if (HAS_G(a, UG96))
-    lathe_css(l, 1);
+    set(l, CANON_SPINDLE_MODE, 0, 1, 0);
   if (HAS_G(a, UG97))
-    lathe_css(l, 0);
+    set(l, CANON_SPINDLE_MODE, 0, 0, 0);
   if (HAS_W(a, U22_S))
-    lathe_speed(l, r->vm.w[U22_S]);
+    set(l, CANON_SPINDLE_SPEED, 0, 0, r->vm.w[U22_S]);
   if (HAS_M(a, UM03))
-    lathe_spindle(l, 1);
+    set(l, CANON_SPINDLE, 0, 1, 0);
   if (HAS_M(a, UM04))
-    lathe_spindle(l, -1);
+    set(l, CANON_SPINDLE, 0, -1, 0);
   if (HAS_M(a, UM05))
-    lathe_spindle(l, 0);
+    set(l, CANON_SPINDLE, 0, 0, 0);
   if (HAS_M(a, UM08))
-    lathe_coolant(l, 1);
+    set(l, CANON_COOLANT, 0, 1, 0);
   if (HAS_M(a, UM09))
-    lathe_coolant(l, 0);
+    set(l, CANON_COOLANT, 0, 0, 0);
   if (HAS_G(a, UG20))
     s->f_override = 1;
   if (HAS_G(a, UG21))
@@ -156,8 +153,10 @@ static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
   /* the motion */
   double f = l->per_rev ? s->f / 100.0 : s->f;   /* G95: F in 0.01 mm/rev */
   if (HAS_G(a, UG25)) {
-    unsigned mask = (a->home & 1 ? 1u << LX : 0) | (a->home & 2 ? 1u << LZ : 0);
-    if ((e = lathe_home(l, mask, msg, sizeof msg)))
+    struct canon_dev d = lathe_dev(l);
+    struct canon_call c = canon_of(CANON_HOME);
+    c.axes = (a->home & 1 ? 1u : 0) | (a->home & 2 ? 4u : 0);   /* X, Z */
+    if ((e = canon_do(&d, &c, msg, sizeof msg)))
       return fail(r, e, msg);
     s->what = "home";
     s->feed = l->feed;
@@ -181,7 +180,13 @@ static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
       if (f <= 0)
         return fail(r, S42_E_FEED, s->f == 0 && l->per_rev ? "an arc with no F: the G94/G95 switch cancelled it"
                                                            : "an arc with F0");
-      if ((e = lathe_feed_arc(l, to, c, s->motion == UG02, f, msg, sizeof msg)))
+      struct canon_call cc = canon_of(CANON_FEED_ARC);
+      cc.plane = GEOM_XZ;
+      cc.centre[0] = c[LX];
+      cc.centre[1] = c[LZ];
+      cc.ccw = s->motion == UG02;   /* geom's X -> Z turn: G02 in G18 */
+      cc.f = f;
+      if ((e = move(l, &cc, to, msg, sizeof msg)))
         return fail(r, e, msg);
       s->what = s->motion == UG02 ? "arc_cw" : "arc_ccw";
       break;
@@ -190,7 +195,9 @@ static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
       if (!HAS_W(a, U22_K))
         return fail(r, S42_E_THREAD, "G33 needs the pitch K (µm per revolution)");
       /* K under G33 is µm as written (Table 1.1), whatever the resolution */
-      if ((e = lathe_thread(l, to, r->vm.w[U22_K], msg, sizeof msg)))
+      struct canon_call c = canon_of(CANON_THREAD);
+      c.v = r->vm.w[U22_K];   /* counts (µm) of Z per revolution */
+      if ((e = move(l, &c, to, msg, sizeof msg)))
         return fail(r, e, msg);
       s->what = "thread";
       break;
@@ -199,7 +206,9 @@ static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
       if (f <= 0)
         return fail(r, S42_E_FEED, s->f == 0 && l->per_rev != 0 ? "a move with no F: G95 cancelled it (L672)"
                                                                 : "a move with no F (F0 or none given)");
-      if ((e = lathe_feed_line(l, to, f, msg, sizeof msg)))
+      struct canon_call c = canon_of(CANON_FEED_LINE);
+      c.f = f;
+      if ((e = move(l, &c, to, msg, sizeof msg)))
         return fail(r, e, msg);
       s->what = "line";
       break;
@@ -210,12 +219,12 @@ static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
   if (HAS_G(a, UG04)) {
     double sec = HAS_W(a, U22_E) ? r->vm.w[U22_E] / 10.0 : 0;
     if (sec > 0)
-      lathe_dwell(l, sec);
+      set(l, CANON_DWELL, 0, 0, sec);
     if (!strcmp(s->what, "none"))
       s->what = "dwell";
   }
   if (HAS_M(a, UM02) || HAS_M(a, UM30))
-    lathe_end(l);
+    set(l, CANON_END, 0, 0, 0);
   if (HAS_M(a, UM00))
     return 1;
   if (HAS_M(a, UM01) && r->optstop)
@@ -228,24 +237,12 @@ static int block(struct mrun *r)
   struct u22_state *s = state(r);
   const struct u22_attr *a = u22_attr(r->p, r->vm.cur);
   struct u22_state *tmp = &((struct u22_rt *)r->st)->tmp;
-  struct held h;
-  h.ncall = h.lost = h.nwarn = 0;
   *tmp = *s;
-  tmp->l.canon = hold_call;
-  tmp->l.canon_ctx = &h;
-  tmp->l.warn = hold_warn;
-  tmp->l.warn_ctx = &h;
+  tmp->l.out = mrun_sink(r);   /* the lathe's records and warnings: the block's journal */
   int st = work(r, tmp, a);
   if (st < 0)
     return -1;
   *s = *tmp;
-  s->l.canon = NULL;   /* the holders lived in this call only */
-  s->l.warn = NULL;
-  for (int i = 0; i < h.nwarn; i++)
-    mrun_warn(r, "%s", h.warn[i]);
-  if (r->cfg.canon)
-    for (int i = 0; i < h.ncall; i++)
-      r->cfg.canon(r->cfg.ctx, &h.call[i]);
   return st;
 }
 

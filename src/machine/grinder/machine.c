@@ -67,24 +67,22 @@ double mach_linear_limit(const double d[4])
   return MACH_AXIS_MAX * sqrt(l2 / (x * x + 36.0 * 36.0 * y * y + z * z + a * a));
 }
 
-/* ---- the trace observer: each call as a canonical event ---- */
+/* ---- the records it reports (src/core/canon.h) ---- */
+
+/* A record of kind k begins: where the axes are and the time now. */
+static struct canon_call begin(const struct machine *m, int k)
+{
+  struct canon_call c = canon_of(k);
+  memcpy(c.from, m->pos, sizeof m->pos);
+  c.t0 = m->t;
+  return c;
+}
 
 static void report(const struct machine *m, struct canon_call *c)
 {
-  memcpy(c->pos, m->pos, sizeof c->pos);
-  m->canon(m->canon_ctx, c);
-}
-
-static void report_move(const struct machine *m, const struct mach_path *along, const int64_t centre[2], double f)
-{
-  struct canon_call c = {.kind = along && along->arc ? CANON_FEED_ARC : CANON_FEED_LINE, .f = f};
-  if (along && along->arc) {
-    c.plane = along->plane;
-    c.centre[0] = centre[0];
-    c.centre[1] = centre[1];
-    c.ccw = along->ccw;
-  }
-  report(m, &c);
+  memcpy(c->pos, m->pos, sizeof m->pos);
+  c->t1 = m->t;
+  canon_report(&m->out, c);
 }
 
 /* ---- contour moves ---- */
@@ -194,57 +192,69 @@ int mach_check_spindle(const struct machine *m, int dir, char *msg, size_t n)
   return 0;
 }
 
-void mach_spindle(struct machine *m, int dir)
+static void spindle(struct machine *m, int dir)
 {
-  if (m->canon)
-    report(m, &(struct canon_call){.kind = CANON_SPINDLE, .dir = dir > 0 ? 1 : dir < 0 ? -1 : 0});
+  struct canon_call c = begin(m, CANON_SPINDLE);
+  c.dir = dir > 0 ? 1 : dir < 0 ? -1 : 0;
   if (dir == 0) {
     if (m->wheel != WHEEL_OFF)
       mach_advance(m, MACH_WHEEL_RUNDOWN);
     m->wheel = WHEEL_OFF;
-    return;
+  } else {
+    m->wheel = dir > 0 ? WHEEL_CW : WHEEL_CCW;
   }
-  m->wheel = dir > 0 ? WHEEL_CW : WHEEL_CCW;
+  c.t1 = c.t0;   /* the run-down is the wheel's, not the call's (the record comes first, as LinuxCNC's) */
+  memcpy(c.pos, m->pos, sizeof m->pos);
+  canon_report(&m->out, &c);
 }
 
-void mach_switch(struct machine *m, int sw, int on)
+static void override_switch(struct machine *m, int on)
 {
-  if (sw == MACH_SW_CORR) {
-    m->corr_allowed = on != 0;
-    return;
+  if ((on != 0) != (m->override_allowed != 0)) {
+    struct canon_call c = begin(m, CANON_OVERRIDE);
+    c.on = on != 0;
+    report(m, &c);
   }
-  if (m->canon && (on != 0) != (m->override_allowed != 0))
-    report(m, &(struct canon_call){.kind = CANON_OVERRIDE, .on = on != 0});
   m->override_allowed = on != 0;
 }
 
-void mach_program_end(struct machine *m)
+static void dwell(struct machine *m, double sec)
 {
-  if (m->canon)
-    report(m, &(struct canon_call){.kind = CANON_END});
-}
-
-void mach_dwell(struct machine *m, double sec)
-{
-  if (m->canon)
-    report(m, &(struct canon_call){.kind = CANON_DWELL, .v = sec});
+  struct canon_call c = begin(m, CANON_DWELL);
+  c.v = sec;
   mach_advance(m, sec);
+  report(m, &c);
 }
 
-void mach_traverse_axis(struct machine *m, int axis, int64_t to, struct mach_out *o)
+/* STRAIGHT_TRAVERSE of the axes in mask to `to` at their maximum speed,
+ * together: the time is the slowest axis's (G37: Y home). */
+static void traverse(struct machine *m, unsigned mask, const int64_t *to)
 {
-  int64_t d = to - m->pos[axis];
-  mach_advance(m, fabs((double)d) / 1000.0 / mach_axis_max(axis) * 60.0);
-  m->pos[axis] += d;
-  o->d[axis] += d;
-  if (m->canon)
-    report(m, &(struct canon_call){.kind = CANON_TRAVERSE});
+  struct canon_call c = begin(m, CANON_TRAVERSE);
+  double dt = 0;
+  for (int a = 0; a < 4; a++)
+    if (mask & (1u << a)) {
+      double ta = fabs((double)(to[a] - m->pos[a])) / 1000.0 / mach_axis_max(a) * 60.0;
+      dt = ta > dt ? ta : dt;
+    }
+  mach_advance(m, dt);
+  memset(&m->last, 0, sizeof m->last);
+  for (int a = 0; a < 4; a++)
+    if (mask & (1u << a)) {
+      m->last.d[a] = to[a] - m->pos[a];
+      m->pos[a] = to[a];
+    }
+  c.axes = mask;
+  report(m, &c);
 }
 
-/* The move proper, its speed and time (no trace line). */
+/* The move proper, its speed and time (no record). */
 static void move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o);
 
-void mach_feed(struct machine *m, const struct mach_path *pa, double f, struct mach_out *o)
+static void move_along(struct machine *m, const struct mach_path *along, const double d[4], double len,
+                       double limit, double f, struct mach_out *o);
+
+static void feed(struct machine *m, const struct mach_path *pa, double f, struct mach_out *o)
 {
   double d[4], len, lim;
   for (int a = 0; a < 4; a++)
@@ -264,33 +274,27 @@ void mach_feed(struct machine *m, const struct mach_path *pa, double f, struct m
       if (a != p && a != q)
         d[a] = 0;
   }
-  mach_move_along(m, pa, d, len, lim, f, o);
-  double lin2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  if (len > 0 && d[3] != 0 && lin2 > 0 && !pa->arc) {
-    double ad = d[3] * M_PI * (pa->d1 / 1000.0) / 360.0;
-    o->v = o->feed * sqrt((lin2 + ad * ad) / (lin2 + d[3] * d[3]));
-    o->has_v = 1;
-  }
+  move_along(m, pa, d, len, lim, f, o);
 }
 
-void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o)
+/* The move, then its record: an ARC_FEED when it follows an arc (a helix:
+ * the arc in its plane, the rest of d the other axes), else STRAIGHT_FEED. */
+static void move_along(struct machine *m, const struct mach_path *along, const double d[4], double len,
+                       double limit, double f, struct mach_out *o)
 {
-  mach_move_along(m, NULL, d, len, limit, f, o);
-}
-
-void mach_move_along(struct machine *m, const struct mach_path *along, const double d[4], double len, double limit,
-                     double f, struct mach_out *o)
-{
-  int64_t centre[2] = {0, 0};
+  struct canon_call c = begin(m, along && along->arc ? CANON_FEED_ARC : CANON_FEED_LINE);
+  c.f = f;
   if (along && along->arc) {
     int p, q;
     geom_plane_axes(along->plane, &p, &q);
-    centre[0] = m->pos[p] + (int64_t)llround(along->cp);
-    centre[1] = m->pos[q] + (int64_t)llround(along->cq);
+    c.plane = along->plane;
+    c.centre[0] = m->pos[p] + (int64_t)llround(along->cp);
+    c.centre[1] = m->pos[q] + (int64_t)llround(along->cq);
+    c.ccw = along->ccw;
   }
   move(m, d, len, limit, f, o);
-  if (m->canon)
-    report_move(m, along, centre, f);
+  c.feed = o->feed;
+  report(m, &c);
 }
 
 static void move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o)
@@ -338,3 +342,153 @@ double mach_override_at(struct machine *m, double now)
     m->t += d;
   return d;
 }
+
+void mach_displace(struct machine *m, int axis, int64_t d)
+{
+  if (axis >= 0 && axis < 4)
+    m->pos[axis] += d;
+}
+
+/* ---- the canonical table (src/core/canon.h) ---- */
+
+/* The contour path of a feed record: to its pos; an arc round the centre
+ * (cp, cq) relative to the start, or the rounded centre when not given. */
+static void path_of(const struct machine *m, const struct canon_call *c, struct mach_path *pa)
+{
+  memset(pa, 0, sizeof *pa);
+  memcpy(pa->to, c->pos, sizeof pa->to);
+  if (c->kind != CANON_FEED_ARC)
+    return;
+  int p, q;
+  pa->arc = 1;
+  pa->plane = c->plane >= 0 && c->plane <= 2 ? c->plane : GEOM_XY;
+  geom_plane_axes(pa->plane, &p, &q);
+  pa->cp = c->cp != 0 || c->cq != 0 ? c->cp : (double)(c->centre[0] - m->pos[p]);
+  pa->cq = c->cp != 0 || c->cq != 0 ? c->cq : (double)(c->centre[1] - m->pos[q]);
+  pa->ccw = c->ccw;
+}
+
+static int g_feed(void *mv, struct canon_call *c, char *msg, size_t n)
+{
+  struct machine *m = mv;
+  struct mach_path pa;
+  path_of(m, c, &pa);
+  memset(&m->last, 0, sizeof m->last);
+  if (c->len > 0 || c->limit > 0) {
+    /* a plugin's own curve (the helix): its length and speed limit, the
+     * travel checked by the caller along that curve */
+    if (!isfinite(c->len) || c->len < 0 || !(c->limit > 0)) {
+      snprintf(msg, n, "a contour move of length %g mm at a limit of %g mm/min", c->len, c->limit);
+      return S42_E_FEED;
+    }
+    double d[4];
+    for (int a = 0; a < 4; a++)
+      d[a] = (double)(c->pos[a] - m->pos[a]);
+    move_along(m, pa.arc ? &pa : NULL, d, c->len, c->limit < MACH_AXIS_MAX ? c->limit : MACH_AXIS_MAX, c->f,
+               &m->last);
+    return 0;
+  }
+  int e = mach_check_path(m, &pa, c->f, msg, n);
+  if (e)
+    return e;
+  feed(m, &pa, c->f, &m->last);
+  return 0;
+}
+
+static int g_traverse(void *mv, struct canon_call *c, char *msg, size_t n)
+{
+  struct machine *m = mv;
+  unsigned mask = c->axes ? c->axes & 15u : 15u;
+  struct mach_path pa;
+  memset(&pa, 0, sizeof pa);
+  for (int a = 0; a < 4; a++)
+    pa.to[a] = mask & (1u << a) ? c->pos[a] : m->pos[a];
+  int e = mach_check_travel(m, &pa, msg, n);
+  if (e)
+    return e;
+  traverse(m, mask, pa.to);
+  return 0;
+}
+
+static int g_dwell(void *mv, struct canon_call *c, char *msg, size_t n)
+{
+  if (!isfinite(c->v) || c->v < 0) {
+    snprintf(msg, n, "a dwell of %g s", c->v);
+    return S42_E_RANGE;
+  }
+  dwell(mv, c->v);
+  return 0;
+}
+
+static int g_spindle(void *mv, struct canon_call *c, char *msg, size_t n)
+{
+  struct machine *m = mv;
+  int e = c->dir ? mach_check_spindle(m, c->dir, msg, n) : 0;
+  if (e)
+    return e;
+  spindle(m, c->dir);
+  return 0;
+}
+
+static int g_override(void *mv, struct canon_call *c, char *msg, size_t n)
+{
+  (void)msg;
+  (void)n;
+  override_switch(mv, c->on);
+  return 0;
+}
+
+static int g_switch(void *mv, struct canon_call *c, char *msg, size_t n)
+{
+  struct machine *m = mv;
+  if (c->n != MACH_SW_CORR) {
+    snprintf(msg, n, "the ВЗ-208Ф3 has no panel switch %d", c->n);
+    return S42_E_FUNC;
+  }
+  m->corr_allowed = c->on != 0;
+  return 0;
+}
+
+static int g_end(void *mv, struct canon_call *c, char *msg, size_t n)
+{
+  (void)msg;
+  (void)n;
+  struct machine *m = mv;
+  *c = begin(m, CANON_END);
+  report(m, c);
+  return 0;
+}
+
+static void g_info(const void *mv, struct canon_info *in)
+{
+  const struct machine *m = mv;
+  memset(in, 0, sizeof *in);
+  in->kind = "grinder";
+  in->name = "ВЗ-208Ф3";
+  in->naxes = 4;
+  for (int a = 0; a < 4; a++) {
+    struct canon_axis *x = &in->axis[a];
+    x->name = mach_axes[a].name;
+    x->unit = mach_axes[a].unit;
+    x->rotary = mach_axes[a].rotary;
+    x->mm = 0.001;
+    x->max_speed = mach_axes[a].max_speed;
+    x->has_travel = m ? m->travel.has[a] : 0;
+    x->lo = m ? m->travel.lo[a] : 0;
+    x->hi = m ? m->travel.hi[a] : 0;
+  }
+}
+
+const struct canon_ops grinder_ops = {
+  .fn = {
+    [CANON_FEED_LINE] = g_feed,
+    [CANON_FEED_ARC] = g_feed,
+    [CANON_TRAVERSE] = g_traverse,
+    [CANON_DWELL] = g_dwell,
+    [CANON_SPINDLE] = g_spindle,
+    [CANON_OVERRIDE] = g_override,
+    [CANON_SWITCH] = g_switch,
+    [CANON_END] = g_end,
+  },
+  .info = g_info,
+};

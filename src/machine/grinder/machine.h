@@ -1,13 +1,18 @@
 /* The simulated ВЗ-208Ф3: positions of X, Y, Z, A in discretes, simulated
  * time, the wheel, the feed override, the contour-speed limits of
- * language.md section 16 and the travel.  It knows no language: its calls
- * are the canonical machine's (a line, an arc, a dwell, the wheel, a
- * traverse, the panel's switches) in machine coordinates -- the start
- * position is 0 -- and a trace observer sees each as LinuxCNC prints it
- * (--trace=canon).  Passing time reaches the tick hook (oscillation). */
+ * language.md section 16 and the travel.  It knows no language: what a
+ * program makes it do comes through the canonical table (grinder_ops,
+ * src/core/canon.h: a line, an arc or a helix, a dwell, the wheel, a
+ * traverse, the panel's switches, the end) in machine coordinates -- the
+ * start position is 0 -- and it reports each call it carries out to its
+ * sink (the runner's journal; --trace=canon prints them as LinuxCNC does).
+ * What the operator does by hand (jogs, corrections) and what passes time
+ * without a call of the program (a plugin's) are its own functions below.
+ * Passing time reaches the tick hook (oscillation). */
 #ifndef S42_MACHINE_H
 #define S42_MACHINE_H
 
+#include "canon.h"
 #include <stddef.h>
 #include <stdint.h>
 
@@ -29,11 +34,11 @@ struct mach_path {
   int plane;           /* enum geom_plane (src/core/geom.h) */
   double cp, cq;       /* the centre, relative to the start, in the plane's axes */
   int ccw;
-  double d1;           /* the work's diameter, µm (D1): the surface speed with A */
 };
 
-/* The panel's switches the program sets (M22/M23, M25/M26). */
-enum { MACH_SW_CORR, MACH_SW_OVERRIDE };
+/* The panel's interlock the program sets by CANON_SWITCH (M22/M23; the
+ * override's M25/M26 is CANON_OVERRIDE). */
+enum { MACH_SW_CORR };
 
 struct mach_out {
   int64_t d[4];        /* contour increments made */
@@ -44,7 +49,6 @@ struct mach_out {
 
 /* The travel of each axis (--machine FILE), discretes relative to the
  * program's start position; an axis without `has` is unlimited. */
-struct canon_call;
 struct mach_travel {
   uint8_t has[4];
   int64_t lo[4], hi[4];
@@ -70,11 +74,27 @@ struct machine {
   /* called whenever simulated time passes, with the seconds */
   void (*tick)(void *ctx, double dt);
   void *tick_ctx;
-  /* each canonical call it carries out, as an event (src/core/canon.h;
-   * --trace=canon), or NULL */
-  void (*canon)(void *ctx, const struct canon_call *c);
-  void *canon_ctx;
+  /* where it reports each canonical call it carries out (the runner's
+   * journal); none: nothing is reported */
+  struct canon_sink out;
+  /* what the last motion call made: its increments, its effective speed */
+  struct mach_out last;
 };
+
+/* The table the runtimes call (src/core/canon.h): FEED_LINE, FEED_ARC (a
+ * helix with the axes off the plane; len and limit: a plugin's own curve),
+ * TRAVERSE, DWELL, SPINDLE (the check refuses a reversal without a stop
+ * first, E-WHEEL; a turning wheel runs down MACH_WHEEL_RUNDOWN s after a
+ * stop), OVERRIDE (M25/M26), SWITCH (n MACH_SW_CORR: M22/M23), END.  A feed
+ * move checks its geometry (E-ARC), speed (E-FEED) and travel (E-TRAVEL)
+ * first; F and the override apply, then the limits.  Each motion leaves
+ * what it made in m->last. */
+extern const struct canon_ops grinder_ops;
+static inline struct canon_dev grinder_dev(struct machine *m)
+{
+  struct canon_dev d = {&grinder_ops, m};
+  return d;
+}
 
 /* The machine's axes as the canonical interface describes them: name,
  * unit, rotary or not, the fastest it moves. */
@@ -94,29 +114,9 @@ void mach_init(struct machine *m);
 int mach_check_path(const struct machine *m, const struct mach_path *pa, double f, char *msg, size_t n);
 /* Only the travel (a plugin's curve through the same points: the helix). */
 int mach_check_travel(const struct machine *m, const struct mach_path *pa, char *msg, size_t n);
-/* STRAIGHT_FEED / ARC_FEED: the move at speed f (mm/min, the override
- * applies, then the limits), in simulated time. */
-void mach_feed(struct machine *m, const struct mach_path *pa, double f, struct mach_out *o);
-/* The wheel: 1 clockwise (M3), -1 counter-clockwise (M4), 0 stop (M5: a
- * turning wheel runs down for MACH_WHEEL_RUNDOWN s).  The check refuses a
- * reversal without a stop first (E-WHEEL). */
+/* Would the wheel turning dir (1 M3, -1 M4) be a reversal without a stop
+ * first?  0, or E-WHEEL with msg. */
 int mach_check_spindle(const struct machine *m, int dir, char *msg, size_t n);
-void mach_spindle(struct machine *m, int dir);
-/* A panel switch on or off (MACH_SW_*). */
-void mach_switch(struct machine *m, int sw, int on);
-/* PROGRAM_END: the program ended (only the trace observer sees it). */
-void mach_program_end(struct machine *m);
-/* DWELL: simulated time passes. */
-void mach_dwell(struct machine *m, double sec);
-/* STRAIGHT_TRAVERSE of one axis to `to` at its maximum speed (G37: Y home). */
-void mach_traverse_axis(struct machine *m, int axis, int64_t to, struct mach_out *o);
-/* A contour move a plugin computed: increments d (discretes), its length
- * (mm) and speed limit (mm/min); F and the override apply as for G01.
- * along: the arc it follows (a helix: the arc in its plane, the rest of d
- * the linear axis), for the trace's ARC_FEED; NULL: a STRAIGHT_FEED. */
-void mach_move(struct machine *m, const double d[4], double len, double limit, double f, struct mach_out *o);
-void mach_move_along(struct machine *m, const struct mach_path *along, const double d[4], double len, double limit,
-                     double f, struct mach_out *o);
 /* The override switch was turned (m->override_pct is the new position)
  * at simulated time `now`, within the last contour move: the rest of it
  * goes at the new speed.  The move's end and the machine's time move by
@@ -140,8 +140,12 @@ void mach_arc_shape(int plane, const struct geom_arc *a, double *len_mm, double 
 int64_t mach_jog(struct machine *m, int axis, int64_t d, int correction);
 /* Would these moves of the axes, from where they are, stay in their travel? */
 int mach_in_travel(const struct machine *m, const int64_t d[4]);
-/* Advance simulated time by dt seconds (the tick hook runs). */
+/* Advance simulated time by dt seconds (the tick hook runs): time a
+ * plugin takes that is no call of the program (no record). */
 void mach_advance(struct machine *m, double dt);
+/* A plugin moves an axis outside the contour (oscillation) by d discretes:
+ * no record; the caller reports it as a manual move. */
+void mach_displace(struct machine *m, int axis, int64_t d);
 /* The maximum speed of an axis, mm/min (deg/min). */
 double mach_axis_max(int axis);
 

@@ -10,11 +10,21 @@
 #include <stdio.h>
 #include <string.h>
 
-const double lathe_range_lo[3] = {45, 45, 224}, lathe_range_hi[3] = {1800, 280, 1800};
+const struct lathe_model lathe_16b16f3 = {
+  .name = "16Б16Ф3",
+  .feed_x = 1200, .feed_z = 2400,
+  .rapid_x = 5000, .rapid_z = 10000,
+  .travel_x = 225000, .travel_z = 650000,
+  .arc_tol = 10,
+  .pitch_max = 40000,             /* sec. 1, L110-111 */
+  .nranges = 2,                   /* M38 45..280, M39 224..1800; none selected 45..1800 (D-30) */
+  .range_lo = {45, 45, 224},
+  .range_hi = {1800, 280, 1800},
+};
 
-/* mm per count of X Y Z A in a canonical call: X counts the diameter and
+/* mm per count of each axis in a canonical call: X counts the diameter and
  * prints the radius (LinuxCNC's G7). */
-static const double canon_mm[4] = {0.0005, 0.001, 0.001, 0.001};
+static const double canon_mm[CANON_AXES] = {0.0005, 0.001, 0.001, 0.001, 0.001, 0.001};
 
 /* Pieces of a move whose spindle speed varies along it (G96). */
 #define PIECES 64
@@ -60,8 +70,7 @@ static const char *num(char *buf, size_t n, double v, int dec)
 
 static void warn(const struct lathe *l, const char *text)
 {
-  if (l->warn && text[0])
-    l->warn(l->warn_ctx, text);
+  canon_warn(&l->out, text);
 }
 
 static const struct lathe_tool *cur_tool(const struct lathe *l)
@@ -79,23 +88,39 @@ int64_t lathe_pos(const struct lathe *l, int axis)
   return l->slide[axis] + cur_tool(l)->d[axis] - l->zero[axis];
 }
 
+/* The tip in canonical counts: X (a diameter) and Z. */
+static void tip(const struct lathe *l, int64_t p[CANON_AXES])
+{
+  memset(p, 0, CANON_AXES * sizeof *p);
+  p[0] = lathe_pos(l, LX);
+  p[2] = lathe_pos(l, LZ);
+}
+
+/* A record of kind k is reported: where the tip was (from, at t0: the
+ * caller's c->from and c->t0, set by start()) and is now. */
 static void emit_at(const struct lathe *l, struct canon_call *c, int kind)
 {
-  if (!l->canon)
+  if (!l->out.call)
     return;
   c->kind = kind;
-  c->pos[0] = lathe_pos(l, LX);
-  c->pos[1] = 0;
-  c->pos[2] = lathe_pos(l, LZ);
-  c->pos[3] = 0;
+  tip(l, c->pos);
+  c->t1 = l->t;
   c->mm = canon_mm;
-  l->canon(l->canon_ctx, c);
+  canon_report(&l->out, c);
+}
+
+/* Where a record starts: the tip and the time before the call. */
+static void start(const struct lathe *l, struct canon_call *c)
+{
+  memset(c, 0, sizeof *c);
+  tip(l, c->from);
+  c->t0 = l->t;
 }
 
 static void emit(const struct lathe *l, int kind)
 {
   struct canon_call c;
-  memset(&c, 0, sizeof c);
+  start(l, &c);
   emit_at(l, &c, kind);
 }
 
@@ -108,11 +133,11 @@ double lathe_rpm(const struct lathe *l, int64_t d)
 {
   if (!spindle_turns(l))
     return 0;
-  int r = l->range >= 0 && l->range <= 2 ? l->range : 0;
+  int r = l->range >= 0 && l->range <= l->model.nranges ? l->range : 0;
   if (!l->css)
     return l->s;
-  double dmm = fabs((double)d) / 1000, rpm = dmm > 0 ? 1000 * l->s / (M_PI * dmm) : lathe_range_hi[r];
-  return fmin(fmax(rpm, lathe_range_lo[r]), lathe_range_hi[r]);
+  double dmm = fabs((double)d) / 1000, rpm = dmm > 0 ? 1000 * l->s / (M_PI * dmm) : l->model.range_hi[r];
+  return fmin(fmax(rpm, l->model.range_lo[r]), l->model.range_hi[r]);
 }
 
 /* After every call: the spindle's speed where the tip is now. */
@@ -123,13 +148,14 @@ static void settle(struct lathe *l)
 
 /* ---- power-on, zeros ---- */
 
-void lathe_init(struct lathe *l)
+void lathe_init(struct lathe *l, const struct lathe_model *model)
 {
   memset(l, 0, sizeof *l);   /* slides and part zero at 0, no tools, T0, G94 G97, time 0 */
-  l->lo[LX] = -2 * (int64_t)LATHE_TRAVEL_X;
-  l->hi[LX] = 2 * (int64_t)LATHE_TRAVEL_X;
-  l->lo[LZ] = -(int64_t)LATHE_TRAVEL_Z;
-  l->hi[LZ] = LATHE_TRAVEL_Z;
+  l->model = model ? *model : lathe_16b16f3;
+  l->lo[LX] = -2 * l->model.travel_x;
+  l->hi[LX] = 2 * l->model.travel_x;
+  l->lo[LZ] = -l->model.travel_z;
+  l->hi[LZ] = l->model.travel_z;
 }
 
 void lathe_set_zero(struct lathe *l, int64_t ox, int64_t oz)
@@ -226,7 +252,7 @@ static int feed_ok(const struct lathe *l, double f, char *msg, size_t n)
 static int feed_time(const struct lathe *l, double f, const struct path *p, double *sec, double *vmean, char *wmsg,
                      size_t wn, char *msg, size_t n)
 {
-  double cx = p->xs > 0 ? LATHE_FEED_X / p->xs : INFINITY, cz = p->zs > 0 ? LATHE_FEED_Z / p->zs : INFINITY;
+  double cx = p->xs > 0 ? l->model.feed_x / p->xs : INFINITY, cz = p->zs > 0 ? l->model.feed_z / p->zs : INFINITY;
   double cap = fmin(cx, cz);
   int by_x = cx <= cz;
   double vreq_max, v_at_max, rpm_at_max, t = 0;
@@ -260,8 +286,11 @@ static int feed_time(const struct lathe *l, double f, const struct path *p, doub
   *sec = t * 60;
   *vmean = t > 0 ? p->len / t : v_at_max;
   if (vreq_max > cap) {
-    char bf[40], bv[40], bc[40], br[40];
-    const char *lim = by_x ? "X slide at most 1200 mm/min" : "Z at most 2400 mm/min";
+    char bf[40], bv[40], bc[40], br[40], bl[40], lim[80];
+    if (by_x)
+      snprintf(lim, sizeof lim, "X slide at most %s mm/min", num(bl, sizeof bl, l->model.feed_x, 1));
+    else
+      snprintf(lim, sizeof lim, "Z at most %s mm/min", num(bl, sizeof bl, l->model.feed_z, 1));
     if (l->per_rev)
       say(wmsg, wn, "F%s mm/rev = %s mm/min at %s rpm, cut to %s mm/min: %s", num(bf, sizeof bf, f, 4),
           num(bv, sizeof bv, vreq_max, 1), num(br, sizeof br, rpm_at_max, 1), num(bc, sizeof bc, v_at_max, 1), lim);
@@ -282,13 +311,16 @@ int lathe_traverse(struct lathe *l, unsigned mask, const int64_t to[2], char *ms
   int e = targets(l, mask, to, s, msg, n);
   if (e)
     return e;
-  double tx = fabs((double)(s[LX] - l->slide[LX])) / 2000 / LATHE_RAPID_X;
-  double tz = fabs((double)(s[LZ] - l->slide[LZ])) / 1000 / LATHE_RAPID_Z;
+  double tx = fabs((double)(s[LX] - l->slide[LX])) / 2000 / l->model.rapid_x;
+  double tz = fabs((double)(s[LZ] - l->slide[LZ])) / 1000 / l->model.rapid_z;
+  struct canon_call c;
+  start(l, &c);
+  c.axes = (mask & 1u ? 1u : 0) | (mask & 2u ? 4u : 0);
   l->slide[LX] = s[LX];
   l->slide[LZ] = s[LZ];
   l->t += fmax(tx, tz) * 60;
   settle(l);
-  emit(l, CANON_TRAVERSE);
+  emit_at(l, &c, CANON_TRAVERSE);
   return 0;
 }
 
@@ -324,6 +356,8 @@ static int feed_move(struct lathe *l, double f, const struct path *p, const int6
   int e = feed_time(l, f, p, &sec, &v, w, sizeof w, msg, n);
   if (e)
     return e;
+  tip(l, c->from);
+  c->t0 = l->t;
   l->slide[LX] = s[LX];
   l->slide[LZ] = s[LZ];
   l->t += sec;
@@ -332,6 +366,7 @@ static int feed_move(struct lathe *l, double f, const struct path *p, const int6
   settle(l);
   warn(l, w);
   c->f = f;
+  c->feed = v;
   emit_at(l, c, kind);
   return 0;
 }
@@ -378,16 +413,16 @@ static int arc_check(const struct lathe *l, const int64_t to[2], const int64_t c
     say(msg, n, "arc centre at its %s point: radius 0", r0 == 0 ? "start" : "end");
     return S42_E_ARC;
   }
-  if (!(fabs(r0 - r1) <= LATHE_ARC_TOL)) {
+  if (!(fabs(r0 - r1) <= (double)l->model.arc_tol)) {
     say(msg, n, "arc start radius %.3f mm and end radius %.3f mm differ by more than %s mm", r0 / 1000, r1 / 1000,
-        num(b0, sizeof b0, LATHE_ARC_TOL / 1000.0, 3));
+        num(b0, sizeof b0, (double)l->model.arc_tol / 1000.0, 3));
     return S42_E_ARC;
   }
   /* One quadrant at most: no line through the centre parallel to an axis
    * (angle 0, pi: the line Z = Zc; pi/2, 3pi/2: X = Xc) strictly inside the
    * sweep.  A point within LATHE_ARC_TOL µm of such a line (at most 0.01
    * rad) counts as on it, for the ends' rounding. */
-  double t0, dt, eps = fmin(LATHE_ARC_TOL / fmax(r0, r1), 0.01);
+  double t0, dt, eps = fmin((double)l->model.arc_tol / fmax(r0, r1), 0.01);
   geom_arc_angles(g, &t0, &dt);
   for (int k = 0; k < 4; k++) {
     double a = k * M_PI / 2, rel = fmod(dt >= 0 ? a - t0 : t0 - a, 2 * M_PI);
@@ -470,9 +505,9 @@ int lathe_thread(struct lathe *l, const int64_t to[2], double k, char *msg, size
     say(msg, n, "G33 without a pitch: K must be more than 0");
     return S42_E_THREAD;
   }
-  if (k > LATHE_PITCH_MAX) {
+  if (k > (double)l->model.pitch_max) {
     say(msg, n, "G33 pitch %s mm is over the %s mm the machine cuts", num(b0, sizeof b0, k / 1000, 3),
-        num(b1, sizeof b1, LATHE_PITCH_MAX / 1000.0, 3));
+        num(b1, sizeof b1, (double)l->model.pitch_max / 1000.0, 3));
     return S42_E_THREAD;
   }
   if (!spindle_turns(l)) {
@@ -501,13 +536,15 @@ int lathe_thread(struct lathe *l, const int64_t to[2], double k, char *msg, size
     }
     t += (l->css ? dz / PIECES : dz) / vz;
   }
-  if (zmax > LATHE_FEED_Z) {
-    say(msg, n, "G33 needs Z %s mm/min at %s rpm: more than the 2400 mm/min it can keep synchronised",
-        num(b0, sizeof b0, zmax, 1), num(b1, sizeof b1, rpm_max, 1));
+  char b2[40];
+  if (zmax > l->model.feed_z) {
+    say(msg, n, "G33 needs Z %s mm/min at %s rpm: more than the %s mm/min it can keep synchronised",
+        num(b0, sizeof b0, zmax, 1), num(b1, sizeof b1, rpm_max, 1), num(b2, sizeof b2, l->model.feed_z, 1));
     return S42_E_THREAD;
   }
-  if (zmax * xr > LATHE_FEED_X) {
-    say(msg, n, "G33 taper needs the X slide at %s mm/min: more than its 1200 mm/min", num(b0, sizeof b0, zmax * xr, 1));
+  if (zmax * xr > l->model.feed_x) {
+    say(msg, n, "G33 taper needs the X slide at %s mm/min: more than its %s mm/min", num(b0, sizeof b0, zmax * xr, 1),
+        num(b2, sizeof b2, l->model.feed_x, 1));
     return S42_E_THREAD;
   }
   if (!isfinite(t)) {
@@ -515,16 +552,17 @@ int lathe_thread(struct lathe *l, const int64_t to[2], double k, char *msg, size
     return S42_E_THREAD;
   }
   struct canon_call c;
-  memset(&c, 0, sizeof c);
+  start(l, &c);
   c.v = k / 1000;
   emit_at(l, &c, CANON_SYNCH_START);
+  start(l, &c);
   l->slide[LX] = s[LX];
   l->slide[LZ] = s[LZ];
   l->t += t * 60;
   l->feed = t > 0 ? p.len / t : 0;
   settle(l);
-  memset(&c, 0, sizeof c);
   c.f = l->f_canon;   /* the feed rate stays as it was (LinuxCNC prints none for G33) */
+  c.feed = l->feed;
   emit_at(l, &c, CANON_FEED_LINE);
   emit(l, CANON_SYNCH_STOP);
   return 0;
@@ -534,10 +572,10 @@ void lathe_dwell(struct lathe *l, double sec)
 {
   if (!(sec > 0) || !isfinite(sec))
     sec = 0;
+  struct canon_call c;
+  start(l, &c);
   l->t += sec;
   settle(l);
-  struct canon_call c;
-  memset(&c, 0, sizeof c);
   c.v = sec;
   emit_at(l, &c, CANON_DWELL);
 }
@@ -549,14 +587,14 @@ static double clamp_rpm(const struct lathe *l, double s, int say_it)
 {
   if (s == 0)
     return 0;
-  int r = l->range >= 0 && l->range <= 2 ? l->range : 0;
-  double c = fmin(fmax(s, lathe_range_lo[r]), lathe_range_hi[r]);
+  int r = l->range >= 0 && l->range <= l->model.nranges ? l->range : 0;
+  double c = fmin(fmax(s, l->model.range_lo[r]), l->model.range_hi[r]);
   if (c != s && say_it) {
     char b0[40], b1[40], b2[40], b3[40], w[200];
     num(b0, sizeof b0, s, 3);
     num(b1, sizeof b1, c, 3);
-    num(b2, sizeof b2, lathe_range_lo[r], 0);
-    num(b3, sizeof b3, lathe_range_hi[r], 0);
+    num(b2, sizeof b2, l->model.range_lo[r], 0);
+    num(b3, sizeof b3, l->model.range_hi[r], 0);
     if (r == 0)
       snprintf(w, sizeof w, "S%s clamped to %s rpm: no range is selected, %s..%s", b0, b1, b2, b3);
     else
@@ -571,7 +609,7 @@ static void set_s(struct lathe *l, double s)
   if (s != l->s) {
     l->s = s;
     struct canon_call c;
-    memset(&c, 0, sizeof c);
+    start(l, &c);
     c.v = s;
     emit_at(l, &c, CANON_SPINDLE_SPEED);
   }
@@ -592,9 +630,12 @@ void lathe_speed(struct lathe *l, double s)
 
 void lathe_range(struct lathe *l, int range)
 {
-  if (range < 0 || range > 2) {
+  if (range < 0 || range > l->model.nranges) {
     char w[80];
-    snprintf(w, sizeof w, "spindle range %d refused: 0, 1 or 2", range);
+    if (l->model.nranges == 2)
+      snprintf(w, sizeof w, "spindle range %d refused: 0, 1 or 2", range);
+    else
+      snprintf(w, sizeof w, "spindle range %d refused: 0 to %d", range, l->model.nranges);
     warn(l, w);
     settle(l);
     return;
@@ -622,7 +663,7 @@ void lathe_spindle(struct lathe *l, int dir)
     l->dir = dir;
     settle(l);   /* rpm_now, before the event */
     struct canon_call c;
-    memset(&c, 0, sizeof c);
+    start(l, &c);
     c.dir = dir;
     emit_at(l, &c, CANON_SPINDLE);
   }
@@ -638,7 +679,7 @@ void lathe_feed_mode(struct lathe *l, int per_rev)
     l->per_rev = per_rev;
     l->f_canon = 0;   /* a switch cancels F (L672); the sink prints SET_FEED_RATE(0) */
     struct canon_call c;
-    memset(&c, 0, sizeof c);
+    start(l, &c);
     c.on = per_rev;
     emit_at(l, &c, CANON_FEED_MODE);
   }
@@ -654,11 +695,11 @@ void lathe_tool(struct lathe *l, int t)
     settle(l);
     return;
   }
+  struct canon_call c;
+  start(l, &c);
   l->tool = t;
   settle(l);
-  struct canon_call c;
-  memset(&c, 0, sizeof c);
-  c.dir = t;
+  c.n = t;
   emit_at(l, &c, CANON_TOOL);
 }
 
@@ -668,7 +709,7 @@ void lathe_coolant(struct lathe *l, int on)
   if (on != l->coolant) {
     l->coolant = on;
     struct canon_call c;
-    memset(&c, 0, sizeof c);
+    start(l, &c);
     c.on = on;
     emit_at(l, &c, CANON_COOLANT);
   }
@@ -682,3 +723,124 @@ void lathe_end(struct lathe *l)
   settle(l);
   emit(l, CANON_END);
 }
+
+/* ---- the canonical table (src/core/canon.h) ---- */
+
+/* The lathe's axes of a record's mask (bit 0 X, bit 2 Z; 0: both). */
+static unsigned axes_of(const struct canon_call *c)
+{
+  if (!c->axes)
+    return 3u;
+  return (c->axes & 1u ? 1u << LX : 0) | (c->axes & 4u ? 1u << LZ : 0);
+}
+
+static void target(const struct canon_call *c, int64_t to[2])
+{
+  to[LX] = c->pos[0];
+  to[LZ] = c->pos[2];
+}
+
+static int l_traverse(void *m, struct canon_call *c, char *msg, size_t n)
+{
+  int64_t to[2];
+  target(c, to);
+  return lathe_traverse(m, axes_of(c), to, msg, n);
+}
+
+static int l_home(void *m, struct canon_call *c, char *msg, size_t n)
+{
+  return lathe_home(m, axes_of(c), msg, n);
+}
+
+static int l_line(void *m, struct canon_call *c, char *msg, size_t n)
+{
+  int64_t to[2];
+  target(c, to);
+  return lathe_feed_line(m, to, c->f, msg, n);
+}
+
+static int l_arc(void *m, struct canon_call *c, char *msg, size_t n)
+{
+  int64_t to[2], ctr[2] = {c->centre[0], c->centre[1]};
+  target(c, to);
+  if (c->plane != GEOM_XZ) {
+    say(msg, n, "the lathe turns arcs in the XZ plane only");
+    return S42_E_ARC;
+  }
+  return lathe_feed_arc(m, to, ctr, c->ccw, c->f, msg, n);
+}
+
+static int l_thread(void *m, struct canon_call *c, char *msg, size_t n)
+{
+  int64_t to[2];
+  target(c, to);
+  return lathe_thread(m, to, c->v, msg, n);
+}
+
+static int l_dwell(void *m, struct canon_call *c, char *msg, size_t n)
+{
+  (void)msg;
+  (void)n;
+  lathe_dwell(m, c->v);
+  return 0;
+}
+
+#define SIMPLE(name, call)                                              \
+  static int name(void *m, struct canon_call *c, char *msg, size_t n)   \
+  {                                                                     \
+    (void)msg;                                                          \
+    (void)n;                                                            \
+    (void)c;                                                            \
+    call;                                                               \
+    return 0;                                                           \
+  }
+SIMPLE(l_spindle, lathe_spindle(m, c->dir))
+SIMPLE(l_speed, lathe_speed(m, c->v))
+SIMPLE(l_css, lathe_css(m, c->on))
+SIMPLE(l_range, lathe_range(m, c->n))
+SIMPLE(l_feed_mode, lathe_feed_mode(m, c->on))
+SIMPLE(l_tool, lathe_tool(m, c->n))
+SIMPLE(l_coolant, lathe_coolant(m, c->on))
+SIMPLE(l_end, lathe_end(m))
+#undef SIMPLE
+
+static void l_info(const void *mv, struct canon_info *in)
+{
+  const struct lathe *l = mv;
+  const struct lathe_model *md = l ? &l->model : &lathe_16b16f3;
+  memset(in, 0, sizeof *in);
+  in->kind = "lathe";
+  in->name = md->name;
+  in->naxes = 2;
+  static const int ax[2] = {0, 2};
+  for (int a = 0; a < 2; a++) {
+    struct canon_axis *x = &in->axis[ax[a]];
+    x->name = a == LX ? 'X' : 'Z';
+    x->unit = "mm";
+    x->mm = canon_mm[ax[a]];
+    x->max_speed = a == LX ? md->rapid_x : md->rapid_z;
+    x->has_travel = 1;
+    x->lo = l ? l->lo[a] : a == LX ? -2 * md->travel_x : -md->travel_z;
+    x->hi = l ? l->hi[a] : a == LX ? 2 * md->travel_x : md->travel_z;
+  }
+}
+
+const struct canon_ops lathe_ops = {
+  .fn = {
+    [CANON_TRAVERSE] = l_traverse,
+    [CANON_HOME] = l_home,
+    [CANON_FEED_LINE] = l_line,
+    [CANON_FEED_ARC] = l_arc,
+    [CANON_THREAD] = l_thread,
+    [CANON_DWELL] = l_dwell,
+    [CANON_SPINDLE] = l_spindle,
+    [CANON_SPINDLE_SPEED] = l_speed,
+    [CANON_SPINDLE_MODE] = l_css,
+    [CANON_SPINDLE_RANGE] = l_range,
+    [CANON_FEED_MODE] = l_feed_mode,
+    [CANON_TOOL] = l_tool,
+    [CANON_COOLANT] = l_coolant,
+    [CANON_END] = l_end,
+  },
+  .info = l_info,
+};

@@ -17,22 +17,32 @@
 #ifndef S42_LATHE_H
 #define S42_LATHE_H
 
+#include "canon.h"
 #include <stddef.h>
 #include <stdint.h>
-
-struct canon_call;
 
 enum { LX, LZ };                      /* the axes: X (diameter), Z */
 
 #define LATHE_TOOLS 100               /* T0..T99; T0 is no tool (no correction) */
-#define LATHE_FEED_X 1200.0           /* mm/min of the X slide (working feed) */
-#define LATHE_FEED_Z 2400.0           /* mm/min of Z */
-#define LATHE_RAPID_X 5000.0          /* traverse, mm/min of the X slide */
-#define LATHE_RAPID_Z 10000.0
-#define LATHE_TRAVEL_X 225000         /* µm of radius either side of machine zero (D-23) */
-#define LATHE_TRAVEL_Z 650000         /* µm either side of machine zero */
-#define LATHE_ARC_TOL 10              /* µm of radius: start and end radii may differ this much (D-32) */
-#define LATHE_PITCH_MAX 40000         /* µm: the longest thread pitch the machine cuts (sec. 1, L110-111) */
+#define LATHE_RANGES 4                /* spindle ranges a model may have, 0 (none selected) included */
+
+/* A lathe model: what differs between the machines the lathe dialects
+ * drive (the 16Б16Ф3 of the 2У22 today; the 16К20Ф3 of the 2Р22 next).
+ * A machine file (--machine) may change the travel and the limits. */
+struct lathe_model {
+  const char *name;                   /* "16Б16Ф3" */
+  double feed_x, feed_z;              /* working-feed limits, mm/min (X of the slide) */
+  double rapid_x, rapid_z;            /* traverse, mm/min (X of the slide) */
+  int64_t travel_x, travel_z;         /* µm either side of machine zero, X of the radius (D-23) */
+  int64_t arc_tol;                    /* µm of radius: start and end radii may differ this much (D-32) */
+  int64_t pitch_max;                  /* µm: the longest thread pitch the machine cuts */
+  int nranges;                        /* spindle ranges 1..nranges (M38, M39...) */
+  double range_lo[LATHE_RANGES], range_hi[LATHE_RANGES];   /* rpm; [0]: no range selected */
+};
+/* The 16Б16Ф3 (spec/dialects/2u22.md sec. 1): feeds 1200 / 2400, traverse
+ * 5000 / 10000 mm/min, travel 225 mm of radius and 650 mm, arcs within
+ * 10 µm, pitch up to 40 mm, ranges M38 45-280 and M39 224-1800 rpm. */
+extern const struct lathe_model lathe_16b16f3;
 
 /* A tool's correction (the tool table, --tools FILE): tip = slide + d. */
 struct lathe_tool {
@@ -40,10 +50,8 @@ struct lathe_tool {
   int64_t d[2];                       /* µm, X as a diameter */
 };
 
-/* Spindle ranges: 0 none selected (45..1800 rpm, D-30), 1 M38 45..280, 2 M39 224..1800. */
-extern const double lathe_range_lo[3], lathe_range_hi[3];
-
 struct lathe {
+  struct lathe_model model;           /* the machine's constants (a copy: a machine file changes them) */
   int64_t slide[2];                   /* machine coordinates, µm (X diameter); 0 0 = machine zero */
   int64_t zero[2];                    /* the part zero OX OZ: machine coordinates of the part's origin */
   int64_t lo[2], hi[2];               /* the travel of the slides, machine coordinates (D-23 by default) */
@@ -60,19 +68,29 @@ struct lathe {
   double rpm_now;                     /* the spindle's speed at the end of the last call (css varies it) */
   double f_canon;                     /* the F of the last feed move, the canon's feed rate (0 after a
                                          G94/G95 switch): a thread's STRAIGHT_FEED keeps it (added) */
-  /* a warning the machine raises (a feed cut to the axes' limits, an S
-   * clamped to the range): the text, for the host; NULL ignores them */
-  void (*warn)(void *ctx, const char *msg);
-  void *warn_ctx;
-  /* each canonical call carried out (src/core/canon.h), or NULL */
-  void (*canon)(void *ctx, const struct canon_call *c);
-  void *canon_ctx;
+  /* where it reports each canonical call it carries out and each warning
+   * (a feed cut to the axes' limits, an S clamped to the range): the
+   * runner's journal; none: nothing is reported */
+  struct canon_sink out;
 };
 
-/* Power-on (D-7, D-22): slides at machine zero, part zero 0, the default
- * travel, no tools in the table, T0, spindle stopped, no range, G94 G97,
- * coolant off, time 0. */
-void lathe_init(struct lathe *l);
+/* Power-on (D-7, D-22) of a model: slides at machine zero, part zero 0,
+ * the model's travel, no tools in the table, T0, spindle stopped, no
+ * range, G94 G97, coolant off, time 0. */
+void lathe_init(struct lathe *l, const struct lathe_model *model);
+
+/* The table the runtimes call (src/core/canon.h): TRAVERSE and HOME (the
+ * axes X Z of `axes`), FEED_LINE, FEED_ARC (XZ plane: centre in centre[0]
+ * X, centre[1] Z; ccw is G02 as below), THREAD, DWELL, SPINDLE,
+ * SPINDLE_SPEED, SPINDLE_MODE, SPINDLE_RANGE, FEED_MODE, TOOL, COOLANT,
+ * END, each as the function of the same name below; positions are the tool
+ * tip's in part coordinates, X (axis 0) a diameter in µm, Z axis 2. */
+extern const struct canon_ops lathe_ops;
+static inline struct canon_dev lathe_dev(struct lathe *l)
+{
+  struct canon_dev d = {&lathe_ops, l};
+  return d;
+}
 /* The tool tip's position in the part's coordinates (µm, X diameter). */
 int64_t lathe_pos(const struct lathe *l, int axis);
 /* The part zero (the operator's V0 entry, `zero X <mm> Z <mm>`): the tip
@@ -98,13 +116,13 @@ int lathe_home(struct lathe *l, unsigned mask, char *msg, size_t n);
 int lathe_feed_line(struct lathe *l, const int64_t to[2], double f, char *msg, size_t n);
 /* ARC_FEED to `to` round centre c (part coordinates, X diameter); cw:
  * G02, else G03 (as LinuxCNC's G2/G3 in G18).  One quadrant at most and
- * the radii within LATHE_ARC_TOL (E-ARC); speed as a line's. */
+ * the radii within the model's arc_tol (E-ARC); speed as a line's. */
 int lathe_feed_arc(struct lathe *l, const int64_t to[2], const int64_t c[2], int cw, double f, char *msg, size_t n);
 /* G33: a thread to `to`, pitch k µm of Z per revolution (taper: X changes
  * with it); the spindle must turn and Z speed = k * rpm must stay within
- * LATHE_FEED_Z (E-THREAD).  Also E-THREAD (added): k not in
- * (0, LATHE_PITCH_MAX], no Z move, a taper whose X slide would pass
- * LATHE_FEED_X.  Under G96 the rpm is taken piece by piece along it. */
+ * the model's feed_z (E-THREAD).  Also E-THREAD (added): k not in
+ * (0, pitch_max], no Z move, a taper whose X slide would pass feed_x.
+ * Under G96 the rpm is taken piece by piece along it. */
 int lathe_thread(struct lathe *l, const int64_t to[2], double k, char *msg, size_t n);
 /* DWELL: sec of simulated time. */
 void lathe_dwell(struct lathe *l, double sec);
@@ -113,7 +131,7 @@ void lathe_spindle(struct lathe *l, int dir);
 /* S: rpm (G97) or m/min (G96), clamped to the range in force with a
  * warning (D-10); M38/M39 (lathe_range) re-clamp it.  S0 is 0 rpm, no
  * warning; under G96 S is not clamped (the rpm it gives is, at each
- * diameter).  A negative or non-finite S, a range not 0..2, a T not
+ * diameter).  A negative or non-finite S, a range not 0..nranges, a T not
  * 0..99 are refused with a warning, changing nothing (added). */
 void lathe_speed(struct lathe *l, double s);
 void lathe_range(struct lathe *l, int range);
