@@ -75,7 +75,8 @@ if start "$dir/loop.kp" --realtime; then
 fi
 
 # 3. robustness (tests/modbus/robust.py): pipelined requests, full slots,
-# idle connections, read-only and allow-listed servers, a machine whose
+# active clients never closed for a newcomer (issue 30), the per-address
+# cap, idle connections, read-only and allow-listed servers, a machine whose
 # stdout nobody reads, a tooth search that computes for seconds
 rb() { timeout 120 "$py" "$dir/robust.py" "$@"; }
 if start "$dir/loop.kp"; then
@@ -90,6 +91,24 @@ if start "$dir/loop.kp" --modbus-max-clients 3; then
   rb slots "$PORT" 3 && ok || fail "--modbus-max-clients 3"
   stop
 fi
+if start "$dir/loop.kp"; then
+  rb busy "$PORT" && ok || fail "seven busy clients and a loop of newcomers: the panel polling every 100 ms lost polls"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-max-clients 3; then
+  rb full "$PORT" 3 && ok || fail "every slot active: a newcomer was not refused, or closed an active client"
+  stop
+fi
+if start "$dir/loop.kp" --modbus-max-clients 3 --modbus-read-only --modbus-allow 127.0.0.0/8; then
+  rb full "$PORT" 3 && ok || fail "every slot active, --modbus-read-only and --modbus-allow: not the same"
+  stop
+fi
+for n in 8 2; do
+  if start "$dir/loop.kp" --modbus-max-clients $n; then
+    rb perhost "$PORT" $n && ok || fail "--modbus-max-clients $n: one address took more than $((n - 1))"
+    stop
+  fi
+done
 if start "$dir/loop.kp" --modbus-idle 0.6; then
   rb idle "$PORT" 0.6 && ok || fail "--modbus-idle 0.6"
   stop
