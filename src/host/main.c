@@ -59,7 +59,7 @@ static const struct optinfo {
   {"--modbus", "[=HOST:PORT]", C_RUN | C_TUI, "serve the machine over Modbus TCP (default 127.0.0.1:1502)"},
   {"--modbus-allow", "ADDR[/BITS],...", C_RUN | C_TUI, "serve only these clients (IPv4 or IPv6)"},
   {"--modbus-read-only", NULL, C_RUN | C_TUI, "refuse every write (exception 01): clients only watch"},
-  {"--modbus-max-clients", "N", C_RUN | C_TUI, "connections at once (default 8; a newcomer closes the longest idle)"},
+  {"--modbus-max-clients", "N", C_RUN | C_TUI, "connections at once (default 8; N-1 from one address)"},
   {"--modbus-idle", "SECONDS", C_RUN | C_TUI, "close a connection silent that long (default 60; 0 never)"},
   {"--machine", "FILE", C_RUN | C_TUI | C_PLOT, "the machine as installed: each axis's travel (README: Travel limits)"},
   {"--realtime", NULL, C_RUN | C_PLOT, "pace the run at machine speed (Ctrl-C stops it with the dump)"},

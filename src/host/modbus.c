@@ -699,6 +699,63 @@ int mb_allow_match(const struct mb_net *v, int nv, const void *sa)
   return 0;
 }
 
+int mb_host_key(const void *sa, uint8_t host[16])
+{
+  const struct sockaddr *s = sa;
+  if (s->sa_family == AF_INET) {
+    memset(host, 0, 10);
+    host[10] = host[11] = 0xFF;
+    memcpy(host + 12, &((const struct sockaddr_in *)sa)->sin_addr, 4);
+    return 0;
+  }
+  if (s->sa_family == AF_INET6) {
+    memcpy(host, &((const struct sockaddr_in6 *)sa)->sin6_addr, 16);
+    return 0;
+  }
+  return -1;
+}
+
+/* ---- the slots ---- */
+
+int mb_host_cap(int max)
+{
+  return max > 1 ? max - 1 : 1;
+}
+
+/* Whether a is to be closed before b (b NULL: a is the first seen): one
+ * that never asked before one that did (the older first), else the one
+ * silent longer. */
+static int sooner(const struct mb_slot *a, const struct mb_slot *b)
+{
+  if (!b)
+    return 1;
+  if (a->talked != b->talked)
+    return !a->talked;
+  if (a->talked && a->last != b->last)
+    return a->last < b->last;
+  return a->serial < b->serial;
+}
+
+int mb_admit(const struct mb_slot *s, int n, int max, const uint8_t host[16], double now)
+{
+  int mine = 0;
+  for (int i = 0; i < n; i++)
+    mine += !memcmp(s[i].host, host, 16);
+  int capped = mine >= mb_host_cap(max);
+  if (!capped && n < max)
+    return MB_ADMIT;
+  int v = -1;
+  for (int i = 0; i < n; i++) {
+    if (capped && memcmp(s[i].host, host, 16))
+      continue;                  /* its address's own make room, not another's */
+    if (now - s[i].active < MB_GRACE)
+      continue;                  /* active: never closed for a newcomer */
+    if (sooner(&s[i], v >= 0 ? &s[v] : NULL))
+      v = i;
+  }
+  return v >= 0 ? v : MB_REFUSE;
+}
+
 /* A loopback address (127/8, ::1, ::ffff:127/104). */
 static int loopback(const struct sockaddr *s)
 {
@@ -771,9 +828,7 @@ struct mb_client {
   size_t nin, nout;
   double since_in;     /* when the unfinished frame in `in` began */
   double since_out;    /* when the unsent reply in `out` was queued */
-  double last;         /* last bytes received */
-  unsigned long serial; /* accepted as the serial-th: the older, the smaller */
-  int talked;          /* has sent a whole request */
+  struct mb_slot s;    /* its address, when it last asked or sent anything, its age */
   int eof;             /* it sent no more: answer what came, then close */
   int pend;            /* its write in mb->pend, -1 none */
   double pend_until;   /* answered 06 then, if the host has not taken it */
@@ -800,6 +855,7 @@ struct mb_server {
   /* the server thread's (or mb_step's caller's) alone */
   struct mb_client *cl;
   int ncl;
+  struct mb_slot *slots;    /* max: the clients' for mb_admit */
   unsigned long accepted;   /* connections so far */
   struct pollfd *pfd;
   /* under lock */
@@ -860,6 +916,7 @@ static void free_server(struct mb_server *mb)
   }
   pthread_mutex_destroy(&mb->lock);
   free(mb->cl);
+  free(mb->slots);
   free(mb->pfd);
   free(mb->pend);
   free(mb);
@@ -913,9 +970,10 @@ struct mb_server *mb_open(const struct mb_opts *o, char *err, size_t n, int *usa
   mb->nallow = nallow;
   mb->clock = o->clock ? o->clock : mb_now;
   mb->cl = calloc((size_t)mb->max, sizeof *mb->cl);
+  mb->slots = calloc((size_t)mb->max, sizeof *mb->slots);
   mb->pfd = calloc((size_t)mb->max + 2, sizeof *mb->pfd);
   mb->pend = calloc((size_t)mb->max, sizeof *mb->pend);
-  if (!mb->cl || !mb->pfd || !mb->pend || pipe_nb(mb->to_host) || pipe_nb(mb->to_srv)) {
+  if (!mb->cl || !mb->slots || !mb->pfd || !mb->pend || pipe_nb(mb->to_host) || pipe_nb(mb->to_srv)) {
     snprintf(err, n, "Modbus: %s", errno ? strerror(errno) : "out of memory");
     free_server(mb);
     return NULL;
@@ -1096,7 +1154,8 @@ static int pump(struct mb_server *mb, int i, double now)
     pthread_mutex_unlock(&mb->lock);
     if (r > 0)
       queued(c, r, now);
-    c->talked = 1;
+    c->s.talked = 1;
+    c->s.active = now;
     c->nin -= (size_t)fl;
     memmove(c->in, c->in + fl, c->nin);
     c->since_in = now;
@@ -1130,20 +1189,9 @@ static int settle(struct mb_server *mb, int i, double now)
   return pump(mb, i, now);       /* the requests behind it */
 }
 
-/* The connection to close for a newcomer when all are taken: one that has
- * not sent a request yet (the oldest), else the longest silent. */
-static int victim(const struct mb_server *mb)
-{
-  int v = -1;
-  for (int i = 0; i < mb->ncl; i++) {
-    const struct mb_client *c = &mb->cl[i], *b = v >= 0 ? &mb->cl[v] : NULL;
-    if (!b || (!c->talked && b->talked) ||
-        (c->talked == b->talked && (c->talked && c->last != b->last ? c->last < b->last : c->serial < b->serial)))
-      v = i;
-  }
-  return v;
-}
-
+/* Newcomers: each gets a slot, or an idle connection's, or is closed at
+ * once (mb_admit): an active client is never closed for one, and a loop of
+ * connections, all refused, holds up no one. */
 static void accept_all(struct mb_server *mb, double now)
 {
   for (int k = 0; k < 16; k++) {
@@ -1151,16 +1199,23 @@ static void accept_all(struct mb_server *mb, double now)
     modbus_set_socket(mb->ctx, -1);   /* the connection is ours, not the context's */
     if (fd < 0)
       return;                    /* EAGAIN: none left (or it went away) */
-    if (mb->nallow) {
-      struct sockaddr_storage ss;
-      socklen_t sl = sizeof ss;
-      if (getpeername(fd, (struct sockaddr *)&ss, &sl) || !mb_allow_match(mb->allow, mb->nallow, &ss)) {
-        close(fd);               /* not on --modbus-allow */
-        continue;
-      }
+    struct sockaddr_storage ss;
+    socklen_t sl = sizeof ss;
+    uint8_t host[16];
+    if (getpeername(fd, (struct sockaddr *)&ss, &sl) || mb_host_key(&ss, host) ||
+        (mb->nallow && !mb_allow_match(mb->allow, mb->nallow, &ss))) {
+      close(fd);                 /* gone already, or not on --modbus-allow */
+      continue;
     }
-    if (mb->ncl >= mb->max)
-      drop(mb, victim(mb));
+    for (int i = 0; i < mb->ncl; i++)
+      mb->slots[i] = mb->cl[i].s;
+    int v = mb_admit(mb->slots, mb->ncl, mb->max, host, now);
+    if (v == MB_REFUSE) {
+      close(fd);                 /* no room it may take: it finds the connection closed, and may retry */
+      continue;
+    }
+    if (v >= 0)
+      drop(mb, v);
     int one = 1;
     fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
     setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
@@ -1168,8 +1223,9 @@ static void accept_all(struct mb_server *mb, double now)
     memset(c, 0, offsetof(struct mb_client, in));
     c->fd = fd;
     c->pend = -1;
-    c->last = c->since_in = c->since_out = now;
-    c->serial = ++mb->accepted;
+    memcpy(c->s.host, host, sizeof host);
+    c->s.active = c->s.last = c->since_in = c->since_out = now;
+    c->s.serial = ++mb->accepted;
     pthread_mutex_lock(&mb->lock);
     mb->nclients = mb->ncl;
     pthread_mutex_unlock(&mb->lock);
@@ -1196,7 +1252,7 @@ static void read_in(struct mb_server *mb, int i, double now)
   if (!c->nin)
     c->since_in = now;
   c->nin += (size_t)r;
-  c->last = now;
+  c->s.last = now;
   pump(mb, i, now);
 }
 
@@ -1211,7 +1267,7 @@ static int find(const struct mb_server *mb, int fd)
 /* The earliest deadline of client c. */
 static double deadline(const struct mb_server *mb, const struct mb_client *c)
 {
-  double t = mb->idle > 0 ? c->last + mb->idle : 1e300;
+  double t = mb->idle > 0 ? c->s.last + mb->idle : 1e300;
   if (c->nin && mb_frame(c->in, c->nin) == 0 && c->since_in + FRAME_TIMEOUT < t)
     t = c->since_in + FRAME_TIMEOUT;
   if (c->nout && c->since_out + SEND_TIMEOUT < t)
@@ -1271,7 +1327,7 @@ void mb_step(struct mb_server *mb, int timeout_ms)
       drop(mb, i);               /* a truncated frame, a stuck reply, silence; all answered after a close */
   }
   if (fds[0].revents)
-    accept_all(mb, now);         /* last: a newcomer may close the longest idle */
+    accept_all(mb, now);         /* last: a newcomer may close an idle one */
 }
 
 static void *server_main(void *arg)

@@ -95,7 +95,7 @@ struct mb_machine {
 
 struct mb_opts {
   const char *addr;      /* "HOST:PORT", "[V6]:PORT", ":PORT" or "PORT" (host 127.0.0.1); NULL or "": MB_DEFAULT_ADDR */
-  int max_clients;       /* 1..MB_CLIENTS_LIMIT; a new client when all are taken closes the longest idle */
+  int max_clients;       /* 1..MB_CLIENTS_LIMIT, of them mb_host_cap from one address (see mb_admit) */
   double idle;           /* s without a request before a connection is closed; 0: never */
   int read_only;         /* every write (coils, holding registers) gets exception 01 */
   const char *allow;     /* "ADDR[/BITS],..." IPv4 or IPv6: only these clients; NULL: any */
@@ -213,6 +213,37 @@ void mb_motion_start(struct mb_machine *m, double start, double dur, const int64
 int mb_run_state(const struct mb_machine *m, double now);
 /* CLOCK_MONOTONIC in seconds. */
 double mb_now(void);
+
+/* ---- the slots: where a newcomer goes (no sockets; unit-tested) ---- */
+
+#define MB_GRACE 1.0          /* s: a connection accepted or asking this recently is active */
+
+/* What mb_admit knows of one connection. */
+struct mb_slot {
+  uint8_t host[16];      /* the peer's address (mb_host_key) */
+  double active;         /* when it was accepted or made its last whole request */
+  double last;           /* when it last sent anything */
+  unsigned long serial;  /* accepted as the serial-th: the older, the smaller */
+  int talked;            /* has made a whole request */
+};
+
+enum { MB_ADMIT = -1, MB_REFUSE = -2 };
+
+/* The most connections one address may hold of max: max - 1 (at least 1),
+ * so that one host never takes every slot. */
+int mb_host_cap(int max);
+/* A newcomer from `host` finds the n connections s (of max slots):
+ * MB_ADMIT, a free slot is its; i >= 0, connection i is closed to make
+ * room; MB_REFUSE, it is closed.  An active connection (one accepted or
+ * asking within MB_GRACE of now) is never closed for it.  Room is made,
+ * when every slot is taken, by closing an idle connection: one that never
+ * made a request first (the oldest), else the one silent longest; and
+ * when its address holds mb_host_cap connections already, only one of
+ * those can make room, even if a slot is free. */
+int mb_admit(const struct mb_slot *s, int n, int max, const uint8_t host[16], double now);
+/* The key of an IPv4 or IPv6 socket address in host (IPv4 and IPv4-mapped
+ * IPv6 alike as ::ffff:a.b.c.d): 0, or -1 for another family. */
+int mb_host_key(const void *sockaddr, uint8_t host[16]);
 
 /* ---- allow lists ---- */
 struct mb_net { int family; uint8_t a[16]; int bits; };

@@ -1,7 +1,9 @@
 /* libFuzzer harness for the Modbus server's connection code (src/host/modbus.c:
  * accept, read buffering, framing, pipelining, replies that wait for the
- * host, time-outs, the slot limit, close) through real loopback sockets.
- * The input is a script of operations: connect a client, send it bytes,
+ * host, time-outs, the slot limit and where a newcomer goes, close)
+ * through real loopback sockets.  The input is a script of operations:
+ * connect a client (from 127.0.0.1 or 127.0.0.2: one address holds at
+ * most 2 of the 3 places, so both the cap and full slots happen), send it bytes,
  * half-close or close it, step the server loop, move the server's clock,
  * let the host take keys and writes.  The server runs without its thread
  * (mb_step) on a clock this harness moves, so time-outs come when the input
@@ -113,22 +115,26 @@ static void press(struct session *s, struct mb_machine *m, int k, const struct p
   }
 }
 
-/* A connection that is there at once, or none: when the server's backlog
- * is full a blocking connect would wait for SYN retries (seconds). */
-static int dial(int port)
+/* A connection from 127.0.0.(1 + from) that is there at once, or none:
+ * when the server's backlog is full a blocking connect would wait for SYN
+ * retries (seconds). */
+static int dial(int port, int from)
 {
   int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
   if (fd < 0)
     return -1;
-  struct sockaddr_in sa;
+  struct sockaddr_in sa, src;
   memset(&sa, 0, sizeof sa);
   sa.sin_family = AF_INET;
+  src = sa;
   sa.sin_port = htons((uint16_t)port);
   sa.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  src.sin_addr.s_addr = htonl(INADDR_LOOPBACK + (uint32_t)from);
   int one = 1, e = 0;
   socklen_t el = sizeof e;
   struct pollfd p = {.fd = fd, .events = POLLOUT, .revents = 0};
-  if ((connect(fd, (struct sockaddr *)&sa, sizeof sa) && errno != EINPROGRESS) || poll(&p, 1, 0) != 1 ||
+  if (bind(fd, (struct sockaddr *)&src, sizeof src) ||
+      (connect(fd, (struct sockaddr *)&sa, sizeof sa) && errno != EINPROGRESS) || poll(&p, 1, 0) != 1 ||
       getsockopt(fd, SOL_SOCKET, SO_ERROR, &e, &el) || e) {
     struct linger l = {1, 0};
     setsockopt(fd, SOL_SOCKET, SO_LINGER, &l, sizeof l);
@@ -206,7 +212,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
       for (int k = 0; k < NCL; k++)
         if (cl[k].fd < 0) {
           memset(&cl[k], 0, sizeof cl[k]);
-          cl[k].fd = dial(port);
+          cl[k].fd = dial(port, arg & 1);
           break;
         }
       break;
@@ -259,6 +265,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
       take(c);
       break;
     }
+    if (mb_clients(mb) > o.max_clients)
+      abort();                   /* more connections than places */
   }
   /* the end: the host and the server finish what is in flight */
   for (int k = 0; k < 4; k++) {

@@ -174,8 +174,9 @@ else:
     fails.append("a client sending one byte per 100 ms was not cut off")
 s.close()
 
-# More clients than the limit: each newcomer closes the oldest silent one;
-# the victim, which talks, goes on.
+# More clients than the limit from one address: it holds at most 7 of the
+# 8 places (the victim, which talks and goes on, is one), and newcomers
+# past that are refused while the others are fresh (active for a second).
 many = [connect() for _ in range(12)]
 probe_for(0.1)
 refused = 0

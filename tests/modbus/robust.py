@@ -3,10 +3,15 @@
 contracts.md sec. 6): pipelined requests, full slots, idle connections, a
 machine whose stdout nobody reads, a tooth search that computes for
 seconds, read-only and allow-listed servers.  Every wait has a limit; a
-round trip over 150 ms fails.
+round trip over 150 ms fails.  Clients come from several loopback
+addresses (127.0.0.0/8 is all loopback on Linux), because one address may
+hold at most MAX-1 of the MAX slots.
 
   robust.py pipeline PORT               (s42 run loop.kp --modbus, idle)
   robust.py slots PORT MAX              (--modbus-max-clients MAX)
+  robust.py busy PORT                   (the default 8 slots: seven busy clients, a loop of newcomers, a poller)
+  robust.py full PORT MAX               (--modbus-max-clients MAX: every slot active, a newcomer refused)
+  robust.py perhost PORT MAX            (--modbus-max-clients MAX: one address holds at most MAX-1)
   robust.py idle PORT SECONDS           (--modbus-idle SECONDS)
   robust.py readonly PORT               (--modbus-read-only)
   robust.py refused PORT                (--modbus-allow without 127.0.0.1)
@@ -39,8 +44,13 @@ def check(ok, what):
     return ok
 
 
-def connect(port, timeout=3):
-    s = socket.create_connection(("127.0.0.1", port), timeout=timeout)
+GRACE = 1.0   # s: a connection accepted or asking this recently is never closed for a newcomer
+
+
+def connect(port, timeout=3, src=None):
+    """A connection from 127.0.0.1, or from the loopback address src."""
+    s = socket.create_connection(("127.0.0.1", port), timeout=timeout,
+                                 source_address=(src, 0) if src else None)
     s.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
     return s
 
@@ -175,33 +185,208 @@ def pipeline(port):
     s.close()
 
 
+def refused_now(s, wait=1.0):
+    """Whether the server refuses s: a request on it gets no reply and the
+    connection is closed within `wait` seconds (it is not left hanging)."""
+    try:
+        s.sendall(frame(read_ir(0, 1)))
+    except OSError:
+        return True
+    got, closed = recv_frames(s, 1, wait)
+    return not got and closed
+
+
 def slots(port, most):
-    # a client that talks, then the other slots filled with silent sockets
+    # a client that talks, then the other slots filled with silent sockets,
+    # each from an address of its own
     active = connect(port)
     r, _ = rt(active, read_ir(0, 1))
     check(r is not None, "slots: the first client")
-    silent = [connect(port) for _ in range(most - 1)]
-    time.sleep(0.2)
+    silent = [connect(port, src="127.0.1.%d" % k) for k in range(most - 1)]
+    # for GRACE after it was accepted a connection is active: a newcomer now is refused
+    time.sleep(0.1)
+    s = connect(port, src="127.0.2.1")
+    check(refused_now(s), "slots full of fresh sockets: a newcomer was not refused")
+    s.close()
+    for c in silent:
+        check(not closed_soon(c, 0.01), "slots full of fresh sockets: one was closed for a refused newcomer")
+    end = time.monotonic() + GRACE + 0.2
+    while time.monotonic() < end:
+        r, _ = rt(active, read_ir(0, 1))
+        time.sleep(0.1)
     # a newcomer is served at once, and one silent socket (the oldest) goes
-    for k in range(3):
-        s = connect(port)
+    for k in range(min(3, most - 1)):
+        s = connect(port, src="127.0.3.%d" % k)
         r, ms = rt(s, read_ir(0, 1))
         check(r is not None and ms <= LIMIT_MS, "slots full: newcomer %d got %r after %.0f ms" % (k, r, ms))
         check(closed_soon(silent[k], 1.0), "slots full: the oldest silent socket %d was not closed" % k)
         silent.append(s)   # it has talked now
         r, ms = rt(active, read_ir(0, 1))
         check(r is not None, "slots full: the client that talks was closed for newcomer %d" % k)
-    # everyone has talked: the newcomer closes the one silent longest
-    for c in silent[3:]:
+    # everyone has talked; the others talk again after GRACE: the newcomer
+    # closes the one silent longest, and only it
+    keep = silent[min(3, most - 1):]
+    for c in keep:
         rt(c, read_ir(0, 1))
-    time.sleep(0.1)
-    for c in silent[3:]:
+    time.sleep(GRACE + 0.2)
+    for c in keep:
         rt(c, read_ir(0, 1))
-    s = connect(port)
+    s = connect(port, src="127.0.4.1")
     r, ms = rt(s, read_ir(0, 1))
     check(r is not None and ms <= LIMIT_MS, "all talked: the newcomer got %r after %.0f ms" % (r, ms))
     check(closed_soon(active, 1.0), "all talked: the longest silent client was not closed")
+    for c in keep:
+        r, _ = rt(c, read_ir(0, 1))
+        check(r is not None, "all talked: a client that had just asked was closed")
     for c in silent + [s, active]:
+        c.close()
+
+
+class Poller(threading.Thread):
+    """A client that reads every `every` seconds (0: as fast as it can)
+    until stopped: how many of its polls were answered; on a closed
+    connection it connects again, as a panel would."""
+
+    def __init__(self, port, src, every):
+        threading.Thread.__init__(self, daemon=True)
+        self.port, self.src, self.every = port, src, every
+        self.asked = self.answered = self.lost = 0
+        self.halt = threading.Event()
+        self.s = connect(port, src=src)
+        r, _ = rt(self.s, read_ir(0, 1))
+        self.first = r is not None
+
+    def run(self):
+        while not self.halt.is_set():
+            t = time.monotonic()
+            self.asked += 1
+            r, _ = rt(self.s, read_ir(0, 22))
+            if r is not None and len(r) == 9 + 44:
+                self.answered += 1
+            else:
+                self.lost += 1
+                self.s.close()
+                try:
+                    self.s = connect(self.port, src=self.src)
+                except OSError:
+                    pass
+            if self.every:
+                self.halt.wait(max(0.0, self.every - (time.monotonic() - t)))
+
+    def stop(self):
+        self.halt.set()
+        self.join(5)
+        self.s.close()
+
+
+def busy(port):
+    """Issue 30: seven busy clients and a loop of fresh connections while a
+    panel polls every 100 ms: the panel gets every poll answered, the loop
+    is refused (all eight slots are active), nobody busy is closed."""
+    hot = [Poller(port, "127.0.0.1", 0) for _ in range(7)]
+    check(all(p.first for p in hot), "busy: a busy client was not served")
+    panel = Poller(port, "127.0.0.2", 0.1)
+    check(panel.first, "busy: the panel was not served")
+    for p in hot:
+        p.start()
+    time.sleep(0.2)
+    tries = served = 0
+    slowest = 0.0
+    panel.start()
+    end = time.monotonic() + 5.0
+    while time.monotonic() < end:   # fresh connections, from a third address
+        t = time.monotonic()
+        try:
+            s = connect(port, src="127.0.0.3")
+        except OSError:
+            continue
+        tries += 1
+        s.sendall(frame(read_ir(0, 1)))
+        got, closed = recv_frames(s, 1, 2.0)
+        served += len(got) > 0
+        if not got:
+            slowest = max(slowest, time.monotonic() - t)
+        s.close()
+        time.sleep(0.005)
+    panel.stop()
+    for p in hot:
+        p.stop()
+    print("modbus-robust busy: the panel %d of %d polls answered; %d newcomers, %d served, refused within %.0f ms" %
+          (panel.answered, panel.asked, tries, served, slowest * 1000))
+    check(panel.asked >= 45 and panel.answered == panel.asked,
+          "busy: the panel polling every 100 ms got %d of %d polls answered" % (panel.answered, panel.asked))
+    check(all(p.lost == 0 for p in hot), "busy: busy clients lost %s polls" % [p.lost for p in hot])
+    check(tries >= 20, "busy: only %d fresh connections in 5 s" % tries)
+    check(served == 0, "busy: %d of %d newcomers were served while every slot was active" % (served, tries))
+    check(slowest < 1.0, "busy: a refused newcomer waited %.1f s to be closed" % slowest)
+
+
+def full(port, most):
+    """Every slot active (each from its own address): a newcomer is closed
+    at once, nobody is closed for it; once one falls silent for GRACE the
+    newcomer gets its slot."""
+    ps = [Poller(port, "127.0.5.%d" % k, 0.1) for k in range(most)]
+    check(all(p.first for p in ps), "full: a client was not served")
+    for p in ps:
+        p.start()
+    time.sleep(0.3)
+    for k in range(5):
+        s = connect(port, src="127.0.6.1")
+        t = time.monotonic()
+        check(refused_now(s), "full: newcomer %d was not refused with every slot active" % k)
+        check(time.monotonic() - t < 1.0, "full: newcomer %d waited %.1f s" % (k, time.monotonic() - t))
+        s.close()
+        time.sleep(0.1)
+    quiet = ps.pop()                 # the last falls silent, its connection open
+    quiet.halt.set()
+    quiet.join(5)
+    time.sleep(0.2)
+    s = connect(port, src="127.0.6.1")
+    check(refused_now(s), "full: a newcomer closed a client silent only 0.2 s")
+    s.close()
+    time.sleep(GRACE)
+    s = connect(port, src="127.0.6.2")
+    r, ms = rt(s, read_ir(0, 1))
+    check(r is not None and ms <= LIMIT_MS, "full: a newcomer beside a client silent 1.2 s got %r" % r)
+    check(closed_soon(quiet.s, 1.0), "full: the silent client was not closed for the newcomer")
+    for p in ps:
+        p.stop()
+    check(all(p.lost == 0 and p.answered == p.asked for p in ps),
+          "full: active clients lost polls: %s" % [(p.answered, p.asked) for p in ps])
+    s.close()
+    quiet.s.close()
+
+
+def perhost(port, most):
+    """One address holds at most most-1 slots: its next connection is
+    refused while a slot is free, and that slot is another host's; once one
+    of its own is idle, a new one of its own replaces it."""
+    mine = []
+    for k in range(most - 1):
+        c = connect(port)
+        r, _ = rt(c, read_ir(0, 1))
+        check(r is not None, "per host: connection %d of 127.0.0.1 was not served" % k)
+        mine.append(c)
+    s = connect(port)
+    check(refused_now(s), "per host: 127.0.0.1 took all %d slots" % most)
+    s.close()
+    other = connect(port, src="127.0.0.2")
+    r, _ = rt(other, read_ir(0, 1))
+    check(r is not None, "per host: another host did not get the free slot")
+    # all but the first of 127.0.0.1's keep asking; the first falls idle
+    end = time.monotonic() + GRACE + 0.2
+    while time.monotonic() < end:
+        for c in mine[1:] + [other]:
+            rt(c, read_ir(0, 1))
+        time.sleep(0.1)
+    s = connect(port)
+    r, _ = rt(s, read_ir(0, 1))
+    check(r is not None, "per host: a connection of 127.0.0.1 did not replace its own idle one")
+    check(closed_soon(mine[0], 1.0), "per host: the idle connection of 127.0.0.1 was not closed")
+    for c in mine[1:] + [other]:
+        r, _ = rt(c, read_ir(0, 1))
+        check(r is not None, "per host: an active connection was closed")
+    for c in mine + [s, other]:
         c.close()
 
 
@@ -414,6 +599,12 @@ def main():
         pipeline(int(sys.argv[2]))
     elif what == "slots":
         slots(int(sys.argv[2]), int(sys.argv[3]))
+    elif what == "busy":
+        busy(int(sys.argv[2]))
+    elif what == "full":
+        full(int(sys.argv[2]), int(sys.argv[3]))
+    elif what == "perhost":
+        perhost(int(sys.argv[2]), int(sys.argv[3]))
     elif what == "idle":
         idle(int(sys.argv[2]), float(sys.argv[3]))
     elif what == "readonly":

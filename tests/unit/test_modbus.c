@@ -1,7 +1,8 @@
 /* The Modbus device without sockets (src/host/modbus.h): golden words of our
  * big-endian encoders, MBAP framing, and requests against a session --
  * reads, key presses, parameter writes, the exceptions, the counter; allow
- * lists; and the threaded server over loopback, its host played here: a
+ * lists; where a newcomer goes when the slots are taken (mb_admit); and
+ * the threaded server over loopback, its host played here: a
  * write waits for the host's thread and is decided with the machine's real
  * state, a read after it sees the value. */
 #include "suites.h"
@@ -455,6 +456,146 @@ START_TEST(allow_lists)
 }
 END_TEST
 
+/* ---- the slots (mb_admit) ---- */
+
+/* A connection from 10.0.0.h accepted at `at`, that last asked at `asked`
+ * (< 0: never). */
+static struct mb_slot slot(int h, double at, double asked)
+{
+  struct mb_slot c;
+  memset(&c, 0, sizeof c);
+  struct sockaddr_in a = v4("10.0.0.1");
+  ((uint8_t *)&a.sin_addr)[3] = (uint8_t)h;
+  ck_assert_int_eq(mb_host_key(&a, c.host), 0);
+  c.serial = (unsigned long)(at * 1000);
+  c.talked = asked >= 0;
+  c.active = c.last = c.talked ? asked : at;
+  return c;
+}
+
+static const uint8_t *host(int h)
+{
+  static struct mb_slot c;
+  c = slot(h, 0, -1);
+  return c.host;
+}
+
+START_TEST(host_cap)
+{
+  ck_assert_int_eq(mb_host_cap(1), 1);
+  ck_assert_int_eq(mb_host_cap(2), 1);
+  ck_assert_int_eq(mb_host_cap(8), 7);
+  ck_assert_int_eq(mb_host_cap(MB_CLIENTS_LIMIT), MB_CLIENTS_LIMIT - 1);
+}
+END_TEST
+
+START_TEST(host_keys)
+{
+  uint8_t a[16], b[16];
+  struct sockaddr_in x = v4("192.168.10.5");
+  struct sockaddr_in6 y = v6("::ffff:192.168.10.5"), z = v6("fd00::5");
+  ck_assert_int_eq(mb_host_key(&x, a), 0);
+  ck_assert_int_eq(mb_host_key(&y, b), 0);
+  ck_assert(memcmp(a, b, 16) == 0);          /* IPv4 on a dual-stack socket: the same host */
+  ck_assert_int_eq(mb_host_key(&z, b), 0);
+  ck_assert(memcmp(a, b, 16) != 0);
+  x.sin_port = htons(1234);                   /* the port is not the host */
+  ck_assert_int_eq(mb_host_key(&x, b), 0);
+  ck_assert(memcmp(a, b, 16) == 0);
+  struct sockaddr u = {.sa_family = AF_UNIX};
+  ck_assert_int_eq(mb_host_key(&u, a), -1);
+}
+END_TEST
+
+START_TEST(admit_free_slots)
+{
+  struct mb_slot s8[8];
+  ck_assert_int_eq(mb_admit(s8, 0, 8, host(1), 100), MB_ADMIT);
+  for (int i = 0; i < 7; i++)
+    s8[i] = slot(2 + i, 99.9, 99.95);         /* seven hosts, all active */
+  ck_assert_int_eq(mb_admit(s8, 7, 8, host(9), 100), MB_ADMIT);
+  ck_assert_int_eq(mb_admit(s8, 7, 8, host(2), 100), MB_ADMIT);
+  ck_assert_int_eq(mb_admit(s8, 1, 1, host(3), 100), MB_REFUSE);   /* one slot, active */
+  ck_assert_int_eq(mb_admit(s8, 1, 1, host(2), 100), MB_REFUSE);   /* its own host alike */
+  ck_assert_int_eq(mb_admit(s8, 1, 1, host(2), 101), 0);           /* idle: it makes room */
+}
+END_TEST
+
+START_TEST(admit_never_closes_an_active_client)
+{
+  /* issue 30: seven busy clients (one host) and a panel polling every
+   * 100 ms: a newcomer is refused, whoever was silent longest */
+  struct mb_slot s8[8];
+  for (int i = 0; i < 7; i++)
+    s8[i] = slot(1, 10 + i, 100 - 0.001 * i);
+  s8[7] = slot(2, 50, 99.9);
+  ck_assert_int_eq(mb_admit(s8, 8, 8, host(3), 100), MB_REFUSE);
+  ck_assert_int_eq(mb_admit(s8, 8, 8, host(2), 100), MB_REFUSE);
+  /* active is within MB_GRACE: of the last request, or of the accept */
+  s8[7] = slot(2, 50, 100 - MB_GRACE + 0.01);
+  ck_assert_int_eq(mb_admit(s8, 8, 8, host(3), 100), MB_REFUSE);
+  s8[7] = slot(2, 100 - MB_GRACE + 0.01, -1);   /* accepted just now, not asked yet */
+  ck_assert_int_eq(mb_admit(s8, 8, 8, host(3), 100), MB_REFUSE);
+  s8[7] = slot(2, 50, 100 - MB_GRACE);          /* a second silent: idle */
+  ck_assert_int_eq(mb_admit(s8, 8, 8, host(3), 100), 7);
+  s8[7] = slot(2, 100 - MB_GRACE, -1);
+  ck_assert_int_eq(mb_admit(s8, 8, 8, host(3), 100), 7);
+}
+END_TEST
+
+START_TEST(admit_the_oldest_idle)
+{
+  struct mb_slot s4[4];
+  s4[0] = slot(1, 10, 90);     /* asked, silent 10 s */
+  s4[1] = slot(2, 20, -1);     /* never asked, accepted second */
+  s4[2] = slot(3, 15, -1);     /* never asked, accepted first */
+  s4[3] = slot(4, 30, 99.5);   /* active */
+  /* one that never asked goes first, the oldest of them */
+  ck_assert_int_eq(mb_admit(s4, 4, 4, host(5), 100), 2);
+  s4[2] = slot(3, 15, 95);
+  ck_assert_int_eq(mb_admit(s4, 4, 4, host(5), 100), 1);
+  /* all asked: the one silent longest */
+  s4[1] = slot(2, 20, 80);
+  ck_assert_int_eq(mb_admit(s4, 4, 4, host(5), 100), 1);
+  s4[1] = slot(2, 20, 92);
+  ck_assert_int_eq(mb_admit(s4, 4, 4, host(5), 100), 0);
+  /* silent alike: the older */
+  s4[2] = slot(3, 5, 90);
+  ck_assert_int_eq(mb_admit(s4, 4, 4, host(5), 100), 2);
+  /* a newcomer from the host of an idle one, under its cap: still the longest silent */
+  ck_assert_int_eq(mb_admit(s4, 4, 4, host(2), 100), 2);
+}
+END_TEST
+
+START_TEST(admit_per_host_cap)
+{
+  /* 8 slots: one host holds at most 7, even with a slot free */
+  struct mb_slot s8[8];
+  for (int i = 0; i < 7; i++)
+    s8[i] = slot(1, 10 + i, 99.5);
+  ck_assert_int_eq(mb_admit(s8, 7, 8, host(1), 100), MB_REFUSE);
+  ck_assert_int_eq(mb_admit(s8, 7, 8, host(2), 100), MB_ADMIT);
+  /* at its cap, its own idle connection makes room (a panel reconnecting
+   * after its old connection died), the oldest silent of its own */
+  s8[3] = slot(1, 13, 90);
+  s8[5] = slot(1, 15, 80);
+  ck_assert_int_eq(mb_admit(s8, 7, 8, host(1), 100), 5);
+  /* ... and never another host's, however idle */
+  s8[3] = slot(1, 13, 99.5);
+  s8[5] = slot(1, 15, 99.5);
+  s8[7] = slot(2, 1, 2);
+  ck_assert_int_eq(mb_admit(s8, 8, 8, host(1), 100), MB_REFUSE);
+  ck_assert_int_eq(mb_admit(s8, 8, 8, host(3), 100), 7);
+  /* two slots: one each; IPv4 and IPv4-mapped IPv6 are one host */
+  struct mb_slot s2[2] = {slot(1, 10, 99.5)};
+  struct sockaddr_in6 m = v6("::ffff:10.0.0.1");
+  uint8_t h[16];
+  ck_assert_int_eq(mb_host_key(&m, h), 0);
+  ck_assert_int_eq(mb_admit(s2, 1, 2, h, 100), MB_REFUSE);
+  ck_assert_int_eq(mb_admit(s2, 1, 2, host(2), 100), MB_ADMIT);
+}
+END_TEST
+
 /* ---- the threaded server over loopback; this test is its host ---- */
 
 static struct mb_server *srv;
@@ -628,6 +769,12 @@ Suite *suite_modbus(void)
   tcase_add_test(tc, block_number_above_16_bits);
   tcase_add_test(tc, read_only_device);
   tcase_add_test(tc, allow_lists);
+  tcase_add_test(tc, host_cap);
+  tcase_add_test(tc, host_keys);
+  tcase_add_test(tc, admit_free_slots);
+  tcase_add_test(tc, admit_never_closes_an_active_client);
+  tcase_add_test(tc, admit_the_oldest_idle);
+  tcase_add_test(tc, admit_per_host_cap);
   suite_add_tcase(su, tc);
   TCase *ts = tcase_create("server");
   tcase_add_checked_fixture(ts, srv_setup, srv_teardown);
