@@ -2,7 +2,8 @@
  * file half written -- the bytes go to a temporary file beside it, which is
  * synced, renamed over the old file, and the directory synced (with
  * ATOMIC_DIRSYNC_NEW only when the name is new); the
- * temporary file a killed writer left is removed by the next write.  Used
+ * temporary file a killed writer left is removed by the next write, never
+ * one a live writer holds (two runs may save one file at once).  Used
  * by the M15 state and the TUI's editor.  Reading: only a regular file (or,
  * when the caller allows it, a pipe that is s42's own standard input), so a
  * FIFO or a device is a clear error rather than a hang. */
