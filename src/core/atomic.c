@@ -324,6 +324,12 @@ static int read_fd(int fd, const char *path, size_t max, char **buf, size_t *len
   return 0;
 }
 
+int file_same_as(const char *a, const char *b)
+{
+  struct stat sa, sb;
+  return a && b && stat(a, &sa) == 0 && stat(b, &sb) == 0 && same_file(&sa, &sb);
+}
+
 int file_check_read(const char *path, int allow, char *err, size_t n)
 {
   struct stat st;

@@ -62,6 +62,10 @@ int file_load(const char *path, int allow, size_t max, char **buf, size_t *len, 
 int file_cut(const char *buf);
 /* Release what file_load (or file_read_all) gave; NULL is nothing. */
 void file_unload(char *buf);
+/* 1 when a and b both name existing files and they are one file (the same
+ * device and inode; links followed, so a symbolic or hard link, `./a` or
+ * `d/../a` is a), else 0.  For refusing an output that is the input. */
+int file_same_as(const char *a, const char *b);
 /* The same rules without opening (for a file someone else opens, such as
  * a plugin's --tool): 0, or -1 with err. */
 int file_check_read(const char *path, int allow, char *err, size_t n);
