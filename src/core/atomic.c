@@ -30,14 +30,48 @@ static int write_all(int fd, const char *p, size_t n)
   return 0;
 }
 
-/* A write killed between creating its temporary file and the rename leaves
- * BASE.tmpXXXXXX behind.  Every writer holds an flock on its temporary file
- * until after the rename, so one whose lock can be taken belongs to no live
- * writer: it is removed.  Only that exact pattern (mkstemp's six letters
- * and digits), only regular files of this user.  (Two processes saving the
- * same file at the same moment could meet in the instant between mkstemp
- * and flock; the one that loses its temporary file reports a failed save,
- * and the old file stays whole.) */
+/* The temporary files.  A write killed between creating its temporary
+ * file and the rename leaves BASE.tmpXXXXXX behind, and the next write's
+ * sweep (remove_stale) removes it.  Two runs may save one file at the same
+ * time (`s42 tui c.kp` beside `s42 run c.kp`, both on c.kp.state), each
+ * sweeping while the other writes, so the sweep must never remove a live
+ * writer's file.  One rule makes that impossible rather than unlikely: a
+ * temporary name is unlinked only by a process that holds the flock of the
+ * file the name points to, after it has seen, holding it, that the name
+ * still points to that file.
+ *
+ * - The writer (tmp_create) holds the flock of its temporary file from
+ *   before its first byte until after the rename: it writes nothing until
+ *   it holds the lock and has seen its name still point to its file (the
+ *   device and inode of what it holds open).  From then on no sweep can
+ *   take the lock, so none unlinks the name; and nothing else removes or
+ *   replaces such a name (mkstemp makes it with O_EXCL, a rename only
+ *   moves it away), so it stays the writer's until its own rename.
+ * - The sweep takes the lock without waiting (a live writer's fails), then
+ *   checks that the name still points to the file it locked -- a name
+ *   removed meanwhile by another sweep may have been made again by a new
+ *   writer -- and only then unlinks it.  Between that check and the unlink
+ *   no one else can remove or replace the name: it would need the lock.
+ * - So the one file a sweep can take from a live writer is one that writer
+ *   has just made and not yet locked: empty, nothing written yet.  The
+ *   writer finds out at once -- its lock fails (the sweep holds it, and
+ *   unlinks the name) or its name points to no file of its own (the sweep
+ *   did) -- and makes another.  A save never loses what it wrote, whatever
+ *   the timing.  (Before, the writer ignored a lock it did not get and
+ *   wrote on into a file the other run's sweep had unlinked; its rename
+ *   failed, "No such file or directory", every few hundred saves.)
+ *
+ * Only that exact pattern (mkstemp's six letters and digits), only regular
+ * files of this user.  On a file system without flock a writer writes
+ * without the guard, and the sweep, which cannot lock either, removes
+ * nothing. */
+
+/* a and b are the same file */
+static int same_file(const struct stat *a, const struct stat *b)
+{
+  return a->st_dev == b->st_dev && a->st_ino == b->st_ino;
+}
+
 static void remove_stale(const char *dir, const char *base)
 {
   DIR *d = opendir(dir);
@@ -57,12 +91,52 @@ static void remove_stale(const char *dir, const char *base)
     int fd = openat(dirfd(d), nm, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
     if (fd < 0)
       continue;
-    struct stat st;
-    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_uid == geteuid() && flock(fd, LOCK_EX | LOCK_NB) == 0)
+    struct stat st, again;
+    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_uid == geteuid() && flock(fd, LOCK_EX | LOCK_NB) == 0 &&
+        fstatat(dirfd(d), nm, &again, AT_SYMLINK_NOFOLLOW) == 0 && same_file(&st, &again))
       unlinkat(dirfd(d), nm, 0);
-    close(fd);
+    close(fd);   /* drops the lock: after the unlink */
   }
   closedir(d);
+}
+
+/* How many fresh temporary files in a row a writer lets other writers'
+ * sweeps take before it gives up (each is a sweep that came in the
+ * microseconds between a mkstemp and its flock). */
+enum { TMP_TRIES = 100 };
+
+/* Make the temporary file PATH.tmpXXXXXX in tmp (tl bytes) and lock it
+ * (above): its descriptor; -1 with errno; -2 when other saves' sweeps
+ * took TMP_TRIES in a row.  tmp holds the last name tried. */
+static int tmp_create(const char *path, char *tmp, size_t tl)
+{
+  for (int i = 0; i < TMP_TRIES; i++) {
+    snprintf(tmp, tl, "%s.tmpXXXXXX", path);
+    int fd = mkstemp(tmp);
+    if (fd < 0)
+      return -1;
+    int lk;
+    while ((lk = flock(fd, LOCK_EX | LOCK_NB)) != 0 && errno == EINTR)
+      ;
+    if (lk != 0 && errno == EWOULDBLOCK) {
+      close(fd);   /* a sweep holds it, and unlinks the name */
+      continue;
+    }
+    /* (locked, or no locks on this file system: then no sweep takes it) */
+    struct stat mine, named;
+    if (fstat(fd, &mine) != 0) {
+      int e = errno;
+      if (lk == 0)
+        unlink(tmp);   /* ours: no sweep can take it while we hold the lock */
+      close(fd);
+      errno = e;
+      return -1;
+    }
+    if (lstat(tmp, &named) == 0 && same_file(&mine, &named))
+      return fd;
+    close(fd);   /* a sweep took it before the lock: nothing was written */
+  }
+  return -2;
 }
 
 int atomic_write(const char *path, const char *shown, mode_t mode, const struct iovec *v, int nv, char *err,
@@ -85,18 +159,19 @@ int atomic_write_flags(const char *path, const char *shown, mode_t mode, const s
   }
   const char *dname = dirname(dir);
   remove_stale(dname, basename(base));
-  snprintf(tmp, tl, "%s.tmpXXXXXX", path);
-  int fd = mkstemp(tmp), rc = -1, bad = 0;
+  int fd = tmp_create(path, tmp, tl), rc = -1, bad = 0;
   if (fd < 0) {
-    snprintf(err, n, "%s: cannot create a temporary file beside it: %s", shown, strerror(errno));
+    if (fd == -2)
+      snprintf(err, n, "%s: cannot keep a temporary file beside it: the last of %d in a row, %s, was taken by "
+               "another save of the same file", shown, TMP_TRIES, tmp);
+    else
+      snprintf(err, n, "%s: cannot create the temporary file %s beside it: %s", shown, tmp, strerror(errno));
     free(tmp);
     free(dir);
     free(base);
     return -1;
   }
-  /* held until the rename: the temporary file is ours (remove_stale);
-   * a file system without locks still writes, only without that guard */
-  (void)flock(fd, LOCK_EX | LOCK_NB);
+  /* the lock is held until the rename (tmp_create) */
   bad = fchmod(fd, mode) != 0;
   for (int i = 0; i < nv && !bad; i++)
     bad = write_all(fd, v[i].iov_base, v[i].iov_len) != 0;
@@ -108,7 +183,7 @@ int atomic_write_flags(const char *path, const char *shown, mode_t mode, const s
     snprintf(err, n, "%s: %s", tmp, strerror(errno));
     unlink(tmp);
   } else if (rename(tmp, path)) {
-    snprintf(err, n, "%s: %s", shown, strerror(errno));
+    snprintf(err, n, "%s: cannot rename the temporary file %s over it: %s", shown, tmp, strerror(errno));
     unlink(tmp);
   } else {
     /* the rename itself must reach the disk -- unless the caller settles
@@ -247,6 +322,12 @@ static int read_fd(int fd, const char *path, size_t max, char **buf, size_t *len
   *buf = b;
   *len = got;
   return 0;
+}
+
+int file_same_as(const char *a, const char *b)
+{
+  struct stat sa, sb;
+  return a && b && stat(a, &sa) == 0 && stat(b, &sb) == 0 && same_file(&sa, &sb);
 }
 
 int file_check_read(const char *path, int allow, char *err, size_t n)

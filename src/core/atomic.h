@@ -2,7 +2,8 @@
  * file half written -- the bytes go to a temporary file beside it, which is
  * synced, renamed over the old file, and the directory synced (with
  * ATOMIC_DIRSYNC_NEW only when the name is new); the
- * temporary file a killed writer left is removed by the next write.  Used
+ * temporary file a killed writer left is removed by the next write, never
+ * one a live writer holds (two runs may save one file at once).  Used
  * by the M15 state and the TUI's editor.  Reading: only a regular file (or,
  * when the caller allows it, a pipe that is s42's own standard input), so a
  * FIFO or a device is a clear error rather than a hang. */
@@ -61,6 +62,10 @@ int file_load(const char *path, int allow, size_t max, char **buf, size_t *len, 
 int file_cut(const char *buf);
 /* Release what file_load (or file_read_all) gave; NULL is nothing. */
 void file_unload(char *buf);
+/* 1 when a and b both name existing files and they are one file (the same
+ * device and inode; links followed, so a symbolic or hard link, `./a` or
+ * `d/../a` is a), else 0.  For refusing an output that is the input. */
+int file_same_as(const char *a, const char *b);
 /* The same rules without opening (for a file someone else opens, such as
  * a plugin's --tool): 0, or -1 with err. */
 int file_check_read(const char *path, int allow, char *err, size_t n);

@@ -1572,9 +1572,9 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
 
 /* ---- output ---- */
 
-int lplot_check_path(const char *path, char *err, size_t n)
+int lplot_check_path(const char *path, const char *program, char *err, size_t n)
 {
-  return picture_check_path(path, err, n);
+  return picture_check_output(path, program, err, n);
 }
 
 
@@ -1630,7 +1630,7 @@ int lplot_write(struct lplot *pl, const char *program, const char *path, char *e
     snprintf(err, n, "no plot");
     return -1;
   }
-  if (lplot_check_path(path, err, n))
+  if (lplot_check_path(path, NULL, err, n))
     return -1;
   struct drawing d = {pl, program};
   return picture_write(path, PW, PH, program, draw_picture, svg_head, &d, err, n);

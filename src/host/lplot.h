@@ -37,9 +37,11 @@ void lplot_free(struct lplot *pl);
 /* Where the tool is before the first call (radius and Z, mm); without it
  * the first call's position: a first call that moves is not drawn. */
 void lplot_at(struct lplot *pl, double r, double z);
-/* Is the output path's extension one we can write (.png .svg .pdf)?  0, or
- * -1 with err (lplot_write checks it too: for refusing before the run). */
-int lplot_check_path(const char *path, char *err, size_t n);
+/* Is the output path's extension one we can write (.png .svg .pdf), and is
+ * it not the program's file (program: its path, or NULL)?  0, or -1 with
+ * err (lplot_write checks the extension too: this is for refusing before
+ * the run). */
+int lplot_check_path(const char *path, const char *program, char *err, size_t n);
 /* The silhouette: the part's radius R(z) mm left at z (the silhouette's
  * cell holding z, 0.01 mm long for a stock up to 200 mm), or -1 without a
  * stock or for z outside 0 .. -len. */

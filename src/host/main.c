@@ -1209,7 +1209,7 @@ static int plot_machine(const struct opts *o)
     fprintf(stderr, "s42: --stock %s: %s\n", o->stock, err);
     return EXIT_USAGE;
   }
-  if (lplot_check_path(o->out, err, sizeof err)) {
+  if (lplot_check_path(o->out, o->program, err, sizeof err)) {
     fprintf(stderr, "s42: %s\n", err);
     return EXIT_USAGE;
   }
@@ -1566,7 +1566,7 @@ static int cmd_plot(int argc, char **argv)
     return EXIT_USAGE;
   }
   char err[256];
-  if (plot_check_path(o.out, err, sizeof err)) {
+  if (plot_check_path(o.out, o.program, err, sizeof err)) {
     fprintf(stderr, "s42: %s\n", err);
     return EXIT_USAGE;
   }

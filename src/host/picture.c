@@ -1,5 +1,6 @@
 /* Writing a picture (src/host/picture.h). */
 #include "picture.h"
+#include "atomic.h"
 #include "cairo_dl.h"
 #include <errno.h>
 #include <locale.h>
@@ -20,6 +21,18 @@ int picture_check_path(const char *path, char *err, size_t n)
   snprintf(err, n, "cannot tell the picture format of '%s': the output file must end in .png, .svg or .pdf",
            path ? path : "");
   return -1;
+}
+
+int picture_check_output(const char *path, const char *program, char *err, size_t n)
+{
+  if (picture_check_path(path, err, n))
+    return -1;
+  if (file_same_as(path, program)) {
+    snprintf(err, n, "-o %s is the program %s (the same file): the picture would take its place; "
+             "write it to another file", path, program);
+    return -1;
+  }
+  return 0;
 }
 
 void picture_fix_point(char *s)

@@ -15,6 +15,9 @@ typedef struct _cairo cairo_t;
 void picture_fix_point(char *s);
 /* Does the path end in .png, .svg or .pdf?  0, or -1 with err. */
 int picture_check_path(const char *path, char *err, size_t n);
+/* picture_check_path, and the path is not the program's file (program:
+ * its path; NULL, no program): 0, or -1 with err. */
+int picture_check_output(const char *path, const char *program, char *err, size_t n);
 /* Draw a w x h picture (px of the PNG, pt of the SVG and PDF) into path:
  * draw(cr, ctx) paints it; title: the PDF's title; svg_head, or NULL: after
  * the drawing, the text (malloc'd; NULL out of memory) to put right after

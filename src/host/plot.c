@@ -266,9 +266,9 @@ static void final_pos(const struct plot *pl, double at[4], double con[4])
   }
 }
 
-int plot_check_path(const char *path, char *err, size_t n)
+int plot_check_path(const char *path, const char *program, char *err, size_t n)
 {
-  return picture_check_path(path, err, n);
+  return picture_check_output(path, program, err, n);
 }
 
 /* ---- numbers, always with a decimal point ---- */

@@ -23,8 +23,10 @@ void plot_sample(struct plot *pl, const struct session *s, int axis, int64_t d);
  * line (0 unknown) for status 1.  The header counts s's blocks, as the
  * dump does. */
 void plot_result(struct plot *pl, const struct session *s, int status, const char *code, int n, unsigned line);
-/* Is the output path's extension one we can write (.png .svg .pdf)? */
-int plot_check_path(const char *path, char *err, size_t n);
+/* Is the output path's extension one we can write (.png .svg .pdf), and
+ * is it not the program's file (program: its path, or NULL)?  0, or -1
+ * with err. */
+int plot_check_path(const char *path, const char *program, char *err, size_t n);
 /* Draw and write the file (title: the program's name).  0, or -1 with err. */
 int plot_write(struct plot *pl, const char *program, const char *path, char *err, size_t n);
 void plot_free(struct plot *pl);

@@ -3,8 +3,9 @@
 # is one) and the tutorial's cycle draw a PNG, an SVG and a PDF and check them
 # with check.py: the PNG's size from its header, path pixels where the run
 # moved, nothing where it did not, the SVG well-formed, the PDF's header
-# text as the dump says.  Also: the refusal of an unknown extension, and
-# that a failed plot leaves no file behind.
+# text as the dump says.  Also: the refusal of an unknown extension and of
+# an output that is the program, and that a failed plot leaves no file
+# behind.
 #   sh tests/plot/run.sh ./s42
 S42=${1:-./s42}
 PY=${PYTHON:-python3}
@@ -133,6 +134,60 @@ if [ $st -eq 4 ] && [ -s "$T/nodir.err" ]; then
   ok
 else
   fail "io-error" "exit $st for a missing directory, want 4" "$(cat "$T/nodir.err")"
+fi
+
+# -o naming the program itself -- the same path, with ./ or d/../ before
+# it, absolute, a symbolic or a hard link to it -- is refused before the
+# run, with status 2 and a message, by the 2С42's plot and the lathe's
+# (.u22, or --dialect 2u22); the program (and the name -o gave) is the
+# program still, and no picture or temporary file is left
+S42_ABS=$(cd "$(dirname "$S42")" && pwd)/$(basename "$S42")
+op=$(pwd)/docs/tutorial/cycle.operator
+self_dir() {   # a fresh $T/self: the programs, their links, sub/
+  rm -rf "$T/self"
+  mkdir "$T/self" "$T/self/sub"
+  cp docs/tutorial/cycle.kp "$T/self/cycle.png"
+  cp programs/2u22/fig1_9.u22 "$T/self/turn.u22"
+  cp programs/2u22/fig1_9.u22 "$T/self/turn.png"
+  ln -s cycle.png "$T/self/link.svg"
+  ln "$T/self/cycle.png" "$T/self/hard.pdf"
+  ln -s turn.u22 "$T/self/turn-link.png"
+  ln "$T/self/turn.u22" "$T/self/turn-hard.svg"
+}
+# refused CASE ORIGINAL OUT PROGRAM [ARG...]: s42 plot PROGRAM ARG... -o OUT
+# in a fresh $T/self refuses; PROGRAM and OUT are still ORIGINAL's text
+refused() {
+  name=$1 orig=$(pwd)/$2 out=$3
+  shift 3
+  self_dir
+  (cd "$T/self" && "$S42_ABS" plot "$@" -o "$out") >/dev/null 2>"$T/self.err"
+  st=$?
+  kept=unchanged
+  (cd "$T/self" && cmp -s "$1" "$orig" && cmp -s "$out" "$orig" && [ -L link.svg ] && [ -L turn-link.png ]) ||
+    kept=changed
+  if [ $st -eq 2 ] && grep -q "^s42: -o $out is the program .* (the same file)" "$T/self.err" && [ $kept = unchanged ] &&
+     ! ls "$T/self" | grep -q '\.tmp'; then
+    ok
+  else
+    fail "$name" "exit $st (want 2 and a message), the program or a link $kept" "$(cat "$T/self.err")"
+  fi
+}
+refused self-same docs/tutorial/cycle.kp cycle.png cycle.png --operator "$op"
+refused self-dot-slash docs/tutorial/cycle.kp ./cycle.png cycle.png --operator "$op"
+refused self-dot-dot docs/tutorial/cycle.kp sub/../cycle.png cycle.png --operator "$op"
+refused self-absolute docs/tutorial/cycle.kp "$T/self/cycle.png" cycle.png --operator "$op"
+refused self-symlink docs/tutorial/cycle.kp link.svg cycle.png --operator "$op"
+refused self-hard-link docs/tutorial/cycle.kp hard.pdf cycle.png --operator "$op"
+refused lathe-same programs/2u22/fig1_9.u22 turn.png turn.png --dialect 2u22
+refused lathe-dot-slash programs/2u22/fig1_9.u22 ./turn.png turn.png --dialect 2u22
+refused lathe-symlink programs/2u22/fig1_9.u22 turn-link.png turn.u22
+refused lathe-hard-link programs/2u22/fig1_9.u22 turn-hard.svg turn.u22
+# an output that does not exist yet is written
+self_dir
+if (cd "$T/self" && "$S42_ABS" plot cycle.png --operator "$op" -o ./new.png) 2>"$T/self.err" && [ -s "$T/self/new.png" ]; then
+  ok
+else
+  fail "self-new" "a new -o beside the program was not written" "$(cat "$T/self.err")"
 fi
 
 # an existing picture is replaced whole, and no temporary file is left

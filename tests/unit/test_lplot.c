@@ -281,9 +281,9 @@ START_TEST(files)
   ck_assert_int_eq(lplot_write(pl, "p", path, err, sizeof err), -1);
   ck_assert_msg(strstr(err, ".png") && strstr(err, "x.jpg"), "%s", err);
   ck_assert(access(path, F_OK) != 0);
-  ck_assert_int_eq(lplot_check_path("a.PDF", err, sizeof err), 0);
-  ck_assert_int_eq(lplot_check_path("dir.png/", err, sizeof err), -1);
-  ck_assert_int_eq(lplot_check_path("png", err, sizeof err), -1);
+  ck_assert_int_eq(lplot_check_path("a.PDF", NULL, err, sizeof err), 0);
+  ck_assert_int_eq(lplot_check_path("dir.png/", NULL, err, sizeof err), -1);
+  ck_assert_int_eq(lplot_check_path("png", NULL, err, sizeof err), -1);
   snprintf(path, sizeof path, "%s/nodir/x.png", dir);
   ck_assert_int_eq(lplot_write(pl, "p", path, err, sizeof err), -1);
   ck_assert_msg(strstr(err, "nodir"), "%s", err);

@@ -2,7 +2,8 @@
  * and restored, every field edited by hand with its checksum recomputed
  * (each refused, naming the field), a loop of random edits that must be
  * refused or run safely, a --state that is not a state (never replaced),
- * the temporary file a killed save leaves (removed by the next), and the
+ * the temporary file a killed save leaves (removed by the next), two
+ * processes saving one file at once (neither loses a save), and the
  * careful reads of src/core/atomic.h (a FIFO, a device, standard input). */
 #include "suites.h"
 #include "atomic.h"
@@ -18,6 +19,7 @@
 #include <string.h>
 #include <sys/file.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 /* A restart point inside a sub called from the main program, with array
@@ -455,6 +457,96 @@ START_TEST(stale_temporary_removed)
 }
 END_TEST
 
+/* Two runs saving one state file (`s42 tui c.kp` beside `s42 run c.kp`,
+ * both on c.kp.state): each save first sweeps the temporary files of
+ * killed saves, and must never take the other's live one.  Two processes
+ * save the same file CONCURRENT_SAVES times each; every save must succeed,
+ * and what is left is one whole state and no temporary file.  On a tmpfs
+ * when there is one: the saves are fast there, so they meet more often. */
+enum { CONCURRENT_SAVES = 4000, CONCURRENT_WRITERS = 2 };
+
+START_TEST(concurrent_saves_keep_their_temporaries)
+{
+  char d[128], p[160], cmd[200], err[400];
+  snprintf(d, sizeof d, "/dev/shm/s42-state.XXXXXX");
+  if (!mkdtemp(d)) {
+    snprintf(d, sizeof d, "%s/both", dir);
+    ck_assert_int_eq(mkdir(d, 0700), 0);
+  }
+  snprintf(p, sizeof p, "%s/c.kp.state", d);
+  fresh();
+  to_m15(1);
+  int fds[2];
+  ck_assert_int_eq(pipe(fds), 0);
+  pid_t pid[CONCURRENT_WRITERS];
+  for (int w = 0; w < CONCURRENT_WRITERS; w++) {
+    pid[w] = fork();
+    ck_assert_int_ge(pid[w], 0);
+    if (pid[w] == 0) {
+      close(fds[0]);
+      for (int i = 0; i < CONCURRENT_SAVES; i++)
+        if (state_save(s, p, hash, err, sizeof err) != 0) {
+          char msg[600];
+          int len = snprintf(msg, sizeof msg, "writer %d, save %d of %d: %s\n", w + 1, i + 1, CONCURRENT_SAVES, err);
+          ssize_t r = write(fds[1], msg, (size_t)len);
+          (void)r;
+          _exit(1);
+        }
+      _exit(0);
+    }
+  }
+  close(fds[1]);
+  char msgs[1300] = "";
+  size_t got = 0;
+  ssize_t r;
+  while (got < sizeof msgs - 1 && (r = read(fds[0], msgs + got, sizeof msgs - 1 - got)) > 0)
+    got += (size_t)r;
+  msgs[got] = 0;
+  close(fds[0]);
+  int failed = 0;
+  for (int w = 0; w < CONCURRENT_WRITERS; w++) {
+    int st;
+    ck_assert_int_eq(waitpid(pid[w], &st, 0), pid[w]);
+    failed += !WIFEXITED(st) || WEXITSTATUS(st) != 0;
+  }
+  snprintf(cmd, sizeof cmd, "ls '%s' | grep -q '^c\\.kp\\.state\\.tmp'", d);
+  int left = system(cmd) == 0;
+  fresh();
+  int loaded = state_load(s, p, hash, err, sizeof err);
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", d);
+  ck_assert_int_eq(system(cmd), 0);
+  ck_assert_msg(!failed, "%d of %d writers failed a save:\n%s", failed, CONCURRENT_WRITERS, msgs);
+  ck_assert_msg(!left, "temporary files were left beside the state");
+  ck_assert_msg(loaded == 0, "%s", err);
+}
+END_TEST
+
+/* A save that fails says which temporary file it was, and leaves none. */
+START_TEST(failed_save_names_its_temporary)
+{
+  char p[200], err[600];
+  struct iovec v = {"text", 4};
+  snprintf(p, sizeof p, "%s/no/such/c.kp.state", dir);
+  ck_assert_int_eq(atomic_write(p, "c.kp.state", 0644, &v, 1, err, sizeof err), -1);
+  ck_assert_msg(strstr(err, "c.kp.state: cannot create the temporary file ") &&
+                  strstr(err, "/no/such/c.kp.state.tmp") &&
+                  strstr(err, " beside it: No such file or directory"),
+                "%s", err);
+  /* the rename fails: a directory of that name with a file in it */
+  snprintf(p, sizeof p, "%s/full", dir);
+  ck_assert_int_eq(mkdir(p, 0700), 0);
+  snprintf(p, sizeof p, "%s/full/x", dir);
+  write_file(p, "x");
+  snprintf(p, sizeof p, "%s/full", dir);
+  ck_assert_int_eq(atomic_write(p, "full", 0644, &v, 1, err, sizeof err), -1);
+  ck_assert_msg(strstr(err, "full: cannot rename the temporary file ") && strstr(err, "/full.tmp") &&
+                  strstr(err, " over it: "),
+                "%s", err);
+  snprintf(p, sizeof p, "ls '%s' | grep -q '^full\\.tmp'", dir);
+  ck_assert_int_ne(system(p), 0);
+}
+END_TEST
+
 /* ---- reading: only regular files (and standard input's pipe) ---- */
 
 START_TEST(read_refuses_fifo_and_devices)
@@ -628,6 +720,8 @@ Suite *suite_state(void)
   tcase_add_checked_fixture(tc, setup, teardown);
   tcase_add_test(tc, save_never_replaces_a_non_state);
   tcase_add_test(tc, stale_temporary_removed);
+  tcase_add_test(tc, concurrent_saves_keep_their_temporaries);
+  tcase_add_test(tc, failed_save_names_its_temporary);
   tcase_add_test(tc, read_refuses_fifo_and_devices);
   tcase_add_test(tc, read_sizes);
   tcase_add_test(tc, read_stdin_pipe);

@@ -22,6 +22,7 @@ fail() { t_case "$1"; shift; bad "$@"; t_case ""; }
 DRV=$T/driver
 if ! ${CC:-cc} -O1 -g -I"$ROOT/src/host" -I"$ROOT/src/core" $(pkg-config --cflags cairo) -o "$DRV" \
      "$HERE/driver.c" "$ROOT/src/host/lplot.c" "$ROOT/src/host/picture.c" "$ROOT/src/host/cairo_dl.c" "$ROOT/src/core/geom.c" \
+     "$ROOT/src/core/atomic.c" \
      -lm -ldl 2>"$T/cc.err"; then
   fail build "the driver does not build" "$(cat "$T/cc.err")"
   t_done
