@@ -11,7 +11,8 @@
 #include "modbus.h"
 #include "nearest.h"
 #include "operator.h"
-#include "mhost.h"
+#include "run.h"
+#include "mrun.h"
 #include "lplot.h"
 #include "pace.h"
 #include "plot.h"
@@ -1040,111 +1041,6 @@ static void headless_free(struct runner *r, struct program *p, struct diag_list 
   file_unload(src);
 }
 
-/* The headless run of `s42 run` and `s42 plot` (plot != NULL). */
-/* A dialect the session does not run: its blocks on the VM alone, against
- * no machine (contracts.md sec. 8's trace and dump: pos is empty). */
-static int run_bare(const struct opts *o, struct program *p, struct diag_list *d, struct plot *plot)
-{
-  if (plot || o->modbus || o->operator_file || o->state || o->restart || o->tool || o->machine) {
-    fprintf(stderr, "s42: %s: the %s dialect runs its blocks on the VM alone: plot, --modbus, --operator, "
-            "--state, --restart, --tool and --machine need a machine\n", o->program, dialect_of(o->program)->name);
-    return EXIT_USAGE;
-  }
-  struct vm vm;
-  if (vm_init(&vm, p)) {
-    fprintf(stderr, "s42: %s: %s\n", o->program, vm.err.msg);
-    return EXIT_PROGRAM;
-  }
-  vm.max_blocks = o->max_blocks;
-  vm.yield_all = 1;                /* every block comes back: the trace and the blocks list */
-  size_t nrun = 0, cap = 0;
-  int *run = NULL, st;
-  uint64_t seq = 0;
-  for (;;) {
-    enum vm_event ev = vm_run(&vm);
-    if (ev == VM_EV_BLOCK || ev == VM_EV_START) {
-      if (ev == VM_EV_START)
-        continue;
-      const struct prog_block *b = &p->blocks[vm.cur];
-      if (nrun == cap) {
-        cap = cap ? cap * 2 : 256;
-        int *nr = realloc(run, cap * sizeof *nr);
-        if (!nr) {
-          free(run);
-          fprintf(stderr, "s42: out of memory\n");
-          return EXIT_IO;
-        }
-        run = nr;
-      }
-      run[nrun++] = b->number ? (int)b->number : -1;
-      if (o->trace) {
-        if (o->json) {
-          printf("{\"seq\":%llu,\"n\":", (unsigned long long)++seq);
-          if (b->number)
-            printf("%u", (unsigned)b->number);
-          else
-            fputs("null", stdout);
-          printf(",\"line\":%u,\"depth\":%d,\"motion\":\"none\",\"pos\":{},\"feed\":0,\"t\":0}\n", b->line,
-                 vm.depth);
-        } else {
-          char nb[16];
-          printf("%6llu %-5s L%-4u none  t 0.0000\n", (unsigned long long)++seq,
-                 diag_block(b->number ? (int)b->number : -1, nb), b->line);
-        }
-      }
-      continue;
-    }
-    st = ev == VM_EV_END ? EXIT_END : EXIT_PROGRAM;
-    break;
-  }
-  const struct vm_error *e = &vm.err;
-  const struct prog_block *eb = st ? &p->blocks[e->block] : NULL;
-  if (st) {
-    struct diag g;
-    memset(&g, 0, sizeof g);
-    g.sev = DIAG_ERROR;
-    g.code = e->code;
-    g.line = eb->line;
-    g.col = e->col ? e->col : eb->col;
-    g.number = eb->number ? (int)eb->number : -1;
-    snprintf(g.msg, sizeof g.msg, "%s", e->msg);
-    diag_print_in(stderr, d, &g);
-  }
-  if (o->dump) {
-    printf("{\"status\":\"%s\",\"error\":", st ? "error" : "end");
-    if (st) {
-      printf("{\"code\":\"%s\",\"n\":", err_code(e->code));
-      if (eb->number)
-        printf("%u", (unsigned)eb->number);
-      else
-        fputs("null", stdout);
-      printf(",\"line\":%u,\"col\":%u,\"message\":", eb->line, e->col ? e->col : eb->col);
-      json_string(stdout, e->msg);
-      putchar('}');
-    } else {
-      fputs("null", stdout);
-    }
-    fputs(",\"blocks\":[", stdout);
-    for (size_t i = 0; i < nrun; i++) {
-      if (run[i] > 0)
-        printf("%s%d", i ? "," : "", run[i]);
-      else
-        printf("%snull", i ? "," : "");
-    }
-    fputs("],\"time\":0,\"pos\":{},\"r\":{", stdout);
-    int first = 1;
-    for (int k = 0; k < VM_NREG; k++)
-      if (vm.reg[k] != 0) {
-        printf("%s\"%d\":", first ? "" : ",", k);
-        json_num(stdout, vm.reg[k]);
-        first = 0;
-      }
-    fputs("}}\n", stdout);
-  }
-  free(run);
-  return st;
-}
-
 /* Operator actions of other machines in a 2С42 script: refused before the run. */
 static int refused_for_2c42(const struct opscript *ops, const char *file)
 {
@@ -1164,43 +1060,57 @@ static int refused_for_2c42(const struct opscript *ops, const char *file)
   return bad;
 }
 
-/* The lathe's plot watching a run on the neutral runner. */
-static void plot_start(void *ctx, const double pos[4]) { lplot_at(ctx, pos[0], pos[2]); }
-static void plot_call(void *ctx, const struct canon_call *c) { lplot_call(ctx, c); }
-static void plot_end(void *ctx, const char *status, const char *code, int n) { lplot_result(ctx, status, code, n); }
-
-/* A dialect on the neutral runner (src/host/mhost.c); lp: s42 plot's picture. */
-static int run_machine(const struct opts *o, struct program *p, struct diag_list *d, struct lplot *lp)
+/* The lathe's plot watching a run (src/host/run.h's watcher). */
+static void plot_start(void *ctx, const struct mrun *r)
 {
-  const char *no = o->modbus ? "--modbus" : o->state ? "--state" : o->restart ? "--restart"
-                   : o->tool && o->tools ? "--tool with --tools" : o->machine ? "--machine" : o->screen ? "--screen"
-                   : o->realtime ? "--realtime" : o->dump_images ? "--dump-images" : NULL;
+  int64_t pos[CANON_AXES] = {0};
+  if (r->rt->position)
+    r->rt->position(r, pos);
+  struct canon_info in;
+  mrun_info(r, &in);
+  lplot_at(ctx, (double)pos[0] * in.axis[0].mm, (double)pos[2] * in.axis[2].mm);
+}
+static void plot_call(void *ctx, const struct canon_call *c) { lplot_call(ctx, c); }
+static void plot_end(void *ctx, const struct mrun *r, int status, const char *code, int n, unsigned line)
+{
+  (void)r;
+  (void)line;
+  lplot_result(ctx, status == 0 ? "end" : status == 1 ? "error" : "stopped", code, n);
+}
+
+/* A dialect on the one runner (src/host/run.c); lp: s42 plot's picture. */
+static int run_machine(const struct opts *o, struct program *p, struct diag_list *d, const char *src, size_t n,
+                       struct lplot *lp)
+{
+  const char *no = o->modbus ? "--modbus" : o->tool && o->tools ? "--tool with --tools"
+                   : o->dump_images ? "--dump-images" : NULL;
   if (no) {
     fprintf(stderr, "s42: %s: %s is not there yet for the %s dialect (%s)\n", o->program, no,
             dialect_of(o->program)->name, dialect_of(o->program)->machine);
     return EXIT_USAGE;
   }
-  struct mhost_opts m;
-  memset(&m, 0, sizeof m);
-  m.program = o->program;
-  m.operator_file = o->operator_file;
-  m.tools = o->tools ? o->tools : o->tool;   /* a lathe's tool is its table (the runner's tool.txt) */
-  m.trace = o->trace;
-  m.json = o->json;
-  m.canon = o->canon;
-  m.dump = o->dump;
-  m.en = o->en;
-  m.max_blocks = o->max_blocks;
-  if (lp) {
-    m.watch.ctx = lp;
-    m.watch.start = plot_start;
-    m.watch.call = plot_call;
-    m.watch.result = plot_end;
-  }
-  return mhost_run(&m, p, d);
+  struct run_opts r;
+  memset(&r, 0, sizeof r);
+  r.program = o->program;
+  r.operator_file = o->operator_file;
+  r.tools = o->tools ? o->tools : o->tool;   /* a lathe's tool is its table (the runner's tool.txt) */
+  r.machine = o->machine;
+  r.state = o->state;
+  r.trace = o->trace;
+  r.json = o->json;
+  r.canon = o->canon;
+  r.dump = o->dump;
+  r.screen = o->screen;
+  r.restart = o->restart;
+  r.realtime = o->realtime;
+  r.en = o->en;
+  r.max_blocks = o->max_blocks;
+  struct run_watch w = {lp, plot_start, plot_call, NULL, NULL, plot_end};
+  r.watch = lp ? &w : NULL;
+  return run_headless(&r, p, d, src, n);
 }
 
-/* s42 plot of a dialect on the neutral runner: the lathe's picture (lplot.c). */
+/* s42 plot of a dialect on the one runner: the lathe's picture (lplot.c). */
 static int plot_machine(const struct opts *o)
 {
   char err[300];
@@ -1223,7 +1133,7 @@ static int plot_machine(const struct opts *o)
     fprintf(stderr, "s42: out of memory\n");
     rc = EXIT_IO;
   } else if (rc == 0) {
-    rc = run_machine(o, &p, &d, lp);
+    rc = run_machine(o, &p, &d, src, n, lp);
   } else if (rc == EXIT_PROGRAM) {
     const struct diag *g = diag_first_error(&d);
     lplot_result(lp, "error", g ? err_code(g->code) : "E-SYNTAX", g ? g->number : -1);
@@ -1267,8 +1177,8 @@ static int headless(const struct opts *opt, struct plot *plot)
   char *src = NULL;
   size_t n = 0;
   int rc = load(o.program, &p, &d, &src, &n);
-  if (rc == 0 && dialect_of(o.program)->run == DIALECT_RUN_MACHINE) {
-    rc = run_machine(&o, &p, &d, NULL);
+  if (rc == 0 && dialect_of(o.program)->run != DIALECT_RUN_SESSION) {
+    rc = run_machine(&o, &p, &d, src, n, NULL);
     prog_free(&p);
     diag_free(&d);
     file_unload(src);
@@ -1282,14 +1192,6 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
   if (rc == 0 && dialect_of(o.program)->run == DIALECT_RUN_SESSION && refused_for_2c42(&r.ops, o.operator_file))
     rc = EXIT_USAGE;
-  if (rc == 0 && dialect_of(o.program)->run == DIALECT_RUN_VM) {
-    rc = run_bare(&o, &p, &d, plot);
-    prog_free(&p);
-    diag_free(&d);
-    file_unload(src);
-    ops_free(&r.ops);
-    return rc;
-  }
   if (rc == EXIT_PROGRAM && plot) {
     const struct diag *g = diag_first_error(&d);
     plot_result(plot, NULL, rc, g ? err_code(g->code) : "E-SYNTAX", g ? g->number : -1, g ? g->line : 0);
@@ -1300,8 +1202,8 @@ static int headless(const struct opts *opt, struct plot *plot)
       struct s42_error de;
       s42_error_of_diag(&de, g);
       const struct dialect *dl = dialect_of(o.program);
-      if (dl->run == DIALECT_RUN_MACHINE)
-        mhost_dump_refused(dl->runtime, &de);
+      if (dl->run != DIALECT_RUN_SESSION)
+        run_dump_refused(dl->runtime, &p, &de, o.en);
       else
         report_dump(stdout, "error", &de, &p, o.en, NULL);
     }
@@ -1559,8 +1461,14 @@ static int cmd_plot(int argc, char **argv)
     fprintf(stderr, "usage: s42 plot PROGRAM.kp -o FILE.png|.svg|.pdf [--operator FILE] [options]\n");
     return EXIT_USAGE;
   }
-  if (dialect_of(o.program)->run == DIALECT_RUN_MACHINE)
+  if (dialect_of(o.program)->run != DIALECT_RUN_SESSION) {
+    if (dialect_of(o.program)->run == DIALECT_RUN_VM) {
+      fprintf(stderr, "s42: %s: this dialect runs its blocks on the VM alone: plot, --modbus, --operator, "
+              "--state, --restart, --tool and --machine need a machine\n", o.program);
+      return EXIT_USAGE;
+    }
     return plot_machine(&o);
+  }
   if (o.stock) {
     fprintf(stderr, "s42: --stock is a lathe's bar; the 2С42's plot has none\n");
     return EXIT_USAGE;

@@ -255,21 +255,23 @@ static const char *action(struct cur *c, struct op_action *a)
       return "a mode is switched on or off";
     a->n = strcmp(w2, "on") == 0;
   } else if (strcmp(w, "zero") == 0) {
-    /* the part zero: zero X <mm> Z <mm> (either or both, decimals allowed) */
+    /* the part zero: zero X <mm> Z <mm> ... (any axes, each once, decimals
+     * allowed; which the machine has is its runtime's to say) */
     a->kind = OA_ZERO;
     a->axis = 0;
     while (skipws(c), c->p < c->end && *c->p != ';') {
-      if (!word(c, w, sizeof w) || (strcmp(w, "X") != 0 && strcmp(w, "Z") != 0))
-        return "zero takes X <mm> and Z <mm>: zero X 0 Z 300.5";
-      int bit = w[0] == 'X' ? 1 : 2;
-      if (a->axis & bit)
+      const char *p = word(c, w, sizeof w) && strlen(w) == 1 && w[0] ? strchr(OPS_AXES, w[0]) : NULL;
+      if (!p)
+        return "zero takes axes and millimetres (X Y Z A B C): zero X 0 Z 300.5";
+      int k = (int)(p - OPS_AXES);
+      if (a->axis & (1 << k))
         return "zero: an axis given twice";
-      if (!word(c, w2, sizeof w2) || !millimetres(w2, bit == 1 ? &a->n : &a->n2))
+      if (!word(c, w2, sizeof w2) || !millimetres(w2, &a->zero[k]))
         return "zero: expected millimetres, e.g. 300.5 (at most 3 decimals, |value| <= 10000)";
-      a->axis |= bit;
+      a->axis |= 1 << k;
     }
     if (!a->axis)
-      return "zero takes X <mm> and Z <mm>: zero X 0 Z 300.5";
+      return "zero takes axes and millimetres (X Y Z A B C): zero X 0 Z 300.5";
   } else if (strcmp(w, "break") == 0) {
     a->kind = OA_BREAK;
     if (!word(c, w, sizeof w))

@@ -17,11 +17,12 @@ enum op_key { OPKEY_PUSK, OPKEY_PS, OPKEY_EXIT, OPKEY_STOP };
 struct op_action {
   int kind;
   int key;                 /* OA_KEY */
-  int axis, axis2;         /* OA_JOG, OA_CORRECT, OA_SECTION (axis2 -1 none); OA_ZERO: bit 0 X
-                              given, bit 1 Z given */
+  int axis, axis2;         /* OA_JOG, OA_CORRECT, OA_SECTION (axis2 -1 none); OA_ZERO: bit k
+                              axis k of OPS_AXES given */
   int64_t n, n2;           /* amounts; OA_ANSWER the number; OA_OVERRIDE %; OA_MODE n 1 on, 0 off
                               (`mode auto`: single off), n2 the switch (enum op_mode);
-                              OA_BREAK the block number, 0 off; OA_ZERO µm of X, of Z */
+                              OA_BREAK the block number, 0 off */
+  int64_t zero[6];         /* OA_ZERO: µm (0.001 deg) of each axis of OPS_AXES */
   unsigned line, col;       /* where the action (or its `at`) starts */
   int at_number;           /* `at N54#3 ...`: block number, -1 not an at line */
   unsigned at_run;         /* which run of it (1 = first) */
@@ -36,6 +37,8 @@ struct opscript {
 };
 
 #define OPS_WORD_MAX 63     /* characters in a word */
+#define OPS_AXES "XYZABC"   /* zero's axes, in canonical order */
+#define OPS_NAXES 6
 
 /* Parse; on errors print FILE:LINE:COL: messages to err and return -1. */
 int ops_parse(const char *text, size_t len, const char *file, struct opscript *s, FILE *err);

@@ -13,6 +13,7 @@
 #include "errors.h"
 #include "mrun.h"
 #include "pace.h"
+#include "utf8.h"
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -150,6 +151,7 @@ int tmr_load(struct tmr *m, const struct dialect *dl, const char *src, size_t n,
   c.max_blocks = m->max_blocks;
   c.ctx = m;
   c.warn = on_warn;
+  c.rows = 1;   /* every block comes back: the pacing runs off its time */
   int bad_run = mrun_init(&m->r, &m->prog, &c);
   m->have_run = 1;
   if (bad_run) {
@@ -332,9 +334,9 @@ int tmr_advance(struct tmr *m, int fast)
       m->paced = 1;
       m->rows++;
       continue;
+    case MR_START:
+      continue;     /* a watched start: the terminal watches none */
     case MR_WAIT:
-      if (m->r.wait == MRW_NONE)
-        continue;   /* a watched start: the terminal watches none */
       m->phase = TMR_WAIT;
       m->cur = (long)m->r.vm.cur;
       sayf(m, 0, "%s waits: %s", diag_block(mrun_block_number(&m->r), nb), wait_hint(m));
@@ -411,8 +413,21 @@ char *tmr_page(const struct tmr *m, int k)
     return NULL;
   if (!m->have_run)
     fputs("(no machine: the program must\n compile first)\n", f);
-  else if (m->r.rt && m->r.rt->page && m->r.rt->pages && m->r.rt->pages[0])
-    m->r.rt->page(&m->r, k, f);
+  else if (m->r.rt && m->r.rt->page && m->r.rt->pages && m->r.rt->pages[0]) {
+    struct mrun_page pg;
+    m->r.rt->page(&m->r, k, &pg);
+    for (int y = 0; y < pg.rows; y++) {
+      int w = pg.cols;
+      while (w > 0 && (!pg.cell[y][w - 1] || pg.cell[y][w - 1] == ' '))
+        w--;
+      for (int x = 0; x < w; x++) {
+        char u[4];
+        int l = utf8_encode((int32_t)(pg.cell[y][x] ? pg.cell[y][x] : ' '), u);
+        fwrite(u, 1, (size_t)l, f);
+      }
+      fputc('\n', f);
+    }
+  }
   else if (m->rows) {
     mrun_row_text(&m->r, f);   /* the last block's trace row */
     fputc('\n', f);

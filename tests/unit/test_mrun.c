@@ -117,6 +117,7 @@ static void run_toy(int per_block, struct seen *s, struct mrun *r, struct progra
   c.ctx = s;
   c.canon = got_call;
   c.warn = got_warn;
+  c.rows = 1;
   ck_assert_int_eq(mrun_init(r, p, &c), 0);
 }
 

@@ -387,19 +387,22 @@ START_TEST(lathe_modes_and_zero)
   ck_assert_int_eq(a->n, 1);
   a = one("zero X 0 Z 300.5");
   ck_assert_int_eq(a->kind, OA_ZERO);
-  ck_assert_int_eq(a->axis, 3);
-  ck_assert_int_eq(a->n, 0);
-  ck_assert_int_eq(a->n2, 300500);
+  ck_assert_int_eq(a->axis, 1 | 4);
+  ck_assert_int_eq(a->zero[0], 0);
+  ck_assert_int_eq(a->zero[2], 300500);
   ck_assert(!ops_is_waiting(a));
   a = one("zero Z -12.25");
-  ck_assert_int_eq(a->axis, 2);
-  ck_assert_int_eq(a->n2, -12250);
+  ck_assert_int_eq(a->axis, 4);
+  ck_assert_int_eq(a->zero[2], -12250);
+  a = one("zero Y 3 A -90 B 1");   /* any axes: the machine says which it has */
+  ck_assert_int_eq(a->axis, 2 | 8 | 16);
+  ck_assert_int_eq(a->zero[3], -90000);
   refused_at("mode skip", 9, 1, 6, "take on or off");
   refused_at("mode skip maybe", 15, 1, 11, "on or off");
-  refused_at("zero", 4, 1, 1, "zero takes X");
+  refused_at("zero", 4, 1, 1, "zero takes axes");
   refused_at("zero X 1.2345", 13, 1, 8, "millimetres");
   refused_at("zero X 1 X 2", 12, 1, 10, "twice");
-  refused_at("zero Y 3", 8, 1, 6, "zero takes X");
+  refused_at("zero Q 3", 8, 1, 6, "zero takes axes");
   /* 5-digit blocks (the 2У22's) in at and break */
   ck_assert_int_eq(parse("at N2001 key STOP\n"), 0);
   ck_assert_int_eq(sc.at[0].at_number, 2001);

@@ -10,11 +10,13 @@
  * warnings until the block commits. */
 #include "u22.h"
 #include "canon.h"
+#include "diag.h"
 #include "errors.h"
 #include "geom.h"
 #include "lathe.h"
 #include "mrun.h"
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -143,6 +145,8 @@ static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
     s->s_override = 1;
   if (HAS_G(a, UG23))
     s->f_override = s->s_override = 0;
+  if (HAS_G(a, UG20) || HAS_G(a, UG23))
+    set(l, CANON_OVERRIDE, 0, s->f_override, 0);   /* F% acts under G20 only (D-6, D-46) */
   if (HAS_W(a, U22_F))
     s->f = r->vm.w[U22_F];
   static const int group1[] = {UG01, UG02, UG03, UG33};
@@ -232,13 +236,29 @@ static int work(struct mrun *r, struct u22_state *s, const struct u22_attr *a)
   return 0;
 }
 
+/* Would the block's motion be a feed move that the override acts on (G01,
+ * G02, G03 under G20), as it stands after the block's own modal words? */
+static int override_move(const struct u22_state *s, const struct u22_attr *a)
+{
+  if (HAS_G(a, UG25) || !(HAS_W(a, U22_X) || HAS_W(a, U22_Z)))
+    return 0;
+  int on = HAS_G(a, UG20) || (s->f_override && !HAS_G(a, UG23));
+  int motion = HAS_G(a, UG33) ? UG33 : HAS_G(a, UG01) ? UG01 : HAS_G(a, UG02) ? UG02 : HAS_G(a, UG03) ? UG03
+                                                                                             : s->motion;
+  return on && motion != UG33;
+}
+
 static int block(struct mrun *r)
 {
   struct u22_state *s = state(r);
   const struct u22_attr *a = u22_attr(r->p, r->vm.cur);
+  /* a feed move at an override of 0 %: it waits before anything of the block runs */
+  if (r->override == 0 && override_move(s, a))
+    return mrun_wait(r, MRW_FEED);
   struct u22_state *tmp = &((struct u22_rt *)r->st)->tmp;
   *tmp = *s;
   tmp->l.out = mrun_sink(r);   /* the lathe's records and warnings: the block's journal */
+  tmp->l.ovr_pct = r->override;
   int st = work(r, tmp, a);
   if (st < 0)
     return -1;
@@ -298,6 +318,8 @@ static void row_json(const struct mrun *r, FILE *out)
 static void row_text(const struct mrun *r, FILE *out)
 {
   const struct u22_state *s = state(r);
+  char nb[16];
+  fprintf(out, "%-6s L%-4u", diag_block(mrun_block_number(r), nb), r->p->blocks[r->vm.cur].line);
   fprintf(out, " %-7s X%10.3f Z%10.3f F%8.1f S%5.0f T%-2d t %.4f", s->what, (double)lathe_pos(&s->l, LX) / 1000.0,
           (double)lathe_pos(&s->l, LZ) / 1000.0, s->feed, speed(&s->l), s->l.tool,
           s->l.t);
@@ -349,6 +371,49 @@ static int zero(struct mrun *r, const double *v, int n, char *why, size_t nwhy)
   return 0;
 }
 
+/* The operator's inputs the lathe takes itself: the part zero (V0). */
+static int input(struct mrun *r, const struct mrun_input *in, char *why, size_t n)
+{
+  if (in->kind == MRI_ZERO) {
+    double v[2] = {in->v[0], in->v[2]};   /* X, Z */
+    return zero(r, v, 2, why, n);
+  }
+  snprintf(why, n, "the machine does not wait for it");
+  return -1;
+}
+
+/* What the 16Б16Ф3's panel has not (D-34). */
+static const char *refuses(const struct mrun *r, const struct mrun_input *in)
+{
+  (void)r;
+  switch (in->kind) {
+  case MRI_PS: case MRI_EXIT: case MRI_KEY:
+    return "this machine's panel has Пуск and Стоп (key PUSK, key STOP)";
+  case MRI_ANSWER: case MRI_JOG: case MRI_SECTION: case MRI_CORRECT:
+    return "not an action of this machine (key PUSK, key STOP, mode single|skip|optstop on|off, zero X Z, "
+           "override N, break N, at)";
+  default:
+    return NULL;
+  }
+}
+
+/* The F% switch (D-46): kept always, acting under G20; turned within a
+ * move, the rest of the move goes at the new speed. */
+static int override(struct mrun *r, int pct, double now, double *shift)
+{
+  struct u22_state *s = state(r);
+  *shift = 0;
+  s->l.ovr_pct = pct;
+  if (r->state == MR_WAIT && r->wait == MRW_FEED)
+    return pct > 0 ? 1 : 0;
+  if (!s->l.ovr_on)
+    return 0;
+  if (pct == 0)
+    return lathe_in_move(&s->l, now) ? 2 : 0;
+  *shift = lathe_override_at(&s->l, now);
+  return 0;
+}
+
 static double time_of(const struct mrun *r) { return state(r)->l.t; }
 
 static int load(struct mrun *r, const char *what, const char *text, size_t len, const char *file, char *err,
@@ -363,8 +428,9 @@ static int load(struct mrun *r, const char *what, const char *text, size_t len, 
 
 /* A new cycle (Пуск after M02): the slides, the tool table, the part zero
  * and the time stay; the language's modal state is at power-on (D-7). */
-static void renew(struct mrun *r)
+static void renew(struct mrun *r, const double *reg)
 {
+  (void)reg;   /* R0-R9 at 0 again, as at power-on */
   struct u22_state *s = state(r);
   struct lathe keep = s->l;
   reset(r);
@@ -384,7 +450,7 @@ static void mm_text(FILE *out, const char *name, int64_t v)
 /* DG: where the tool is (part coordinates, X a diameter), the following
  * error (none in a simulation), the part zero and the slides; DI: the
  * mode, the block, F S G, the tool and its corrections (L130-490). */
-static void page(const struct mrun *r, int k, FILE *out)
+static void page_text(const struct mrun *r, int k, FILE *out)
 {
   const struct u22_state *s = state(r);
   const struct lathe *l = &s->l;
@@ -426,19 +492,74 @@ static void page(const struct mrun *r, int k, FILE *out)
   fprintf(out, "t %.1f s\n", l->t);
 }
 
-static void position(const struct mrun *r, double pos[4])
+static void page(const struct mrun *r, int k, struct mrun_page *pg)
+{
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *f = open_memstream(&buf, &len);
+  if (f) {
+    page_text(r, k, f);
+    if (fclose(f))
+      len = 0;
+  }
+  mrun_page_text(pg, buf ? buf : "", buf ? len : 0);
+  free(buf);
+}
+
+/* --screen: the two pages the display shows, DG above DI. */
+static void screen(const struct mrun *r, FILE *out)
+{
+  page_text(r, 0, out);
+  fputc('\n', out);
+  page_text(r, 1, out);
+}
+
+static void position(const struct mrun *r, int64_t pos[CANON_AXES])
 {
   const struct lathe *l = &state(r)->l;
-  pos[0] = (double)lathe_pos(l, LX) / 2000.0;   /* the radius */
-  pos[1] = pos[3] = 0;
-  pos[2] = (double)lathe_pos(l, LZ) / 1000.0;
+  memset(pos, 0, CANON_AXES * sizeof *pos);
+  pos[0] = lathe_pos(l, LX);   /* a diameter, counts of 0.0005 mm of radius */
+  pos[2] = lathe_pos(l, LZ);
+}
+
+static void info(const struct mrun *r, struct canon_info *in)
+{
+  lathe_ops.info(r->st ? &state(r)->l : NULL, in);
+}
+
+/* The Modbus map (contracts.md sec. 6): X (a diameter) and Z in µm at 10
+ * and 12, R0-R9 at 100 and 600, the spindle and the coolant. */
+static void view(const struct mrun *r, struct mrun_view *v)
+{
+  const struct u22_state *s = state(r);
+  memset(v, 0, sizeof *v);
+  v->pos[0] = lathe_pos(&s->l, LX);
+  v->pos[1] = lathe_pos(&s->l, LZ);
+  v->naxes = 2;
+  v->axis_name[0] = 'X';
+  v->axis_name[1] = 'Z';
+  v->nregs = 10;
+  for (int i = 0; i < 10; i++)
+    v->reg[i] = r->vm.reg[i];
+  v->bits = (s->l.dir ? MRUN_BIT_SPINDLE : 0) | (s->l.coolant ? MRUN_BIT_AUX : 0);
+  v->feed = s->feed;
 }
 
 const struct mrun_rt u22_runtime = {
+  .machine = "16Б16Ф3",
+  .note_uk = "",
+  .note_en = "",
+  .input = input,
+  .refuses = refuses,
+  .override = override,
+  .resume = block,
+  .info = info,
+  .view = view,
   .position = position,
   .renew = renew,
   .pages = pages,
   .page = page,
+  .screen = screen,
   .size = sizeof(struct u22_rt),
   .reset = reset,
   .skippable = skippable,
@@ -446,7 +567,6 @@ const struct mrun_rt u22_runtime = {
   .row_json = row_json,
   .row_text = row_text,
   .dump_json = dump_json,
-  .zero = zero,
   .time = time_of,
   .load = load,
 };

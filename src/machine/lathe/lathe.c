@@ -152,6 +152,7 @@ void lathe_init(struct lathe *l, const struct lathe_model *model)
 {
   memset(l, 0, sizeof *l);   /* slides and part zero at 0, no tools, T0, G94 G97, time 0 */
   l->model = model ? *model : lathe_16b16f3;
+  l->ovr_pct = 100;
   l->lo[LX] = -2 * l->model.travel_x;
   l->hi[LX] = 2 * l->model.travel_x;
   l->lo[LZ] = -l->model.travel_z;
@@ -249,9 +250,11 @@ static int feed_ok(const struct lathe *l, double f, char *msg, size_t n)
  * cut so that neither slide passes its working-feed limit; the warning
  * for a cut goes to wmsg ("" when none).  0, or E-FEED when the time
  * would not be finite. */
-static int feed_time(const struct lathe *l, double f, const struct path *p, double *sec, double *vmean, char *wmsg,
-                     size_t wn, char *msg, size_t n)
+static int feed_time(const struct lathe *l, double f0, const struct path *p, double *sec, double *vmean, double *cap_out,
+                     double *vreq100, char *wmsg, size_t wn, char *msg, size_t n)
 {
+  /* the override scales the feed before the axes' limits (D-46) */
+  double k = l->ovr_on ? l->ovr_pct / 100.0 : 1, f = f0 * k;
   double cx = p->xs > 0 ? l->model.feed_x / p->xs : INFINITY, cz = p->zs > 0 ? l->model.feed_z / p->zs : INFINITY;
   double cap = fmin(cx, cz);
   int by_x = cx <= cz;
@@ -280,11 +283,24 @@ static int feed_time(const struct lathe *l, double f, const struct path *p, doub
     t = 0;
   if (!isfinite(t) || !(v_at_max > 0)) {
     char b[40];
-    say(msg, n, "feed F%s is too small for a move of %.3f mm", num(b, sizeof b, f, 6), p->len);
+    say(msg, n, "feed F%s is too small for a move of %.3f mm", num(b, sizeof b, f0, 6), p->len);
     return S42_E_FEED;
   }
   *sec = t * 60;
   *vmean = t > 0 ? p->len / t : v_at_max;
+  *cap_out = cap;
+  /* the mean path speed asked at 100 %: what an override turned within the move scales */
+  *vreq100 = k > 0 && t > 0 ? p->len / t / k : v_at_max;
+  if (l->per_rev && k > 0 && t > 0) {
+    double tr = 0;   /* asked speeds, uncapped */
+    for (int i = 0; i < (l->css ? PIECES : 1); i++) {
+      double rpm = l->css ? lathe_rpm(l, (int64_t)llround(p->dia[i])) : rpm_at_max;
+      tr += (l->css ? p->len / PIECES : p->len) / (f0 * rpm);
+    }
+    *vreq100 = tr > 0 ? p->len / tr : v_at_max;
+  } else if (!l->per_rev) {
+    *vreq100 = f0;
+  }
   if (vreq_max > cap) {
     char bf[40], bv[40], bc[40], br[40], bl[40], lim[80];
     if (by_x)
@@ -292,10 +308,10 @@ static int feed_time(const struct lathe *l, double f, const struct path *p, doub
     else
       snprintf(lim, sizeof lim, "Z at most %s mm/min", num(bl, sizeof bl, l->model.feed_z, 1));
     if (l->per_rev)
-      say(wmsg, wn, "F%s mm/rev = %s mm/min at %s rpm, cut to %s mm/min: %s", num(bf, sizeof bf, f, 4),
+      say(wmsg, wn, "F%s mm/rev = %s mm/min at %s rpm, cut to %s mm/min: %s", num(bf, sizeof bf, f0, 4),
           num(bv, sizeof bv, vreq_max, 1), num(br, sizeof br, rpm_at_max, 1), num(bc, sizeof bc, v_at_max, 1), lim);
     else
-      say(wmsg, wn, "F%s cut to %s mm/min: %s", num(bf, sizeof bf, f, 4), num(bc, sizeof bc, v_at_max, 1), lim);
+      say(wmsg, wn, "F%s cut to %s mm/min: %s", num(bf, sizeof bf, f0, 4), num(bc, sizeof bc, v_at_max, 1), lim);
   }
   return 0;
 }
@@ -311,6 +327,7 @@ int lathe_traverse(struct lathe *l, unsigned mask, const int64_t to[2], char *ms
   int e = targets(l, mask, to, s, msg, n);
   if (e)
     return e;
+  l->mv.on = 0;   /* a traverse: no override (D-46) */
   double tx = fabs((double)(s[LX] - l->slide[LX])) / 2000 / l->model.rapid_x;
   double tz = fabs((double)(s[LZ] - l->slide[LZ])) / 1000 / l->model.rapid_z;
   struct canon_call c;
@@ -351,13 +368,19 @@ int lathe_home(struct lathe *l, unsigned mask, char *msg, size_t n)
 static int feed_move(struct lathe *l, double f, const struct path *p, const int64_t s[2], struct canon_call *c,
                      int kind, char *msg, size_t n)
 {
-  double sec, v;
+  double sec, v, cap, vreq;
   char w[200];
-  int e = feed_time(l, f, p, &sec, &v, w, sizeof w, msg, n);
+  int e = feed_time(l, f, p, &sec, &v, &cap, &vreq, w, sizeof w, msg, n);
   if (e)
     return e;
   tip(l, c->from);
   c->t0 = l->t;
+  l->mv.on = l->ovr_on && sec > 0;
+  l->mv.t0 = l->t;
+  l->mv.t1 = l->t + sec;
+  l->mv.vreq = vreq;
+  l->mv.cap = cap;
+  l->mv.v = v;
   l->slide[LX] = s[LX];
   l->slide[LZ] = s[LZ];
   l->t += sec;
@@ -554,6 +577,7 @@ int lathe_thread(struct lathe *l, const int64_t to[2], double k, char *msg, size
   struct canon_call c;
   start(l, &c);
   c.v = k / 1000;
+  l->mv.on = 0;   /* a thread stays synchronised to the spindle: no override */
   emit_at(l, &c, CANON_SYNCH_START);
   start(l, &c);
   l->slide[LX] = s[LX];
@@ -724,6 +748,41 @@ void lathe_end(struct lathe *l)
   emit(l, CANON_END);
 }
 
+/* ---- the override within a move ---- */
+
+int lathe_in_move(const struct lathe *l, double now)
+{
+  return l->mv.on && l->ovr_on && now >= l->mv.t0 && now < l->mv.t1;
+}
+
+double lathe_override_at(struct lathe *l, double now)
+{
+  if (l->ovr_pct <= 0 || !lathe_in_move(l, now) || !(l->mv.v > 0))
+    return 0;
+  double v = fmin(l->mv.vreq * l->ovr_pct / 100.0, l->mv.cap);
+  if (!(v > 0))
+    return 0;
+  double rest = (l->mv.t1 - now) * l->mv.v / 60.0;   /* mm still to go */
+  double d = rest / v * 60.0 - (l->mv.t1 - now);
+  l->mv.v = v;
+  l->mv.t1 += d;
+  l->t += d;
+  l->feed = v;
+  return d;
+}
+
+static void override_switch(struct lathe *l, int on)
+{
+  on = on != 0;
+  if (on != l->ovr_on) {
+    l->ovr_on = on;
+    struct canon_call c;
+    start(l, &c);
+    c.on = on;
+    emit_at(l, &c, CANON_OVERRIDE);
+  }
+}
+
 /* ---- the canonical table (src/core/canon.h) ---- */
 
 /* The lathe's axes of a record's mask (bit 0 X, bit 2 Z; 0: both). */
@@ -802,6 +861,7 @@ SIMPLE(l_feed_mode, lathe_feed_mode(m, c->on))
 SIMPLE(l_tool, lathe_tool(m, c->n))
 SIMPLE(l_coolant, lathe_coolant(m, c->on))
 SIMPLE(l_end, lathe_end(m))
+SIMPLE(l_override, override_switch(m, c->on))
 #undef SIMPLE
 
 static void l_info(const void *mv, struct canon_info *in)
@@ -841,6 +901,7 @@ const struct canon_ops lathe_ops = {
     [CANON_TOOL] = l_tool,
     [CANON_COOLANT] = l_coolant,
     [CANON_END] = l_end,
+    [CANON_OVERRIDE] = l_override,
   },
   .info = l_info,
 };

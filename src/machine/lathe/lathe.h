@@ -68,6 +68,15 @@ struct lathe {
   double rpm_now;                     /* the spindle's speed at the end of the last call (css varies it) */
   double f_canon;                     /* the F of the last feed move, the canon's feed rate (0 after a
                                          G94/G95 switch): a thread's STRAIGHT_FEED keeps it (added) */
+  int ovr_pct;                        /* the feed override switch, % (100 at power-on) */
+  int ovr_on;                         /* it acts (CANON_OVERRIDE: the 2У22's G20, D-6 and D-46) */
+  /* the last feed move, for an override turned within it: its start and
+   * end (s), the path speed asked at 100 % and the axes' cap (mm/min), the
+   * speed it goes at now */
+  struct {
+    int on;
+    double t0, t1, vreq, cap, v;
+  } mv;
   /* where it reports each canonical call it carries out and each warning
    * (a feed cut to the axes' limits, an S clamped to the range): the
    * runner's journal; none: nothing is reported */
@@ -98,6 +107,14 @@ int64_t lathe_pos(const struct lathe *l, int axis);
 void lathe_set_zero(struct lathe *l, int64_t ox, int64_t oz);
 /* The spindle's speed now, rpm (0 stopped); under G96 at diameter d (µm). */
 double lathe_rpm(const struct lathe *l, int64_t d);
+/* The override switch (l->ovr_pct) was turned at simulated time `now`,
+ * within the last feed move, one the override acts on: the rest of it
+ * goes at the new speed (a G01-G03's; not G25's, not a thread's).  The
+ * move's end and the time move by the difference, which is returned (0:
+ * not within such a move, or at 0 %, where the host holds the move). */
+double lathe_override_at(struct lathe *l, double now);
+/* Is simulated time `now` within the last feed move, one the override acts on? */
+int lathe_in_move(const struct lathe *l, double now);
 
 /* Each call returns 0, or an error code (vm/errors.h: S42_E_TRAVEL,
  * S42_E_ARC, S42_E_FEED, S42_E_THREAD) with the message in msg, having

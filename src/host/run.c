@@ -1,0 +1,553 @@
+/* The one headless host (src/host/run.h). */
+#include "run.h"
+#include "atomic.h"
+#include "canon.h"
+#include "error.h"
+#include "errors.h"
+#include "mrun.h"
+#include "operator.h"
+#include "pace.h"
+#include "report.h"
+#include "utf8.h"
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { EXIT_END = 0, EXIT_PROGRAM = 1, EXIT_USAGE = 2, EXIT_STOPPED = 3, EXIT_IO = 4 };
+#define MAX_SIDE_FILE ((size_t)1 << 20)
+
+struct host {
+  const struct run_opts *o;
+  const struct program *p;
+  struct mrun r;
+  struct opscript ops;
+  size_t next;                 /* the next ordered action */
+  size_t unfit;                /* 1 + the action reported as not fitting a wait, 0 none */
+  uint8_t *watch;              /* blocks an `at` names */
+  unsigned *runs;              /* per block index: how often it started (the `at` runs) */
+  unsigned *runs_n;            /* per block number (1..nnum-1): the same, for the warnings */
+  size_t nnum;
+  struct canon_trace canon;
+  struct pace pace;
+  int interruptible;           /* --realtime: SIGINT and SIGTERM stop at a block boundary */
+};
+
+static volatile sig_atomic_t quit_signal;
+
+static void on_quit(int sig)
+{
+  quit_signal = sig;
+}
+
+/* ---- sinks ---- */
+
+static void warn(void *ctx, const struct mrun *r, const char *msg)
+{
+  struct host *h = ctx;
+  const struct prog_block *b = &r->p->blocks[r->vm.cur];
+  int n = mrun_block_number(r);
+  /* FILE:LINE:COL: warning: N<n>: MESSAGE, as contracts.md sec. 1 */
+  fprintf(stderr, "%s:%u:%u: warning: N", h->o->program, b->line, b->col);
+  if (n >= 0)
+    fprintf(stderr, "%d", n);
+  else
+    fputc('-', stderr);
+  fprintf(stderr, ": %s\n", msg);
+}
+
+static void note(void *ctx, const struct mrun *r, const char *msg)
+{
+  (void)ctx;
+  (void)r;
+  fprintf(stderr, "s42: note: %s\n", msg);
+}
+
+static void canon_line(void *ctx, const char *text)
+{
+  (void)ctx;
+  puts(text);
+}
+
+static void on_call(void *ctx, const struct canon_call *c)
+{
+  struct host *h = ctx;
+  if (h->o->canon)
+    canon_trace_call(&h->canon, c);
+  if (h->o->watch && h->o->watch->call)
+    h->o->watch->call(h->o->watch->ctx, c);
+}
+
+static void on_moved(void *ctx, const struct mrun *r, const struct mrun_move *m)
+{
+  struct host *h = ctx;
+  if (h->o->watch && h->o->watch->moved)
+    h->o->watch->moved(h->o->watch->ctx, r, m);
+}
+
+/* ---- the operator script as the runner's input ---- */
+
+/* The input record of a script action. */
+static void input_of(const struct op_action *a, struct mrun_input *in)
+{
+  memset(in, 0, sizeof *in);
+  in->axis2 = -1;
+  switch (a->kind) {
+  case OA_KEY:
+    in->kind = a->key == OPKEY_PUSK ? MRI_PUSK : a->key == OPKEY_PS ? MRI_PS : a->key == OPKEY_EXIT ? MRI_EXIT
+                                                                                                   : MRI_STOP;
+    break;
+  case OA_ANSWER:
+    in->kind = MRI_ANSWER;
+    in->n = a->n;
+    break;
+  case OA_JOG: case OA_CORRECT: case OA_SECTION:
+    in->kind = a->kind == OA_JOG ? MRI_JOG : a->kind == OA_CORRECT ? MRI_CORRECT : MRI_SECTION;
+    in->axis = a->axis;
+    in->n = a->n;
+    in->axis2 = a->axis2;
+    in->n2 = a->n2;
+    break;
+  case OA_OVERRIDE:
+    in->kind = MRI_OVERRIDE;
+    in->n = a->n;
+    break;
+  case OA_MODE:
+    in->kind = MRI_MODE;
+    in->axis = a->n2 == OPMODE_SKIP ? MRM_SKIP : a->n2 == OPMODE_OPTSTOP ? MRM_OPTSTOP : MRM_SINGLE;
+    in->n = a->n;
+    break;
+  case OA_BREAK:
+    in->kind = MRI_BREAK;
+    in->n = a->n;
+    break;
+  case OA_ZERO:
+    in->kind = MRI_ZERO;
+    for (int k = 0; k < CANON_AXES && k < OPS_NAXES; k++)
+      in->v[k] = a->axis & (1 << k) ? (double)a->zero[k] / 1000.0 : NAN;
+    break;
+  default:
+    in->kind = MRI_NKIND;
+    break;
+  }
+}
+
+static int has_number(const struct program *p, int n)
+{
+  for (size_t b = 0; b < p->nblocks; b++)
+    if ((int)p->blocks[b].number == n)
+      return 1;
+  return 0;
+}
+
+/* Before the run: every action is one this machine has, every `at` and
+ * `break` names a block the program has.  0, or -1 after saying why. */
+static int check_script(struct host *h)
+{
+  int bad = 0;
+  for (int pass = 0; pass < 2; pass++) {
+    const struct op_action *v = pass ? h->ops.at : h->ops.v;
+    size_t n = pass ? h->ops.nat : h->ops.n;
+    for (size_t i = 0; i < n; i++) {
+      const struct op_action *a = &v[i];
+      struct mrun_input in;
+      input_of(a, &in);
+      const char *why = h->r.rt->refuses ? h->r.rt->refuses(&h->r, &in) : NULL;
+      char what[96];
+      if (why) {
+        fprintf(stderr, "%s:%u:%u: error: %s: %s\n", h->o->operator_file, a->line, a->col,
+                ops_describe(a, what, sizeof what), why);
+        bad = 1;
+      }
+      if (pass && !has_number(h->p, a->at_number)) {
+        fprintf(stderr, "%s:%u:%u: error: at N%d: the program has no block N%d, so this never fires\n",
+                h->o->operator_file, a->line, a->col, a->at_number, a->at_number);
+        bad = 1;
+      }
+      if (!pass && a->kind == OA_BREAK && a->n && !has_number(h->p, (int)a->n)) {
+        fprintf(stderr, "%s:%u:%u: error: break N%lld: the program has no block N%lld, so it never waits there\n",
+                h->o->operator_file, a->line, a->col, (long long)a->n, (long long)a->n);
+        bad = 1;
+      }
+    }
+  }
+  return bad ? -1 : 0;
+}
+
+/* An action that does not wait: applied as the runner's input (a refusal
+ * the machine reports itself, as a warning or on its screen). */
+static void apply(struct host *h, const struct op_action *a)
+{
+  struct mrun_input in;
+  char why[240];
+  input_of(a, &in);
+  if (mrun_input(&h->r, &in, why, sizeof why) && a->kind == OA_ZERO)
+    fprintf(stderr, "%s:%u:%u: warning: zero refused: %s\n", h->o->operator_file, a->line, a->col, why);
+}
+
+/* A block boundary: the immediate actions at the head of the script. */
+static void boundary(struct host *h)
+{
+  while (h->next < h->ops.n && !ops_is_waiting(&h->ops.v[h->next]) && h->r.state != MR_STOPPED)
+    apply(h, &h->ops.v[h->next++]);
+}
+
+/* A watched block starts: its `at` actions for this run of it. */
+static void at_start(struct host *h)
+{
+  uint32_t b = h->r.vm.cur;
+  if (!h->watch || !h->watch[b])
+    return;
+  unsigned run = ++h->runs[b];
+  int num = mrun_block_number(&h->r);
+  if (num > 0 && (size_t)num < h->nnum)
+    h->runs_n[num]++;
+  for (size_t i = 0; i < h->ops.nat; i++) {
+    struct op_action *a = &h->ops.at[i];
+    if (!a->fired && a->at_number == num && a->at_run == run) {
+      a->fired = 1;
+      apply(h, a);
+    }
+  }
+}
+
+/* The machine waits: take the script's fitting actions.  0 when the wait is
+ * over, -1 when the script has nothing that fits (stop, status 3). */
+static int serve_wait(struct host *h)
+{
+  char what[96], nb[16], wt[300];
+  struct mrun *r = &h->r;
+  while (r->state == MR_WAIT && !r->resume) {
+    const struct prog_block *b = &h->p->blocks[r->vm.cur];
+    if (h->next >= h->ops.n) {
+      fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s and the operator script has no more actions\n",
+              h->o->program, b->line, b->col, diag_block(mrun_block_number(r), nb), mrun_wait_text(r, wt, sizeof wt));
+      return -1;
+    }
+    const struct op_action *a = &h->ops.v[h->next];
+    int ok;
+    if (!ops_is_waiting(a)) {
+      apply(h, a);
+      ok = 0;
+    } else {
+      struct mrun_input in;
+      input_of(a, &in);
+      char why[240];
+      ok = mrun_input(r, &in, why, sizeof why);
+    }
+    if (ok) {
+      h->unfit = h->next + 1;
+      fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s; the operator script's next action "
+              "(line %u: %s) does not fit\n", h->o->program, b->line, b->col, diag_block(mrun_block_number(r), nb),
+              mrun_wait_text(r, wt, sizeof wt), a->line, ops_describe(a, what, sizeof what));
+      return -1;
+    }
+    h->next++;
+  }
+  return 0;
+}
+
+/* ---- the run ---- */
+
+static int load_side(struct host *h, const char *what, const char *path)
+{
+  char *text, err[600];
+  size_t n;
+  if (file_read_all(path, FILE_OR_STDIN, MAX_SIDE_FILE, &text, &n, err, sizeof err)) {
+    fprintf(stderr, "s42: %s\n", err);
+    return EXIT_IO;
+  }
+  int rc = 0;
+  if (!h->r.rt->load || h->r.rt->load(&h->r, what, text, n, path, err, sizeof err)) {
+    if (h->r.rt->load)
+      fprintf(stderr, "%s\n", err);
+    else
+      fprintf(stderr, "s42: %s: this machine reads no %s file\n", path, what);
+    rc = EXIT_USAGE;
+  }
+  free(text);
+  return rc;
+}
+
+/* The run's error on stderr: the diagnostic, then the machine's words. */
+static void print_error(const struct host *h, const struct diag_list *d, const struct s42_error *e)
+{
+  struct diag g;
+  s42_error_diag(e, &g);
+  diag_print_in(stderr, d, &g);
+  const struct mrun_rt *rt = h->r.rt;
+  const char *pre = h->o->en ? rt->note_en : rt->note_uk;
+  if (!pre)
+    return;
+  char m[200];
+  s42_error_machine(e, h->p, h->o->en, m, sizeof m);
+  fprintf(stderr, "%s:%u:%u: note: %s%s\n", h->o->program, e->line, e->col, pre, m);
+}
+
+static const char *status_name(int st)
+{
+  return st == EXIT_END ? "end" : st == EXIT_STOPPED ? "stopped" : "error";
+}
+
+/* The loop: 0 end, 1 program error, 3 stopped, 4 a save of the restart
+ * state failed. */
+static int loop(struct host *h)
+{
+  struct mrun *r = &h->r;
+  const struct run_opts *o = h->o;
+  char nb[16];
+  boundary(h);
+  for (;;) {
+    r->cfg.starts = h->interruptible || (h->next < h->ops.n && !ops_is_waiting(&h->ops.v[h->next]));
+    if (h->interruptible && quit_signal && r->state != MR_WAIT) {
+      const struct prog_block *b = &h->p->blocks[r->vm.cur];
+      fprintf(stderr, "%s:%u:%u: note: %s: stopped by %s before this block\n", o->program, b->line, b->col,
+              diag_block(mrun_block_number(r), nb), quit_signal == SIGINT ? "Ctrl-C (SIGINT)" : "SIGTERM");
+      mrun_stop(r);
+      return EXIT_STOPPED;
+    }
+    enum mrun_ev ev = mrun_run(r);
+    switch (ev) {
+    case MR_START:
+      at_start(h);
+      boundary(h);
+      if (r->state == MR_STOPPED) {
+        const struct prog_block *b = &h->p->blocks[r->vm.cur];
+        fprintf(stderr, "%s:%u:%u: note: %s: the cycle was stopped (key STOP)\n", o->program, b->line, b->col,
+                diag_block(mrun_block_number(r), nb));
+        return EXIT_STOPPED;
+      }
+      continue;
+    case MR_ROW:
+      if (o->realtime)
+        pace_sleep_until(&h->pace, mrun_time(r));
+      if (o->trace) {
+        if (o->json)
+          mrun_row_json(r, stdout);
+        else
+          mrun_row_text(r, stdout);
+        putchar('\n');
+        if (o->realtime)
+          fflush(stdout);
+      }
+      if (o->watch && o->watch->row)
+        o->watch->row(o->watch->ctx, r);
+      boundary(h);
+      continue;
+    case MR_WAIT:
+      if (serve_wait(h) == 0 && r->state != MR_STOPPED)
+        continue;
+      if (r->state == MR_WAIT)
+        mrun_stop(r);
+      return EXIT_STOPPED;
+    case MR_STOPPED: {
+      const struct prog_block *b = &h->p->blocks[r->vm.cur];
+      fprintf(stderr, "%s:%u:%u: note: %s: the cycle was stopped (key STOP)\n", o->program, b->line, b->col,
+              diag_block(mrun_block_number(r), nb));
+      return EXIT_STOPPED;
+    }
+    case MR_END:
+      return EXIT_END;
+    default:
+      return r->vm.err.code == S42_E_STATE ? EXIT_IO : EXIT_PROGRAM;
+    }
+  }
+}
+
+static void free_host(struct host *h)
+{
+  mrun_free(&h->r);
+  free(h->watch);
+  free(h->runs);
+  free(h->runs_n);
+  ops_free(&h->ops);
+}
+
+int run_headless(const struct run_opts *o, const struct program *p, const struct diag_list *d, const char *src,
+                 size_t n)
+{
+  struct host h;
+  memset(&h, 0, sizeof h);
+  h.o = o;
+  h.p = p;
+  canon_trace_init(&h.canon, canon_line, NULL);
+  const struct mrun_rt *rt = p->runtime;
+  if (!rt || !rt->machine) {
+    /* on the VM alone: nothing of a machine to drive */
+    if (o->watch || o->mb || o->operator_file || o->state || o->restart || o->tools || o->machine) {
+      fprintf(stderr, "s42: %s: this dialect runs its blocks on the VM alone: plot, --modbus, --operator, "
+              "--state, --restart, --tool and --machine need a machine\n", o->program);
+      return EXIT_USAGE;
+    }
+  }
+  if (o->operator_file) {
+    char *text, err[600];
+    size_t len;
+    int rr = file_read_all(o->operator_file, FILE_OR_STDIN, MAX_SIDE_FILE, &text, &len, err, sizeof err);
+    if (rr) {
+      fprintf(stderr, "s42: %s%s\n", err, rr == -2 ? " [E-LIMIT]" : "");
+      return EXIT_IO;
+    }
+    int bad = ops_parse(text, len, o->operator_file, &h.ops, stderr);
+    free(text);
+    if (bad)
+      return EXIT_USAGE;
+  }
+  size_t nb = p->nblocks ? p->nblocks : 1;
+  h.watch = calloc(nb, 1);
+  h.runs = calloc(nb, sizeof *h.runs);
+  h.nnum = 1;
+  for (size_t b = 0; b < p->nblocks; b++)
+    if (p->blocks[b].number >= h.nnum)
+      h.nnum = p->blocks[b].number + 1;
+  h.runs_n = calloc(h.nnum, sizeof *h.runs_n);
+  if (!h.watch || !h.runs || !h.runs_n) {
+    fprintf(stderr, "s42: out of memory\n");
+    free_host(&h);
+    return EXIT_IO;
+  }
+  int any_watch = 0;
+  for (size_t i = 0; i < h.ops.nat; i++)
+    for (size_t b = 0; b < p->nblocks; b++)
+      if ((int)p->blocks[b].number == h.ops.at[i].at_number)
+        h.watch[b] = any_watch = 1;
+  /* the restart state: where a restart point saves, or a run that stops */
+  char *state_path = NULL;
+  int points = 0;
+  for (size_t b = 0; rt && rt->restart_point && b < p->nblocks && !points; b++) {
+    struct mrun probe;
+    memset(&probe, 0, sizeof probe);
+    probe.p = p;
+    probe.rt = rt;
+    points = rt->restart_point(&probe, (uint32_t)b);
+  }
+  int stop_saves = rt && rt->save && !rt->restart_word && o->state;
+  if (points || o->restart || stop_saves) {
+    if (o->state) {
+      state_path = strdup(o->state);
+    } else if ((state_path = malloc(strlen(o->program) + 7)) != NULL) {
+      sprintf(state_path, "%s.state", o->program);
+    }
+    if (!state_path) {
+      fprintf(stderr, "s42: out of memory\n");
+      free_host(&h);
+      return EXIT_IO;
+    }
+  }
+  struct mrun_config c;
+  memset(&c, 0, sizeof c);
+  c.en = o->en;
+  c.max_blocks = o->max_blocks;
+  c.rows = o->trace || o->realtime || o->watch || o->mb;
+  c.every = o->trace;
+  c.ctx = &h;
+  c.warn = warn;
+  c.log = note;
+  c.canon = on_call;
+  c.moved = on_moved;
+  c.watch = any_watch ? h.watch : NULL;
+  c.state_path = points ? state_path : NULL;
+  c.prog_hash = mrun_hash(src, n);
+  int rc = EXIT_END, ran = 0;
+  struct s42_error e, *ep = NULL;
+  if (mrun_init(&h.r, p, &c)) {
+    mrun_error(&h.r, &e);
+    fprintf(stderr, "s42: %s: %s\n", o->program, e.msg);
+    rc = EXIT_PROGRAM;
+    ep = &e;
+  } else if (o->operator_file && check_script(&h)) {
+    fprintf(stderr, "%s: note: the operator script %s is refused: the run does not start\n", o->program,
+            o->operator_file);
+    rc = EXIT_USAGE;
+  }
+  if (rc == EXIT_END && o->tools)
+    rc = load_side(&h, "tools", o->tools);
+  if (rc == EXIT_END && o->machine)
+    rc = load_side(&h, "machine", o->machine);
+  if (rc == EXIT_END && h.r.rt->prepare) {
+    /* the plugins the program uses start now: one that cannot because of
+     * the command line (no --tool for G10) stops the run before it begins */
+    char why[300], nbuf[16];
+    uint32_t fb = 0;
+    if (h.r.rt->prepare(&h.r, why, sizeof why, &fb)) {
+      const struct prog_block *b = &p->blocks[fb];
+      fprintf(stderr, "s42: %s\n", why);
+      fprintf(stderr, "%s:%u:%u: note: %s: the first block that needs it\n", o->program, b->line, b->col,
+              diag_block(b->number ? (int)b->number : -1, nbuf));
+      rc = EXIT_USAGE;
+    }
+  }
+  if (rc == EXIT_END && o->restart) {
+    char serr[512];
+    if (mrun_restore(&h.r, state_path, serr, sizeof serr)) {
+      fprintf(stderr, "%s:1:1: error: N-: restart refused: %s [E-STATE]\n", o->program, serr);
+      mrun_refuse(&h.r, S42_E_STATE, "restart refused: %s", serr);
+      mrun_error(&h.r, &e);
+      snprintf(e.msg, sizeof e.msg, "%s", serr);   /* the dump says why; stderr said "restart refused" */
+      e.number = -1;
+      ep = &e;
+      rc = EXIT_PROGRAM;
+    }
+  }
+  if (rc == EXIT_END) {
+    ran = 1;
+    if (o->watch && o->watch->start)
+      o->watch->start(o->watch->ctx, &h.r);
+    h.interruptible = o->realtime && !o->mb;
+    h.pace.stop = NULL;
+    if (h.interruptible) {
+      /* --realtime takes as long as the machine would: Ctrl-C (or SIGTERM)
+       * stops it at the next block boundary with the dump of that moment */
+      struct sigaction sa;
+      memset(&sa, 0, sizeof sa);
+      sa.sa_handler = on_quit;   /* no SA_RESTART: the pacing sleep returns at once */
+      sigemptyset(&sa.sa_mask);
+      sigaction(SIGINT, &sa, NULL);
+      sigaction(SIGTERM, &sa, NULL);
+      h.pace.stop = &quit_signal;
+    }
+    pace_start(&h.pace, mrun_time(&h.r));   /* a restart goes on from the saved time */
+    rc = loop(&h);
+    if (rc == EXIT_PROGRAM || rc == EXIT_IO) {
+      mrun_error(&h.r, &e);
+      print_error(&h, d, &e);
+      ep = &e;
+    }
+    if (rc == EXIT_STOPPED && stop_saves) {
+      char serr[512];
+      if (mrun_save(&h.r, state_path, serr, sizeof serr))
+        fprintf(stderr, "%s: warning: the run stopped, but where it stopped is not saved: %s\n", o->program, serr);
+      else
+        fprintf(stderr, "%s: note: where the run stopped is saved in %s (--restart goes on from there)\n",
+                o->program, state_path);
+    }
+  }
+  if (o->operator_file && ran)
+    ops_warn_unused(&h.ops, h.next, h.unfit, h.runs_n, o->operator_file, stderr);
+  if (o->dump && (rc == EXIT_END || rc == EXIT_PROGRAM || rc == EXIT_STOPPED || (rc == EXIT_IO && ep)))
+    mrun_dump(&h.r, stdout, status_name(rc == EXIT_IO ? EXIT_PROGRAM : rc), ep);
+  if (o->watch && o->watch->result && rc != EXIT_USAGE && (rc != EXIT_IO || ep))
+    o->watch->result(o->watch->ctx, &h.r, rc == EXIT_IO ? EXIT_PROGRAM : rc, ep ? err_code(ep->code) : NULL,
+                     ep ? ep->number : -1, ep ? ep->line : 0);
+  if (o->screen && h.r.rt->screen && rc != EXIT_USAGE) {
+    if (ep && h.r.rt->show) {   /* the error on the machine's display, in its words */
+      char m[200];
+      s42_error_machine(ep, p, o->en, m, sizeof m);
+      h.r.rt->show(&h.r, m);
+    }
+    h.r.rt->screen(&h.r, stdout);
+  }
+  if (fflush(stdout) || ferror(stdout)) {
+    fprintf(stderr, "s42: error writing the output\n");
+    rc = EXIT_IO;
+  }
+  free(state_path);
+  free_host(&h);
+  return rc;
+}
+
+void run_dump_refused(const void *rt, const struct program *p, const struct s42_error *e, int en)
+{
+  mrun_dump_refused(rt, stdout, e, en, p);
+}
