@@ -251,4 +251,33 @@ cp "$tmp/sub.state" "$tmp/same"; "$forge" "$tmp/same" wheel 0
 out=$("$s42" run "$sub" --restart --state "$tmp/same" --dump 2>/dev/null | python3 -c 'import json,sys; d=json.load(sys.stdin); print(d["status"], d["r"][100])')
 [ "$out" = "end 3" ] && ok || bad "an unedited forged copy: restart gave '$out'"
 
+# A dialect without a save word (the 2У22): --state keeps where a run
+# stopped (Стоп, the script's end), --restart goes on from there exactly as
+# the run would have gone on: the same rows, the same time.
+t_case u22
+u22=programs/2u22/fig1_9.u22
+mkdir -p "$tmp/u22"
+printf 'at N10 key STOP\n' > "$tmp/u22/stop.op"
+"$s42" run "$u22" --trace=json > "$tmp/u22/whole" 2>/dev/null
+"$s42" run "$u22" --operator "$tmp/u22/stop.op" --state "$tmp/u22/u.state" --trace=json > "$tmp/u22/first" 2>"$tmp/u22/err"; st1=$?
+[ "$st1" = 3 ] && grep -q "where the run stopped is saved in $tmp/u22/u.state" "$tmp/u22/err" && ok ||
+  bad "the stop at N10: status $st1, $(tail -n 2 "$tmp/u22/err")"
+"$s42" run "$u22" --restart --state "$tmp/u22/u.state" --trace=json --dump > "$tmp/u22/rest" 2>/dev/null; st2=$?
+# the rows from N10 on, without their seq: those of the whole run
+strip() { sed 's/^{"seq":[0-9]*,//' "$1"; }
+strip "$tmp/u22/whole" | sed -n '/"n":10,/,$p' > "$tmp/u22/want"
+grep '^{"seq"' "$tmp/u22/rest" | sed 's/^{"seq":[0-9]*,//' > "$tmp/u22/got"
+[ "$st2" = 0 ] && [ -s "$tmp/u22/want" ] && cmp -s "$tmp/u22/want" "$tmp/u22/got" && ok ||
+  bad "the restart at N10 (status $st2) differs from the whole run: $(diff "$tmp/u22/want" "$tmp/u22/got" | head -n 4)"
+tail -n 1 "$tmp/u22/rest" | grep -q '"status":"end","error":null,"blocks":19,' && ok ||
+  bad "the restart's dump: $(tail -n 1 "$tmp/u22/rest" | head -c 200)"
+# another program text, a damaged file: refused, status 1
+cp "$u22" "$tmp/u22/other.u22"
+sed -i 's/^N19 M02/N19 M05 M02/' "$tmp/u22/other.u22"
+"$s42" run "$tmp/u22/other.u22" --restart --state "$tmp/u22/u.state" > /dev/null 2>"$tmp/u22/err"; st3=$?
+[ "$st3" = 1 ] && grep -q "restart refused: the program text changed" "$tmp/u22/err" && ok || bad "another text: status $st3"
+printf 'x' | dd of="$tmp/u22/u.state" bs=1 seek=40 conv=notrunc 2>/dev/null
+"$s42" run "$u22" --restart --state "$tmp/u22/u.state" > /dev/null 2>"$tmp/u22/err"; st4=$?
+[ "$st4" = 1 ] && grep -q "is damaged (checksum)" "$tmp/u22/err" && ok || bad "a damaged state: status $st4"
+
 t_done

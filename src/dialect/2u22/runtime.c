@@ -15,6 +15,7 @@
 #include "geom.h"
 #include "lathe.h"
 #include "mrun.h"
+#include "snapshot.h"
 #include <math.h>
 #include <stdlib.h>
 #include <stdio.h>
@@ -514,6 +515,128 @@ static void screen(const struct mrun *r, FILE *out)
   page_text(r, 1, out);
 }
 
+/* ---- the restart snapshot: where a run stopped (the 2У22 has no save
+ * word; a run that stops saves with --state, --restart goes on there) ---- */
+
+struct u22_blob {
+  int32_t motion, incremental, f_override, s_override;
+  double f;
+  int64_t slide[2], zero[2];
+  struct lathe_tool tools[LATHE_TOOLS];
+  int32_t tool, dir, range, per_rev, css, coolant, ovr_pct, ovr_on;
+  double t, s;
+};
+
+static size_t save(const struct mrun *r, void *buf, size_t cap)
+{
+  const struct u22_state *s = state(r);
+  const struct lathe *l = &s->l;
+  struct u22_blob b;
+  if (cap < sizeof b)
+    return sizeof b;
+  memset(&b, 0, sizeof b);
+  b.motion = s->motion;
+  b.incremental = s->incremental;
+  b.f_override = s->f_override;
+  b.s_override = s->s_override;
+  b.f = s->f;
+  memcpy(b.slide, l->slide, sizeof b.slide);
+  memcpy(b.zero, l->zero, sizeof b.zero);
+  memcpy(b.tools, l->tools, sizeof b.tools);
+  b.tool = l->tool;
+  b.dir = l->dir;
+  b.range = l->range;
+  b.per_rev = l->per_rev;
+  b.css = l->css;
+  b.coolant = l->coolant;
+  b.ovr_pct = l->ovr_pct;
+  b.ovr_on = l->ovr_on;
+  b.t = l->t;
+  b.s = l->s;
+  memcpy(buf, &b, sizeof b);
+  return sizeof b;
+}
+
+static int restore(struct mrun *r, const void *buf, size_t len, const char *shown, char *err, size_t n)
+{
+  struct snap_chk c = {r->p, shown, err, n, 0};
+  struct u22_blob b;
+  if (len != sizeof b) {
+    snprintf(err, n, "%s was written by another version of s42", shown);
+    return -1;
+  }
+  memcpy(&b, buf, sizeof b);
+  struct u22_state *s = state(r);
+  struct lathe *l = &s->l;
+  if (b.motion != UG01 && b.motion != UG02 && b.motion != UG03 && b.motion != UG33)
+    snap_refuse(&c, "motion is G code %d, not G01 G02 G03 G33", (int)b.motion);
+  snap_ints(&c, "G90/G91 switch", b.incremental, 0, 1);
+  snap_ints(&c, "G20 switch", b.f_override, 0, 1);
+  snap_ints(&c, "G21 switch", b.s_override, 0, 1);
+  snap_range(&c, "F", b.f, 0, 9999999, 0);
+  static const char *const ax[2] = {"X", "Z"};
+  char what[48];
+  for (int a = 0; a < 2; a++) {
+    snprintf(what, sizeof what, "%s slide", ax[a]);
+    snap_range(&c, what, (double)b.slide[a], (double)l->lo[a], (double)l->hi[a], 1);
+    snprintf(what, sizeof what, "%s part zero", ax[a]);
+    snap_range(&c, what, (double)b.zero[a], -1e7, 1e7, 1);
+  }
+  for (int t = 0; t < LATHE_TOOLS; t++) {
+    snprintf(what, sizeof what, "T%d in-table mark", t);
+    snap_ints(&c, what, b.tools[t].has, 0, 1);
+    for (int a = 0; a < 2; a++) {
+      snprintf(what, sizeof what, "T%d %s correction", t, ax[a]);
+      snap_range(&c, what, (double)b.tools[t].d[a], -1e7, 1e7, 1);
+    }
+  }
+  snap_ints(&c, "tool", b.tool, 0, LATHE_TOOLS - 1);
+  snap_ints(&c, "spindle direction", b.dir, -1, 1);
+  snap_ints(&c, "spindle range", b.range, 0, l->model.nranges);
+  snap_ints(&c, "G94/G95 switch", b.per_rev, 0, 1);
+  snap_ints(&c, "G96/G97 switch", b.css, 0, 1);
+  snap_ints(&c, "coolant", b.coolant, 0, 1);
+  snap_ints(&c, "feed override", b.ovr_pct, 0, 150);
+  snap_ints(&c, "feed override switch", b.ovr_on, 0, 1);
+  snap_range(&c, "time", b.t, 0, SNAP_TIME_MAX, 0);
+  snap_range(&c, "S", b.s, 0, 1e6, 0);
+  if (c.bad)
+    return -1;
+  s->motion = b.motion;
+  s->incremental = b.incremental;
+  s->f_override = b.f_override;
+  s->s_override = b.s_override;
+  s->f = b.f;
+  memcpy(l->slide, b.slide, sizeof b.slide);
+  memcpy(l->zero, b.zero, sizeof b.zero);
+  memcpy(l->tools, b.tools, sizeof b.tools);
+  l->tool = b.tool;
+  l->dir = b.dir;
+  l->range = b.range;
+  l->per_rev = b.per_rev;
+  l->css = b.css;
+  l->coolant = b.coolant;
+  l->ovr_pct = b.ovr_pct;
+  l->ovr_on = b.ovr_on;
+  l->t = b.t;
+  l->s = b.s;
+  l->rpm_now = lathe_rpm(l, lathe_pos(l, LX));
+  r->override = b.ovr_pct;
+  return 0;
+}
+
+/* R0-R9 with the parameters' range (D-27); the rest are unused. */
+static int reg_range(const struct mrun *r, int k, char *name, size_t n, double *lo, double *hi, int *whole)
+{
+  *whole = 0;
+  if (k > 9)
+    return 0;
+  snprintf(name, n, "R%d", k);
+  *lo = r->p->lim.param_lo;
+  *hi = r->p->lim.param_hi;
+  return 1;
+}
+
 static void position(const struct mrun *r, int64_t pos[CANON_AXES])
 {
   const struct lathe *l = &state(r)->l;
@@ -560,6 +683,9 @@ const struct mrun_rt u22_runtime = {
   .pages = pages,
   .page = page,
   .screen = screen,
+  .save = save,
+  .restore = restore,
+  .reg_range = reg_range,
   .size = sizeof(struct u22_rt),
   .reset = reset,
   .skippable = skippable,
