@@ -2,7 +2,8 @@
 # Plugins from the outside: the minimal plugin of the README built against
 # the installed header alone; --plugins and S42_PLUGIN_PATH; refused
 # plugins in `s42 plugins`; E-PLUGIN when the plugin directory is missing;
-# and OpenCV never loaded by a program without G10/G11, its imgcodecs by
+# a plugin that crashes in a callback (the run ends with E-PLUGIN, the
+# terminal goes on); and OpenCV never loaded by a program without G10/G11, its imgcodecs by
 # none without --dump-images (LD_DEBUG=files lists every library the
 # dynamic loader maps).
 # usage: tests/plugins/run.sh S42 BUILD
@@ -180,5 +181,61 @@ st=$?
 S42_BADCTOR=crash "$S42" run "$tmp/helix.kp" --plugins "$tmp/hx" --dump >"$tmp/out" 2>"$tmp/err" && ok ||
   bad "a broken helix.so shadowed the good one: $(cat "$tmp/err")"
 unset S42_MARKER
+
+# A plugin that passes the probe and then crashes in a callback (cbcrash:
+# a null write, a division by zero, abort(), a stack overflow, in run(),
+# check(), advance() or describe()): the crash guard catches the signal,
+# the block fails with E-PLUGIN naming the plugin, the signal and the
+# callback, and the run ends as on any error: status 1, the dump
+cc_dir="$BUILD/test-plugins/cbcrash"
+for c in "G54 2 SIGSEGV run" "G55 2 SIGFPE run" "G56 2 SIGABRT run" "G57 2 SIGSEGV run" "G58 2 SIGSEGV check" \
+         "G59 3 SIGSEGV advance" "G60 2 SIGSEGV describe"; do
+  set -- $c
+  g=$1 n=$2 sig=$3 cb=$4
+  t_case "$g"
+  printf '№1 G01 X+10 F100 ^\n№2 %s ^\n№3 G01 X+10 F100 ^\n№4 M02 ^\n' "$g" > "$tmp/crash.kp"
+  "$S42" run "$tmp/crash.kp" --plugins "$cc_dir" --dump >"$tmp/out" 2>"$tmp/err"
+  st=$?
+  msg="the cbcrash plugin crashed ($sig) in $cb(): it is not called again"
+  [ $st -eq 1 ] && grep -qF "crash.kp:$n:1: error: N$n: $msg [E-PLUGIN]" "$tmp/err" &&
+    grep -qF "{\"status\":\"error\",\"error\":{\"code\":\"E-PLUGIN\",\"n\":$n,\"line\":$n,\"col\":1,\"message\":\"$msg\"" "$tmp/out" &&
+    ok || bad "status $st" "$(cat "$tmp/err")" "$(head -c 300 "$tmp/out")"
+done
+t_case ""
+# a crash in fini(), as s42 exits, changes nothing of the run
+printf '№1 G61 ^\n№2 M02 ^\n' > "$tmp/fini.kp"
+"$S42" run "$tmp/fini.kp" --plugins "$cc_dir" --dump >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -q '"status":"end"' "$tmp/out" && ok || bad "a crash in fini: status $st: $(cat "$tmp/err")"
+# s42 tui: the run ends with the error on the message line, Пуск again is
+# refused with the same words (the plugin is not called again), and the
+# terminal quits as always, with the tty as it was
+if t_have tmux; then
+  . "$(dirname "$0")/../tmux.sh"
+  tm_init "$tmp"
+  printf '№1 G01 X+10 F100 ^\n№2 G54 ^\n№3 M02 ^\n' > "$tmp/crash.kp"
+  tm_run tui 100 30 "$tmp" -e LC_ALL=C.UTF-8 -e TERM=screen "$(cd "$(dirname "$S42")" && pwd)/$(basename "$S42")" tui \
+    crash.kp --plugins "$(cd "$cc_dir" && pwd)"
+  msg="2:1 error N2: the cbcrash plugin crashed (SIGSEGV) in run(): it is not called again [E-PLUGIN]"
+  if tm_wait tui -F "Пуск (F5 or" 10; then
+    tm_keys tui g
+    tm_wait tui -F "$msg" 10 && ok || bad "s42 tui: no crash message" "$(tm_pane tui)"
+    tm_keys tui g
+    tm_wait tui -F "Пуск: the cycle starts" 10 && tm_wait tui -F "$msg" 10 && ok ||
+      bad "s42 tui, Пуск again" "$(tm_pane tui)"
+    tm_keys tui q
+    if tm_ended tui 10; then
+      [ "$TM_STATUS" = "exit=0" ] && tm_stty_same && ok || bad "s42 tui after a crash quit with $TM_STATUS"
+    else
+      bad "s42 tui did not quit after a plugin crashed" "$(tm_pane tui)"
+    fi
+  else
+    bad "s42 tui did not start" "$(tm_pane tui)"
+  fi
+  tm_kill tui
+  tm_end
+else
+  echo "plugins: tmux is not installed: s42 tui on a crashing plugin was skipped"
+fi
 
 t_done
