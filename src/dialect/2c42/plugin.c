@@ -337,9 +337,6 @@ struct guard {
   struct guard *outer;       /* the call this one runs inside (a plugin's
                                 move() runs the others' advance()), or NULL */
   volatile sig_atomic_t sig; /* the signal that came back */
-  unsigned brief;            /* bit k: the handler of signal k is in for
-                                this call alone; was[k] is what it replaced */
-  struct sigaction was[GUARD_NSIG];
 };
 /* The innermost call running on this thread, and its alternate stack. */
 static _Thread_local struct guard *guard_top;
@@ -459,6 +456,7 @@ static void guard_hold(struct plug_set *ps)
   if (ps->armed)
     return;
   ps->armed = 1;
+  guard_altstack();   /* this thread's, where the set's plugins run */
   if (guard_sets++)
     return;
   struct sigaction sa, cur;
@@ -486,61 +484,67 @@ static void guard_release(struct plug_set *ps)
       sigaction(guard_sigs[k], &guard_prev[k], NULL);
 }
 
-/* Put the handlers in for this call alone when no set holds them. */
-static void guard_brief(struct guard *g)
+/* The call, with the jump back: 0 when it returned, or the signal.
+ * Nothing of this frame changes between sigsetjmp and the call's end but
+ * g.sig, which is volatile: what the jump back finds is what was there. */
+static int guard_call(void (*call)(void *), void *ctx)
 {
-  struct sigaction sa;
-  guard_action(&sa);
-  for (int k = 0; k < GUARD_NSIG; k++)
-    if (sigaction(guard_sigs[k], NULL, &g->was[k]) == 0 && !guard_ours(&g->was[k])) {
-      guard_prev[k] = g->was[k];
-      if (sigaction(guard_sigs[k], &sa, NULL) == 0)
-        g->brief |= 1u << k;
-    }
-}
-
-static void guard_leave(struct guard *g)
-{
-  guard_top = g->outer;
-  for (int k = 0; k < GUARD_NSIG; k++)
-    if (g->brief & (1u << k))
-      sigaction(guard_sigs[k], &g->was[k], NULL);
-}
-
-/* The one place a plugin's code is called from.  Nothing of this frame
- * changes between sigsetjmp and the call's end but g.sig, which is
- * volatile: what the jump back finds is what was there before the call. */
-int plug_guarded(struct plug_set *ps, int i, const char *what, void (*call)(void *), void *ctx)
-{
-  if (ps && i >= 0 && ps->v[i].state == PLUG_CRASHED)
-    return -1;
   struct guard g;
   g.sig = 0;
-  g.brief = 0;
-  guard_altstack();
-  if (!ps || !ps->armed)
-    guard_brief(&g);
   g.outer = guard_top;
   guard_top = &g;
   if (sigsetjmp(g.jb, 0) == 0) {
     call(ctx);
-    guard_leave(&g);
+    guard_top = g.outer;
     return 0;
   }
-  int sig = g.sig;
+  guard_top = g.outer;
   sigset_t set;
   sigemptyset(&set);
-  sigaddset(&set, sig);
+  sigaddset(&set, g.sig);
   pthread_sigmask(SIG_UNBLOCK, &set, NULL);   /* the jump left the handler with it blocked */
-  guard_leave(&g);
-  if (ps && i >= 0) {
-    struct plug *p = &ps->v[i];
-    p->state = PLUG_CRASHED;
-    snprintf(p->err, sizeof p->err, "the %s plugin crashed%s in %s(): it is not called again", p->d->name,
-             signame(sig), what);
-    ps->crashes++;
-    ps->crashed = i;
-  }
+  return g.sig;
+}
+
+/* The same with the handlers in for this call alone (no set holds them),
+ * and what was there put back after. */
+static __attribute__((noinline)) int guard_call_brief(void (*call)(void *), void *ctx)
+{
+  struct sigaction sa, was[GUARD_NSIG];
+  unsigned mine = 0;
+  guard_altstack();
+  guard_action(&sa);
+  for (int k = 0; k < GUARD_NSIG; k++)
+    if (sigaction(guard_sigs[k], NULL, &was[k]) == 0 && !guard_ours(&was[k])) {
+      guard_prev[k] = was[k];
+      if (sigaction(guard_sigs[k], &sa, NULL) == 0)
+        mine |= 1u << k;
+    }
+  int sig = guard_call(call, ctx);
+  for (int k = 0; k < GUARD_NSIG; k++)
+    if (mine & (1u << k))
+      sigaction(guard_sigs[k], &was[k], NULL);
+  return sig;
+}
+
+static __attribute__((noinline, cold)) void guard_crashed(struct plug_set *ps, int i, const char *what, int sig)
+{
+  struct plug *p = &ps->v[i];
+  p->state = PLUG_CRASHED;
+  snprintf(p->err, sizeof p->err, "the %s plugin crashed%s in %s(): it is not called again", p->d->name,
+           signame(sig), what);
+  ps->crashes++;
+  ps->crashed = i;
+}
+
+/* The one place a plugin's code is called from. */
+int plug_guarded(struct plug_set *ps, int i, const char *what, void (*call)(void *), void *ctx)
+{
+  if (ps && i >= 0 && ps->v[i].state == PLUG_CRASHED)
+    return -1;
+  int sig = ps && ps->armed ? guard_call(call, ctx) : guard_call_brief(call, ctx);
+  if (sig && ps && i >= 0)
+    guard_crashed(ps, i, what, sig);
   return sig;
 }
 
