@@ -4,8 +4,9 @@
  * so a constructor that crashes, hangs or calls exit() costs a refusal, not
  * the command.  Every other failure -- a file that is not a shared object, a
  * missing entry symbol, another ABI version, an init that fails -- is caught
- * here too, reported with the file and the reason, and the handle closed.
- * A callback that crashes later costs the
+ * here too, reported with the file and the reason, and the handle closed;
+ * a *.so that is no regular file (a FIFO, a directory, a link that loops)
+ * is refused as the scan finds it.  A callback that crashes later costs the
  * plugin, not the command: the crash guard (plugin.h) catches the signal. */
 #include "plugin.h"
 #include "words.h"   /* the dialect's G/M table: which functions are a plugin's */
@@ -811,6 +812,48 @@ static void add_file(struct plug_set *ps, size_t dir, const char *path)
   ps->nfiles++;
 }
 
+/* What a *.so that is no regular file is, for its refusal. */
+static const char *not_a_file(mode_t mode)
+{
+  if (S_ISDIR(mode))
+    return "is a directory";
+  if (S_ISFIFO(mode))
+    return "is a FIFO, not a plugin file";
+  if (S_ISSOCK(mode))
+    return "is a socket, not a plugin file";
+  if (S_ISCHR(mode))
+    return "is a character device, not a plugin file";
+  if (S_ISBLK(mode))
+    return "is a block device, not a plugin file";
+  return "is not a regular file";
+}
+
+/* A *.so of a plugin directory: a candidate to open when it is needed (a
+ * regular file, or a symbolic link to one), or refused now with what it
+ * is, so that `s42 plugins` and E-FUNC's notes say why it is not used.
+ * Only stat() looks at it: a FIFO is never opened (that would wait for a
+ * writer). */
+static void consider(struct plug_set *ps, size_t dir, const char *path)
+{
+  struct stat st;
+  if (stat(path, &st) == 0) {
+    if (S_ISREG(st.st_mode))
+      add_file(ps, dir, path);
+    else
+      refuse(ps, path, NULL, "%s", not_a_file(st.st_mode));
+    return;
+  }
+  int e = errno;
+  char to[PATH_MAX];
+  ssize_t k;
+  if (e == ELOOP)
+    refuse(ps, path, NULL, "is a symbolic link that loops");
+  else if (e == ENOENT && (k = readlink(path, to, sizeof to - 1)) >= 0)
+    refuse(ps, path, NULL, "is a symbolic link to %.*s, which does not exist", (int)k, to);
+  else if (e != ENOENT)   /* (ENOENT: removed since the directory was read) */
+    refuse(ps, path, NULL, "cannot be examined: %s", strerror(e));
+}
+
 static void scan_dir(struct plug_set *ps, size_t dir)
 {
   DIR *dp = opendir(ps->dirs[dir]);
@@ -834,10 +877,8 @@ static void scan_dir(struct plug_set *ps, size_t dir)
   qsort(names, n, sizeof *names, by_name);   /* the same order on every machine */
   for (size_t i = 0; i < n; i++) {
     char path[PATH_MAX];
-    struct stat st;
-    if ((size_t)snprintf(path, sizeof path, "%s/%s", ps->dirs[dir], names[i]) < sizeof path &&
-        stat(path, &st) == 0 && S_ISREG(st.st_mode))
-      add_file(ps, dir, path);
+    if ((size_t)snprintf(path, sizeof path, "%s/%s", ps->dirs[dir], names[i]) < sizeof path)
+      consider(ps, dir, path);
     free(names[i]);
   }
   free(names);

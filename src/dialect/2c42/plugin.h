@@ -80,7 +80,9 @@ struct plug_set {
  * S42_PLUGIN_PATH (':'-separated), then <exe>/../lib/s42/plugins, the build
  * tree beside the executable and the compiled-in directory.  Opens nothing.
  * Of two files whose plugins have the same name, the one found earlier
- * wins.  Never fails: what cannot be loaded later lands in ps->bad. */
+ * wins.  Never fails: a *.so that is no regular file or link to one (a
+ * FIFO, a directory, a link that loops or leads nowhere) lands in ps->bad
+ * now, what cannot be loaded later. */
 void plug_scan(struct plug_set *ps, const char *opt_dir);
 void plug_free(struct plug_set *ps);
 
