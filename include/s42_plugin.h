@@ -42,6 +42,11 @@
  * host->error() with an error code of the language ("E-ARC", "E-OSC", ...)
  * and returns S42_FAIL; the block then has not run and the cycle stops with
  * that error.  A plugin written in C++ catches every exception at its edge.
+ * A callback that crashes instead (SIGSEGV, SIGBUS, SIGFPE, SIGILL or
+ * SIGABRT on s42's thread while it runs) fails the block with E-PLUGIN,
+ * and s42 never calls that plugin again; this is a best effort, not
+ * isolation: what the plugin broke before it crashed stays broken (the
+ * s42 README, "Writing a plugin", says what is guaranteed).
  *
  * A plugin may add G functions 0..63 and M functions 0..31 that the language
  * does not have, or implement those the language leaves to plugins (G07

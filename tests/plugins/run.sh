@@ -1,8 +1,10 @@
 #!/bin/sh
 # Plugins from the outside: the minimal plugin of the README built against
 # the installed header alone; --plugins and S42_PLUGIN_PATH; refused
-# plugins in `s42 plugins`; E-PLUGIN when the plugin directory is missing;
-# and OpenCV never loaded by a program without G10/G11, its imgcodecs by
+# plugins in `s42 plugins` (a FIFO, a directory or a looping link named
+# *.so among them); E-PLUGIN when the plugin directory is missing;
+# a plugin that crashes in a callback (the run ends with E-PLUGIN, the
+# terminal goes on); and OpenCV never loaded by a program without G10/G11, its imgcodecs by
 # none without --dump-images (LD_DEBUG=files lists every library the
 # dynamic loader maps).
 # usage: tests/plugins/run.sh S42 BUILD
@@ -180,5 +182,111 @@ st=$?
 S42_BADCTOR=crash "$S42" run "$tmp/helix.kp" --plugins "$tmp/hx" --dump >"$tmp/out" 2>"$tmp/err" && ok ||
   bad "a broken helix.so shadowed the good one: $(cat "$tmp/err")"
 unset S42_MARKER
+
+# A *.so that is no plugin file at all -- a FIFO, a directory, a symbolic
+# link that loops or leads nowhere -- is listed as refused with what it is
+# (never opened: a FIFO would wait for a writer), in `s42 plugins`, its
+# --json and E-FUNC's notes; a symbolic link to a plugin file is one
+mkdir -p "$tmp/odd/dir.so" "$tmp/oddhx"
+mkfifo "$tmp/odd/fifo.so" "$tmp/oddhx/helix.so"
+ln -s loop.so "$tmp/odd/loop.so"
+ln -s nothere.so "$tmp/odd/dangling.so"
+cp "$BUILD/test-plugins/good/good.so" "$tmp/good-real.so"
+ln -s ../good-real.so "$tmp/odd/good.so"
+timeout 20 "$S42" plugins --plugins "$tmp/odd" >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -qx "refused: $tmp/odd/fifo.so is a FIFO, not a plugin file" "$tmp/out" &&
+  grep -qx "refused: $tmp/odd/dir.so is a directory" "$tmp/out" &&
+  grep -qx "refused: $tmp/odd/loop.so is a symbolic link that loops" "$tmp/out" &&
+  grep -qx "refused: $tmp/odd/dangling.so is a symbolic link to nothere.so, which does not exist" "$tmp/out" &&
+  grep -qx "good 0.1 (ABI 1.1) $tmp/odd/good.so" "$tmp/out" && ok ||
+  bad "s42 plugins beside a FIFO, a directory and links: status $st" "$(cat "$tmp/out" "$tmp/err")"
+timeout 20 "$S42" plugins --json --plugins "$tmp/odd" >"$tmp/out" 2>"$tmp/err"
+st=$?
+if [ $st -eq 0 ] && python3 - "$tmp/out" "$tmp/odd" <<'PYEOF'
+import json, sys
+j = json.load(open(sys.argv[1]))
+d = sys.argv[2]
+want = {d + "/fifo.so": "is a FIFO, not a plugin file", d + "/dir.so": "is a directory",
+        d + "/loop.so": "is a symbolic link that loops",
+        d + "/dangling.so": "is a symbolic link to nothere.so, which does not exist"}
+got = {r["path"]: r["reason"] for r in j["refused"]}
+assert all(got.get(p) == r for p, r in want.items()), got
+assert any(p["path"] == d + "/good.so" and p["name"] == "good" for p in j["plugins"]), j["plugins"]
+PYEOF
+then ok; else bad "s42 plugins --json beside a FIFO: status $st" "$(cat "$tmp/out" "$tmp/err")"; fi
+printf '№1 G63 ^\n№2 M02 ^\n' > "$tmp/g63.kp"
+timeout 20 "$S42" check "$tmp/g63.kp" --plugins "$tmp/odd" 2>"$tmp/err"
+st=$?
+[ $st -eq 1 ] && grep -q "error: N1: G63 is not a function of the 2С42 or of a plugin found \[E-FUNC\]" "$tmp/err" &&
+  grep -qF "note: N1: the plugin file $tmp/odd/fifo.so is a FIFO, not a plugin file" "$tmp/err" &&
+  grep -qF "note: N1: the plugin file $tmp/odd/dir.so is a directory" "$tmp/err" &&
+  grep -qF "note: N1: the plugin file $tmp/odd/loop.so is a symbolic link that loops" "$tmp/err" && ok ||
+  bad "E-FUNC's notes beside a FIFO: status $st" "$(cat "$tmp/err")"
+printf '№1 M30 ^\n№2 M02 ^\n' > "$tmp/m30.kp"
+timeout 20 "$S42" run "$tmp/m30.kp" --plugins "$tmp/odd" --dump >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -q '"r":\[0,1,' "$tmp/out" && ok || bad "good.so through a symbolic link: status $st: $(cat "$tmp/err")"
+# helix.so a FIFO, and no other helix.so: G12 says what the file is
+timeout 20 "$tmp/bin/s42" run "$tmp/helix.kp" --plugins "$tmp/oddhx" >/dev/null 2>"$tmp/err"
+st=$?
+[ $st -eq 1 ] && grep -qF "G12 (helical interpolation) needs the helix plugin: $tmp/oddhx/helix.so is a FIFO, not a plugin file [E-PLUGIN]" "$tmp/err" &&
+  ok || bad "helix.so a FIFO: status $st: $(cat "$tmp/err")"
+
+# A plugin that passes the probe and then crashes in a callback (cbcrash:
+# a null write, a division by zero, abort(), a stack overflow, in run(),
+# check(), advance() or describe()): the crash guard catches the signal,
+# the block fails with E-PLUGIN naming the plugin, the signal and the
+# callback, and the run ends as on any error: status 1, the dump
+cc_dir="$BUILD/test-plugins/cbcrash"
+for c in "G54 2 SIGSEGV run" "G55 2 SIGFPE run" "G56 2 SIGABRT run" "G57 2 SIGSEGV run" "G58 2 SIGSEGV check" \
+         "G59 3 SIGSEGV advance" "G60 2 SIGSEGV describe"; do
+  set -- $c
+  g=$1 n=$2 sig=$3 cb=$4
+  t_case "$g"
+  printf '№1 G01 X+10 F100 ^\n№2 %s ^\n№3 G01 X+10 F100 ^\n№4 M02 ^\n' "$g" > "$tmp/crash.kp"
+  "$S42" run "$tmp/crash.kp" --plugins "$cc_dir" --dump >"$tmp/out" 2>"$tmp/err"
+  st=$?
+  msg="the cbcrash plugin crashed ($sig) in $cb(): it is not called again"
+  [ $st -eq 1 ] && grep -qF "crash.kp:$n:1: error: N$n: $msg [E-PLUGIN]" "$tmp/err" &&
+    grep -qF "{\"status\":\"error\",\"error\":{\"code\":\"E-PLUGIN\",\"n\":$n,\"line\":$n,\"col\":1,\"message\":\"$msg\"" "$tmp/out" &&
+    ok || bad "status $st" "$(cat "$tmp/err")" "$(head -c 300 "$tmp/out")"
+done
+t_case ""
+# a crash in fini(), as s42 exits, changes nothing of the run
+printf '№1 G61 ^\n№2 M02 ^\n' > "$tmp/fini.kp"
+"$S42" run "$tmp/fini.kp" --plugins "$cc_dir" --dump >"$tmp/out" 2>"$tmp/err"
+st=$?
+[ $st -eq 0 ] && grep -q '"status":"end"' "$tmp/out" && ok || bad "a crash in fini: status $st: $(cat "$tmp/err")"
+# s42 tui: the run ends with the error on the message line, Пуск again is
+# refused with the same words (the plugin is not called again), and the
+# terminal quits as always, with the tty as it was
+if t_have tmux; then
+  . "$(dirname "$0")/../tmux.sh"
+  tm_init "$tmp"
+  printf '№1 G01 X+10 F100 ^\n№2 G54 ^\n№3 M02 ^\n' > "$tmp/crash.kp"
+  tm_run tui 100 30 "$tmp" -e LC_ALL=C.UTF-8 -e TERM=screen "$(cd "$(dirname "$S42")" && pwd)/$(basename "$S42")" tui \
+    crash.kp --plugins "$(cd "$cc_dir" && pwd)"
+  msg="2:1 error N2: the cbcrash plugin crashed (SIGSEGV) in run(): it is not called again [E-PLUGIN]"
+  if tm_wait tui -F "Пуск (F5 or" 10; then
+    tm_keys tui g
+    tm_wait tui -F "$msg" 10 && ok || bad "s42 tui: no crash message" "$(tm_pane tui)"
+    tm_keys tui g
+    tm_wait tui -F "Пуск: the cycle starts" 10 && tm_wait tui -F "$msg" 10 && ok ||
+      bad "s42 tui, Пуск again" "$(tm_pane tui)"
+    tm_keys tui q
+    if tm_ended tui 10; then
+      [ "$TM_STATUS" = "exit=0" ] && tm_stty_same && ok || bad "s42 tui after a crash quit with $TM_STATUS"
+    else
+      bad "s42 tui did not quit after a plugin crashed" "$(tm_pane tui)"
+    fi
+  else
+    bad "s42 tui did not start" "$(tm_pane tui)"
+  fi
+  tm_kill tui
+  tm_end
+else
+  echo "plugins: tmux is not installed: s42 tui on a crashing plugin was skipped"
+fi
 
 t_done

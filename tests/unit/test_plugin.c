@@ -1,5 +1,5 @@
 /* Plugins: the loader against the fixture plugins (tests/plugins: good,
- * wrong ABI, no entry symbol, init fails, callbacks fail), E-PLUGIN when a
+ * wrong ABI, no entry symbol, init fails, callbacks fail or crash), E-PLUGIN when a
  * plugin is missing, and the oscillation and helix plugins run through
  * sessions.  The make target passes the directories: S42_FIXTURES (one
  * folder per fixture) and S42_PLUGINS (the built plugins). */
@@ -7,8 +7,10 @@
 #include "errors.h"
 #include "plugin.h"
 #include "session.h"
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #define MAXROWS 64
 
@@ -93,6 +95,7 @@ static void load(const char *src)
   ck_assert_msg(t.rc == 0, "does not compile:\n%s", tp_diags(&t.d));
   sess_init(s, &t.p);
   s->plugins = &ps;
+  s->crashes = ps.crashes;   /* as sess_configure does */
   s->sink.row = on_row;
   s->sink.warn = on_warn;
   s->sink.moved = on_moved;
@@ -668,6 +671,7 @@ START_TEST(helix_teach_in)
   ck_assert_msg(t.rc == 0, "%s", tp_diags(&t.d));
   sess_init(s, &t.p);
   s->plugins = &ps;
+  s->crashes = ps.crashes;   /* as sess_configure does */
   s->sink.row = on_row;
   ck_assert_int_eq(go(), SE_WAIT);
   ck_assert_int_eq(s->wait, W_TEACH);
@@ -686,6 +690,128 @@ START_TEST(helix_teach_in)
   ck_assert_int_eq(sess_key_ps(s), 0);
   ck_assert_int_eq(sess_key_pusk(s), 0);
   ck_assert_int_eq(go(), SE_END);
+}
+END_TEST
+
+/* ---- the crash guard: callbacks that die of a signal (cbcrash) ---- */
+
+static const struct {
+  const char *src;
+  int block;                 /* the block that fails */
+  const char *msg;
+} crashes[] = {
+  {"N1 G01 X+10 F100\nN2 G54\nN3 M2\n", 2, "the cbcrash plugin crashed (SIGSEGV) in run(): it is not called again"},
+  {"N1 G55\nN2 M2\n", 1, "the cbcrash plugin crashed (SIGFPE) in run(): it is not called again"},
+  {"N1 G56\nN2 M2\n", 1, "the cbcrash plugin crashed (SIGABRT) in run(): it is not called again"},
+  {"N1 G57\nN2 M2\n", 1, "the cbcrash plugin crashed (SIGSEGV) in run(): it is not called again"},   /* the stack */
+  {"N1 G58\nN2 M2\n", 1, "the cbcrash plugin crashed (SIGSEGV) in check(): it is not called again"},
+  /* advance() in the next block's move, describe() as the row is made */
+  {"N1 G59\nN2 G01 X+100 F100\nN3 M2\n", 2, "the cbcrash plugin crashed (SIGSEGV) in advance(): it is not called again"},
+  {"N1 G60\nN2 M2\n", 1, "the cbcrash plugin crashed (SIGSEGV) in describe(): it is not called again"},
+};
+
+/* Each crash fails its block with E-PLUGIN, registers as after the block
+ * before; the plugin is never called again: the next run that needs it is
+ * refused with the same words, and nothing of the plugin runs. */
+START_TEST(crashing_callbacks_are_e_plugin)
+{
+  plug_scan(&ps, dir_of("S42_FIXTURES", "cbcrash"));
+  load(crashes[_i].src);
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_PLUGIN);
+  ck_assert_str_eq(s->vm.err.msg, crashes[_i].msg);
+  ck_assert_int_eq(sess_block_number(s), crashes[_i].block);
+  int i = plug_find(&ps, 'G', 54, NULL);
+  ck_assert_int_ge(i, 0);
+  ck_assert_int_eq(ps.v[i].state, PLUG_CRASHED);
+  ck_assert_uint_eq(ps.crashes, 1);
+  load("N1 R1+5\nN2 G59\nN3 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  ck_assert_int_eq(s->vm.err.code, S42_E_PLUGIN);
+  ck_assert_str_eq(s->vm.err.msg, crashes[_i].msg);
+  ck_assert_int_eq(sess_block_number(s), 2);
+  ck_assert_double_eq(s->vm.reg[1], 5);
+  ck_assert_uint_eq(ps.crashes, 1);
+  /* a program that does not need it runs */
+  load("N1 G01 X+10 F100\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_END);
+}
+END_TEST
+
+/* A write to a page that allows none: a real SIGSEGV, which neither the
+ * compiler nor UBSan's null check (make asan) can see coming. */
+static void write_nowhere(void *ctx)
+{
+  (void)ctx;
+  static int *volatile page;
+  if (!page) {
+    void *p = mmap(NULL, 4096, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    ck_assert(p != MAP_FAILED);
+    page = p;
+  }
+  *page = 1;
+}
+
+static void do_abort(void *ctx)
+{
+  (void)ctx;
+  abort();
+}
+
+static void on_segv(int sig)
+{
+  (void)sig;
+}
+
+static void (*handler_of(int sig))(int)
+{
+  struct sigaction cur;
+  ck_assert_int_eq(sigaction(sig, NULL, &cur), 0);
+  return cur.sa_handler;
+}
+
+/* The guard's handlers: in for one call when no set holds them (a file's
+ * entry function), held from a set's first plugin start to its plug_free;
+ * what was there before is there again after. */
+START_TEST(guard_puts_the_handlers_back)
+{
+  struct sigaction mine;
+  memset(&mine, 0, sizeof mine);
+  mine.sa_handler = on_segv;
+  sigemptyset(&mine.sa_mask);
+  ck_assert_int_eq(sigaction(SIGSEGV, &mine, NULL), 0);
+  ck_assert_int_eq(plug_guarded(NULL, -1, "test", write_nowhere, NULL), SIGSEGV);
+  ck_assert_int_eq(plug_guarded(NULL, -1, "test", do_abort, NULL), SIGABRT);
+  ck_assert_ptr_eq(handler_of(SIGSEGV), on_segv);
+  plug_scan(&ps, dir_of("S42_FIXTURES", "good"));
+  load("N1 M30\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_END);
+  ck_assert_ptr_ne(handler_of(SIGSEGV), on_segv);   /* the guard's, while the set lives */
+  plug_free(&ps);
+  ck_assert_ptr_eq(handler_of(SIGSEGV), on_segv);
+}
+END_TEST
+
+/* A signal outside a plugin's callback goes where it went before the
+ * guard: here the default action, after a plugin crashed and was caught
+ * (SIG_DFL first: under ASan its own handler would abort instead). */
+START_TEST(signal_outside_a_callback_still_kills)
+{
+  signal(SIGSEGV, SIG_DFL);
+  plug_scan(&ps, dir_of("S42_FIXTURES", "cbcrash"));
+  load("N1 G54\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  raise(SIGSEGV);
+}
+END_TEST
+
+START_TEST(fault_outside_a_callback_still_kills)
+{
+  signal(SIGSEGV, SIG_DFL);
+  plug_scan(&ps, dir_of("S42_FIXTURES", "cbcrash"));
+  load("N1 G54\nN2 M2\n");
+  ck_assert_int_eq(go(), SE_ERROR);
+  write_nowhere(NULL);
 }
 END_TEST
 
@@ -710,6 +836,13 @@ Suite *suite_plugin(void)
   tcase_add_test(tc, two_sets_two_tools);
   tcase_add_test(tc, init_reason_is_the_set_s);
   tcase_add_test(tc, sets_beyond_the_thunks);
+  suite_add_tcase(su, tc);
+  tc = tcase_create("crash guard");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_loop_test(tc, crashing_callbacks_are_e_plugin, 0, (int)(sizeof crashes / sizeof crashes[0]));
+  tcase_add_test(tc, guard_puts_the_handlers_back);
+  tcase_add_test_raise_signal(tc, signal_outside_a_callback_still_kills, SIGSEGV);
+  tcase_add_test_raise_signal(tc, fault_outside_a_callback_still_kills, SIGSEGV);
   suite_add_tcase(su, tc);
   tc = tcase_create("oscillation");
   tcase_add_checked_fixture(tc, setup, teardown);

@@ -4,7 +4,10 @@
  * so a constructor that crashes, hangs or calls exit() costs a refusal, not
  * the command.  Every other failure -- a file that is not a shared object, a
  * missing entry symbol, another ABI version, an init that fails -- is caught
- * here too, reported with the file and the reason, and the handle closed. */
+ * here too, reported with the file and the reason, and the handle closed;
+ * a *.so that is no regular file (a FIFO, a directory, a link that loops)
+ * is refused as the scan finds it.  A callback that crashes later costs the
+ * plugin, not the command: the crash guard (plugin.h) catches the signal. */
 #include "plugin.h"
 #include "words.h"   /* the dialect's G/M table: which functions are a plugin's */
 #include <dirent.h>
@@ -13,11 +16,14 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <poll.h>
+#include <setjmp.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -317,6 +323,368 @@ int plug_probe(const char *path, char *why, size_t n)
   return probe(path, why, n, NULL);
 }
 
+/* ---- the crash guard (plugin.h) ---- */
+
+#define GUARD_NSIG 5
+static const int guard_sigs[GUARD_NSIG] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
+/* What each signal went to before the guard's handler: where a signal that
+ * is not a plugin's goes on to. */
+static struct sigaction guard_prev[GUARD_NSIG];
+/* Sets that started a plugin (their `armed`): the handlers stay while > 0. */
+static int guard_sets;
+/* A guarded call in progress. */
+struct guard {
+  sigjmp_buf jb;
+  struct guard *outer;       /* the call this one runs inside (a plugin's
+                                move() runs the others' advance()), or NULL */
+  volatile sig_atomic_t sig; /* the signal that came back */
+};
+/* The innermost call running on this thread, and its alternate stack. */
+static _Thread_local struct guard *guard_top;
+static _Thread_local void *guard_stack;
+static _Thread_local size_t guard_stack_size;
+static _Thread_local int guard_stack_checked;
+
+static void guard_handler(int sig, siginfo_t *si, void *uc);
+
+static int guard_index(int sig)
+{
+  for (int k = 0; k < GUARD_NSIG; k++)
+    if (guard_sigs[k] == sig)
+      return k;
+  return -1;
+}
+
+static int guard_ours(const struct sigaction *sa)
+{
+  return (sa->sa_flags & SA_SIGINFO) && sa->sa_sigaction == guard_handler;
+}
+
+/* A signal that is no plugin's goes where it went before the handler was
+ * put in: to that handler, called as the kernel would have called it, or
+ * to the default action (or none), as if the guard had never been there. */
+static void guard_chain(int sig, siginfo_t *si, void *uc)
+{
+  int k = guard_index(sig);
+  struct sigaction p;
+  if (k < 0 || guard_ours(&guard_prev[k])) {
+    memset(&p, 0, sizeof p);
+    p.sa_handler = SIG_DFL;
+  } else {
+    p = guard_prev[k];
+  }
+  if ((p.sa_flags & SA_SIGINFO) && p.sa_sigaction) {
+    p.sa_sigaction(sig, si, uc);
+    return;
+  }
+  if (!(p.sa_flags & SA_SIGINFO) && p.sa_handler != SIG_DFL && p.sa_handler != SIG_IGN) {
+    p.sa_handler(sig);
+    return;
+  }
+  sigemptyset(&p.sa_mask);
+  sigaction(sig, &p, NULL);
+  if (si->si_code <= 0)
+    raise(sig);   /* sent (kill, abort): again, to that disposition, once this returns */
+  /* a fault: the instruction faults again on return */
+}
+
+static void guard_handler(int sig, siginfo_t *si, void *uc)
+{
+  struct guard *g = guard_top;
+  /* a fault of this thread's, or a signal it sent itself (abort()); not
+   * one from elsewhere (kill -SEGV) */
+  if (g && (si->si_code > 0 || si->si_pid == getpid())) {
+    g->sig = sig;
+    siglongjmp(g->jb, 1);
+  }
+  guard_chain(sig, si, uc);
+}
+
+static void guard_action(struct sigaction *sa)
+{
+  memset(sa, 0, sizeof *sa);
+  sa->sa_sigaction = guard_handler;
+  sa->sa_flags = SA_SIGINFO | SA_ONSTACK;
+  sigemptyset(&sa->sa_mask);
+}
+
+/* This thread's alternate signal stack: one it has (ASan's) or one of the
+ * guard's, made once, for a handler to run on when the stack overflowed. */
+static void guard_altstack(void)
+{
+  if (guard_stack_checked)
+    return;
+  guard_stack_checked = 1;
+  stack_t ss;
+  if (sigaltstack(NULL, &ss) == 0 && !(ss.ss_flags & SS_DISABLE))
+    return;
+  size_t n = 64 * 1024;
+#ifdef _SC_SIGSTKSZ
+  long m = sysconf(_SC_SIGSTKSZ);
+  if (m > 0 && (size_t)m * 4 > n)
+    n = (size_t)m * 4;
+#endif
+  void *p = mmap(NULL, n, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED)
+    return;   /* no alternate stack: everything but an overflow is still caught */
+  ss.ss_sp = p;
+  ss.ss_size = n;
+  ss.ss_flags = 0;
+  if (sigaltstack(&ss, NULL) != 0) {
+    munmap(p, n);
+    return;
+  }
+  guard_stack = p;
+  guard_stack_size = n;
+}
+
+/* The alternate stack back as it was, when no set holds the handlers. */
+static void guard_altstack_free(void)
+{
+  if (!guard_stack || guard_sets || guard_top)
+    return;
+  stack_t ss, off = {.ss_flags = SS_DISABLE};
+  if (sigaltstack(NULL, &ss) == 0 && ss.ss_sp == guard_stack && !(ss.ss_flags & SS_ONSTACK) &&
+      sigaltstack(&off, NULL) == 0)
+    munmap(guard_stack, guard_stack_size);
+  guard_stack = NULL;
+  guard_stack_checked = 0;
+}
+
+/* A set started a plugin: the handlers in, kept until guard_release. */
+static void guard_hold(struct plug_set *ps)
+{
+  if (ps->armed)
+    return;
+  ps->armed = 1;
+  guard_altstack();   /* this thread's, where the set's plugins run */
+  if (guard_sets++)
+    return;
+  struct sigaction sa, cur;
+  guard_action(&sa);
+  for (int k = 0; k < GUARD_NSIG; k++)
+    if (sigaction(guard_sigs[k], NULL, &cur) == 0 && !guard_ours(&cur)) {
+      guard_prev[k] = cur;
+      sigaction(guard_sigs[k], &sa, NULL);
+    }
+}
+
+/* plug_free: the handlers out when no set holds them, unless another has
+ * replaced them since (then it decides; the guard's, should it come back,
+ * still goes on to what was before it). */
+static void guard_release(struct plug_set *ps)
+{
+  if (!ps->armed)
+    return;
+  ps->armed = 0;
+  if (--guard_sets)
+    return;
+  struct sigaction cur;
+  for (int k = 0; k < GUARD_NSIG; k++)
+    if (sigaction(guard_sigs[k], NULL, &cur) == 0 && guard_ours(&cur))
+      sigaction(guard_sigs[k], &guard_prev[k], NULL);
+}
+
+/* The call, with the jump back: 0 when it returned, or the signal.
+ * Nothing of this frame changes between sigsetjmp and the call's end but
+ * g.sig, which is volatile: what the jump back finds is what was there. */
+static int guard_call(void (*call)(void *), void *ctx)
+{
+  struct guard g;
+  g.sig = 0;
+  g.outer = guard_top;
+  guard_top = &g;
+  if (sigsetjmp(g.jb, 0) == 0) {
+    call(ctx);
+    guard_top = g.outer;
+    return 0;
+  }
+  guard_top = g.outer;
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, g.sig);
+  pthread_sigmask(SIG_UNBLOCK, &set, NULL);   /* the jump left the handler with it blocked */
+  return g.sig;
+}
+
+/* The same with the handlers in for this call alone (no set holds them),
+ * and what was there put back after. */
+static __attribute__((noinline)) int guard_call_brief(void (*call)(void *), void *ctx)
+{
+  struct sigaction sa, was[GUARD_NSIG];
+  unsigned mine = 0;
+  guard_altstack();
+  guard_action(&sa);
+  for (int k = 0; k < GUARD_NSIG; k++)
+    if (sigaction(guard_sigs[k], NULL, &was[k]) == 0 && !guard_ours(&was[k])) {
+      guard_prev[k] = was[k];
+      if (sigaction(guard_sigs[k], &sa, NULL) == 0)
+        mine |= 1u << k;
+    }
+  int sig = guard_call(call, ctx);
+  for (int k = 0; k < GUARD_NSIG; k++)
+    if (mine & (1u << k))
+      sigaction(guard_sigs[k], &was[k], NULL);
+  return sig;
+}
+
+static __attribute__((noinline, cold)) void guard_crashed(struct plug_set *ps, int i, const char *what, int sig)
+{
+  struct plug *p = &ps->v[i];
+  p->state = PLUG_CRASHED;
+  snprintf(p->err, sizeof p->err, "the %s plugin crashed%s in %s(): it is not called again", p->d->name,
+           signame(sig), what);
+  ps->crashes++;
+  ps->crashed = i;
+}
+
+/* The one place a plugin's code is called from. */
+int plug_guarded(struct plug_set *ps, int i, const char *what, void (*call)(void *), void *ctx)
+{
+  if (ps && i >= 0 && ps->v[i].state == PLUG_CRASHED)
+    return -1;
+  int sig = ps && ps->armed ? guard_call(call, ctx) : guard_call_brief(call, ctx);
+  if (sig && ps && i >= 0)
+    guard_crashed(ps, i, what, sig);
+  return sig;
+}
+
+/* The callbacks through plug_guarded: their arguments and value. */
+struct call {
+  const struct plug *p;
+  struct s42_block *b;
+  int (*cb)(void *, struct s42_block *);
+  int what, r;
+  double x;
+  double *d;
+  void *buf;
+  const void *in;
+  size_t n, z;
+};
+
+static void call_block(void *c_)
+{
+  struct call *c = c_;
+  c->r = c->cb(c->p->self, c->b);
+}
+
+int plug_call(struct plug_set *ps, int i, const char *what, int (*cb)(void *, struct s42_block *),
+              struct s42_block *b)
+{
+  struct call c = {.p = &ps->v[i], .b = b, .cb = cb, .r = S42_FAIL};
+  plug_guarded(ps, i, what, call_block, &c);
+  return c.r;
+}
+
+static void call_advance(void *c_)
+{
+  struct call *c = c_;
+  c->p->d->advance(c->p->self, c->b, c->x);
+}
+
+void plug_call_advance(struct plug_set *ps, int i, struct s42_block *b, double dt)
+{
+  struct call c = {.p = &ps->v[i], .b = b, .x = dt};
+  plug_guarded(ps, i, "advance", call_advance, &c);
+}
+
+static void call_path(void *c_)
+{
+  struct call *c = c_;
+  c->r = c->p->d->path(c->p->self, c->b, c->x, c->d);
+}
+
+int plug_call_path(struct plug_set *ps, int i, struct s42_block *b, double t, double d[4])
+{
+  struct call c = {.p = &ps->v[i], .b = b, .x = t, .d = d, .r = S42_FAIL};
+  plug_guarded(ps, i, "path", call_path, &c);
+  return c.r;
+}
+
+static void call_save(void *c_)
+{
+  struct call *c = c_;
+  c->z = c->p->d->save(c->p->self, c->buf, c->n);
+}
+
+size_t plug_call_save(struct plug_set *ps, int i, void *buf, size_t cap)
+{
+  struct call c = {.p = &ps->v[i], .buf = buf, .n = cap};
+  plug_guarded(ps, i, "save", call_save, &c);
+  return c.z;
+}
+
+static void call_load(void *c_)
+{
+  struct call *c = c_;
+  c->r = c->p->d->load(c->p->self, c->in, c->n);
+}
+
+int plug_call_load(struct plug_set *ps, int i, const void *buf, size_t len)
+{
+  struct call c = {.p = &ps->v[i], .in = buf, .n = len, .r = S42_FAIL};
+  plug_guarded(ps, i, "load", call_load, &c);
+  return c.r;
+}
+
+static void call_describe(void *c_)
+{
+  struct call *c = c_;
+  c->z = c->p->d->describe(c->p->self, c->what, c->buf, c->n);
+}
+
+size_t plug_call_describe(struct plug_set *ps, int i, int what, char *buf, size_t cap)
+{
+  struct call c = {.p = &ps->v[i], .what = what, .buf = buf, .n = cap};
+  plug_guarded(ps, i, "describe", call_describe, &c);
+  return c.z;
+}
+
+static void call_reset(void *c_)
+{
+  struct call *c = c_;
+  c->p->d->reset(c->p->self);
+}
+
+void plug_call_reset(struct plug_set *ps, int i)
+{
+  struct call c = {.p = &ps->v[i]};
+  plug_guarded(ps, i, "reset", call_reset, &c);
+}
+
+static void call_fini(void *c_)
+{
+  struct call *c = c_;
+  c->p->d->fini(c->p->self);
+}
+
+/* init(host, dir, &self) */
+struct call_init {
+  const struct s42_plugin *d;
+  const struct s42_host *host;
+  const char *dir;
+  void **self;
+  int r;
+};
+
+static void call_init(void *c_)
+{
+  struct call_init *c = c_;
+  c->r = c->d->init(c->host, c->dir, c->self);
+}
+
+/* the entry function of a file not yet a plugin */
+struct call_entry {
+  s42_plugin_entry_fn entry;
+  const struct s42_plugin *d;
+};
+
+static void call_entry(void *c_)
+{
+  struct call_entry *c = c_;
+  c->d = c->entry();
+}
+
 static const struct s42_plugin *read_descriptor(void *h, int phase, char *why, size_t n)
 {
   char ver[96];
@@ -327,11 +695,20 @@ static const struct s42_plugin *read_descriptor(void *h, int phase, char *why, s
     snprintf(why, n, "has no entry symbol %s()", S42_PLUGIN_ENTRY_NAME);
     return NULL;
   }
-  if (phase >= 0)
+  const struct s42_plugin *d;
+  if (phase >= 0) {   /* the probe's child: a crash ends it, and the parent says so */
     send_all(phase, "E", 1);
-  const struct s42_plugin *d = entry();
-  if (phase >= 0)
+    d = entry();
     send_all(phase, "C", 1);
+  } else {
+    struct call_entry c = {.entry = entry};
+    int sig = plug_guarded(NULL, -1, S42_PLUGIN_ENTRY_NAME, call_entry, &c);
+    if (sig > 0) {
+      snprintf(why, n, "cannot be used: its entry function crashed: signal %d%s", sig, signame(sig));
+      return NULL;
+    }
+    d = c.d;
+  }
   /* the version, before anything else of the descriptor is trusted */
   if (!d || d->size < offsetof(struct s42_plugin, name) + sizeof d->name ||
       d->fingerprint != S42_ABI_FINGERPRINT) {
@@ -435,6 +812,48 @@ static void add_file(struct plug_set *ps, size_t dir, const char *path)
   ps->nfiles++;
 }
 
+/* What a *.so that is no regular file is, for its refusal. */
+static const char *not_a_file(mode_t mode)
+{
+  if (S_ISDIR(mode))
+    return "is a directory";
+  if (S_ISFIFO(mode))
+    return "is a FIFO, not a plugin file";
+  if (S_ISSOCK(mode))
+    return "is a socket, not a plugin file";
+  if (S_ISCHR(mode))
+    return "is a character device, not a plugin file";
+  if (S_ISBLK(mode))
+    return "is a block device, not a plugin file";
+  return "is not a regular file";
+}
+
+/* A *.so of a plugin directory: a candidate to open when it is needed (a
+ * regular file, or a symbolic link to one), or refused now with what it
+ * is, so that `s42 plugins` and E-FUNC's notes say why it is not used.
+ * Only stat() looks at it: a FIFO is never opened (that would wait for a
+ * writer). */
+static void consider(struct plug_set *ps, size_t dir, const char *path)
+{
+  struct stat st;
+  if (stat(path, &st) == 0) {
+    if (S_ISREG(st.st_mode))
+      add_file(ps, dir, path);
+    else
+      refuse(ps, path, NULL, "%s", not_a_file(st.st_mode));
+    return;
+  }
+  int e = errno;
+  char to[PATH_MAX];
+  ssize_t k;
+  if (e == ELOOP)
+    refuse(ps, path, NULL, "is a symbolic link that loops");
+  else if (e == ENOENT && (k = readlink(path, to, sizeof to - 1)) >= 0)
+    refuse(ps, path, NULL, "is a symbolic link to %.*s, which does not exist", (int)k, to);
+  else if (e != ENOENT)   /* (ENOENT: removed since the directory was read) */
+    refuse(ps, path, NULL, "cannot be examined: %s", strerror(e));
+}
+
 static void scan_dir(struct plug_set *ps, size_t dir)
 {
   DIR *dp = opendir(ps->dirs[dir]);
@@ -458,10 +877,8 @@ static void scan_dir(struct plug_set *ps, size_t dir)
   qsort(names, n, sizeof *names, by_name);   /* the same order on every machine */
   for (size_t i = 0; i < n; i++) {
     char path[PATH_MAX];
-    struct stat st;
-    if ((size_t)snprintf(path, sizeof path, "%s/%s", ps->dirs[dir], names[i]) < sizeof path &&
-        stat(path, &st) == 0 && S_ISREG(st.st_mode))
-      add_file(ps, dir, path);
+    if ((size_t)snprintf(path, sizeof path, "%s/%s", ps->dirs[dir], names[i]) < sizeof path)
+      consider(ps, dir, path);
     free(names[i]);
   }
   free(names);
@@ -521,11 +938,16 @@ void plug_scan(struct plug_set *ps, const char *opt_dir)
 
 void plug_free(struct plug_set *ps)
 {
+  /* the handlers out first: whatever replaced them meanwhile (the
+   * terminal's, put back as the terminal closed) is what each fini()
+   * finds, and the guard then puts its own in for that call alone */
+  guard_release(ps);
   for (size_t i = ps->n; i-- > 0;) {
     struct plug *p = &ps->v[i];
     if (p->state == PLUG_READY && p->d->fini)
-      p->d->fini(p->self);
-    dlclose(p->handle);
+      plug_guarded(ps, (int)i, "fini", call_fini, &(struct call){.p = p});
+    if (p->state != PLUG_CRASHED)   /* a crashed plugin's destructors are its code too: never run */
+      dlclose(p->handle);
     free(p->path);
     free(p->dir);
   }
@@ -545,6 +967,7 @@ void plug_free(struct plug_set *ps)
   free(ps->files);
   release_thunk(ps);
   memset(ps, 0, sizeof *ps);
+  guard_altstack_free();
 }
 
 /* ---- looking functions up ---- */
@@ -723,18 +1146,23 @@ int plug_use(struct plug_set *ps, int i, const struct s42_host *host)
   struct plug *p = &ps->v[i];
   if (p->state == PLUG_READY)
     return 0;
-  if (p->state == PLUG_FAILED)
+  if (p->state == PLUG_FAILED || p->state == PLUG_CRASHED)
     return -1;
   set_host(ps, host);
+  guard_hold(ps);
   void *self = NULL;
   p->reason[0] = 0;
   struct plug *was = starting;
   struct plug_set *was_set = starting_set;
   starting = p;
   starting_set = ps;
-  int r = p->d->init(&ps->host, p->dir, &self);
+  struct call_init c = {.d = p->d, .host = &ps->host, .dir = p->dir, .self = &self, .r = S42_FAIL};
+  plug_guarded(ps, i, "init", call_init, &c);
+  int r = c.r;
   starting = was;
   starting_set = was_set;
+  if (p->state == PLUG_CRASHED)
+    return -1;   /* err says how */
   if (r != S42_OK) {
     p->usage = r == S42_FAIL_USAGE;
     char why[sizeof p->reason];

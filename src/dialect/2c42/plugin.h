@@ -12,7 +12,9 @@
 
 #define PLUG_MAX 32          /* plugins a session can use (a bit mask) */
 
-enum plug_state { PLUG_FOUND, PLUG_READY, PLUG_FAILED };
+/* PLUG_CRASHED: a callback died of a signal (the crash guard, below); the
+ * plugin is never called again in this process. */
+enum plug_state { PLUG_FOUND, PLUG_READY, PLUG_FAILED, PLUG_CRASHED };
 
 struct plug {
   char *path;                /* the shared object */
@@ -21,7 +23,7 @@ struct plug {
   const struct s42_plugin *d;
   int state;                 /* enum plug_state */
   void *self;
-  char err[300];             /* why init failed */
+  char err[300];             /* why init failed, or how it crashed */
   char reason[240];          /* the plugin's own words for it (1.1), or "" */
   int usage;                 /* init said S42_FAIL_USAGE: the command line's fault */
 };
@@ -68,13 +70,19 @@ struct plug_set {
   struct s42_host host;      /* what its plugins' init() get: the caller's
                                 table, with option() answering for this set */
   int thunk;                 /* which option() answers for it, + 1; 0 none yet */
+  int armed;                 /* a plugin of it started: the guard's handlers
+                                stay in place until plug_free */
+  unsigned crashes;          /* callbacks that crashed (the guard) */
+  int crashed;               /* the plugin the last one was of */
 };
 
 /* List the plugin files of `opt_dir` (--plugins, may be NULL), then
  * S42_PLUGIN_PATH (':'-separated), then <exe>/../lib/s42/plugins, the build
  * tree beside the executable and the compiled-in directory.  Opens nothing.
  * Of two files whose plugins have the same name, the one found earlier
- * wins.  Never fails: what cannot be loaded later lands in ps->bad. */
+ * wins.  Never fails: a *.so that is no regular file or link to one (a
+ * FIFO, a directory, a link that loops or leads nowhere) lands in ps->bad
+ * now, what cannot be loaded later. */
 void plug_scan(struct plug_set *ps, const char *opt_dir);
 void plug_free(struct plug_set *ps);
 
@@ -135,5 +143,48 @@ void plug_list(struct plug_set *ps, FILE *f);
  * PLUG_PROBE_SECONDS. */
 #define PLUG_PROBE_SECONDS 5
 int plug_probe(const char *path, char *why, size_t n);
+
+/* ---- the crash guard ----
+ * Every call into a plugin's code is made through plug_guarded(), in a
+ * frame of its own: the plug_call_* below wrap each callback for the
+ * session, one line a call site,
+ *
+ *     int r = plug_call(ps, i, "run", pl->d->run, &s->blk);
+ *
+ * SIGSEGV, SIGBUS, SIGFPE, SIGILL or SIGABRT raised on this thread while
+ * the call runs -- a fault, or a signal the thread sent itself (abort()) --
+ * comes back there: plugin i of ps is PLUG_CRASHED with its err saying so
+ * ("the helix plugin crashed (SIGSEGV) in run(): it is not called again"),
+ * ps->crashes counts it, ps->crashed names it, and the call's value is
+ * that of a failure (S42_FAIL, 0 bytes).  A crashed plugin is never called
+ * again: a plug_call_* of it fails at once, plug_use refuses it, plug_free
+ * neither calls its fini nor closes it (a destructor is its code too).  A
+ * crash in a host service the plugin called counts as the plugin's; a
+ * signal outside the call, or on another thread, goes where it went before
+ * (the default action, the terminal's handler, ASan's).  The handlers run
+ * on an alternate signal stack, so a plugin that overflows the stack is
+ * caught too.  What this guarantees and what it does not: README.md,
+ * "Writing a plugin".
+ *
+ * The handlers go in when a plugin of a set first starts (plug_use) and
+ * stay until plug_free, so that a call costs no system call; a call before
+ * that (a file's entry function, read when a program's compile opens the
+ * file) puts them in for itself alone, and then puts back what was there. */
+
+/* call(ctx), guarded, as a call of plugin i of ps (ps NULL, i -1: of no
+ * plugin yet, a file's entry function).  0 when it returned; the signal
+ * when it crashed; -1 when plugin i crashed before (nothing is called). */
+int plug_guarded(struct plug_set *ps, int i, const char *what, void (*call)(void *), void *ctx);
+
+/* The callbacks, guarded: what the callback returned, or S42_FAIL (0 for
+ * save and describe; advance and reset nothing) when it crashed or had. */
+int plug_call(struct plug_set *ps, int i, const char *what, int (*cb)(void *, struct s42_block *),
+              struct s42_block *b);   /* check, start, run, finish */
+void plug_call_advance(struct plug_set *ps, int i, struct s42_block *b, double dt);
+int plug_call_path(struct plug_set *ps, int i, struct s42_block *b, double t, double d[4]);
+size_t plug_call_save(struct plug_set *ps, int i, void *buf, size_t cap);
+int plug_call_load(struct plug_set *ps, int i, const void *buf, size_t len);
+size_t plug_call_describe(struct plug_set *ps, int i, int what, char *buf, size_t cap);
+void plug_call_reset(struct plug_set *ps, int i);
 
 #endif

@@ -121,12 +121,11 @@ static int teach_start(struct session *s, const struct kp_attr *at)
   int mp = sess_motion_plugin(s);
   if (mp >= 0 && s->plugins->v[mp].state == PLUG_READY && s->plugins->v[mp].d->path) {
     /* a plugin's curve (a helix): follow its path, measured along it */
-    const struct plug *pl = &s->plugins->v[mp];
     double prev[4] = {0, 0, 0, 0}, pt[4];
     s->blk.plug = mp;
     s->perr = 0;
     for (int k = 1; k <= 4096; k++) {
-      if (pl->d->path(pl->self, &s->blk, k / 4096.0, pt) != S42_OK)
+      if (plug_call_path(s->plugins, mp, &s->blk, k / 4096.0, pt) != S42_OK)
         return sess_plug_status(s, mp, S42_FAIL, "path");
       s->teach.len += sqrt((pt[0] - prev[0]) * (pt[0] - prev[0]) + (pt[1] - prev[1]) * (pt[1] - prev[1]) +
                            (pt[2] - prev[2]) * (pt[2] - prev[2]) + (pt[3] - prev[3]) * (pt[3] - prev[3]));
@@ -174,13 +173,12 @@ static void teach_jog(struct session *s, int axis, int64_t d)
     return;
   } else if (s->teach.plug && s->teach.len > 0) {
     /* the jog is the path length along the plugin's curve */
-    const struct plug *pl = &s->plugins->v[s->teach.plug - 1];
     double inc = s->teach.inc[axis], from[4], to[4];
     int forward = inc == 0 || (d > 0) == (inc > 0);
     double u1 = s->teach.u + fabs((double)d) / s->teach.len * (forward ? 1 : -1);
     s->blk.plug = s->teach.plug - 1;
-    if (pl->d->path(pl->self, &s->blk, s->teach.u, from) != S42_OK ||
-        pl->d->path(pl->self, &s->blk, u1, to) != S42_OK)
+    if (plug_call_path(s->plugins, s->teach.plug - 1, &s->blk, s->teach.u, from) != S42_OK ||
+        plug_call_path(s->plugins, s->teach.plug - 1, &s->blk, u1, to) != S42_OK)
       return;
     s->teach.u = u1;
     for (int a = 0; a < 4; a++)

@@ -38,6 +38,7 @@ void sess_configure(struct session *s, const struct sess_config *c)
   s->vm.max_blocks = c->max_blocks;
   s->m.travel = c->travel;
   s->plugins = c->plugins;
+  s->crashes = c->plugins ? c->plugins->crashes : 0;
   s->sink = c->sink;
   s->vm.yield_all = c->yield_all;
   s->vm.start_all = c->start_all || s->single || s->brk;
@@ -484,9 +485,26 @@ int sess_motion_plugin(const struct session *s)
   return -1;
 }
 
+/* A plugin crashed since the session last looked (plugin.h, the crash
+ * guard) -- in this callback, in one a host service of it ran (another's
+ * advance() in its move()), or in one whose value says nothing (advance,
+ * describe, reset): the block fails with its E-PLUGIN.  0, or SE_ERROR
+ * with the VM failed. */
+static int plug_crashed(struct session *s)
+{
+  const struct plug_set *ps = s->plugins;
+  if (!ps || ps->crashes == s->crashes)
+    return 0;
+  s->crashes = ps->crashes;
+  vm_fail(&s->vm, S42_E_PLUGIN, "%s", ps->v[ps->crashed].err);
+  return SE_ERROR;
+}
+
 /* A callback's status: 0 to go on, or SE_ERROR with the VM failed. */
 int sess_plug_status(struct session *s, int i, int r, const char *phase)
 {
+  if (plug_crashed(s))
+    return SE_ERROR;
   if (r == S42_OK || (r > 0 && strcmp(phase, "run") == 0))
     return 0;
   if (r > 0) {
@@ -505,6 +523,8 @@ int sess_plug_status(struct session *s, int i, int r, const char *phase)
 int sess_plug_phase(struct session *s, uint32_t mask, int which)
 {
   static const char *const names[] = {"check", "start", "finish"};
+  if (plug_crashed(s))   /* in reset() as the plugin started, advance() in a run-down */
+    return SE_ERROR;
   EACH_PLUGIN(mask, i) {
     struct plug *pl = &s->plugins->v[i];
     if (pl->state != PLUG_READY)
@@ -515,7 +535,7 @@ int sess_plug_phase(struct session *s, uint32_t mask, int which)
       continue;
     s->blk.plug = i;
     s->perr = 0;
-    int e = sess_plug_status(s, i, cb(pl->self, &s->blk), names[which]);
+    int e = sess_plug_status(s, i, plug_call(s->plugins, i, names[which], cb, &s->blk), names[which]);
     if (e)
       return e;
   }
@@ -529,7 +549,7 @@ static void mark_started(struct session *s, int i)
     return;
   struct plug *pl = &s->plugins->v[i];
   if (pl->d->reset)
-    pl->d->reset(pl->self);
+    plug_call_reset(s->plugins, i);
   s->started |= 1u << i;
   if (s->plugins->v[i].d->flags & S42_PL_EVERY_BLOCK)
     s->every |= 1u << i;
@@ -564,7 +584,9 @@ int sess_plugin_state(const struct session *s, int k, char *name, size_t nname, 
     struct plug *pl = &s->plugins->v[i];
     if (pl->state != PLUG_READY || !pl->d->save)
       return 2;
-    *len = pl->d->save(pl->self, buf, cap);
+    *len = plug_call_save(s->plugins, i, buf, cap);
+    if (pl->state == PLUG_CRASHED)
+      return -2;
     if (*len > cap)
       return -1;
     snprintf(name, nname, "%s", pl->d->name);
@@ -586,8 +608,11 @@ int sess_plugin_restore(struct session *s, const char *name, const void *buf, si
     return -1;
   }
   mark_started(s, i);
-  if (!pl->d->load || pl->d->load(pl->self, buf, len) != S42_OK) {
-    snprintf(err, n, "the %s plugin cannot take back its saved state", name);
+  if (!pl->d->load || plug_call_load(s->plugins, i, buf, len) != S42_OK) {
+    if (pl->state == PLUG_CRASHED)
+      snprintf(err, n, "%s", pl->err);
+    else
+      snprintf(err, n, "the %s plugin cannot take back its saved state", name);
     return -1;
   }
   return 0;
@@ -602,7 +627,7 @@ static void tick(void *ctx, double dt)
     struct plug *pl = &s->plugins->v[i];
     if (pl->state == PLUG_READY && pl->d->advance) {
       s->blk.plug = i;
-      pl->d->advance(pl->self, &s->blk, dt);
+      plug_call_advance(s->plugins, i, &s->blk, dt);
     }
   }
 }
@@ -623,7 +648,7 @@ void sess_plugin_json(const struct session *s, int what, char *buf, size_t n)
     if (pl->state != PLUG_READY || !pl->d->describe || !pl->d->trace_key)
       continue;
     char v[200];
-    size_t len = pl->d->describe(pl->self, what, v, sizeof v);
+    size_t len = plug_call_describe(s->plugins, i, what, v, sizeof v);
     if (len == 0 || len >= sizeof v)
       continue;
     v[len] = 0;
@@ -649,8 +674,10 @@ int sess_run_plugins(struct session *s)
       continue;   /* under M19 the operator's jogs make the move */
     s->blk.plug = i;
     s->perr = 0;
-    int r = pl->d->run(pl->self, &s->blk);
+    int r = plug_call(s->plugins, i, "run", pl->d->run, &s->blk);
     if (r == S42_WAIT_PUSK || r == S42_WAIT_PS || r == S42_WAIT_SECTION) {
+      if (plug_crashed(s))
+        return SE_ERROR;
       s->run_next = i;
       s->plug_wait = 1;
       s->wait = r == S42_WAIT_PUSK ? W_PUSK : r == S42_WAIT_PS ? W_PS : W_SECTION;
@@ -688,6 +715,8 @@ enum sess_ev sess_run(struct session *s)
     sess_refuse(s, S42_E_SUB, "this program's dialect has no runtime on the session");
     return SE_ERROR;
   }
+  if (plug_crashed(s))   /* since the host last ran it: a key's work, a jog's path */
+    return (enum sess_ev)(s->state = SE_ERROR);
   if (s->gate) {         /* a block starts: after the host's actions there (`at N5 mode single`) */
     s->gate = 0;
     int wait = !s->go && (s->single || (s->brk && sess_block_number(s) == s->brk));
@@ -708,6 +737,8 @@ enum sess_ev sess_run(struct session *s)
       return (enum sess_ev)(s->state = SE_START);
     case VM_EV_BLOCK:
       r = s->rt->block(s);
+      if (r != SE_ERROR && plug_crashed(s))   /* in advance() of a move, describe() of the row */
+        r = SE_ERROR;
       if (r >= 0)
         return (enum sess_ev)(s->state = r);
       break;
@@ -859,7 +890,9 @@ int sess_start_plugins(struct session *s, char *msg, size_t n, size_t *block)
     done |= mask;
     EACH_PLUGIN(mask, i) {
       struct plug *pl = &s->plugins->v[i];
-      if (plug_use(s->plugins, i, &host) == 0 || !pl->usage)
+      int up = plug_use(s->plugins, i, &host);
+      s->crashes = s->plugins->crashes;   /* an init() that crashed is told at the plugin's block */
+      if (up == 0 || !pl->usage)
         continue;
       snprintf(msg, n, "%s", pl->reason[0] ? pl->reason : pl->err);
       *block = b;

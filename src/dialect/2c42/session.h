@@ -103,6 +103,7 @@ struct session {
   struct plug_set *plugins;
   uint32_t every;        /* started plugins that see every block */
   uint32_t started;      /* plugins this run has started (reset done) */
+  unsigned crashes;      /* plugins->crashes when the session last looked */
   struct s42_block blk;
   int plug_wait;         /* a plugin's run() waits for the operator */
   int run_next;          /* the plugin whose run() goes on after the wait */
@@ -212,7 +213,8 @@ void sess_load_params(struct session *s, unsigned r0, unsigned n, const double *
 void sess_plugin_json(const struct session *s, int what, char *buf, size_t n);
 /* The M15 state of the k-th started plugin that keeps one: 0 with its name
  * and bytes, 2 when that plugin keeps none, 1 when there is no k-th plugin,
- * -1 when it does not fit in cap. */
+ * -1 when it does not fit in cap, -2 when its save() crashed (the set's
+ * plugins->v[plugins->crashed].err says how). */
 int sess_plugin_state(const struct session *s, int k, char *name, size_t nname, void *buf, size_t cap,
                       size_t *len);
 /* Give a restarted run a plugin's saved state (starting the plugin). */

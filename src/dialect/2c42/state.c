@@ -93,6 +93,11 @@ int state_save(const struct session *s, const char *path, uint64_t prog_hash, ch
               : 1;
     if (r == 1)
       break;
+    if (r == -2) {   /* its save() crashed: no state, rather than one without it */
+      snprintf(err, n, "%s", s->plugins->v[s->plugins->crashed].err);
+      free(pl);
+      return -1;
+    }
     if (r < 0 || pl->nplug == STATE_PLUGS) {
       snprintf(err, n, "a plugin's restart state is too large");
       free(pl);
