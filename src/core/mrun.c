@@ -328,13 +328,15 @@ enum mrun_ev mrun_run(struct mrun *r)
       if (!was_start) {
         if (r->rt->start)
           r->rt->start(r);
-        if (r->cfg.state_path && r->rt->restart_point && r->rt->restart_point(r, b) && save_point(r))
+        int point = r->cfg.state_path && r->rt->restart_point && r->rt->restart_point(r, b);
+        r->at_start = 1;   /* the VM stands at this block's start (a snapshot is taken here) */
+        if (point && save_point(r)) {
+          r->at_start = 0;
           continue;   /* the VM ended with E-STATE */
-        if (r->cfg.starts || (r->cfg.watch && r->cfg.watch[b]) ||
-            (r->cfg.state_path && r->rt->restart_point && r->rt->restart_point(r, b))) {
-          r->at_start = 1;   /* the host acts at this block's start; the next call goes on from here */
-          return (enum mrun_ev)(r->state = MR_START);
         }
+        if (r->cfg.starts || (r->cfg.watch && r->cfg.watch[b]) || point)
+          return (enum mrun_ev)(r->state = MR_START);   /* the host acts here; the next call goes on */
+        r->at_start = 0;
       }
       if (r->skip && r->rt->skippable && r->rt->skippable(r, b) && vm_skip(&r->vm) == 0)
         continue;
@@ -468,6 +470,21 @@ int mrun_input(struct mrun *r, const struct mrun_input *in, char *why, size_t n)
   if (e > 0 && r->state == MR_WAIT)
     r->resume = 1;
   return e < 0 ? -1 : 0;
+}
+
+int mrun_set_param(struct mrun *r, int k, double v, char *why, size_t n)
+{
+  if (r->state != MR_WAIT && r->state != MR_START && !(r->state == MR_ROW && !r->in_block))
+    return refuse(why, n, "the cycle is over");
+  if (!r->rt->set_param)
+    return refuse(why, n, "the %s has no parameters the panel sets", r->rt->machine ? r->rt->machine : "machine");
+  return r->rt->set_param(r, k, v, why, n);
+}
+
+void mrun_load_params(struct mrun *r, unsigned r0, unsigned n, const double *v)
+{
+  if (r0 < VM_NREG && n <= VM_NREG - r0)
+    memcpy(&r->vm.reg[r0], v, n * sizeof *v);
 }
 
 const char *mrun_wait_text(const struct mrun *r, char *buf, size_t n)

@@ -113,6 +113,7 @@ struct mrun_view {
   double reg[MRUN_MAP_REGS];
   int bits;                /* discrete inputs 5 and 6: MRUN_BIT_* */
   double feed;             /* the last block's contour speed, mm/min */
+  int override_eff;        /* the feed override in effect, % (input register 5) */
 };
 enum { MRUN_BIT_SPINDLE = 1, MRUN_BIT_AUX = 2 };
 
@@ -125,6 +126,7 @@ enum { MRB_FAIL = -1, MRB_DONE = 0, MRB_STOP = 1, MRB_WAIT = 2 };
 struct mrun_rt {
   size_t size;
   const char *machine;     /* its machine's name, for messages ("ВЗ-208Ф3") */
+  int tool_table;          /* --tool is the machine's tool table (as --tools), not a plugin's model */
   /* every block comes back to the runtime (VM-alone runs list them all) */
   int every;
   /* a new cycle: the machine at power-on (r->st is zeroed first) */
@@ -178,7 +180,7 @@ struct mrun_rt {
    * fit), and back: restore checks every field against the program and
    * its range (0, or -1 with err naming the field: snapshot.h's checker;
    * `shown` names the file). */
-  size_t (*save)(const struct mrun *r, void *buf, size_t cap);
+  size_t (*save)(const struct mrun *r, void *buf, size_t cap, char *err, size_t n);
   int (*restore)(struct mrun *r, const void *buf, size_t len, const char *shown, char *err, size_t n);
   /* What core checks the VM part of a snapshot against: the word that
    * makes a restart point ("M15"; NULL: a restart goes on at any block
@@ -205,7 +207,8 @@ struct mrun_rt {
   /* the simulated time, seconds */
   double (*time)(const struct mrun *r);
   /* a file the machine reads (what: "tools", "machine"): 0, or -1 with
-   * "FILE:LINE:COL: message" in err */
+   * "FILE:LINE:COL: message" in err, -2 when it reads no such file (err:
+   * why, for "s42: PROGRAM: ...") */
   int (*load)(struct mrun *r, const char *what, const char *text, size_t len, const char *file, char *err,
               size_t nerr);
   /* The machine's pages, for a terminal and --screen: their names,
@@ -225,6 +228,9 @@ struct mrun_rt {
   void (*view)(const struct mrun *r, struct mrun_view *v);
   /* a message on the machine's own display (the run's error in its words) */
   void (*show)(struct mrun *r, const char *text);
+  /* the operator sets parameter k to v from the panel (between blocks or
+   * in a wait, journaled as the block's): 0, or -1 with why */
+  int (*set_param)(struct mrun *r, int k, double v, char *why, size_t n);
 };
 
 /* What the host gets back and how it set the run up. */
@@ -310,6 +316,16 @@ int mrun_resume(struct mrun *r);
  * time now: the runtime's override() (-1 refused, 0, 1 a wait ended, 2 the
  * move stands), the move's end moved by *shift seconds. */
 int mrun_override(struct mrun *r, int pct, double now, double *shift);
+
+/* The operator sets parameter k to v from the panel, between blocks or
+ * while the machine waits -- never within a block that runs: 0, or -1 with
+ * why (the cycle is over, not one of the machine's parameters, out of
+ * range).  A waiting block that fails afterwards takes it back. */
+int mrun_set_param(struct mrun *r, int k, double v, char *why, size_t n);
+/* A client (Modbus) writes R[r0 .. r0+n-1] while no block runs: stored as
+ * they are, for this cycle and the next.  The caller checked the range and
+ * the values against the view's nregs. */
+void mrun_load_params(struct mrun *r, unsigned r0, unsigned n, const double *v);
 
 /* For the runtime. */
 /* The block waits for the operator inside it: the runtime returns MRB_WAIT. */

@@ -107,7 +107,13 @@ int mrun_save(struct mrun *r, const char *path, char *err, size_t n)
   for (int i = 0; i < vm->depth; i++)
     v->frames[i] = vm->frames[i];
   memset(blob, 0, SNAP_BLOB_MAX);
-  size_t len = r->rt->save(r, blob, SNAP_BLOB_MAX);
+  err[0] = 0;
+  size_t len = r->rt->save(r, blob, SNAP_BLOB_MAX, err, n);
+  if (len == 0 && err[0]) {
+    free(v);
+    free(blob);
+    return -1;
+  }
   if (len > SNAP_BLOB_MAX) {
     snprintf(err, n, "the machine's restart state is too large");
     free(v);

@@ -1082,8 +1082,10 @@ static void plot_end(void *ctx, const struct mrun *r, int status, const char *co
 static int run_machine(const struct opts *o, struct program *p, struct diag_list *d, const char *src, size_t n,
                        struct lplot *lp)
 {
-  const char *no = o->modbus ? "--modbus" : o->tool && o->tools ? "--tool with --tools"
-                   : o->dump_images ? "--dump-images" : NULL;
+  const struct mrun_rt *rt = p->runtime;
+  int table = rt && rt->tool_table;
+  const char *no = o->modbus ? "--modbus" : table && o->tool && o->tools ? "--tool with --tools"
+                   : table && o->dump_images ? "--dump-images" : NULL;
   if (no) {
     fprintf(stderr, "s42: %s: %s is not there yet for the %s dialect (%s)\n", o->program, no,
             dialect_of(o->program)->name, dialect_of(o->program)->machine);
@@ -1093,7 +1095,7 @@ static int run_machine(const struct opts *o, struct program *p, struct diag_list
   memset(&r, 0, sizeof r);
   r.program = o->program;
   r.operator_file = o->operator_file;
-  r.tools = o->tools ? o->tools : o->tool;   /* a lathe's tool is its table (the runner's tool.txt) */
+  r.tools = o->tools ? o->tools : table ? o->tool : NULL;   /* a lathe's tool is its table (the runner's tool.txt) */
   r.machine = o->machine;
   r.state = o->state;
   r.trace = o->trace;

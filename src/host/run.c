@@ -258,14 +258,15 @@ static int load_side(struct host *h, const char *what, const char *path)
     fprintf(stderr, "s42: %s\n", err);
     return EXIT_IO;
   }
-  int rc = 0;
-  if (!h->r.rt->load || h->r.rt->load(&h->r, what, text, n, path, err, sizeof err)) {
-    if (h->r.rt->load)
-      fprintf(stderr, "%s\n", err);
-    else
-      fprintf(stderr, "s42: %s: this machine reads no %s file\n", path, what);
+  int rc = 0, e = h->r.rt->load ? h->r.rt->load(&h->r, what, text, n, path, err, sizeof err) : -2;
+  if (e == -2 && !h->r.rt->load)
+    snprintf(err, sizeof err, "the %s reads no %s file", h->r.rt->machine ? h->r.rt->machine : "machine", what);
+  if (e == -2)
+    fprintf(stderr, "s42: %s: %s\n", h->o->program, err);
+  else if (e)
+    fprintf(stderr, "%s\n", err);
+  if (e)
     rc = EXIT_USAGE;
-  }
   free(text);
   return rc;
 }

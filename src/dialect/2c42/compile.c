@@ -4,6 +4,7 @@
  * jump and call targets, running off a unit's end, reachability) is checked
  * at the end on a compact per-block summary, and targets are patched in. */
 #include "compile.h"
+#include "kprun.h"
 #include "geom.h"
 #include "kpmach.h"
 #include "errors.h"
@@ -1934,7 +1935,8 @@ int comp_program_with(const char *src, size_t n, struct diag_list *d, struct pro
   }
   p->ext = c.x;
   p->ext_free = ext_free;
-  p->runtime = &kp_runtime;   /* the session runs a 2С42 block through src/dialect/2c42/runtime.c */
+  p->runtime = &kp_mrun_runtime;   /* the runner runs a 2С42 block through src/dialect/2c42/kprun.c */
+  c.x->plugins = (struct plug_set *)plugins;   /* the set is the caller's; its runtime starts them */
   d->src = src;   /* the source lines under the diagnostics */
   d->nsrc = n;
   comp_setup(p);

@@ -44,6 +44,7 @@ _Static_assert(sizeof(struct kp_attr) == 32, "struct kp_attr: 32 bytes, no paddi
  * same kinds of block over and over), so kp_ext.a holds each once and a
  * block has only its index there -- 16 bits while there are at most 65,536
  * (ai16), 32 beyond (ai32, ai16 then NULL). */
+struct plug_set;
 struct kp_ext {
   struct kp_attr *a;   /* the different attributes */
   size_t n, cap;
@@ -61,6 +62,7 @@ struct kp_ext {
   int uses_tk;         /* TK or UG is read somewhere */
   unsigned tk_line, tk_col; int tk_number;   /* the first place */
   int has_m10;         /* some block measures TK and UG (G10/G11 M10) */
+  struct plug_set *plugins;   /* the plugin set it was compiled with (its runtime starts them) */
 };
 
 static inline const struct kp_attr *kp_attr(const struct program *p, size_t b)

@@ -27,7 +27,7 @@ void sess_init(struct session *s, const struct program *p)
   s->state = SE_START;
   s->blk.s = s;
   s->go = 1;             /* the cycle's start is its first block's Пуск */
-  s->rt = p->runtime;
+  s->rt = &kp_runtime;   /* the session's own (the program carries the runner's) */
 }
 
 void sess_configure(struct session *s, const struct sess_config *c)

@@ -421,8 +421,8 @@ static int load(struct mrun *r, const char *what, const char *text, size_t len, 
                 size_t nerr)
 {
   if (strcmp(what, "tools")) {
-    snprintf(err, nerr, "%s: the lathe reads no %s file", file, what);
-    return -1;
+    snprintf(err, nerr, "the lathe reads no %s file", what);
+    return -2;
   }
   return lathe_tools_parse(&state(r)->l, text, len, file, err, nerr);
 }
@@ -527,8 +527,10 @@ struct u22_blob {
   double t, s;
 };
 
-static size_t save(const struct mrun *r, void *buf, size_t cap)
+static size_t save(const struct mrun *r, void *buf, size_t cap, char *err, size_t n)
 {
+  (void)err;
+  (void)n;
   const struct u22_state *s = state(r);
   const struct lathe *l = &s->l;
   struct u22_blob b;
@@ -670,6 +672,7 @@ static void view(const struct mrun *r, struct mrun_view *v)
 
 const struct mrun_rt u22_runtime = {
   .machine = "16Б16Ф3",
+  .tool_table = 1,
   .note_uk = "",
   .note_en = "",
   .input = input,
