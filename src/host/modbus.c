@@ -1,7 +1,7 @@
 /* The machine as a Modbus TCP device (src/host/modbus.h, contracts.md sec. 6).
  *
  * Two threads.  The server thread owns every socket: it accepts, reads,
- * frames, answers and writes, and it never touches the session.  It answers
+ * frames, answers and writes, and it never touches the machine.  It answers
  * from a view of the map (struct mb_view) that the host's thread publishes
  * between blocks; a paced block's positions move on the wall clock from it.
  * So a trace into a pipe nobody reads, or a tooth search that computes for
@@ -21,7 +21,7 @@
  * because libmodbus 3.1.6 blocks on a truncated frame and sleeps 500 ms on
  * several error paths of modbus_reply. */
 #include "modbus.h"
-#include "session.h"
+#include "mrun.h"
 #include <arpa/inet.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -41,8 +41,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#define NREG_R MB_NREG
-#define R_MAX 9999999.0        /* |Rn| beyond this is E-RANGE (language.md sec. 6) */
+#define R_MAX 9999999.0        /* |Rn| beyond this is E-RANGE (language.md sec. 6; a program's own limits when loaded) */
 #define IR_R64 100
 #define IR_R32 600
 #define HEARTBEAT 0.25         /* s: an update at least this often (alive toggles) */
@@ -160,48 +159,85 @@ static int run_state(int loaded, int idle, int state, const struct mb_motion *mo
 {
   if (!loaded || idle)
     return MB_IDLE;
-  if (state == SE_STOPPED || (mo->active && mo->held))
+  if (state == MR_STOPPED || (mo->active && mo->held))
     return MB_STOPPED;
   if (motion_frac(mo, now) < 1)
     return MB_RUN;
   switch (state) {
-  case SE_WAIT: return MB_WAITING;
-  case SE_ERROR: return MB_ERROR;
-  case SE_END: return MB_END;
-  default: return MB_RUN;
+  case MR_WAIT: return MB_WAITING;
+  case MR_ERROR: return MB_ERROR;
+  case MR_END: return MB_END;
+  default: return MB_RUN;        /* MR_ROW, MR_START: the cycle goes on */
   }
+}
+
+static int machine_state(const struct mb_machine *m)
+{
+  return m->r ? m->r->state : m->s ? mb_sess_state(m->s) : MR_ROW;
 }
 
 int mb_run_state(const struct mb_machine *m, double now)
 {
-  return run_state(m->s != NULL, m->idle, m->s ? (int)m->s->state : 0, &m->motion, now);
+  return run_state(m->r || m->s, m->idle, machine_state(m), &m->motion, now);
+}
+
+/* The runtime's view of the runner (zeros and the override switch when it has none). */
+static void rt_view(const struct mrun *r, struct mrun_view *mv)
+{
+  if (r->rt && r->rt->view) {
+    r->rt->view(r, mv);
+  } else {
+    memset(mv, 0, sizeof *mv);
+    mv->override_eff = r->override;
+  }
 }
 
 /* Every field set, none cleared first: the host's thread does this at
  * every block boundary, so it costs no more than the copy itself. */
 void mb_view_of(struct mb_view *v, const struct mb_machine *m)
 {
-  const struct session *s = m->s;
+  const struct mrun *r = m->r;
   v->idle = m->idle;
   v->feed = m->feed;
   v->motion = m->motion;
-  v->override_hr = m->set_override ? m->override_pct : s ? sess_override_pct(s) : 100;
-  v->override_eff = v->override_hr;   /* idle: the switch as it stands */
+  v->override_hr = m->set_override ? m->override_pct : r ? r->override : 100;
   v->single = m->single;
   v->brk = m->brk;
-  v->loaded = s != NULL;
-  if (!s)
+  v->loaded = r != NULL || m->s != NULL;
+  v->nregs = MB_NREG;            /* nothing loaded: room for R0-R113, all 0 */
+  v->r_lo = -R_MAX;
+  v->r_hi = R_MAX;
+  if (m->s && !r) {
+    mb_sess_view(v, m->s);       /* the terminal's session (mb_sess.c) */
+    if (m->set_override)
+      v->override_hr = m->override_pct;
+    return;
+  }
+  v->override_eff = v->override_hr;   /* idle: the switch as it stands */
+  if (!r)
     return;                      /* build() shows nothing more */
-  v->state = (int)s->state;
-  v->wait_feed = s->wait == W_FEED;
-  v->err_code = (int)sess_vm_error(s)->code;
-  v->block = sess_block_number(s);
-  v->override_eff = sess_override_allowed(s) ? sess_override_pct(s) : 100;
-  v->wheel = sess_wheel(s) != WHEEL_OFF;
-  v->osc = s->extra[0] && sess_oscillating(s);
-  memcpy(v->pos, sess_positions(s), sizeof v->pos);
-  v->t = sess_time(s);
-  memcpy(v->reg, sess_regs(s), sizeof v->reg);
+  if (!m->set_single)
+    v->single = r->single;       /* the runner's switches, whoever set them (a script's mode too) */
+  if (!m->set_break)
+    v->brk = r->brk;
+  v->state = r->state;
+  v->wait_feed = r->wait == MRW_FEED;
+  v->err_code = r->state == MR_ERROR ? (int)r->vm.err.code : 0;
+  v->block = mrun_block_number(r);
+  struct mrun_view mv;
+  rt_view(r, &mv);
+  v->override_eff = mv.override_eff;
+  v->wheel = (mv.bits & MRUN_BIT_SPINDLE) != 0;
+  v->osc = (mv.bits & MRUN_BIT_AUX) != 0;
+  memcpy(v->pos, mv.pos, sizeof v->pos);
+  v->t = mrun_time(r);
+  v->nregs = mv.nregs < 0 ? 0 : mv.nregs > MB_NREG ? MB_NREG : mv.nregs;
+  if (r->p) {
+    v->r_lo = r->p->lim.param_lo;
+    v->r_hi = r->p->lim.param_hi;
+  }
+  memcpy(v->reg, mv.reg, (size_t)v->nregs * sizeof *v->reg);
+  memset(v->reg + v->nregs, 0, (size_t)(MB_NREG - v->nregs) * sizeof *v->reg);
 }
 
 static void build(const struct mb_view *v, double now, uint16_t ir[828], uint8_t di[16])
@@ -218,7 +254,7 @@ static void build(const struct mb_view *v, double now, uint16_t ir[828], uint8_t
   int moving = v->motion.active && frac < 1;
   int block = st == MB_IDLE ? 0 : moving ? v->motion.block : v->block;
   ir[3] = (uint16_t)(block > 0 && block < 65536 ? block : 0);
-  ir[4] = (uint16_t)(v->state == SE_ERROR && st == MB_ERROR ? v->err_code : 0);
+  ir[4] = (uint16_t)(v->state == MR_ERROR && st == MB_ERROR ? v->err_code : 0);
   for (int a = 0; a < 4; a++) {
     double p = (double)v->pos[a];
     if (moving)
@@ -232,7 +268,7 @@ static void build(const struct mb_view *v, double now, uint16_t ir[828], uint8_t
   if (moving)
     t -= (v->motion.end - v->motion.start) * (1 - frac);
   mb_put_u32(&ir[20], t > 0 ? (uint32_t)(uint64_t)llround(t * 1000) : 0);  /* wraps after 49 days */
-  for (int n = 0; n < NREG_R; n++) {
+  for (int n = 0; n < v->nregs; n++) {
     mb_put_f64(&ir[IR_R64 + 4 * n], v->reg[n]);
     mb_put_f32(&ir[IR_R32 + 2 * n], (float)v->reg[n]);
   }
@@ -250,6 +286,9 @@ void mb_dev_init(struct mb_dev *d)
   memset(d, 0, sizeof *d);
   d->v.idle = 1;
   d->v.override_hr = d->v.override_eff = 100;
+  d->v.nregs = MB_NREG;
+  d->v.r_lo = -R_MAX;
+  d->v.r_hi = R_MAX;
   d->last_update = -1;           /* no update yet */
   build(&d->v, 0, d->ir, d->di);
 }
@@ -326,17 +365,21 @@ static unsigned be16(const uint8_t *p)
 }
 
 /* The holding-register blocks and input-register blocks: [lo, hi) with the
- * size of the values in them (1 word, 4 = float64, 2 = float32). */
+ * size of the values in them (1 word, 4 = float64, 2 = float32); the
+ * parameters' blocks hold as many as the machine publishes (nregs). */
 struct span { unsigned lo, hi, width; };
-static const struct span hr_map[] = {{0, 3, 1}, {IR_R64, IR_R64 + 4 * NREG_R, 4}, {IR_R32, IR_R32 + 2 * NREG_R, 2}};
-static const struct span ir_map[] = {{0, 22, 1}, {IR_R64, IR_R64 + 4 * NREG_R, 4}, {IR_R32, IR_R32 + 2 * NREG_R, 2}};
 
-/* The block holding all of [a, a+q), or NULL. */
-static const struct span *span_of(const struct span *map, unsigned a, unsigned q)
+/* The block holding all of [a, a+q), or NULL; its bounds in *sp. */
+static const struct span *span_of(struct span *sp, int input, int nregs, unsigned a, unsigned q)
 {
+  const struct span map[3] = {{0, input ? 22u : 3u, 1},
+                              {IR_R64, IR_R64 + 4 * (unsigned)nregs, 4},
+                              {IR_R32, IR_R32 + 2 * (unsigned)nregs, 2}};
   for (int i = 0; i < 3; i++)
-    if (a >= map[i].lo && a + q <= map[i].hi)
-      return &map[i];
+    if (a >= map[i].lo && a + q <= map[i].hi) {
+      *sp = map[i];
+      return sp;
+    }
   return NULL;
 }
 
@@ -369,7 +412,8 @@ static double from_f32(float f)
  * override and R are the host's to apply, on its thread). */
 static int write_regs(struct mb_dev *d, unsigned a, unsigned q, const uint8_t *v, double now)
 {
-  const struct span *sp = span_of(hr_map, a, q);
+  struct span spb;
+  const struct span *sp = span_of(&spb, 0, d->v.nregs, a, q);
   if (!sp || (a - sp->lo) % sp->width || q % sp->width)
     return EX_ADDR;              /* outside the map, or part of a value */
   struct mb_write *w = &d->w;
@@ -407,7 +451,7 @@ static int write_regs(struct mb_dev *d, unsigned a, unsigned q, const uint8_t *v
     for (unsigned k = 0; k < sp->width; k++)
       x[k] = (uint16_t)be16(v + 2 * (i * sp->width + k));
     w->val[i] = sp->width == 4 ? mb_get_f64(x) : from_f32(mb_get_f32(x));
-    if (!isfinite(w->val[i]) || fabs(w->val[i]) > R_MAX)
+    if (!isfinite(w->val[i]) || !(w->val[i] >= d->v.r_lo && w->val[i] <= d->v.r_hi))
       return EX_VALUE;
   }
   /* R only while the cycle does not run: refused at once when the view
@@ -459,7 +503,8 @@ static int handle(struct mb_dev *d, const uint8_t *pdu, size_t pl, uint8_t *out,
   case MODBUS_FC_READ_INPUT_REGISTERS: {
     if (pl != 5 || q < 1 || q > MODBUS_MAX_READ_REGISTERS)
       return EX_VALUE;
-    if (!span_of(fc == MODBUS_FC_READ_INPUT_REGISTERS ? ir_map : hr_map, a, q))
+    struct span spb;
+    if (!span_of(&spb, fc == MODBUS_FC_READ_INPUT_REGISTERS, d->v.nregs, a, q))
       return EX_ADDR;
     out[0] = (uint8_t)fc;
     out[1] = (uint8_t)(2 * q);
@@ -573,22 +618,75 @@ int mb_dev_reply(const uint8_t *req, int ex, uint8_t *rsp)
   return reply(req, ex, rsp, 5);
 }
 
+/* The override switch moves to pct on the runner while a paced block's
+ * motion may be under way on the wall clock: the runtime re-times the rest
+ * of its move from the simulated time the motion has reached (mrun_override,
+ * once), and the motion here follows -- the rest at the new speed, from
+ * where it is; at 0 % it stands (run state 2) until the switch leaves 0.
+ * 0, or -1 when the machine refuses (M25). */
+static int override_on_runner(struct mb_machine *m, int pct, double now)
+{
+  struct mrun *r = m->r;
+  struct mb_motion *mo = &m->motion;
+  double len = mo->end - mo->start;
+  int in = mo->active && len > 0 && (mo->held || now < mo->end);
+  double frac = !in ? 1 : mo->held ? mo->held_frac : (now - mo->start) / len;
+  if (frac < 0)
+    frac = 0;
+  double sim = mrun_time(r) - (in ? (1 - frac) * len : 0), d = 0;
+  int e = mrun_override(r, pct, sim, &d);
+  if (e < 0)
+    return -1;
+  if (!in)
+    return 0;                    /* no motion on the wall clock: the runtime did all there is */
+  if (pct == 0) {
+    if (!mo->held && e == 2) {   /* the move stands where it is */
+      mo->held_frac = frac;
+      mo->held = 1;
+      m->ovr_held = 1;
+      mo->feed = 0;
+    }
+    return 0;
+  }
+  int was_held = m->ovr_held;
+  if (m->ovr_held) {
+    m->ovr_held = 0;
+    mo->held = r->state == MR_STOPPED;   /* a Стоп meanwhile still holds it */
+  }
+  if (d == 0 && !was_held)
+    return 0;                    /* not within a move that takes the override: nothing changes */
+  double rest = (1 - frac) * len + d;
+  len = frac < 1 ? rest / (1 - frac) : len;
+  mo->start = now - frac * len;
+  mo->end = mo->start + len;
+  struct mrun_view mv;
+  rt_view(r, &mv);
+  mo->feed = m->feed = mv.feed;  /* the move's speed as the runtime re-timed it */
+  return 0;
+}
+
 int mb_dev_apply(struct mb_dev *d, struct mb_machine *m, const struct mb_write *w, double now)
 {
-  struct session *s = m->s;
+  struct mrun *r = m->r;
+  struct session *s = r ? NULL : m->s;
   if (w->cmd && d->nkeys >= MB_KEYQ)
     return EX_BUSY;
   if (w->n) {
-    if (!s || mb_run_state(m, now) == MB_RUN || w->r0 + w->n > NREG_R)
+    if ((!r && !s) || mb_run_state(m, now) == MB_RUN)
       return EX_BUSY;            /* the cycle went on since the view was published */
-    sess_load_params(s, w->r0, w->n, w->val);
+    if (w->r0 + w->n > (unsigned)d->v.nregs)
+      return EX_ADDR;            /* the machine has no such parameter */
+    if (r)
+      mrun_load_params(r, w->r0, w->n, w->val);
+    else
+      mb_sess_load(s, w->r0, w->n, w->val);
   }
   if (w->ovr >= 0) {
     if (m->set_override) {
       if (m->set_override(m->host, w->ovr))
         return EX_BUSY;
-    } else if (!s || !sess_override_allowed(s) || sess_override(s, w->ovr)) {
-      return EX_BUSY;            /* M25 forbids the override (checked first: no warning printed) */
+    } else if (r ? override_on_runner(m, w->ovr, now) : !s || mb_sess_override(s, w->ovr)) {
+      return EX_BUSY;            /* M25 forbids the override */
     }
   }
   if (w->single >= 0) {
@@ -596,8 +694,12 @@ int mb_dev_apply(struct mb_dev *d, struct mb_machine *m, const struct mb_write *
       m->set_single(m->host, w->single);
     } else {
       m->single = w->single;
-      if (s)
-        sess_set_single(s, w->single);
+      if (r) {
+        struct mrun_input in = {.kind = MRI_MODE, .axis = MRM_SINGLE, .n = w->single};
+        mrun_input(r, &in, NULL, 0);
+      } else if (s) {
+        mb_sess_single(s, w->single);
+      }
     }
   }
   if (w->brk >= 0) {
@@ -605,8 +707,12 @@ int mb_dev_apply(struct mb_dev *d, struct mb_machine *m, const struct mb_write *
       m->set_break(m->host, w->brk);
     } else {
       m->brk = w->brk;
-      if (s)
-        sess_set_break(s, w->brk);
+      if (r) {
+        struct mrun_input in = {.kind = MRI_BREAK, .n = w->brk};
+        mrun_input(r, &in, NULL, 0);
+      } else if (s) {
+        mb_sess_break(s, w->brk);
+      }
     }
   }
   if (w->cmd)
@@ -1372,7 +1478,7 @@ void mb_sync(struct mb_server *mb, struct mb_machine *m)
 
 void mb_publish(struct mb_server *mb, const struct mb_machine *m)
 {
-  pthread_mutex_lock(&mb->lock);   /* in place: the host is the session's only reader here */
+  pthread_mutex_lock(&mb->lock);   /* in place: the host is the machine's only reader here */
   mb_view_of(&mb->dev.v, m);
   pthread_mutex_unlock(&mb->lock);
 }
@@ -1381,8 +1487,8 @@ void mb_publish_running(struct mb_server *mb, const struct mb_machine *m)
 {
   pthread_mutex_lock(&mb->lock);
   mb_view_of(&mb->dev.v, m);
-  if (mb->dev.v.state == SE_WAIT || mb->dev.v.state == SE_STOPPED)
-    mb->dev.v.state = SE_START;
+  if (mb->dev.v.state == MR_WAIT || mb->dev.v.state == MR_STOPPED)
+    mb->dev.v.state = MR_START;
   pthread_mutex_unlock(&mb->lock);
 }
 

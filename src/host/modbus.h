@@ -1,9 +1,13 @@
-/* The machine as a Modbus TCP device (contracts.md section 6): a server
- * thread that owns the sockets and answers from a snapshot of the map (the
- * view) that the host's thread publishes, so neither output that blocks nor
- * a plugin that computes for seconds stalls a client; what clients change
- * (keys, the feed override, R0-R113) waits for the host's thread, which
- * takes it between blocks.  Also the register map and our own big-endian
+/* The machine as a Modbus TCP device (contracts.md section 6), for every
+ * dialect on the runner: a server thread that owns the sockets and answers
+ * from a snapshot of the map (the view) that the host's thread publishes,
+ * so neither output that blocks nor a plugin that computes for seconds
+ * stalls a client; what clients change (keys, the feed override, the
+ * parameters) waits for the host's thread, which takes it between blocks.
+ * What the map shows comes from the runner (struct mrun: its state, its
+ * wait, its switches) and the runtime's view hook (positions, parameters,
+ * the spindle and aux bits, the override in effect): the map is one, what
+ * each dialect puts in it is the runtime's.  Also our own big-endian
  * encoders for 32/64-bit values. */
 #ifndef S42_MODBUS_H
 #define S42_MODBUS_H
@@ -11,6 +15,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+struct mrun;
 struct session;
 
 #define MB_MAP_VERSION 0x0100
@@ -19,7 +24,7 @@ struct session;
 #define MB_CLIENTS_LIMIT 256  /* the most --modbus-max-clients takes */
 #define MB_DEFAULT_IDLE 60.0  /* s without a request before a connection is closed (--modbus-idle) */
 #define MB_FRAME_MAX 260      /* MBAP header (7) + the largest PDU (253) */
-#define MB_NREG 114           /* R0-R113 */
+#define MB_NREG 114           /* the most parameters the map has room for: R0-R113 (the 2С42's) */
 
 /* Panel keys a client presses: coils 0-4 and the command word's values. */
 enum mb_key { MB_KEY_NONE, MB_KEY_PUSK, MB_KEY_STOP, MB_KEY_PS, MB_KEY_EXIT, MB_KEY_RESET };
@@ -28,7 +33,7 @@ enum mb_key { MB_KEY_NONE, MB_KEY_PUSK, MB_KEY_STOP, MB_KEY_PS, MB_KEY_EXIT, MB_
 enum mb_run { MB_IDLE, MB_RUN, MB_STOPPED, MB_WAITING, MB_ERROR, MB_END };
 
 /* --realtime: the block whose motion is under way on the wall clock.  The
- * session's position is already at its end; the map shows the position in
+ * machine's position is already at its end; the map shows the position in
  * between (start..end are CLOCK_MONOTONIC seconds, see mb_now). */
 struct mb_motion {
   int active;            /* 0: no block in motion */
@@ -41,23 +46,29 @@ struct mb_motion {
 
 /* The host's machine as the map sees it.  The host owns it, keeps it
  * current and only its own thread reads it (mb_publish, mb_sync): the
- * server thread never touches a session. */
+ * server thread never touches the machine. */
 struct mb_machine {
-  struct session *s;     /* the session served; NULL: nothing loaded yet (idle, zeros) */
+  struct mrun *r;        /* the runner served; NULL (and s NULL): nothing loaded yet (idle, zeros) */
+  /* The terminal's 2С42 session, until the terminal runs on the runner
+   * (src/host/mb_sess.c reads it; r is NULL then).  Goes with it. */
+  struct session *s;
   int idle;              /* no cycle started yet, or reset: run state 0 */
   double feed;           /* contour speed of the last block, mm/min (shown while running) */
   struct mb_motion motion;
   /* A host that keeps the feed override switch itself (the terminal): the
    * server sets it through this (0 taken, -1 refused) and reads it back
-   * from override_pct; NULL: the server sets it in the session.  Called on
-   * the host's thread with the server's lock held: it must not block. */
+   * from override_pct; NULL: the server sets it on the runner
+   * (mrun_override at the simulated time a paced motion has reached: the
+   * rest of the move re-timed, 0 % holding it).  Called on the host's
+   * thread with the server's lock held: it must not block. */
   int (*set_override)(void *host, int pct);
   void *host;
   int override_pct;
   /* Single block (coil 5) and the breakpoint (holding register 2): the
    * host's switches.  A host that keeps them itself (the terminal) sets
    * these hooks and keeps single/brk current; otherwise the server sets
-   * them here and in the session (sess_set_single, sess_set_break). */
+   * them on the runner (mrun_input: MRI_MODE, MRI_BREAK), and the map reads
+   * the runner's. */
   void (*set_single)(void *host, int on);
   void (*set_break)(void *host, int n);
   int single, brk;
@@ -150,16 +161,18 @@ void mb_step(struct mb_server *mb, int timeout_ms);
 
 /* The map's source: what mb_view_of takes from the machine. */
 struct mb_view {
-  int loaded;            /* a session is served */
+  int loaded;            /* a machine is served */
   int idle;
-  int state;             /* enum sess_ev */
-  int wait_feed;         /* waits for a feed override above 0 % */
+  int state;             /* enum mrun_ev */
+  int wait_feed;         /* waits for a feed override above 0 % (MRW_FEED) */
+  int nregs;             /* the parameters the machine publishes, R0..R<nregs-1> (<= MB_NREG) */
+  double r_lo, r_hi;     /* the values a parameter takes (the program's; outside: exception 03) */
   int err_code;
   int block;             /* its block number */
   int override_eff;      /* the override in effect, % */
   int override_hr;       /* holding register 0 */
   int single, brk;       /* coil 5, holding register 2 */
-  int wheel, osc;
+  int wheel, osc;        /* discrete inputs 5 and 6: MRUN_BIT_SPINDLE, MRUN_BIT_AUX */
   int64_t pos[4];
   double t, feed;
   double reg[MB_NREG];
@@ -201,7 +214,8 @@ long mb_frame(const uint8_t *buf, size_t have);
  * returned; 0 when the request is a write the host decides (in d->w):
  * mb_dev_apply on the host's thread, then mb_dev_reply. */
 int mb_dev_request(struct mb_dev *d, const uint8_t *req, size_t len, uint8_t *rsp, double now);
-/* Apply w to the machine: 0, or the exception (06) that refuses it. */
+/* Apply w to the machine: 0, or the exception that refuses it (06; 02 for
+ * R beyond the machine's parameters). */
 int mb_dev_apply(struct mb_dev *d, struct mb_machine *m, const struct mb_write *w, double now);
 /* The reply to a deferred write: its request's first 12 bytes, the outcome. */
 int mb_dev_reply(const uint8_t *req, int ex, uint8_t *rsp);
@@ -252,6 +266,19 @@ struct mb_net { int family; uint8_t a[16]; int bits; };
 int mb_allow_parse(const char *s, struct mb_net *v, int max, char *err, size_t n);
 /* Whether the socket address (IPv4, IPv6, IPv4-mapped IPv6) is on the list. */
 int mb_allow_match(const struct mb_net *v, int nv, const void *sockaddr);
+
+/* ---- the terminal's 2С42 session (src/host/mb_sess.c) ----
+ * Until the terminal runs on the runner, a mb_machine may serve a session
+ * (m->s, m->r NULL): these read and write it for modbus.c, which knows no
+ * session.  They go when the terminal moves. */
+void mb_sess_view(struct mb_view *v, const struct session *s);
+/* The session's state as an enum mrun_ev (SE_START: MR_START, ...). */
+int mb_sess_state(const struct session *s);
+void mb_sess_load(struct session *s, unsigned r0, unsigned n, const double *v);
+/* The session's own override switch (a host without set_override): 0, or -1 refused (M25). */
+int mb_sess_override(struct session *s, int pct);
+void mb_sess_single(struct session *s, int on);
+void mb_sess_break(struct session *s, int n);
 
 /* ---- multi-register values, high word first (ABCD) ---- */
 void mb_put_u32(uint16_t w[2], uint32_t v);

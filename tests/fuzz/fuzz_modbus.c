@@ -1,12 +1,13 @@
 /* libFuzzer harness for the Modbus request handler (src/host/modbus.h) without
  * sockets: the input is a byte stream as a client would send it, cut into
  * frames by mb_frame and answered by mb_dev_request from the view of a live
- * session (a write it leaves to the host applied as mb_sync would); the
- * keys pressed are taken and the machine steps between frames.  The
+ * runner of a 2С42 program (a write it leaves to the host applied as
+ * mb_sync would); the keys pressed are taken and the machine steps between
+ * frames.  The
  * connection code itself is fuzz_modbus_conn.c's. */
 #include "compile.h"
 #include "modbus.h"
-#include "session.h"
+#include "mrun.h"
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,26 +17,53 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 static const char prog_src[] =
   "№1 G01 X+1000 F600 ^\n№2 G20 ^\n№3 PP5 ^\n№4 P1 ^\n№5 R5+100/R1 ^\n№6 G04 X+1 M02 ^\n";
 
-static void press(struct session *s, struct mb_machine *m, int k, const struct program *p)
+static void press(struct mrun *r, struct mb_machine *m, int k)
 {
+  struct mrun_input in = {.kind = MRI_PS, .axis2 = -1};
   switch (k) {
   case MB_KEY_PUSK:
     if (m->idle)
       m->idle = 0;
-    else if (sess_resume(s) && sess_key_pusk(s) && s->state == SE_END)
-      sess_init(s, p);
+    else if (mrun_resume(r) && mrun_pusk(r) && r->state == MR_END)
+      mrun_renew(r);
     break;
-  case MB_KEY_STOP: sess_key_stop(s); break;
-  case MB_KEY_PS: sess_key_ps(s); break;
-  case MB_KEY_EXIT: sess_key_exit(s); break;
+  case MB_KEY_STOP: mrun_stop(r); break;
+  case MB_KEY_PS: mrun_input(r, &in, NULL, 0); break;
+  case MB_KEY_EXIT:
+    in.kind = MRI_EXIT;
+    mrun_input(r, &in, NULL, 0);
+    break;
   case MB_KEY_RESET:
-    sess_init(s, p);
-    s->vm.start_all = 1;
-    s->vm.max_blocks = 2000;
+    mrun_renew(r);
     m->idle = 1;
     break;
   default: break;
   }
+}
+
+/* A runner of p that comes back at every block's start. */
+static struct mrun *runner_of(const struct program *p)
+{
+  struct mrun *r = malloc(sizeof *r);
+  if (!r)
+    return NULL;
+  struct mrun_config c;
+  memset(&c, 0, sizeof c);
+  c.max_blocks = 2000;
+  c.starts = 1;
+  if (mrun_init(r, p, &c)) {
+    mrun_free(r);
+    free(r);
+    return NULL;
+  }
+  return r;
+}
+
+static void runner_free(struct mrun *r)
+{
+  if (r)
+    mrun_free(r);
+  free(r);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -53,19 +81,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   }
   if (size < 1)
     return 0;
-  struct session *s = malloc(sizeof *s);
+  struct mrun *mr = runner_of(&p);
   struct mb_dev *dev = malloc(sizeof *dev);
-  if (!s || !dev) {
-    free(s);
+  if (!mr || !dev) {
+    runner_free(mr);
     free(dev);
     return 0;
   }
-  sess_init(s, &p);
-  s->vm.start_all = 1;
-  s->vm.max_blocks = 2000;
   struct mb_machine m;
   memset(&m, 0, sizeof m);
-  m.s = s;
+  m.r = mr;
   m.idle = data[0] & 1;
   if (data[0] & 2) {           /* a paced block under way */
     m.motion.active = 1;
@@ -103,11 +128,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size -= (size_t)n;
     now += 0.1;
     for (int k; (k = mb_dev_key(dev)) != MB_KEY_NONE;)
-      press(s, &m, k, &p);
-    if (!m.idle && s->state == SE_START)
-      sess_run(s);
+      press(mr, &m, k);
+    if (!m.idle && (mr->state == MR_ROW || mr->state == MR_START || (mr->state == MR_WAIT && mr->resume)))
+      mrun_run(mr);
   }
   free(dev);
-  free(s);
+  runner_free(mr);
   return 0;
 }

@@ -11,7 +11,7 @@
  * complete request its client sent. */
 #include "compile.h"
 #include "modbus.h"
-#include "session.h"
+#include "mrun.h"
 #include <arpa/inet.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -93,26 +93,53 @@ static void take(struct client *c)
   }
 }
 
-static void press(struct session *s, struct mb_machine *m, int k, const struct program *p)
+static void press(struct mrun *r, struct mb_machine *m, int k)
 {
+  struct mrun_input in = {.kind = MRI_PS, .axis2 = -1};
   switch (k) {
   case MB_KEY_PUSK:
     if (m->idle)
       m->idle = 0;
-    else if (sess_resume(s) && sess_key_pusk(s) && s->state == SE_END)
-      sess_init(s, p);
+    else if (mrun_resume(r) && mrun_pusk(r) && r->state == MR_END)
+      mrun_renew(r);
     break;
-  case MB_KEY_STOP: sess_key_stop(s); break;
-  case MB_KEY_PS: sess_key_ps(s); break;
-  case MB_KEY_EXIT: sess_key_exit(s); break;
+  case MB_KEY_STOP: mrun_stop(r); break;
+  case MB_KEY_PS: mrun_input(r, &in, NULL, 0); break;
+  case MB_KEY_EXIT:
+    in.kind = MRI_EXIT;
+    mrun_input(r, &in, NULL, 0);
+    break;
   case MB_KEY_RESET:
-    sess_init(s, p);
-    s->vm.start_all = 1;
-    s->vm.max_blocks = 2000;
+    mrun_renew(r);
     m->idle = 1;
     break;
   default: break;
   }
+}
+
+/* A runner of p that comes back at every block's start. */
+static struct mrun *runner_of(const struct program *p)
+{
+  struct mrun *r = malloc(sizeof *r);
+  if (!r)
+    return NULL;
+  struct mrun_config c;
+  memset(&c, 0, sizeof c);
+  c.max_blocks = 2000;
+  c.starts = 1;
+  if (mrun_init(r, p, &c)) {
+    mrun_free(r);
+    free(r);
+    return NULL;
+  }
+  return r;
+}
+
+static void runner_free(struct mrun *r)
+{
+  if (r)
+    mrun_free(r);
+  free(r);
 }
 
 /* A connection from 127.0.0.(1 + from) that is there at once, or none:
@@ -187,18 +214,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   if (!mb)
     return 0;                    /* no socket to be had (fd limit): not the code's fault */
   int port = atoi(strrchr(mb_address(mb), ':') + 1);
-  struct session *s = malloc(sizeof *s);
+  struct mrun *r = runner_of(&p);
   struct client *cl = calloc(NCL, sizeof *cl);
-  if (!s || !cl)
+  if (!r || !cl)
     abort();
   for (int i = 0; i < NCL; i++)
     cl[i].fd = -1;
-  sess_init(s, &p);
-  s->vm.start_all = 1;
-  s->vm.max_blocks = 2000;
   struct mb_machine m;
   memset(&m, 0, sizeof m);
-  m.s = s;
+  m.r = r;
   m.idle = (data[0] >> 1) & 1;
   mb_publish(mb, &m);
   size_t i = 1;
@@ -242,9 +266,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     case 4:                      /* the host takes what waits for it */
       mb_sync(mb, &m);
       for (int k; (k = mb_key(mb)) != MB_KEY_NONE;)
-        press(s, &m, k, &p);
-      for (int k = 0; k < (arg & 7) && !m.idle && s->state == SE_START; k++)
-        sess_run(s);
+        press(r, &m, k);
+      for (int k = 0; k < (arg & 7) && !m.idle &&
+                      (r->state == MR_ROW || r->state == MR_START || (r->state == MR_WAIT && r->resume)); k++)
+        mrun_run(r);
       mb_publish(mb, &m);
       break;
     case 5:                      /* the client hangs up */
@@ -279,6 +304,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     hang_up(&cl[j]);
   mb_close(mb);
   free(cl);
-  free(s);
+  runner_free(r);
   return 0;
 }

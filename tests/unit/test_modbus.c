@@ -1,5 +1,6 @@
 /* The Modbus device without sockets (src/host/modbus.h): golden words of our
- * big-endian encoders, MBAP framing, and requests against a session --
+ * big-endian encoders, MBAP framing, and requests against a runner of a
+ * 2С42 program (and of a 2У22 one: its map) --
  * reads, key presses, parameter writes, the exceptions, the counter; allow
  * lists; where a newcomer goes when the slots are taken (mb_admit); and
  * the threaded server over loopback, its host played here: a
@@ -7,8 +8,10 @@
  * state, a read after it sees the value. */
 #include "suites.h"
 #include "errors.h"
+#include "kprun.h"
 #include "modbus.h"
-#include "session.h"
+#include "mrun.h"
+#include "../../src/dialect/2u22/u22c.h"
 #include <arpa/inet.h>
 #include <math.h>
 #include <netinet/in.h>
@@ -21,7 +24,7 @@
 #include <unistd.h>
 
 static struct tprog t;
-static struct session *s;
+static struct mrun *mr;
 static struct mb_machine mm;
 static struct mb_dev dev;
 static uint8_t rsp[MB_FRAME_MAX];
@@ -31,19 +34,29 @@ static void setup(void)
   memset(&t, 0, sizeof t);
   prog_init(&t.p);
   diag_init(&t.d, "t.kp");
-  s = calloc(1, sizeof *s);
+  mr = calloc(1, sizeof *mr);
   tp_compile(&t, "№1 G01 X+1000 F600 ^\n№2 R5+100/R1 ^\n№3 M02 ^\n");
   ck_assert_msg(t.rc == 0, "%s", tp_diags(&t.d));
-  sess_init(s, &t.p);
+  struct mrun_config c;
+  memset(&c, 0, sizeof c);
+  c.rows = 1;
+  ck_assert_int_eq(mrun_init(mr, &t.p, &c), 0);
   memset(&mm, 0, sizeof mm);
-  mm.s = s;
+  mm.r = mr;
   mb_dev_init(&dev);
 }
 
 static void teardown(void)
 {
+  mrun_free(mr);
   tp_free(&t);
-  free(s);
+  free(mr);
+}
+
+/* The 2С42's grinder under the runner. */
+static struct machine *grinder(void)
+{
+  return &kp_st(mr)->m;
 }
 
 /* One frame as the server answers it: from the view of the machine now; a
@@ -151,7 +164,7 @@ START_TEST(idle_image)
   static const uint8_t rd[] = {4, 0, 0, 0, 22};
   ck_assert_int_eq(req(rd, sizeof rd, 1.0), 2 + 44);
   ck_assert_uint_eq(reg(0), MB_MAP_VERSION);
-  ck_assert_uint_eq(reg(2), MB_RUN);      /* a session not marked idle runs */
+  ck_assert_uint_eq(reg(2), MB_RUN);      /* a machine not marked idle runs */
   mm.idle = 1;
   req(rd, sizeof rd, 1.0);
   ck_assert_uint_eq(reg(2), MB_IDLE);
@@ -174,7 +187,7 @@ START_TEST(counter_and_alive)
   ck_assert_uint_eq(reg(0), (uint16_t)(c + 1));
   req(di, sizeof di, 1.4);
   ck_assert_int_eq(rsp[9] & 1, !alive);
-  s->vm.reg[3] = 7;                       /* a change: an update at once */
+  mr->vm.reg[3] = 7;                       /* a change: an update at once */
   req(rd, sizeof rd, 1.45);
   ck_assert_uint_eq(reg(0), (uint16_t)(c + 2));
   /* no request for 1.05 s: the four heartbeats went by all the same */
@@ -193,7 +206,7 @@ static int keeps_override(void *host, int pct)
 }
 
 /* Coil 5 is the single-block switch and holding register 2 the breakpoint:
- * both go to the session (or a host that keeps them), and read back. */
+ * both go to the runner (or a host that keeps them), and read back. */
 START_TEST(single_block_and_breakpoint)
 {
   mm.idle = 1;
@@ -204,33 +217,34 @@ START_TEST(single_block_and_breakpoint)
   ck_assert_int_eq(rsp[8], 0);            /* the echo of the request */
   ck_assert_int_eq(rsp[9], 5);
   ck_assert_int_eq(mm.single, 1);
-  ck_assert_int_eq(s->single, 1);
+  ck_assert_int_eq(mr->single, 1);
   req(rdc, sizeof rdc, 1.0);
   ck_assert_int_eq(rsp[9], 0x20);         /* coil 5 reads the switch; no key waits */
   ck_assert_int_eq(req(brk, sizeof brk, 1.0), 5);
-  ck_assert_int_eq(s->brk, 2);
+  ck_assert_int_eq(mr->brk, 2);
   req(rdh, sizeof rdh, 1.0);
   ck_assert_uint_eq(reg(0), 100);
   ck_assert_uint_eq(reg(2), 2);
   ck_assert_int_eq(req(off, sizeof off, 1.0), 5);
-  ck_assert_int_eq(s->single, 0);
+  ck_assert_int_eq(mr->single, 0);
   /* FC 15 over coils 4 and 5: reset pressed, single block set from the same write */
   ck_assert_int_eq(req(both, sizeof both, 1.0), 5);
-  ck_assert_int_eq(s->single, 1);
+  ck_assert_int_eq(mr->single, 1);
   ck_assert_int_eq(mb_dev_key(&dev), MB_KEY_NONE);   /* bit 0 (coil 4) was 0 */
   ck_assert_int_eq(exception(hr3, sizeof hr3), 2);
   ck_assert_int_eq(exception(coil6, sizeof coil6), 2);
   /* the breakpoint waits: block 2 waits for Пуск before it starts */
-  enum sess_ev ev;
-  sess_set_single(s, 0);
-  while ((ev = sess_run(s)) == SE_START)
+  enum mrun_ev ev;
+  struct mrun_input auto_mode = {.kind = MRI_MODE, .axis = MRM_SINGLE, .n = 0};
+  ck_assert_int_eq(mrun_input(mr, &auto_mode, NULL, 0), 0);
+  while ((ev = mrun_run(mr)) == MR_START || ev == MR_ROW)
     ;
-  ck_assert_int_eq(ev, SE_WAIT);
-  ck_assert_int_eq(s->wait, W_BLOCK);
-  ck_assert_int_eq(sess_block_number(s), 2);
-  /* a terminal that is idle (no session yet): the override in effect is
-   * its switch's position */
-  mm.s = NULL;
+  ck_assert_int_eq(ev, MR_WAIT);
+  ck_assert_int_eq(mr->wait, MRW_BLOCK);
+  ck_assert_int_eq(mrun_block_number(mr), 2);
+  /* a terminal that is idle (nothing loaded yet): the override in effect
+   * is its switch's position */
+  mm.r = NULL;
   mm.override_pct = 70;
   mm.set_override = keeps_override;
   static const uint8_t rd5[] = {4, 0, 5, 0, 1};
@@ -250,7 +264,7 @@ START_TEST(parameters)
     wr[7 + 2 * i] = (uint8_t)w[i];
   }
   ck_assert_int_eq(req(wr, sizeof wr, 1.0), 5);
-  ck_assert(s->vm.reg[1] == 4.25);
+  ck_assert(mr->vm.reg[1] == 4.25);
   static const uint8_t rd64[] = {4, 0, 104, 0, 4}, rd32[] = {3, 2, 0x5A, 0, 2};   /* IR 104, HR 602 */
   req(rd64, sizeof rd64, 1.0);
   uint16_t g[4] = {reg(0), reg(1), reg(2), reg(3)};
@@ -266,11 +280,11 @@ START_TEST(parameters)
   wr32[8] = (uint8_t)(w[1] >> 8);
   wr32[9] = (uint8_t)w[1];
   ck_assert_int_eq(req(wr32, sizeof wr32, 1.0), 5);
-  ck_assert(s->vm.reg[1] == 1234.567);
+  ck_assert(mr->vm.reg[1] == 1234.567);
   /* refused while the cycle runs */
   mm.idle = 0;
   ck_assert_int_eq(exception(wr, sizeof wr), 6);
-  ck_assert(s->vm.reg[1] == 1234.567);
+  ck_assert(mr->vm.reg[1] == 1234.567);
 }
 END_TEST
 
@@ -300,7 +314,7 @@ START_TEST(exceptions)
   ck_assert_int_eq(exception(bc, sizeof bc), 3);
   ck_assert_int_eq(exception(nan64, sizeof nan64), 3);
   ck_assert_int_eq(exception(big64, sizeof big64), 3);
-  s->m.override_allowed = 0;              /* M25 */
+  grinder()->override_allowed = 0;        /* M25 */
   static const uint8_t ovr50[] = {6, 0, 0, 0, 50};
   ck_assert_int_eq(exception(ovr50, sizeof ovr50), 6);
   /* another unit id: gateway target failed */
@@ -337,7 +351,7 @@ END_TEST
 START_TEST(positions_between_blocks)
 {
   mm.idle = 0;
-  s->m.pos[0] = 1000;                     /* the block has ended in the model */
+  grinder()->pos[0] = 1000;               /* the block has ended in the model */
   mm.motion.active = 1;
   mm.motion.start = 10;
   mm.motion.end = 11;
@@ -368,19 +382,19 @@ START_TEST(block_number_above_16_bits)
 {
   static const uint8_t rd[] = {4, 0, 0, 0, 22};
   mm.idle = 0;
-  t.p.blocks[s->vm.cur].number = 65535;
+  t.p.blocks[mr->vm.cur].number = 65535;
   req(rd, sizeof rd, 1.0);
   ck_assert_uint_eq(reg(3), 65535);
-  t.p.blocks[s->vm.cur].number = 65536;
+  t.p.blocks[mr->vm.cur].number = 65536;
   req(rd, sizeof rd, 1.0);
   ck_assert_uint_eq(reg(3), 0);
-  t.p.blocks[s->vm.cur].number = 9999999;
+  t.p.blocks[mr->vm.cur].number = 9999999;
   req(rd, sizeof rd, 1.0);
   ck_assert_uint_eq(reg(3), 0);
   mm.motion.active = 1;                   /* a move of that block, under way */
   mm.motion.start = 1;
   mm.motion.end = 2;
-  mm.motion.block = sess_block_number(s);
+  mm.motion.block = mrun_block_number(mr);
   req(rd, sizeof rd, 1.5);
   ck_assert_uint_eq(reg(3), 0);
 }
@@ -398,10 +412,107 @@ START_TEST(read_only_device)
   ck_assert_int_eq(exception(coils, sizeof coils), 1);
   ck_assert_int_eq(exception(r1, sizeof r1), 1);
   ck_assert_int_eq(exception(bad, sizeof bad), 1);   /* any write, even a malformed one */
-  ck_assert(s->vm.reg[1] == 0);
+  ck_assert(mr->vm.reg[1] == 0);
   ck_assert_int_eq(mb_dev_key(&dev), MB_KEY_NONE);
   ck_assert_int_eq(req(rd, sizeof rd, 1.0), 4);
   ck_assert_uint_eq(reg(0), MB_MAP_VERSION);
+}
+END_TEST
+
+/* The override written while a block's move plays out on the wall clock
+ * (--realtime): the runtime re-times the rest of the move once, from the
+ * simulated time the motion has reached, and the motion follows from where
+ * it is; 0 % holds it, 100 % goes on from there. */
+START_TEST(override_within_a_paced_move)
+{
+  ck_assert_int_eq(mrun_run(mr), MR_ROW);   /* N1: 1 mm at F600, 0.1 s */
+  ck_assert(fabs(mrun_time(mr) - 0.1) < 1e-9);
+  mm.feed = 600;
+  const int64_t d[4] = {1000, 0, 0, 0};
+  mb_motion_start(&mm, 10, 0.1, d, 600, 1);
+  static const uint8_t o50[] = {6, 0, 0, 0, 50}, o0[] = {6, 0, 0, 0, 0}, o100[] = {6, 0, 0, 0, 100},
+                       rd[] = {4, 0, 0, 0, 22};
+  ck_assert_int_eq(req(o50, sizeof o50, 10.05), 5);   /* half way: the rest at half the speed */
+  ck_assert(fabs(mrun_time(mr) - 0.15) < 1e-9);
+  ck_assert(fabs(mm.motion.start - 9.95) < 1e-9 && fabs(mm.motion.end - 10.15) < 1e-9);
+  ck_assert(mm.motion.feed == 300 && mm.feed == 300);
+  req(rd, sizeof rd, 10.05);
+  uint16_t x[2] = {reg(10), reg(11)}, v[2] = {reg(18), reg(19)}, tm[2] = {reg(20), reg(21)};
+  ck_assert_int_eq(mb_get_i32(x), 500);    /* from where it was */
+  ck_assert_int_eq(mb_get_i32(v), 300000);
+  ck_assert_uint_eq(mb_get_u32(tm), 50);   /* 0.05 s simulated */
+  ck_assert_int_eq(req(o0, sizeof o0, 10.10), 5);     /* 0 %: it stands */
+  ck_assert_int_eq(mm.motion.held, 1);
+  ck_assert_int_eq(mm.ovr_held, 1);
+  req(rd, sizeof rd, 10.5);
+  ck_assert_uint_eq(reg(2), MB_STOPPED);
+  uint16_t x0[2] = {reg(10), reg(11)}, v0[2] = {reg(18), reg(19)};
+  ck_assert_int_eq(mb_get_i32(x0), 750);
+  ck_assert_int_eq(mb_get_i32(v0), 0);
+  ck_assert(fabs(mrun_time(mr) - 0.15) < 1e-9);
+  ck_assert_int_eq(req(o100, sizeof o100, 11.0), 5);  /* 100 %: on from there */
+  ck_assert_int_eq(mm.motion.held, 0);
+  ck_assert_int_eq(mm.ovr_held, 0);
+  ck_assert(fabs(mrun_time(mr) - 0.125) < 1e-9);
+  ck_assert(fabs(mm.motion.end - 11.025) < 1e-9);
+  req(rd, sizeof rd, 11.0);
+  uint16_t x1[2] = {reg(10), reg(11)}, v1[2] = {reg(18), reg(19)};
+  ck_assert_uint_eq(reg(2), MB_RUN);
+  ck_assert_int_eq(mb_get_i32(x1), 750);
+  ck_assert_int_eq(mb_get_i32(v1), 600000);
+  ck_assert_uint_eq(reg(5), 100);
+}
+END_TEST
+
+/* The 2У22's map: X (a diameter) and Z in µm at 10-13, R0-R9 and nothing
+ * beyond (02), the spindle and coolant at discrete inputs 5 and 6, F% in
+ * effect under G20 only. */
+START_TEST(lathe_map)
+{
+  struct program p;
+  struct diag_list d;
+  prog_init(&p);
+  diag_init(&d, "t.u22");
+  const char *src = "%\nN1 T1 G01 G90 G94 G97 S500 M03 M39 M08 R3+250\nN2 F1000 X4000 Z-1000\nN3 G20 F100 Z-2000\n"
+                    "N4 M02\n";
+  ck_assert_int_eq(u22_compile(src, strlen(src), &d, &p), 0);
+  struct mrun lr;
+  struct mrun_config c;
+  memset(&c, 0, sizeof c);
+  c.rows = 1;
+  ck_assert_int_eq(mrun_init(&lr, &p, &c), 0);
+  mm.r = &lr;
+  mm.idle = 0;
+  ck_assert_int_eq(mrun_run(&lr), MR_ROW);   /* N1 */
+  ck_assert_int_eq(mrun_run(&lr), MR_ROW);   /* N2 */
+  static const uint8_t rd[] = {4, 0, 0, 0, 22}, di[] = {2, 0, 0, 0, 16}, r3[] = {4, 0, 112, 0, 4},
+                       r10[] = {4, 0, 140, 0, 4}, r10_32[] = {4, 2, 0x6C, 0, 2}, o50[] = {6, 0, 0, 0, 50};
+  req(rd, sizeof rd, 1.0);
+  uint16_t x[2] = {reg(10), reg(11)}, z[2] = {reg(12), reg(13)};
+  ck_assert_int_eq(mb_get_i32(x), 40000);    /* Ø 40 mm */
+  ck_assert_int_eq(mb_get_i32(z), -10000);
+  ck_assert_uint_eq(reg(14) | reg(15) | reg(16) | reg(17), 0);
+  ck_assert_uint_eq(reg(3), 2);
+  ck_assert_uint_eq(reg(5), 100);            /* G23: F% does not act */
+  req(di, sizeof di, 1.0);
+  ck_assert_int_eq(rsp[9] & 0x60, 0x60);     /* spindle, coolant */
+  req(r3, sizeof r3, 1.0);
+  uint16_t g[4] = {reg(0), reg(1), reg(2), reg(3)};
+  ck_assert(mb_get_f64(g) == 250);
+  ck_assert_int_eq(exception(r10, sizeof r10), 2);      /* R10: the lathe has none */
+  ck_assert_int_eq(exception(r10_32, sizeof r10_32), 2);
+  uint8_t wr[6 + 8] = {16, 0, 140, 0, 4, 8};
+  ck_assert_int_eq(exception(wr, sizeof wr), 2);
+  ck_assert_int_eq(exception(o50, sizeof o50), 0);      /* the switch is kept under G23 */
+  ck_assert_int_eq(lr.override, 50);
+  req(rd, sizeof rd, 1.0);
+  ck_assert_uint_eq(reg(5), 100);
+  ck_assert_int_eq(mrun_run(&lr), MR_ROW);   /* N3 under G20: at 50 % */
+  req(rd, sizeof rd, 1.0);
+  ck_assert_uint_eq(reg(5), 50);
+  mrun_free(&lr);
+  prog_free(&p);
+  diag_free(&d);
 }
 END_TEST
 
@@ -670,12 +781,12 @@ START_TEST(server_write_waits_for_the_host)
 {
   send_pdu(wr_r1, sizeof wr_r1);
   ck_assert_int_eq(recv_reply(20), 0);       /* not before the host took it */
-  ck_assert(s->vm.reg[1] == 0);
+  ck_assert(mr->vm.reg[1] == 0);
   /* the host comes to it (as its loop would, woken by mb_fd) */
   struct pollfd p = {.fd = mb_fd(srv), .events = POLLIN, .revents = 0};
   ck_assert_int_eq(poll(&p, 1, 1000), 1);
   mb_sync(srv, &mm);
-  ck_assert(s->vm.reg[1] == 2.5);
+  ck_assert(mr->vm.reg[1] == 2.5);
   ck_assert_int_eq(recv_reply(1000), 12);
   ck_assert_int_eq(rsp[7], 16);
   /* a read right after it sees the value */
@@ -698,7 +809,7 @@ START_TEST(server_write_decided_with_the_real_state)
   ck_assert_int_eq(recv_reply(1000), 9);
   ck_assert_int_eq(rsp[7], 0x90);
   ck_assert_int_eq(rsp[8], 6);
-  ck_assert(s->vm.reg[1] == 0);
+  ck_assert(mr->vm.reg[1] == 0);
   /* the view says it runs: refused at once, without the host */
   double t0 = now_s();
   send_pdu(wr_r1, sizeof wr_r1);
@@ -708,20 +819,20 @@ START_TEST(server_write_decided_with_the_real_state)
   /* M25 at the moment the host takes the override: refused */
   mm.idle = 1;
   mb_publish(srv, &mm);
-  s->m.override_allowed = 0;
+  grinder()->override_allowed = 0;
   static const uint8_t ovr[] = {6, 0, 0, 0, 50};
   send_pdu(ovr, sizeof ovr);
   sleep_ms(5);
   mb_sync(srv, &mm);
   ck_assert_int_eq(recv_reply(1000), 9);
   ck_assert_int_eq(rsp[8], 6);
-  ck_assert_int_eq(s->m.override_pct, 100);
-  s->m.override_allowed = 1;
+  ck_assert_int_eq(grinder()->override_pct, 100);
+  grinder()->override_allowed = 1;
   send_pdu(ovr, sizeof ovr);
   sleep_ms(5);
   mb_sync(srv, &mm);
   ck_assert_int_eq(recv_reply(1000), 12);
-  ck_assert_int_eq(s->m.override_pct, 50);
+  ck_assert_int_eq(grinder()->override_pct, 50);
 }
 END_TEST
 
@@ -735,7 +846,7 @@ START_TEST(server_busy_host)
   double took = now_s() - t0;
   ck_assert_msg(took >= MB_WRITE_WAIT - 0.005 && took < MB_WRITE_WAIT + 0.1, "%.3f s", took);
   mb_sync(srv, &mm);
-  ck_assert(s->vm.reg[1] == 0);
+  ck_assert(mr->vm.reg[1] == 0);
   /* a key is acknowledged at once and waits in its coil */
   static const uint8_t stop[] = {5, 0, 1, 0xFF, 0}, coils[] = {1, 0, 0, 0, 5};
   send_pdu(stop, sizeof stop);
@@ -768,6 +879,8 @@ Suite *suite_modbus(void)
   tcase_add_test(tc, positions_between_blocks);
   tcase_add_test(tc, block_number_above_16_bits);
   tcase_add_test(tc, read_only_device);
+  tcase_add_test(tc, override_within_a_paced_move);
+  tcase_add_test(tc, lathe_map);
   tcase_add_test(tc, allow_lists);
   tcase_add_test(tc, host_cap);
   tcase_add_test(tc, host_keys);

@@ -148,7 +148,10 @@ void kp_page(const struct mrun *r, int k, struct mrun_page *pg)
 }
 
 /* The Modbus map (contracts.md sec. 6): X Y Z A in discretes, R0-R113,
- * the wheel and the oscillation. */
+ * the wheel and the oscillation, the override in effect, and the last
+ * block's contour speed as it goes now: the row's, or, when the block
+ * ended with the move an override may re-time (mach_override_at), that
+ * move's speed now. */
 void kp_view(const struct mrun *r, struct mrun_view *v)
 {
   const struct kp_state *s = kp_st(r);
@@ -161,4 +164,7 @@ void kp_view(const struct mrun *r, struct mrun_view *v)
   v->bits = (s->m.wheel != WHEEL_OFF ? MRUN_BIT_SPINDLE : 0) |
             (s->extra[0] && strstr(s->extra, "\"osc\":\"on\"") ? MRUN_BIT_AUX : 0);
   v->override_eff = s->m.override_allowed ? s->m.override_pct : 100;
+  v->feed = s->row.feed;
+  if (v->feed > 0 && s->m.mv.on && fabs(s->m.mv.t1 - s->m.t) <= 1e-9 * (1 + s->m.t))
+    v->feed = s->m.mv.feed;
 }

@@ -653,7 +653,9 @@ static void info(const struct mrun *r, struct canon_info *in)
 }
 
 /* The Modbus map (contracts.md sec. 6): X (a diameter) and Z in µm at 10
- * and 12, R0-R9 at 100 and 600, the spindle and the coolant. */
+ * and 12, R0-R9 at 100 and 600, the spindle and the coolant, F% in effect
+ * (under G20; 100 otherwise), and the last block's feed as it goes now (an
+ * F% turned within its move re-times it: lathe_override_at). */
 static void view(const struct mrun *r, struct mrun_view *v)
 {
   const struct u22_state *s = state(r);
@@ -667,7 +669,8 @@ static void view(const struct mrun *r, struct mrun_view *v)
   for (int i = 0; i < 10; i++)
     v->reg[i] = r->vm.reg[i];
   v->bits = (s->l.dir ? MRUN_BIT_SPINDLE : 0) | (s->l.coolant ? MRUN_BIT_AUX : 0);
-  v->feed = s->feed;
+  v->feed = s->feed > 0 ? s->l.feed : 0;
+  v->override_eff = s->l.ovr_on ? r->override : 100;
 }
 
 const struct mrun_rt u22_runtime = {
