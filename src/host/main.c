@@ -627,10 +627,7 @@ struct runner {
   const char *file;
   unsigned *runs;            /* runs per block number, for `at` */
   uint8_t *watch;
-  int lenient;               /* --modbus: a wait the script cannot serve waits for a client */
   size_t unfit;              /* 1 + the action reported as not fitting a wait, 0 none */
-  struct mb_server *mb;      /* --modbus: shown running while a key may compute (mb_publish_running) */
-  struct mb_machine *mm;
 };
 
 static void warn_sink(void *ctx, const struct session *s, const char *msg)
@@ -651,35 +648,16 @@ struct both_sink {
   struct plot *plot;       /* s42 plot: the path is collected here */
   int realtime;            /* --realtime: wait until the wall clock reaches the simulated time */
   struct pace pace;
-  struct mb_machine *mm;   /* --modbus: blocks are paced by the server loop, not slept */
-  double last_t;           /* simulated time at the end of the previous block */
 };
-
-/* --modbus: the block's motion goes on the wall clock (with --realtime)
- * while the loop keeps serving; back to back when blocks follow each other,
- * from now after a wait. */
-static void modbus_row(struct both_sink *b, const struct sess_row *row)
-{
-  struct mb_machine *mm = b->mm;
-  double dur = row->t - b->last_t, now = mb_now();
-  b->last_t = row->t;
-  mm->feed = row->feed;
-  if (!b->realtime || dur <= 0)
-    return;
-  double start = mm->motion.end > 0 && now - mm->motion.end < 0.05 ? mm->motion.end : now;
-  mb_motion_start(mm, start, dur, row->d, row->feed, row->n);
-}
 
 static void row_sink(void *ctx, const struct session *s, const struct sess_row *row)
 {
   struct both_sink *b = ctx;
-  if (b->mm)
-    modbus_row(b, row);
-  else if (b->realtime)
+  if (b->realtime)
     pace_sleep_until(&b->pace, row->t);
   if (b->tr.out) {
     report_row(&b->tr, s, row);
-    if (b->realtime || b->mm)
+    if (b->realtime)
       fflush(b->tr.out);
   }
   if (b->plot)
@@ -764,8 +742,6 @@ static int serve_wait(struct runner *r)
   char what[96], nb[16];
   while (r->s.state == SE_WAIT) {
     if (r->next >= r->ops.n) {
-      if (r->lenient)
-        return -1;
       const struct prog_block *b = &r->s.p->blocks[sess_cur(&r->s)];
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s and the operator script has no more actions\n",
               r->file, b->line, b->col, bname(sess_block_number(&r->s), nb), sess_wait_text(&r->s));
@@ -773,8 +749,6 @@ static int serve_wait(struct runner *r)
     }
     const struct op_action *a = &r->ops.v[r->next];
     int ok = -1;
-    if (r->mb && ops_is_waiting(a))
-      mb_publish_running(r->mb, r->mm);
     if (!ops_is_waiting(a)) {
       apply_immediate(r, a);
       ok = 0;
@@ -792,8 +766,6 @@ static int serve_wait(struct runner *r)
         ok = sess_section(&r->s, a->axis2, a->n2);
     }
     if (ok) {
-      if (r->lenient)
-        return -1;
       r->unfit = r->next + 1;
       const struct prog_block *b = &r->s.p->blocks[sess_cur(&r->s)];
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s; the operator script's next action "
@@ -815,219 +787,11 @@ static int save_m15(struct runner *r)
   return cycle_m15(&r->cyc) < 0 ? -1 : 0;
 }
 
-/* ---- the headless run served over Modbus TCP (--modbus) ---- */
-
 static volatile sig_atomic_t quit_signal;
 
 static void on_quit(int sig)
 {
   quit_signal = sig;
-}
-
-/* Reset, and Пуск after M2: the program from block 1 on a fresh machine,
- * with R0-R113 as they were (the 2С42 keeps its parameters). */
-static void new_cycle(struct runner *r, struct both_sink *bs)
-{
-  struct session *s = &r->s;
-  s->cfg.start_all = 1;          /* back to the loop at every block */
-  sess_renew(s);                 /* R0-R113 and the switches stay */
-  memset(&bs->mm->motion, 0, sizeof bs->mm->motion);
-  bs->mm->ovr_held = 0;
-  bs->mm->feed = 0;
-  bs->last_t = 0;
-  r->cyc.saves = 0;
-  memset(r->runs, 0, 1000 * sizeof *r->runs);
-}
-
-/* The override was written while a block's motion plays out on the wall
- * clock: the rest of it goes at the new speed (the session's time follows,
- * sess_override_at); at 0 % it stands (run state 2) until the override
- * leaves 0. */
-static void override_in_motion(struct session *s, struct mb_machine *mm, double now)
-{
-  struct mb_motion *mo = &mm->motion;
-  double len = mo->end - mo->start;
-  if (!mo->active || len <= 0 || (!mo->held && now >= mo->end))
-    return;
-  double frac = mo->held ? mo->held_frac : (now - mo->start) / len;
-  if (frac < 0)
-    frac = 0;
-  double sim = sess_time(s) - (1 - frac) * len;   /* the simulated time the motion has reached */
-  if (sess_override_pct(s) == 0) {
-    if (!mo->held && sess_in_move(s, sim)) {
-      mo->held_frac = frac;
-      mo->held = 1;
-      mm->ovr_held = 1;
-      mo->feed = 0;
-    }
-    return;
-  }
-  double d = sess_override_at(s, sim), rest = (1 - frac) * len + d;
-  if (mm->ovr_held) {
-    mm->ovr_held = 0;
-    mo->held = s->state == SE_STOPPED;   /* a Стоп meanwhile still holds it */
-  }
-  if (d == 0 && !mo->held)
-    return;                      /* not within a move that takes the override: nothing changes */
-  len = frac < 1 ? rest / (1 - frac) : len;
-  mo->start = now - frac * len;
-  mo->end = mo->start + len;
-  mo->feed = mm->feed = sess_move_feed(s);
-}
-
-/* A block's motion is under way on the wall clock (not held). */
-static int in_motion(const struct mb_machine *mm, double now)
-{
-  return mm->motion.active && !mm->motion.held && now < mm->motion.end;
-}
-
-/* A panel key from a client (contracts.md sec. 6, README "Modbus"). */
-static void modbus_key(struct runner *r, struct both_sink *bs, int k)
-{
-  struct session *s = &r->s;
-  struct mb_machine *mm = bs->mm;
-  double now = mb_now();
-  int moving = in_motion(mm, now);
-  switch (k) {
-  case MB_KEY_PUSK:
-    if (mm->idle) {
-      mm->idle = 0;
-    } else if (mm->ovr_held) {
-      if (s->state == SE_STOPPED)
-        sess_resume(s);          /* the Стоп is over; the override at 0 % still holds the move */
-    } else if (s->state == SE_STOPPED || mm->motion.held) {
-      if (mm->motion.held) {
-        double len = mm->motion.end - mm->motion.start;
-        mm->motion.start = now - mm->motion.held_frac * len;
-        mm->motion.end = mm->motion.start + len;
-        mm->motion.held = 0;
-      }
-      mb_publish_running(r->mb, mm);
-      sess_resume(s);
-    } else if (s->state == SE_END) {
-      new_cycle(r, bs);
-    } else if (!moving) {
-      if (s->state == SE_WAIT)
-        mb_publish_running(r->mb, mm);   /* a tooth search may go on inside the key */
-      sess_key_pusk(s);          /* a Пуск that fits no wait does nothing */
-    }
-    break;
-  case MB_KEY_STOP:
-    if (mm->idle || s->state == SE_END || s->state == SE_ERROR)
-      break;
-    if (moving) {
-      mm->motion.held_frac = (now - mm->motion.start) / (mm->motion.end - mm->motion.start);
-      mm->motion.held = 1;
-    }
-    sess_key_stop(s);
-    break;
-  case MB_KEY_PS:
-    if (!mm->idle && !moving) {
-      if (s->state == SE_WAIT)
-        mb_publish_running(r->mb, mm);
-      sess_key_ps(s);
-    }
-    break;
-  case MB_KEY_EXIT:
-    if (!mm->idle)
-      sess_key_exit(s);          /* taken by the next PP block */
-    break;
-  case MB_KEY_RESET:
-    new_cycle(r, bs);
-    mm->idle = 1;
-    break;
-  default:
-    break;
-  }
-}
-
-/* Serve the machine until SIGINT or SIGTERM.  Without an operator script
- * the cycle waits for a client's Пуск; with one, a wait the script cannot
- * serve waits for a client.  Returns the exit status and sets *st. */
-static int modbus_loop(struct runner *r, struct both_sink *bs, struct mb_server *mb, const char **st)
-{
-  struct mb_machine *mm = bs->mm;
-  struct sigaction sa;
-  memset(&sa, 0, sizeof sa);
-  sa.sa_handler = on_quit;      /* no SA_RESTART: poll() returns at once */
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, NULL);
-  sigaction(SIGTERM, &sa, NULL);
-  r->lenient = 1;
-  r->mb = mb;
-  r->mm = mm;
-  sess_set_start_all(&r->s, 1);  /* back to the loop at every block */
-  mb_publish(mb, mm);
-  fprintf(stderr, "s42: Modbus TCP on %s%s\n", mb_address(mb),
-          mm->idle ? "; the cycle starts with Пуск (coil 0)" : "");
-  int told = -1;                /* the session state last reported on stderr */
-  int ovr_seen = sess_override_pct(&r->s);   /* a write of it acts within the motion */
-  char nb[16];
-  while (!quit_signal) {
-    double now = mb_now();
-    if (mm->motion.active && !mm->motion.held && now >= mm->motion.end)
-      mm->motion.active = 0;
-    int free_run = !mm->idle && !mm->motion.active && r->s.state == SE_START;
-    int timeout = 100;
-    if (free_run)
-      timeout = 0;
-    else if (in_motion(mm, now) && (mm->motion.end - now) * 1000 < timeout)
-      timeout = (int)((mm->motion.end - now) * 1000) + 1;
-    if (mb_poll(mb, mm, timeout)) {
-      fprintf(stderr, "s42: Modbus: poll: %s\n", strerror(errno));
-      *st = "stopped";
-      return EXIT_IO;
-    }
-    if (sess_override_pct(&r->s) != ovr_seen) {
-      ovr_seen = sess_override_pct(&r->s);
-      override_in_motion(&r->s, mm, mb_now());
-    }
-    for (int k; (k = mb_key(mb)) != MB_KEY_NONE;)
-      modbus_key(r, bs, k);
-    mb_publish(mb, mm);
-    /* run the machine for a couple of milliseconds, or up to a paced motion;
-     * the server thread answers meanwhile from what was published (a trace
-     * that blocks or a plugin that computes stops only this loop) */
-    double until = mb_now() + 0.002;
-    unsigned steps = 0;
-    while (!mm->idle && !mm->motion.active && !quit_signal) {
-      if (r->s.state == SE_WAIT) {
-        if (r->next >= r->ops.n || serve_wait(r))
-          break;                 /* a client serves this wait */
-        continue;
-      }
-      if (r->s.state != SE_START)
-        break;
-      enum sess_ev ev = sess_run(&r->s);
-      if (ev == SE_START) {
-        if (save_m15(r)) {
-          *st = "error";
-          return EXIT_IO;
-        }
-        at_boundary(r);
-        mb_publish(mb, mm);      /* the block about to run, should it take long */
-      }
-      if ((++steps % 32 == 0 || ev != SE_START) && mb_now() >= until)
-        break;                   /* the clock is read every 32 blocks: it costs as much as one */
-    }
-    mb_publish(mb, mm);
-    if (r->s.state != told && (r->s.state == SE_END || r->s.state == SE_ERROR)) {
-      const struct prog_block *b = &r->s.p->blocks[sess_cur(&r->s)];
-      if (r->s.state == SE_END)
-        fprintf(stderr, "%s:%u:%u: note: %s: the program reached M2; Пуск runs it again\n", r->file, b->line,
-                b->col, bname(sess_block_number(&r->s), nb));
-      else {
-        const struct vm_error *e = sess_vm_error(&r->s);
-        b = &r->s.p->blocks[e->block];
-        fprintf(stderr, "%s:%u:%u: note: %s: the cycle stopped with %s (%s); reset (coil 4) to start again\n",
-                r->file, b->line, e->col ? e->col : b->col, bname(b->number ? (int)b->number : -1, nb),
-                err_code(e->code), e->msg);
-      }
-    }
-    told = r->s.state;
-  }
-  *st = r->s.state == SE_END ? "end" : r->s.state == SE_ERROR ? "error" : "stopped";
-  return r->s.state == SE_END ? EXIT_END : r->s.state == SE_ERROR ? EXIT_PROGRAM : EXIT_STOPPED;
 }
 
 static void headless_free(struct runner *r, struct program *p, struct diag_list *d, char *src)
@@ -1084,7 +848,7 @@ static int run_machine(const struct opts *o, struct program *p, struct diag_list
 {
   const struct mrun_rt *rt = p->runtime;
   int table = rt && rt->tool_table;
-  const char *no = o->modbus ? "--modbus" : table && o->tool && o->tools ? "--tool with --tools"
+  const char *no = table && o->tool && o->tools ? "--tool with --tools"
                    : table && o->dump_images ? "--dump-images" : NULL;
   if (no) {
     fprintf(stderr, "s42: %s: %s is not there yet for the %s dialect (%s)\n", o->program, no,
@@ -1107,6 +871,7 @@ static int run_machine(const struct opts *o, struct program *p, struct diag_list
   r.realtime = o->realtime;
   r.en = o->en;
   r.max_blocks = o->max_blocks;
+  r.mb = o->modbus ? &o->mb : NULL;
   struct run_watch w = {lp, plot_start, plot_call, NULL, NULL, plot_end};
   r.watch = lp ? &w : NULL;
   return run_headless(&r, p, d, src, n);
@@ -1154,9 +919,6 @@ static int plot_machine(const struct opts *o)
 static int headless(const struct opts *opt, struct plot *plot)
 {
   struct opts o = *opt;
-  struct mb_server *mb = NULL;
-  struct mb_machine mm;
-  memset(&mm, 0, sizeof mm);
   if (o.modbus && plot) {
     fprintf(stderr, "s42: plot does not serve Modbus (--modbus is for run and tui)\n");
     return EXIT_USAGE;
@@ -1179,7 +941,9 @@ static int headless(const struct opts *opt, struct plot *plot)
   char *src = NULL;
   size_t n = 0;
   int rc = load(o.program, &p, &d, &src, &n);
-  if (rc == 0 && dialect_of(o.program)->run != DIALECT_RUN_SESSION) {
+  /* the dialects on the runner, and every run served over Modbus (the one
+   * server loop is run.c's) */
+  if (rc == 0 && (dialect_of(o.program)->run != DIALECT_RUN_SESSION || o.modbus)) {
     rc = run_machine(&o, &p, &d, src, n, NULL);
     prog_free(&p);
     diag_free(&d);
@@ -1239,8 +1003,6 @@ static int headless(const struct opts *opt, struct plot *plot)
   bs.r = &r;
   bs.plot = plot;
   bs.realtime = o.realtime;
-  bs.mm = NULL;
-  bs.last_t = 0;
   r.watch = calloc(p.nblocks ? p.nblocks : 1, 1);
   r.runs = calloc(1000, sizeof *r.runs);
   if (!r.watch || !r.runs) {
@@ -1263,7 +1025,7 @@ static int headless(const struct opts *opt, struct plot *plot)
   cfg.plugins = plugins_init(NULL);
   cfg.sink.ctx = &bs;
   /* rows only for what reads them: a run with none builds none */
-  cfg.sink.row = o.trace || plot || o.realtime || o.modbus ? row_sink : NULL;
+  cfg.sink.row = o.trace || plot || o.realtime ? row_sink : NULL;
   cfg.sink.warn = sink_warn;
   cfg.sink.log = sink_log;
   cfg.sink.moved = sink_moved;
@@ -1311,7 +1073,7 @@ static int headless(const struct opts *opt, struct plot *plot)
     st = "error";
   }
   bs.pace.stop = NULL;
-  int interruptible = o.realtime && !o.modbus;
+  int interruptible = o.realtime;
   if (interruptible) {
     /* --realtime takes as long as the machine would: Ctrl-C (or SIGTERM)
      * stops it at the next block boundary with the dump of that moment,
@@ -1325,26 +1087,6 @@ static int headless(const struct opts *opt, struct plot *plot)
     bs.pace.stop = &quit_signal;
   }
   pace_start(&bs.pace, sess_time(&r.s));     /* a restart goes on from the saved time */
-  if (o.modbus && status == EXIT_END) {
-    char err[300];
-    int bad;
-    if (!(mb = mb_open(&o.mb, err, sizeof err, &bad))) {
-      ran = 0;
-      fprintf(stderr, "s42: %s\n", err);
-      status = bad ? EXIT_USAGE : EXIT_IO;
-      st = "error";
-    } else {
-      if (*mb_warning(mb))
-        fprintf(stderr, "s42: warning: %s\n", mb_warning(mb));
-      mm.s = &r.s;
-      mm.idle = !o.operator_file;
-      bs.mm = &mm;
-      bs.last_t = sess_time(&r.s);
-      status = modbus_loop(&r, &bs, mb, &st);
-      mb_close(mb);
-      r.mb = NULL;
-    }
-  }
 
   while (status == EXIT_END) {
     sess_set_start_all(&r.s, interruptible || (r.next < r.ops.n && !ops_is_waiting(&r.ops.v[r.next])));

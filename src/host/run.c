@@ -4,11 +4,13 @@
 #include "canon.h"
 #include "error.h"
 #include "errors.h"
+#include "modbus.h"
 #include "mrun.h"
 #include "operator.h"
 #include "pace.h"
 #include "report.h"
 #include "utf8.h"
+#include <errno.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -32,6 +34,12 @@ struct host {
   struct canon_trace canon;
   struct pace pace;
   int interruptible;           /* --realtime: SIGINT and SIGTERM stop at a block boundary */
+  /* --modbus: the server, what it publishes, and where the machine was at
+   * the last row or wait (a row's motion goes from there, on the wall clock) */
+  struct mb_server *mb;
+  struct mb_machine mm;
+  double last_t;
+  int64_t last_pos[4];
 };
 
 static volatile sig_atomic_t quit_signal;
@@ -79,9 +87,13 @@ static void on_call(void *ctx, const struct canon_call *c)
     h->o->watch->call(h->o->watch->ctx, c);
 }
 
+static void mark_position(struct host *h);
+
 static void on_moved(void *ctx, const struct mrun *r, const struct mrun_move *m)
 {
   struct host *h = ctx;
+  if (h->mb)
+    mark_position(h);          /* a hand move shows at once, not in the block's motion */
   if (h->o->watch && h->o->watch->moved)
     h->o->watch->moved(h->o->watch->ctx, r, m);
 }
@@ -221,6 +233,8 @@ static int serve_wait(struct host *h)
   while (r->state == MR_WAIT && !r->resume) {
     const struct prog_block *b = &h->p->blocks[r->vm.cur];
     if (h->next >= h->ops.n) {
+      if (h->mb)
+        return -1;             /* a client serves this wait */
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s and the operator script has no more actions\n",
               h->o->program, b->line, b->col, diag_block(mrun_block_number(r), nb), mrun_wait_text(r, wt, sizeof wt));
       return -1;
@@ -234,8 +248,12 @@ static int serve_wait(struct host *h)
       struct mrun_input in;
       input_of(a, &in);
       char why[240];
+      if (h->mb)               /* a tooth search may go on inside the key: reads show it running */
+        mb_publish_running(h->mb, &h->mm);
       ok = mrun_input(r, &in, why, sizeof why);
     }
+    if (ok && h->mb)
+      return -1;               /* it waits for a client instead (the action may fit a later wait) */
     if (ok) {
       h->unfit = h->next + 1;
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s; the operator script's next action "
@@ -246,6 +264,237 @@ static int serve_wait(struct host *h)
     h->next++;
   }
   return 0;
+}
+
+/* ---- served over Modbus TCP (--modbus) ---- */
+
+static void view_now(const struct mrun *r, struct mrun_view *v)
+{
+  if (r->rt->view)
+    r->rt->view(r, v);
+  else
+    memset(v, 0, sizeof *v);
+}
+
+/* From here on a row's motion starts where the machine is now (a wait, a
+ * hand move: what the machine did up to it shows at once). */
+static void mark_position(struct host *h)
+{
+  if (h->r.in_block)
+    return;                    /* a move within a block's work (oscillation): the block's row has it */
+  struct mrun_view v;
+  view_now(&h->r, &v);
+  memcpy(h->last_pos, v.pos, sizeof h->last_pos);
+  h->last_t = mrun_time(&h->r);
+}
+
+/* A row under --modbus: the contour speed the map shows, and with
+ * --realtime the block's motion on the wall clock while the loop goes on
+ * serving -- back to back when blocks follow each other, from now after a
+ * wait. */
+static void mb_row(struct host *h)
+{
+  struct mrun *r = &h->r;
+  struct mb_machine *mm = &h->mm;
+  struct mrun_view v;
+  view_now(r, &v);
+  double t = mrun_time(r), dur = t - h->last_t, now = mb_now();
+  int64_t d[4];
+  for (int a = 0; a < 4; a++)
+    d[a] = v.pos[a] - h->last_pos[a];
+  memcpy(h->last_pos, v.pos, sizeof h->last_pos);
+  h->last_t = t;
+  mm->feed = v.feed;
+  if (!h->o->realtime || dur <= 0)
+    return;
+  double start = mm->motion.end > 0 && now - mm->motion.end < 0.05 ? mm->motion.end : now;
+  mb_motion_start(mm, start, dur, d, v.feed, mrun_block_number(r));
+}
+
+/* Reset, and Пуск after the end: the program from its first block, the
+ * runtime's new cycle (the 2С42: a fresh machine, R0-R113 kept; the 2У22:
+ * the lathe where it is, R0-R9 at 0), the switches kept. */
+static void new_cycle(struct host *h)
+{
+  mrun_renew(&h->r);
+  memset(&h->mm.motion, 0, sizeof h->mm.motion);
+  h->mm.ovr_held = 0;
+  h->mm.feed = 0;
+  mark_position(h);
+  memset(h->runs, 0, (h->p->nblocks ? h->p->nblocks : 1) * sizeof *h->runs);
+  memset(h->runs_n, 0, h->nnum * sizeof *h->runs_n);
+}
+
+/* A block's motion is under way on the wall clock (not held). */
+static int in_motion(const struct mb_machine *mm, double now)
+{
+  return mm->motion.active && !mm->motion.held && now < mm->motion.end;
+}
+
+/* Does the runner go on when stepped (not idle, waiting, stopped or over)? */
+static int runnable(const struct mrun *r)
+{
+  return r->state == MR_ROW || r->state == MR_START || (r->state == MR_WAIT && r->resume);
+}
+
+/* A panel key from a client (contracts.md sec. 6, README "Modbus"). */
+static void mb_press(struct host *h, int k)
+{
+  struct mrun *r = &h->r;
+  struct mb_machine *mm = &h->mm;
+  double now = mb_now();
+  int moving = in_motion(mm, now);
+  struct mrun_input in;
+  memset(&in, 0, sizeof in);
+  in.axis2 = -1;
+  switch (k) {
+  case MB_KEY_PUSK:
+    if (mm->idle) {
+      mm->idle = 0;
+    } else if (mm->ovr_held) {
+      if (r->state == MR_STOPPED)
+        mrun_resume(r);        /* the Стоп is over; the override at 0 % still holds the move */
+    } else if (r->state == MR_STOPPED || mm->motion.held) {
+      if (mm->motion.held) {
+        double len = mm->motion.end - mm->motion.start;
+        mm->motion.start = now - mm->motion.held_frac * len;
+        mm->motion.end = mm->motion.start + len;
+        mm->motion.held = 0;
+      }
+      mb_publish_running(h->mb, mm);
+      mrun_resume(r);
+    } else if (r->state == MR_END) {
+      new_cycle(h);
+    } else if (!moving) {
+      if (r->state == MR_WAIT)
+        mb_publish_running(h->mb, mm);   /* a tooth search may go on inside the key */
+      mrun_pusk(r);            /* a Пуск that fits no wait does nothing */
+    }
+    break;
+  case MB_KEY_STOP:
+    if (mm->idle || r->state == MR_END || r->state == MR_ERROR)
+      break;
+    if (moving) {
+      mm->motion.held_frac = (now - mm->motion.start) / (mm->motion.end - mm->motion.start);
+      mm->motion.held = 1;
+    }
+    mrun_stop(r);
+    break;
+  case MB_KEY_PS:
+    if (!mm->idle && !moving) {
+      if (r->state == MR_WAIT)
+        mb_publish_running(h->mb, mm);
+      in.kind = MRI_PS;
+      mrun_input(r, &in, NULL, 0);   /* a machine without ПС refuses it: nothing happens */
+    }
+    break;
+  case MB_KEY_EXIT:
+    if (!mm->idle) {
+      in.kind = MRI_EXIT;      /* taken by the next block that asks (the 2С42's PP) */
+      mrun_input(r, &in, NULL, 0);
+    }
+    break;
+  case MB_KEY_RESET:
+    new_cycle(h);
+    mm->idle = 1;
+    break;
+  default:
+    break;
+  }
+}
+
+static void row_out(struct host *h);
+
+/* Serve the machine until SIGINT or SIGTERM.  Without an operator script
+ * the cycle waits for a client's Пуск; with one, a wait the script cannot
+ * serve waits for a client.  The exit status: 0 the cycle had reached its
+ * end, 1 an error, 3 otherwise; 4 when the server failed or a restart
+ * point's save did. */
+static int mb_loop(struct host *h)
+{
+  struct mrun *r = &h->r;
+  struct mb_machine *mm = &h->mm;
+  const struct run_opts *o = h->o;
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_quit;     /* no SA_RESTART: poll() returns at once */
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+  r->cfg.starts = 1;           /* back to the loop at every block: the map shows the block about to run */
+  mark_position(h);
+  mb_publish(h->mb, mm);
+  fprintf(stderr, "s42: Modbus TCP on %s%s\n", mb_address(h->mb),
+          mm->idle ? "; the cycle starts with Пуск (coil 0)" : "");
+  int told = -1;               /* the state last reported on stderr */
+  char nb[16];
+  while (!quit_signal) {
+    double now = mb_now();
+    if (mm->motion.active && !mm->motion.held && now >= mm->motion.end)
+      mm->motion.active = 0;
+    int timeout = 100;
+    if (!mm->idle && !mm->motion.active && runnable(r))
+      timeout = 0;
+    else if (in_motion(mm, now) && (mm->motion.end - now) * 1000 < timeout)
+      timeout = (int)((mm->motion.end - now) * 1000) + 1;
+    if (mb_poll(h->mb, mm, timeout)) {
+      fprintf(stderr, "s42: Modbus: poll: %s\n", strerror(errno));
+      return EXIT_IO;
+    }
+    for (int k; (k = mb_key(h->mb)) != MB_KEY_NONE;)
+      mb_press(h, k);
+    mb_publish(h->mb, mm);
+    /* run the machine for a couple of milliseconds, or up to a paced motion;
+     * the server thread answers meanwhile from what was published (a trace
+     * that blocks or a plugin that computes stops only this loop) */
+    double until = mb_now() + 0.002;
+    unsigned steps = 0;
+    while (!mm->idle && !mm->motion.active && !quit_signal) {
+      if (r->state == MR_WAIT && !r->resume) {
+        if (h->next >= h->ops.n || serve_wait(h))
+          break;               /* a client serves this wait */
+        continue;
+      }
+      if (!runnable(r))
+        break;
+      enum mrun_ev ev = mrun_run(r);
+      if (ev == MR_START) {
+        at_start(h);
+        boundary(h);
+        mb_publish(h->mb, mm); /* the block about to run, should it take long */
+      } else if (ev == MR_ROW) {
+        row_out(h);
+        boundary(h);
+      } else if (ev == MR_WAIT) {
+        mark_position(h);
+      }
+      /* the clock is read every 32 blocks: it costs as much as one */
+      if ((++steps % 32 == 0 || (ev != MR_START && ev != MR_ROW)) && mb_now() >= until)
+        break;
+    }
+    mb_publish(h->mb, mm);
+    if (r->state == MR_ERROR && r->vm.err.code == S42_E_STATE)
+      return EXIT_IO;          /* a restart point could not be saved: the server ends (status 4) */
+    if (r->state != told && (r->state == MR_END || r->state == MR_ERROR)) {
+      if (r->state == MR_END) {
+        const struct prog_block *b = &h->p->blocks[r->vm.cur];
+        fprintf(stderr, "%s:%u:%u: note: %s: the program reached its end; Пуск runs it again\n", o->program,
+                b->line, b->col, diag_block(mrun_block_number(r), nb));
+      } else {
+        struct s42_error e;
+        mrun_error(r, &e);
+        fprintf(stderr, "%s:%u:%u: note: %s: the cycle stopped with %s (%s); reset (coil 4) to start again\n",
+                o->program, e.line, e.col, diag_block(e.number, nb), err_code(e.code), e.msg);
+      }
+    }
+    told = r->state;
+  }
+  if (r->state == MR_STOPPED && r->wait == MRW_NONE) {
+    const struct prog_block *b = &h->p->blocks[r->vm.cur];
+    fprintf(stderr, "%s:%u:%u: note: %s: the cycle was stopped (key STOP)\n", o->program, b->line, b->col,
+            diag_block(mrun_block_number(r), nb));
+  }
+  return r->state == MR_END ? EXIT_END : r->state == MR_ERROR ? EXIT_PROGRAM : EXIT_STOPPED;
 }
 
 /* ---- the run ---- */
@@ -291,6 +540,29 @@ static const char *status_name(int st)
   return st == EXIT_END ? "end" : st == EXIT_STOPPED ? "stopped" : "error";
 }
 
+/* A block ran: its row on the trace and to the watcher; paced (--realtime)
+ * by sleeping, or under --modbus by its motion on the wall clock. */
+static void row_out(struct host *h)
+{
+  struct mrun *r = &h->r;
+  const struct run_opts *o = h->o;
+  if (h->mb)
+    mb_row(h);
+  else if (o->realtime)
+    pace_sleep_until(&h->pace, mrun_time(r));
+  if (o->trace) {
+    if (o->json)
+      mrun_row_json(r, stdout);
+    else
+      mrun_row_text(r, stdout);
+    putchar('\n');
+    if (o->realtime || h->mb)
+      fflush(stdout);
+  }
+  if (o->watch && o->watch->row)
+    o->watch->row(o->watch->ctx, r);
+}
+
 /* The loop: 0 end, 1 program error, 3 stopped, 4 a save of the restart
  * state failed. */
 static int loop(struct host *h)
@@ -321,19 +593,7 @@ static int loop(struct host *h)
       }
       continue;
     case MR_ROW:
-      if (o->realtime)
-        pace_sleep_until(&h->pace, mrun_time(r));
-      if (o->trace) {
-        if (o->json)
-          mrun_row_json(r, stdout);
-        else
-          mrun_row_text(r, stdout);
-        putchar('\n');
-        if (o->realtime)
-          fflush(stdout);
-      }
-      if (o->watch && o->watch->row)
-        o->watch->row(o->watch->ctx, r);
+      row_out(h);
       boundary(h);
       continue;
     case MR_WAIT:
@@ -491,6 +751,20 @@ int run_headless(const struct run_opts *o, const struct program *p, const struct
       rc = EXIT_PROGRAM;
     }
   }
+  if (rc == EXIT_END && o->mb) {
+    /* the server listens once the run is set up, so that what would refuse
+     * it (a script, a plugin's option, a restart) is said first */
+    char err[300];
+    int bad = 0;
+    if (!(h.mb = mb_open(o->mb, err, sizeof err, &bad))) {
+      fprintf(stderr, "s42: %s\n", err);
+      rc = bad ? EXIT_USAGE : EXIT_IO;
+    } else if (*mb_warning(h.mb)) {
+      fprintf(stderr, "s42: warning: %s\n", mb_warning(h.mb));
+    }
+    h.mm.r = &h.r;
+    h.mm.idle = !o->operator_file;   /* without a script the cycle starts with a client's Пуск */
+  }
   if (rc == EXIT_END) {
     ran = 1;
     if (o->watch && o->watch->start)
@@ -509,13 +783,17 @@ int run_headless(const struct run_opts *o, const struct program *p, const struct
       h.pace.stop = &quit_signal;
     }
     pace_start(&h.pace, mrun_time(&h.r));   /* a restart goes on from the saved time */
-    rc = loop(&h);
-    if (rc == EXIT_PROGRAM || rc == EXIT_IO) {
+    rc = h.mb ? mb_loop(&h) : loop(&h);
+    if (h.mb) {
+      mb_close(h.mb);
+      h.mb = NULL;
+    }
+    if (rc == EXIT_PROGRAM || (rc == EXIT_IO && h.r.state == MR_ERROR)) {
       mrun_error(&h.r, &e);
       print_error(&h, d, &e);
       ep = &e;
     }
-    if (rc == EXIT_STOPPED && stop_saves) {
+    if (rc == EXIT_STOPPED && stop_saves && !(o->mb && h.mm.idle)) {   /* (idle under --modbus: nothing ran) */
       char serr[512];
       if (mrun_save(&h.r, state_path, serr, sizeof serr))
         fprintf(stderr, "%s: warning: the run stopped, but where it stopped is not saved: %s\n", o->program, serr);
