@@ -255,6 +255,70 @@ else
       fail "mbpoll helical_flute: the second cycle: state $(value 2 -t 3), error $(value 4 -t 3)"
     stop
   fi
+
+  # the 2У22 lathe on the same server (contracts.md sec. 6, its map): R0-R9
+  # and none beyond (02), Пуск, X (a diameter) and Z in µm at 10..13 as its
+  # dump has them, a written R1 that the program uses (N5 X+R1)
+  printf '%s\n' '%' 'N1 T1 G01 G90 G94 G97 S500 M03 M39 M08' 'N2 F300 X4000 Z0' 'N3 G20 F100 Z-3000' \
+    'N4 F1000 X+R1' 'N5 M02' >"$tmp/lathe.u22"
+  if start "$tmp/lathe.u22" --dump; then
+    [ "$(value 2 -t 3)" = 0 ] && ok || fail "mbpoll 2У22: not idle before Пуск"
+    mbp -B -t 4:float -r 602 127.0.0.1 5000 >/dev/null && ok || fail "mbpoll 2У22: write R1 as float32"
+    [ "$(value 602 -B -t 3:float)" = 5000 ] && ok || fail "mbpoll 2У22: R1 reads $(value 602 -B -t 3:float)"
+    out=$(mbp -B -t 4:float -r 620 127.0.0.1 1) && fail "mbpoll 2У22: R10 was written: the lathe has R0-R9"
+    echo "$out" | grep -q "Illegal data address" && ok || fail "mbpoll 2У22: R10 write: $out"
+    out=$(mbp -B -t 3:float -r 620 127.0.0.1) && fail "mbpoll 2У22: R10 was read"
+    echo "$out" | grep -q "Illegal data address" && ok || fail "mbpoll 2У22: R10 read: $out"
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null || fail "mbpoll 2У22: Пуск"
+    wait_state 5 && ok || fail "mbpoll 2У22: never reached M02 (state $(value 2 -t 3))"
+    pos=$(mbp -B -t 3:int -r 10 -c 2 127.0.0.1 | sed -n 's/^\[1[02]\]:[[:space:]]*//p' | tr '\n' ' ')
+    stop
+    [ "$STATUS" = 0 ] && ok || fail "mbpoll 2У22: status $STATUS after M02, expected 0"
+    want=$("$py" -c "import json,sys; p=json.load(open(sys.argv[1]))['pos']; print(round(p['x']*1000),round(p['z']*1000),'')" "$tmp/out" 2>/dev/null)
+    [ "$pos" = "50000 -30000 " ] && [ "$pos" = "$want" ] && ok ||
+      fail "mbpoll 2У22: positions '$pos', the dump says '$want', expected '50000 -30000 '"
+  fi
+  # F% (holding register 0) under --realtime: kept but not acting under G23
+  # (N2), acting under G20 (N3) and within its move, re-timing the rest
+  # from where Z is (the speed: Z against the simulated time, one read);
+  # 0 % holds it; the spindle and coolant at discrete inputs 5 and 6
+  zt() { mbp -B -t 3:int -r 12 -c 5 127.0.0.1 | sed -n -e 's/^\[12\]:[[:space:]]*//p' -e 's/^\[20\]:[[:space:]]*//p' | tr '\n' ' '; }
+  # speed_is LO HI: Z's speed over 0.4 s, µm per simulated ms, within LO..HI
+  speed_is() {
+    set -- "$1" "$2" $(zt)
+    sleep 0.4
+    set -- "$@" $(zt)
+    [ $# = 6 ] && [ "$6" -gt "$4" ] && "$py" -c "import sys; lo,hi,z1,t1,z2,t2=map(float,sys.argv[1:]); v=(z1-z2)/(t2-t1); sys.exit(0 if lo<=v<=hi else 1)" "$@"
+  }
+  runs_at() { [ "$(value 2 -t 3)" = 1 ] && [ "$(value 3 -t 3)" = "$1" ]; }
+  if start "$tmp/lathe.u22" --realtime; then
+    mbp -t 0 -r 0 127.0.0.1 1 >/dev/null
+    t_wait 10 runs_at 2 && ok || fail "mbpoll 2У22 override: N2 does not run (block $(value 3 -t 3))"
+    [ "$(value 5 -t 1)" = 1 ] && [ "$(value 6 -t 1)" = 1 ] && [ "$(value 7 -t 1)" = 1 ] && ok ||
+      fail "mbpoll 2У22: discrete inputs 5-7 (spindle, coolant, X moving) read $(value 5 -t 1 -c 3)"
+    mbp -t 4 -r 0 127.0.0.1 50 >/dev/null && ok || fail "mbpoll 2У22: override 50 under G23 refused"
+    [ "$(value 0 -t 4)" = 50 ] && [ "$(value 5 -t 3)" = 100 ] && [ "$(feed)" = 300000 ] && ok ||
+      fail "mbpoll 2У22 G23: register $(value 0 -t 4), in effect $(value 5 -t 3), feed $(feed): expected 50, 100, 300000"
+    t_wait 10 runs_at 3 && ok || fail "mbpoll 2У22 override: N3 does not run (block $(value 3 -t 3))"
+    [ "$(value 10 -B -t 3:int)" = 40000 ] && [ "$(value 8 -t 1)" = 1 ] && ok ||
+      fail "mbpoll 2У22: X $(value 10 -B -t 3:int) (expected 40000), Z moving $(value 8 -t 1)"
+    [ "$(value 5 -t 3)" = 50 ] && [ "$(feed)" = 50000 ] && ok ||
+      fail "mbpoll 2У22 G20: in effect $(value 5 -t 3), feed $(feed): expected 50, 50000"
+    speed_is 0.75 0.92 && ok || fail "mbpoll 2У22: Z does not go at 50 mm/min at 50 % ($(zt))"
+    mbp -t 4 -r 0 127.0.0.1 100 >/dev/null
+    t_wait 1 feed_is 100000 && ok || fail "mbpoll 2У22: feed $(feed) after 100 % within N3, expected 100000"
+    [ "$(value 3 -t 3)" = 3 ] && [ "$(value 5 -t 3)" = 100 ] && ok || fail "mbpoll 2У22: not N3 at 100 %"
+    speed_is 1.55 1.8 && ok || fail "mbpoll 2У22: Z does not go at 100 mm/min at 100 % ($(zt))"
+    mbp -t 4 -r 0 127.0.0.1 0 >/dev/null
+    wait_state 2 && [ "$(feed)" = 0 ] && ok || fail "mbpoll 2У22: 0 %: run state $(value 2 -t 3), feed $(feed)"
+    z1=$(zt); sleep 0.4; z2=$(zt)
+    [ -n "$z1" ] && [ "$z1" = "$z2" ] && ok || fail "mbpoll 2У22: Z moved at 0 % ($z1, $z2)"
+    mbp -t 4 -r 0 127.0.0.1 150 >/dev/null
+    wait_state 1 && t_wait 1 feed_is 150000 && ok || fail "mbpoll 2У22: 150 %: state $(value 2 -t 3), feed $(feed)"
+    speed_is 2.3 2.7 && ok || fail "mbpoll 2У22: Z does not go on at 150 mm/min from where it stood ($z2; $(zt))"
+    stop
+    [ "$STATUS" = 3 ] && ok || fail "mbpoll 2У22: SIGTERM within N3: status $STATUS, expected 3"
+  fi
 fi
 
 # 6. s42 tui --modbus in tmux: a client's keys are the panel's keys, the map
