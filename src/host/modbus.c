@@ -1110,7 +1110,7 @@ struct mb_server *mb_open(const struct mb_opts *o, char *err, size_t n, int *usa
       snprintf(mb->warning, sizeof mb->warning,
                "Modbus on %s: not a loopback address, and no --modbus-allow: any host that reaches it can %s",
                mb->addr, o->read_only ? "read the machine's state" :
-               "start and stop the cycle, set the feed override and write R0-R113");
+               "start and stop the cycle, set the feed override and write the parameters");
   } else {
     snprintf(mb->addr, sizeof mb->addr, "%s:%s", host, port);
   }
