@@ -40,6 +40,9 @@ struct host {
   struct mb_machine mm;
   double last_t;
   int64_t last_pos[4];
+  /* the wait the script's next action did not fit, left to a client: not
+   * tried again until the machine waits for something else */
+  struct { size_t next; uint64_t seq; uint32_t cur; int wait; } unfit_wait;
 };
 
 static volatile sig_atomic_t quit_signal;
@@ -252,8 +255,13 @@ static int serve_wait(struct host *h)
         mb_publish_running(h->mb, &h->mm);
       ok = mrun_input(r, &in, why, sizeof why);
     }
-    if (ok && h->mb)
-      return -1;               /* it waits for a client instead (the action may fit a later wait) */
+    if (ok && h->mb) {         /* it waits for a client instead (the action may fit a later wait) */
+      h->unfit_wait.next = h->next + 1;
+      h->unfit_wait.seq = r->seq;
+      h->unfit_wait.cur = r->vm.cur;
+      h->unfit_wait.wait = r->wait;
+      return -1;
+    }
     if (ok) {
       h->unfit = h->next + 1;
       fprintf(stderr, "%s:%u:%u: error: %s: the machine waits for %s; the operator script's next action "
@@ -329,6 +337,14 @@ static void new_cycle(struct host *h)
 static int in_motion(const struct mb_machine *mm, double now)
 {
   return mm->motion.active && !mm->motion.held && now < mm->motion.end;
+}
+
+/* The script's next action was found not to fit this very wait. */
+static int unfit_again(const struct host *h)
+{
+  const struct mrun *r = &h->r;
+  return h->unfit_wait.next == h->next + 1 && h->unfit_wait.seq == r->seq && h->unfit_wait.cur == r->vm.cur &&
+         h->unfit_wait.wait == r->wait;
 }
 
 /* Does the runner go on when stepped (not idle, waiting, stopped or over)? */
@@ -451,7 +467,7 @@ static int mb_loop(struct host *h)
     unsigned steps = 0;
     while (!mm->idle && !mm->motion.active && !quit_signal) {
       if (r->state == MR_WAIT && !r->resume) {
-        if (h->next >= h->ops.n || serve_wait(h))
+        if (h->next >= h->ops.n || unfit_again(h) || serve_wait(h))
           break;               /* a client serves this wait */
         continue;
       }
