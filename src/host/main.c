@@ -1071,10 +1071,11 @@ static void plot_start(void *ctx, const struct mrun *r)
   lplot_at(ctx, (double)pos[0] * in.axis[0].mm, (double)pos[2] * in.axis[2].mm);
 }
 static void plot_call(void *ctx, const struct canon_call *c) { lplot_call(ctx, c); }
-static void plot_end(void *ctx, const struct mrun *r, int status, const char *code, int n, unsigned line)
+static void plot_end(void *ctx, const struct mrun *r, int status, const char *code, int n, unsigned line, int stop)
 {
   (void)r;
   (void)line;
+  (void)stop;
   lplot_result(ctx, status == 0 ? "end" : status == 1 ? "error" : "stopped", code, n);
 }
 
