@@ -141,7 +141,7 @@ FUZZ_TARGETS := compile vm operator toolmodel modbus modbus_conn state u22
 FUZZ_FLAGS   := -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined $(ALL_INC) -D_GNU_SOURCE
 .PHONY: fuzz fuzz-bin
 fuzz-bin: $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
-FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/host/plot.c src/host/lplot.c src/host/picture.c src/host/cairo_dl.c,$(SRC_SRCS)) $(BUILD)/gen/dialects.c
+FUZZ_SRCS    := $(VM_SRCS) $(DISP_SRCS) $(filter-out src/host/plot.c src/host/plot_planes.c src/host/plot_lathe.c src/host/plot_run.c src/host/picture.c src/host/cairo_dl.c,$(SRC_SRCS)) $(BUILD)/gen/dialects.c
 $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRCS) $(wildcard src/*/*.h src/*/*/*.h vm/*.h display/*.h)
 	@mkdir -p $(@D)
 	clang $(FUZZ_FLAGS) -o $@ $< $(FUZZ_SRCS) $(MODBUS_LIBS) -pthread -lm -ldl

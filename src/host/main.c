@@ -13,7 +13,6 @@
 #include "operator.h"
 #include "run.h"
 #include "mrun.h"
-#include "lplot.h"
 #include "pace.h"
 #include "plot.h"
 #include "plugin.h"
@@ -645,7 +644,6 @@ static void warn_sink(void *ctx, const struct session *s, const char *msg)
 struct both_sink {
   struct trace_ctx tr;
   struct runner *r;
-  struct plot *plot;       /* s42 plot: the path is collected here */
   int realtime;            /* --realtime: wait until the wall clock reaches the simulated time */
   struct pace pace;
 };
@@ -660,8 +658,6 @@ static void row_sink(void *ctx, const struct session *s, const struct sess_row *
     if (b->realtime)
       fflush(b->tr.out);
   }
-  if (b->plot)
-    plot_row(b->plot, s, row);
 }
 
 /* --trace=canon: a canonical call on stdout, a line each. */
@@ -681,13 +677,6 @@ static void sink_log(void *ctx, const struct session *s, const char *msg)
   (void)ctx;
   (void)s;
   fprintf(stderr, "s42: note: %s\n", msg);
-}
-
-static void sink_moved(void *ctx, const struct session *s, int axis, int64_t d)
-{
-  struct both_sink *b = ctx;
-  if (b->plot)
-    plot_sample(b->plot, s, axis, d);
 }
 
 static void apply_immediate(struct runner *r, const struct op_action *a)
@@ -824,27 +813,9 @@ static int refused_for_2c42(const struct opscript *ops, const char *file)
   return bad;
 }
 
-/* The lathe's plot watching a run (src/host/run.h's watcher). */
-static void plot_start(void *ctx, const struct mrun *r)
-{
-  int64_t pos[CANON_AXES] = {0};
-  if (r->rt->position)
-    r->rt->position(r, pos);
-  struct canon_info in;
-  mrun_info(r, &in);
-  lplot_at(ctx, (double)pos[0] * in.axis[0].mm, (double)pos[2] * in.axis[2].mm);
-}
-static void plot_call(void *ctx, const struct canon_call *c) { lplot_call(ctx, c); }
-static void plot_end(void *ctx, const struct mrun *r, int status, const char *code, int n, unsigned line)
-{
-  (void)r;
-  (void)line;
-  lplot_result(ctx, status == 0 ? "end" : status == 1 ? "error" : "stopped", code, n);
-}
-
-/* A dialect on the one runner (src/host/run.c); lp: s42 plot's picture. */
+/* A dialect on the one runner (src/host/run.c); pl: s42 plot's picture. */
 static int run_machine(const struct opts *o, struct program *p, struct diag_list *d, const char *src, size_t n,
-                       struct lplot *lp)
+                       struct plot *pl)
 {
   const struct mrun_rt *rt = p->runtime;
   int table = rt && rt->tool_table;
@@ -872,57 +843,30 @@ static int run_machine(const struct opts *o, struct program *p, struct diag_list
   r.en = o->en;
   r.max_blocks = o->max_blocks;
   r.mb = o->modbus ? &o->mb : NULL;
-  struct run_watch w = {lp, plot_start, plot_call, NULL, NULL, plot_end};
-  r.watch = lp ? &w : NULL;
+  struct run_watch w;
+  if (pl)
+    plot_watch(pl, &w);
+  r.watch = pl ? &w : NULL;
   return run_headless(&r, p, d, src, n);
 }
 
-/* s42 plot of a dialect on the one runner: the lathe's picture (lplot.c). */
-static int plot_machine(const struct opts *o)
+/* --dump of a program that did not compile: the machine at power-on, in
+ * its dialect's format. */
+static void dump_refused(const struct opts *o, const struct program *p, const struct diag_list *d)
 {
-  char err[300];
-  struct lplot_stock stock = {0, 0, 0};
-  if (o->stock && lplot_parse_stock(o->stock, &stock, err, sizeof err)) {
-    fprintf(stderr, "s42: --stock %s: %s\n", o->stock, err);
-    return EXIT_USAGE;
-  }
-  if (lplot_check_path(o->out, o->program, err, sizeof err)) {
-    fprintf(stderr, "s42: %s\n", err);
-    return EXIT_USAGE;
-  }
-  struct program p;
-  struct diag_list d;
-  char *src = NULL;
-  size_t n = 0;
-  int rc = load(o->program, &p, &d, &src, &n);
-  struct lplot *lp = lplot_new(&stock);
-  if (!lp) {
-    fprintf(stderr, "s42: out of memory\n");
-    rc = EXIT_IO;
-  } else if (rc == 0) {
-    rc = run_machine(o, &p, &d, src, n, lp);
-  } else if (rc == EXIT_PROGRAM) {
-    const struct diag *g = diag_first_error(&d);
-    lplot_result(lp, "error", g ? err_code(g->code) : "E-SYNTAX", g ? g->number : -1);
-  }
-  if (lp && rc != EXIT_USAGE && rc != EXIT_IO && lplot_write(lp, o->program, o->out, err, sizeof err)) {
-    fprintf(stderr, "s42: %s: %s\n", o->out, err);
-    rc = EXIT_IO;
-  }
-  lplot_free(lp);
-  prog_free(&p);
-  diag_free(&d);
-  file_unload(src);
-  return rc;
+  const struct diag *g = diag_first_error(d);
+  struct s42_error de;
+  s42_error_of_diag(&de, g);
+  const struct dialect *dl = dialect_of(o->program);
+  if (dl->run != DIALECT_RUN_SESSION)
+    run_dump_refused(dl->runtime, p, &de, o->en);
+  else
+    report_dump(stdout, "error", &de, p, o->en, NULL);
 }
 
-static int headless(const struct opts *opt, struct plot *plot)
+static int headless(const struct opts *opt)
 {
   struct opts o = *opt;
-  if (o.modbus && plot) {
-    fprintf(stderr, "s42: plot does not serve Modbus (--modbus is for run and tui)\n");
-    return EXIT_USAGE;
-  }
   struct runner r;
   memset(&r, 0, sizeof r);
   r.file = o.program;
@@ -958,21 +902,9 @@ static int headless(const struct opts *opt, struct plot *plot)
   }
   if (rc == 0 && dialect_of(o.program)->run == DIALECT_RUN_SESSION && refused_for_2c42(&r.ops, o.operator_file))
     rc = EXIT_USAGE;
-  if (rc == EXIT_PROGRAM && plot) {
-    const struct diag *g = diag_first_error(&d);
-    plot_result(plot, NULL, rc, g ? err_code(g->code) : "E-SYNTAX", g ? g->number : -1, g ? g->line : 0);
-  }
   if (rc) {
-    if (o.dump && rc == EXIT_PROGRAM) {
-      const struct diag *g = diag_first_error(&d);
-      struct s42_error de;
-      s42_error_of_diag(&de, g);
-      const struct dialect *dl = dialect_of(o.program);
-      if (dl->run != DIALECT_RUN_SESSION)
-        run_dump_refused(dl->runtime, &p, &de, o.en);
-      else
-        report_dump(stdout, "error", &de, &p, o.en, NULL);
-    }
+    if (o.dump && rc == EXIT_PROGRAM)
+      dump_refused(&o, &p, &d);
     prog_free(&p);
     diag_free(&d);
     file_unload(src);
@@ -1001,7 +933,6 @@ static int headless(const struct opts *opt, struct plot *plot)
   bs.tr.out = o.trace ? stdout : NULL;
   bs.tr.json = o.json;
   bs.r = &r;
-  bs.plot = plot;
   bs.realtime = o.realtime;
   r.watch = calloc(p.nblocks ? p.nblocks : 1, 1);
   r.runs = calloc(1000, sizeof *r.runs);
@@ -1025,10 +956,9 @@ static int headless(const struct opts *opt, struct plot *plot)
   cfg.plugins = plugins_init(NULL);
   cfg.sink.ctx = &bs;
   /* rows only for what reads them: a run with none builds none */
-  cfg.sink.row = o.trace || plot || o.realtime ? row_sink : NULL;
+  cfg.sink.row = o.trace || o.realtime ? row_sink : NULL;
   cfg.sink.warn = sink_warn;
   cfg.sink.log = sink_log;
-  cfg.sink.moved = sink_moved;
   cfg.yield_all = o.trace;
   cfg.watch = r.watch;
   struct canon_trace ct;
@@ -1157,8 +1087,6 @@ static int headless(const struct opts *opt, struct plot *plot)
     ops_warn_unused(&r.ops, r.next, r.unfit, r.runs, o.operator_file, stderr);
   if (o.dump)
     report_dump(stdout, st, dep, &p, o.en, &r.s);
-  if (plot)
-    plot_result(plot, &r.s, status, dep ? err_code(dep->code) : NULL, dep ? dep->number : -1, dep ? dep->line : 0);
   if (o.screen) {
     uint32_t grid[SCR_ROWS][SCR_COLS];
     if (dep) {
@@ -1192,9 +1120,12 @@ static int cmd_run(int argc, char **argv)
     fprintf(stderr, "s42: run writes no file (-o is for plot)\n");
     return EXIT_USAGE;
   }
-  return headless(&o, NULL);
+  return headless(&o);
 }
 
+/* s42 plot: one path for every dialect -- compile, run headless on the
+ * runner (src/host/run.c) with the plot engine watching (src/host/plot.h),
+ * which draws it in the view of the machine's kind. */
 static int cmd_plot(int argc, char **argv)
 {
   struct opts o;
@@ -1205,37 +1136,66 @@ static int cmd_plot(int argc, char **argv)
     fprintf(stderr, "usage: s42 plot PROGRAM.kp -o FILE.png|.svg|.pdf [--operator FILE] [options]\n");
     return EXIT_USAGE;
   }
-  if (dialect_of(o.program)->run != DIALECT_RUN_SESSION) {
-    if (dialect_of(o.program)->run == DIALECT_RUN_VM) {
-      fprintf(stderr, "s42: %s: this dialect runs its blocks on the VM alone: plot, --modbus, --operator, "
-              "--state, --restart, --tool and --machine need a machine\n", o.program);
-      return EXIT_USAGE;
-    }
-    return plot_machine(&o);
-  }
-  if (o.stock) {
-    fprintf(stderr, "s42: --stock is a lathe's bar; the 2С42's plot has none\n");
+  const struct dialect *dl = dialect_of(o.program);
+  if (dl->run == DIALECT_RUN_VM) {
+    fprintf(stderr, "s42: %s: this dialect runs its blocks on the VM alone: plot, --modbus, --operator, "
+            "--state, --restart, --tool and --machine need a machine\n", o.program);
     return EXIT_USAGE;
   }
-  char err[256];
+  if (o.modbus) {
+    fprintf(stderr, "s42: plot does not serve Modbus (--modbus is for run and tui)\n");
+    return EXIT_USAGE;
+  }
+  char err[300];
+  struct plot_stock stock = {0, 0, 0};
+  if (o.stock && strcmp(dl->machine, "lathe") != 0) {
+    /* the controller's short name: "2С42" of "2С42-65 (...)" */
+    int len = (int)strcspn(dl->controller, "- (");
+    fprintf(stderr, "s42: --stock is a lathe's bar; the %.*s's plot has none\n", len, dl->controller);
+    return EXIT_USAGE;
+  }
+  if (o.stock && plot_parse_stock(o.stock, &stock, err, sizeof err)) {
+    fprintf(stderr, "s42: --stock %s: %s\n", o.stock, err);
+    return EXIT_USAGE;
+  }
   if (plot_check_path(o.out, o.program, err, sizeof err)) {
     fprintf(stderr, "s42: %s\n", err);
     return EXIT_USAGE;
   }
-  struct plot *pl = plot_new();
+  struct plot *pl = plot_new(&stock);
   if (!pl) {
     fprintf(stderr, "s42: out of memory\n");
     return EXIT_IO;
   }
-  int st = headless(&o, pl);
-  if (st != EXIT_USAGE && st != EXIT_IO) {
-    if (plot_write(pl, o.program, o.out, err, sizeof err)) {
-      fprintf(stderr, "s42: %s: %s\n", o.out, err);
-      st = EXIT_IO;
-    }
+  struct program p;
+  struct diag_list d;
+  char *src = NULL;
+  size_t n = 0;
+  int rc = load(o.program, &p, &d, &src, &n);
+  if (rc == 0) {
+    rc = run_machine(&o, &p, &d, src, n, pl);
+  } else if (rc == EXIT_PROGRAM) {
+    /* not run: the picture of its machine says why */
+    const struct diag *g = diag_first_error(&d);
+    const struct mrun_rt *rt = p.runtime ? p.runtime : dl->runtime;
+    struct canon_info in;
+    memset(&in, 0, sizeof in);
+    if (rt && rt->info)
+      rt->info(&(struct mrun){.rt = rt}, &in);
+    plot_refused(pl, in.kind ? in.kind : dl->machine, g ? err_code(g->code) : "E-SYNTAX", g ? g->number : -1,
+                 g ? g->line : 0);
+    if (o.dump)
+      dump_refused(&o, &p, &d);
+  }
+  if (rc != EXIT_USAGE && rc != EXIT_IO && plot_write(pl, o.program, o.out, err, sizeof err)) {
+    fprintf(stderr, "s42: %s: %s\n", o.out, err);
+    rc = EXIT_IO;
   }
   plot_free(pl);
-  return st;
+  prog_free(&p);
+  diag_free(&d);
+  file_unload(src);
+  return rc;
 }
 
 /* s42 tui: the terminal front end (src/host/tui.c), at machine speed. */

@@ -7,11 +7,11 @@ HOST_MAIN_SRCS := src/host/main.c src/host/tui.c src/host/tui_mrun.c src/host/tu
 HOST_LIB_SRCS  := $(filter-out $(HOST_MAIN_SRCS),$(wildcard src/host/*.c))
 SRC_MAIN_OBJ   := $(HOST_MAIN_SRCS:%.c=$(BUILD)/%.o)
 $(HOST_LIB_SRCS:%.c=$(BUILD)/%.o) $(SRC_MAIN_OBJ): MOD_CPPFLAGS = $(HOST_INC)
-# plot.c and lplot.c draw with cairo (the only parts of src/ that need it)
+# plot.c and its views draw with cairo (the only parts of src/ that need it)
 CAIRO_CFLAGS = $(call pkg,CAIRO_CFLAGS,--cflags cairo)
 # cairo is loaded with dlopen when a plot is drawn (src/host/cairo_dl.c):
 # linking it would load two dozen libraries at every start-up
-$(BUILD)/src/host/plot.o $(BUILD)/src/host/lplot.o $(BUILD)/src/host/picture.o $(BUILD)/src/host/cairo_dl.o: MOD_CPPFLAGS = $(HOST_INC) $(CAIRO_CFLAGS)
+$(BUILD)/src/host/plot.o $(BUILD)/src/host/plot_planes.o $(BUILD)/src/host/plot_lathe.o $(BUILD)/src/host/picture.o $(BUILD)/src/host/cairo_dl.o: MOD_CPPFLAGS = $(HOST_INC) $(CAIRO_CFLAGS)
 # tui.c draws with ncursesw, loaded with dlopen by `s42 tui` alone
 # (curses_dl.c): linked, it and libtinfo were mapped by every s42 run.
 # Only its headers are needed to build.

@@ -1,5 +1,5 @@
-/* Writing a picture for the plots (plot.c, the grinder's; lplot.c, the
- * lathe's): its format by the file's extension (.png, .svg, .pdf), drawn
+/* Writing a picture for the plot engine (plot.c and its views, plot_view.h):
+ * its format by the file's extension (.png, .svg, .pdf), drawn
  * with cairo (loaded at the first picture, cairo_dl.h) into a temporary
  * file beside the target, synced and renamed into place, so a failed or
  * interrupted plot never leaves half a picture under the name. */

@@ -43,6 +43,7 @@ struct host {
   /* the wait the script's next action did not fit, left to a client: not
    * tried again until the machine waits for something else */
   struct { size_t next; uint64_t seq; uint32_t cur; int wait; } unfit_wait;
+  int stop;                    /* how it stopped: enum run_stop */
 };
 
 static volatile sig_atomic_t quit_signal;
@@ -594,6 +595,7 @@ static int loop(struct host *h)
       fprintf(stderr, "%s:%u:%u: note: %s: stopped by %s before this block\n", o->program, b->line, b->col,
               diag_block(mrun_block_number(r), nb), quit_signal == SIGINT ? "Ctrl-C (SIGINT)" : "SIGTERM");
       mrun_stop(r);
+      h->stop = RUN_STOP_OTHER;
       return EXIT_STOPPED;
     }
     enum mrun_ev ev = mrun_run(r);
@@ -605,6 +607,7 @@ static int loop(struct host *h)
         const struct prog_block *b = &h->p->blocks[r->vm.cur];
         fprintf(stderr, "%s:%u:%u: note: %s: the cycle was stopped (key STOP)\n", o->program, b->line, b->col,
                 diag_block(mrun_block_number(r), nb));
+        h->stop = RUN_STOP_KEY;
         return EXIT_STOPPED;
       }
       continue;
@@ -613,15 +616,21 @@ static int loop(struct host *h)
       boundary(h);
       continue;
     case MR_WAIT:
-      if (serve_wait(h) == 0 && r->state != MR_STOPPED)
-        continue;
+      if (serve_wait(h) == 0) {
+        if (r->state != MR_STOPPED)
+          continue;
+        h->stop = RUN_STOP_KEY;   /* Стоп while it waited */
+        return EXIT_STOPPED;
+      }
       if (r->state == MR_WAIT)
         mrun_stop(r);
+      h->stop = RUN_STOP_SCRIPT;
       return EXIT_STOPPED;
     case MR_STOPPED: {
       const struct prog_block *b = &h->p->blocks[r->vm.cur];
       fprintf(stderr, "%s:%u:%u: note: %s: the cycle was stopped (key STOP)\n", o->program, b->line, b->col,
               diag_block(mrun_block_number(r), nb));
+      h->stop = RUN_STOP_KEY;
       return EXIT_STOPPED;
     }
     case MR_END:
@@ -824,7 +833,7 @@ int run_headless(const struct run_opts *o, const struct program *p, const struct
     mrun_dump(&h.r, stdout, status_name(rc == EXIT_IO ? EXIT_PROGRAM : rc), ep);
   if (o->watch && o->watch->result && rc != EXIT_USAGE && (rc != EXIT_IO || ep))
     o->watch->result(o->watch->ctx, &h.r, rc == EXIT_IO ? EXIT_PROGRAM : rc, ep ? err_code(ep->code) : NULL,
-                     ep ? ep->number : -1, ep ? ep->line : 0);
+                     ep ? ep->number : -1, ep ? ep->line : 0, h.stop);
   if (o->screen && h.r.rt->screen && rc != EXIT_USAGE) {
     if (ep && h.r.rt->show) {   /* the error on the machine's display, in its words */
       char m[200];

@@ -28,10 +28,15 @@ struct run_watch {
   void (*call)(void *ctx, const struct canon_call *c);
   void (*moved)(void *ctx, const struct mrun *r, const struct mrun_move *m);
   void (*row)(void *ctx, const struct mrun *r);
-  /* how it ended: status 0 end, 1 program error, 3 stopped; r NULL: the
-   * program did not compile; code, n, line: the error's (NULL, -1, 0 none) */
-  void (*result)(void *ctx, const struct mrun *r, int status, const char *code, int n, unsigned line);
+  /* how it ended: status 0 end, 1 program error, 3 stopped (stop: how,
+   * enum run_stop); code, n, line: the error's (NULL, -1, 0 none) */
+  void (*result)(void *ctx, const struct mrun *r, int status, const char *code, int n, unsigned line, int stop);
 };
+
+/* How a run stopped (status 3): Стоп (the key STOP), the operator script
+ * had nothing that fits what the machine waits for, or otherwise (a
+ * signal under --realtime). */
+enum run_stop { RUN_STOP_OTHER, RUN_STOP_KEY, RUN_STOP_SCRIPT };
 
 struct run_opts {
   const char *program;          /* its path, for messages and the restart state's default name */

@@ -25,6 +25,7 @@ int main(void)
   srunner_add_suite(sr, suite_lathe());
   srunner_add_suite(sr, suite_u22());
   srunner_add_suite(sr, suite_lplot());
+  srunner_add_suite(sr, suite_plot());
   srunner_add_suite(sr, suite_mrun());
   srunner_run_all(sr, CK_NORMAL);
   int failed = srunner_ntests_failed(sr);

@@ -32,6 +32,7 @@ Suite *suite_words(void);
 Suite *suite_lathe(void);
 Suite *suite_u22(void);
 Suite *suite_lplot(void);
+Suite *suite_plot(void);
 Suite *suite_mrun(void);
 
 /* A program compiled from a C string, with its diagnostics. */

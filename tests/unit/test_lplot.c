@@ -1,10 +1,11 @@
-/* The lathe's plot (src/host/lplot.h): the turned part's silhouette from
- * canonical calls, computed by hand; the arcs' sense; the chuck mark; the
- * --stock parser; robustness (a million calls, extremes); the files. */
+/* The plot engine's lathe view (src/host/plot.h): the turned part's
+ * silhouette from canonical calls, computed by hand; the arcs' sense; the
+ * chuck mark; the --stock parser; robustness (a million calls, extremes);
+ * the files. */
 #include "suites.h"
 #include "canon.h"
 #include "geom.h"
-#include "lplot.h"
+#include "plot.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,7 +13,38 @@
 #include <time.h>
 #include <unistd.h>
 
-static const double lmm[4] = {0.0005, 0.001, 0.001, 0.001};
+static const double lmm[CANON_AXES] = {0.0005, 0.001, 0.001, 0.001, 0.001, 0.001};
+
+/* Where the tool is: a record starts where the one before it ended, as the
+ * lathe reports them. */
+static int64_t here[CANON_AXES];
+
+/* A lathe's plot: the machine as the lathe describes itself (X counts
+ * 0.5 um of radius), the tool at the origin. */
+static struct plot *lathe_plot(const struct plot_stock *s)
+{
+  struct plot *pl = plot_new(s);
+  ck_assert_ptr_nonnull(pl);
+  struct canon_info in;
+  memset(&in, 0, sizeof in);
+  in.kind = "lathe";
+  in.name = "16Б16Ф3";
+  in.naxes = 2;
+  for (int a = 0; a < CANON_AXES; a++)
+    in.axis[a].mm = lmm[a];
+  in.axis[0].name = 'X';
+  in.axis[2].name = 'Z';
+  memset(here, 0, sizeof here);
+  plot_begin(pl, &in, here);
+  return pl;
+}
+
+static void put(struct plot *pl, struct canon_call *c)
+{
+  memcpy(c->from, here, sizeof here);
+  memcpy(here, c->pos, sizeof here);
+  plot_call(pl, c);
+}
 
 /* A call at (radius r, z) mm, as the lathe reports it (X counts 0.5 µm of
  * radius: the diameter in µm). */
@@ -27,21 +59,21 @@ static struct canon_call call(int kind, double r, double z)
   return c;
 }
 
-static void feed(struct lplot *pl, double r, double z)
+static void feed(struct plot *pl, double r, double z)
 {
   struct canon_call c = call(CANON_FEED_LINE, r, z);
   c.f = 100;
-  lplot_call(pl, &c);
+  put(pl, &c);
 }
 
-static void trav(struct lplot *pl, double r, double z)
+static void trav(struct plot *pl, double r, double z)
 {
   struct canon_call c = call(CANON_TRAVERSE, r, z);
-  lplot_call(pl, &c);
+  put(pl, &c);
 }
 
 /* ARC_FEED to (r, z) round (cr, cz); g 2 or 3. */
-static void arc(struct lplot *pl, int g, double r, double z, double cr, double cz)
+static void arc(struct plot *pl, int g, double r, double z, double cr, double cz)
 {
   struct canon_call c = call(CANON_FEED_ARC, r, z);
   c.plane = GEOM_XZ;
@@ -49,22 +81,20 @@ static void arc(struct lplot *pl, int g, double r, double z, double cr, double c
   c.centre[1] = llround(cz / lmm[2]);
   c.ccw = g == 2;   /* the sink's sense: from X towards Z is a G02 */
   c.f = 100;
-  lplot_call(pl, &c);
+  put(pl, &c);
 }
 
-static void tool_at(struct lplot *pl, double r, double z)
+static void tool_at(struct plot *pl, double r, double z)
 {
   struct canon_call c = call(CANON_TOOL, r, z);
   c.dir = 1;
-  lplot_call(pl, &c);
+  put(pl, &c);
 }
 
-static struct lplot *with_stock(double d, double len)
+static struct plot *with_stock(double d, double len)
 {
-  struct lplot_stock s = {1, d, len};
-  struct lplot *pl = lplot_new(&s);
-  ck_assert_ptr_nonnull(pl);
-  return pl;
+  struct plot_stock s = {1, d, len};
+  return lathe_plot(&s);
 }
 
 /* Stock Ø40 x 100; face at Z 0; turn to Ø30 over Z 0 .. -30, out at -30;
@@ -73,7 +103,7 @@ static struct lplot *with_stock(double d, double len)
  * axis there). */
 START_TEST(silhouette_by_hand)
 {
-  struct lplot *pl = with_stock(40, 100);
+  struct plot *pl = with_stock(40, 100);
   tool_at(pl, 25, 5);
   trav(pl, 21, 0);
   feed(pl, 0, 0);           /* facing at Z 0 */
@@ -85,21 +115,21 @@ START_TEST(silhouette_by_hand)
   feed(pl, 12.5, -20);      /* the groove Ø25 */
   feed(pl, 21, -20);
   trav(pl, 25, 5);
-  ck_assert_int_eq(lplot_chuck(pl, NULL), 0);
-  ck_near(lplot_radius_at(pl, -0.001), 0, 1e-9);
-  ck_near(lplot_radius_at(pl, -0.5), 15, 1e-9);
-  ck_near(lplot_radius_at(pl, -10), 15, 1e-9);
-  ck_near(lplot_radius_at(pl, -19.5), 15, 1e-9);
-  ck_near(lplot_radius_at(pl, -20), 12.5, 1e-9);
-  ck_near(lplot_radius_at(pl, -20.004), 12.5, 1e-9);
-  ck_near(lplot_radius_at(pl, -19.996), 12.5, 1e-9);
-  ck_near(lplot_radius_at(pl, -20.5), 15, 1e-9);
-  ck_near(lplot_radius_at(pl, -29.99), 15, 1e-9);
-  ck_near(lplot_radius_at(pl, -30.03), 20, 1e-9);
-  ck_near(lplot_radius_at(pl, -50), 20, 1e-9);
-  ck_near(lplot_radius_at(pl, -100), 20, 1e-9);
-  ck_assert(lplot_radius_at(pl, 0.5) == -1 && lplot_radius_at(pl, -100.5) == -1);
-  lplot_free(pl);
+  ck_assert_int_eq(plot_lathe_chuck(pl, NULL), 0);
+  ck_near(plot_lathe_radius_at(pl, -0.001), 0, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -0.5), 15, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -10), 15, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -19.5), 15, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -20), 12.5, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -20.004), 12.5, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -19.996), 12.5, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -20.5), 15, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -29.99), 15, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -30.03), 20, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -50), 20, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -100), 20, 1e-9);
+  ck_assert(plot_lathe_radius_at(pl, 0.5) == -1 && plot_lathe_radius_at(pl, -100.5) == -1);
+  plot_free(pl);
 }
 END_TEST
 
@@ -108,7 +138,7 @@ END_TEST
  * the face nothing. */
 START_TEST(silhouette_slanted_and_outside)
 {
-  struct lplot *pl = with_stock(40, 100);
+  struct plot *pl = with_stock(40, 100);
   tool_at(pl, 30, 10);
   trav(pl, 14, 1);
   feed(pl, 18, -3);         /* through the face: r = 15 at z 0, 18 at -3 */
@@ -120,16 +150,16 @@ START_TEST(silhouette_slanted_and_outside)
   trav(pl, 25, -80);        /* above the stock: nothing */
   trav(pl, 25, 50);
   trav(pl, 0, 50);          /* beyond the face: nothing */
-  ck_near(lplot_radius_at(pl, -1), 16, 0.011);   /* 15 + 1; a cell is 0.01 long */
-  ck_near(lplot_radius_at(pl, -2.5), 17.5, 0.011);
-  ck_near(lplot_radius_at(pl, -20), 18, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -1), 16, 0.011);   /* 15 + 1; a cell is 0.01 long */
+  ck_near(plot_lathe_radius_at(pl, -2.5), 17.5, 0.011);
+  ck_near(plot_lathe_radius_at(pl, -20), 18, 1e-9);
   double zc = -40 - 20 * 18.0 / 34;
-  ck_near(lplot_radius_at(pl, zc), 0, 0.02);
-  ck_near(lplot_radius_at(pl, -45), 18 - 5 * 34.0 / 20, 0.02);
-  ck_near(lplot_radius_at(pl, -59), (59 - 40) * 34.0 / 20 - 18, 0.02);
-  ck_near(lplot_radius_at(pl, -70), 20, 1e-9);
-  ck_near(lplot_radius_at(pl, -90), 20, 1e-9);
-  lplot_free(pl);
+  ck_near(plot_lathe_radius_at(pl, zc), 0, 0.02);
+  ck_near(plot_lathe_radius_at(pl, -45), 18 - 5 * 34.0 / 20, 0.02);
+  ck_near(plot_lathe_radius_at(pl, -59), (59 - 40) * 34.0 / 20 - 18, 0.02);
+  ck_near(plot_lathe_radius_at(pl, -70), 20, 1e-9);
+  ck_near(plot_lathe_radius_at(pl, -90), 20, 1e-9);
+  plot_free(pl);
 }
 END_TEST
 
@@ -140,7 +170,7 @@ END_TEST
  * in, R(z) = 20 - sqrt(100 - (z+30)^2) (the long way stays above r 20). */
 START_TEST(arcs_turn_the_right_way)
 {
-  struct lplot *pl = with_stock(60, 100);
+  struct plot *pl = with_stock(60, 100);
   tool_at(pl, 10, 0);
   arc(pl, 3, 20, -10, 10, -10);
   trav(pl, 35, -10);
@@ -149,21 +179,21 @@ START_TEST(arcs_turn_the_right_way)
   arc(pl, 2, 20, -40, 20, -30);
   trav(pl, 35, -40);
   for (double z = -0.5; z > -10; z -= 1.5)
-    ck_near(lplot_radius_at(pl, z), 10 + sqrt(100 - (z + 10) * (z + 10)), 0.06);
-  ck_near(lplot_radius_at(pl, -2.928932), 17.071068, 0.02);
-  ck_near(lplot_radius_at(pl, -5), 18.660254, 0.02);
-  ck_near(lplot_radius_at(pl, -15), 30, 1e-9);
+    ck_near(plot_lathe_radius_at(pl, z), 10 + sqrt(100 - (z + 10) * (z + 10)), 0.06);
+  ck_near(plot_lathe_radius_at(pl, -2.928932), 17.071068, 0.02);
+  ck_near(plot_lathe_radius_at(pl, -5), 18.660254, 0.02);
+  ck_near(plot_lathe_radius_at(pl, -15), 30, 1e-9);
   for (double z = -30.5; z > -40; z -= 1.5)
-    ck_near(lplot_radius_at(pl, z), 20 - sqrt(100 - (z + 30) * (z + 30)), 0.06);
-  ck_near(lplot_radius_at(pl, -35), 11.339746, 0.02);
-  ck_near(lplot_radius_at(pl, -45), 30, 1e-9);
+    ck_near(plot_lathe_radius_at(pl, z), 20 - sqrt(100 - (z + 30) * (z + 30)), 0.06);
+  ck_near(plot_lathe_radius_at(pl, -35), 11.339746, 0.02);
+  ck_near(plot_lathe_radius_at(pl, -45), 30, 1e-9);
   /* the page: Z to the right, the radius up */
   double x0, y0, x1, y1;
-  lplot_page_xy(pl, 10, 0, &x0, &y0);
-  lplot_page_xy(pl, 20, -10, &x1, &y1);
+  plot_lathe_page_xy(pl, 10, 0, &x0, &y0);
+  plot_lathe_page_xy(pl, 20, -10, &x1, &y1);
   ck_assert(x1 < x0 && y1 < y0);
   ck_near(x0 - x1, y0 - y1, 1e-9);   /* one scale */
-  lplot_free(pl);
+  plot_free(pl);
 }
 END_TEST
 
@@ -172,59 +202,59 @@ END_TEST
 START_TEST(chuck_side)
 {
   double z;
-  struct lplot *pl = with_stock(40, 100);
+  struct plot *pl = with_stock(40, 100);
   tool_at(pl, 25, 5);
   trav(pl, 19, 5);
   feed(pl, 19, -100);
-  ck_assert_int_eq(lplot_chuck(pl, &z), 0);
+  ck_assert_int_eq(plot_lathe_chuck(pl, &z), 0);
   feed(pl, 21, -100);
   trav(pl, 20, -110);       /* at d/2: cuts nothing */
-  ck_assert_int_eq(lplot_chuck(pl, &z), 0);
+  ck_assert_int_eq(plot_lathe_chuck(pl, &z), 0);
   trav(pl, 25, -90);
   feed(pl, 17, -102);
-  ck_assert_int_eq(lplot_chuck(pl, &z), 1);
+  ck_assert_int_eq(plot_lathe_chuck(pl, &z), 1);
   ck_near(z, -102, 1e-9);
   feed(pl, 25, -110);       /* leaves the bar's radius at z -105 */
-  ck_assert_int_eq(lplot_chuck(pl, &z), 1);
+  ck_assert_int_eq(plot_lathe_chuck(pl, &z), 1);
   ck_near(z, -105, 1e-5);
-  lplot_free(pl);
+  plot_free(pl);
   /* without a stock, no chuck */
-  pl = lplot_new(NULL);
+  pl = lathe_plot(NULL);
   tool_at(pl, 0, 0);
   feed(pl, 0, -500);
-  ck_assert_int_eq(lplot_chuck(pl, &z), 0);
-  ck_assert(lplot_radius_at(pl, -1) == -1);
-  lplot_free(pl);
+  ck_assert_int_eq(plot_lathe_chuck(pl, &z), 0);
+  ck_assert(plot_lathe_radius_at(pl, -1) == -1);
+  plot_free(pl);
 }
 END_TEST
 
 START_TEST(stock_parses)
 {
-  struct lplot_stock s;
+  struct plot_stock s;
   char why[200];
-  ck_assert_int_eq(lplot_parse_stock("40x100", &s, why, sizeof why), 0);
+  ck_assert_int_eq(plot_parse_stock("40x100", &s, why, sizeof why), 0);
   ck_assert(s.has && s.d == 40 && s.len == 100);
-  ck_assert_int_eq(lplot_parse_stock("40X100", &s, why, sizeof why), 0);
+  ck_assert_int_eq(plot_parse_stock("40X100", &s, why, sizeof why), 0);
   ck_assert(s.has && s.d == 40 && s.len == 100);
-  ck_assert_int_eq(lplot_parse_stock("12.5x0.75", &s, why, sizeof why), 0);
+  ck_assert_int_eq(plot_parse_stock("12.5x0.75", &s, why, sizeof why), 0);
   ck_near(s.d, 12.5, 1e-12);
   ck_near(s.len, 0.75, 1e-12);
-  ck_assert_int_eq(lplot_parse_stock("10000x10000", &s, why, sizeof why), 0);
+  ck_assert_int_eq(plot_parse_stock("10000x10000", &s, why, sizeof why), 0);
   static const char *const bad[] = {"", "40", "40x", "x100", "40*100", "-40x100", "40x-100", "0x100", "40x0",
                                     "40x100x3", "40 x 100", "1e3x100", "nanxinf", "40x100mm", "10001x100",
                                     "40x10000.5", "4..0x100", ".x1"};
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
     why[0] = 0;
-    int r = lplot_parse_stock(bad[i], &s, why, sizeof why);
+    int r = plot_parse_stock(bad[i], &s, why, sizeof why);
     ck_assert_msg(r == -1, "'%s' accepted", bad[i]);
     ck_assert_msg(strstr(why, "--stock") && strlen(why) > 20, "'%s': %s", bad[i], why);
     ck_assert(!s.has);
   }
-  lplot_parse_stock("40", &s, why, sizeof why);
+  plot_parse_stock("40", &s, why, sizeof why);
   ck_assert_msg(strstr(why, "DIAMETERxLENGTH"), "%s", why);
-  lplot_parse_stock("0x100", &s, why, sizeof why);
+  plot_parse_stock("0x100", &s, why, sizeof why);
   ck_assert_msg(strstr(why, "more than 0"), "%s", why);
-  lplot_parse_stock("20000x100", &s, why, sizeof why);
+  plot_parse_stock("20000x100", &s, why, sizeof why);
   ck_assert_msg(strstr(why, "10000"), "%s", why);
 }
 END_TEST
@@ -235,7 +265,7 @@ END_TEST
  * a hang runs into the suite's timeout. */
 START_TEST(a_million_calls)
 {
-  struct lplot *pl = with_stock(40, 100);
+  struct plot *pl = with_stock(40, 100);
   unsigned x = 12345;
   for (int i = 0; i < 1000000; i++) {
     x = x * 1103515245u + 12345u;
@@ -253,16 +283,16 @@ START_TEST(a_million_calls)
     c.centre[0] = (x >> 3) % 2 ? c.pos[0] / 2 : INT64_MIN / 3;
     c.centre[1] = (int64_t)(x % 200000) - 100000;
     c.ccw = x & 1;
-    lplot_call(pl, &c);
+    put(pl, &c);
   }
-  ck_assert(lplot_radius_at(pl, -50) >= 0);
+  ck_assert(plot_lathe_radius_at(pl, -50) >= 0);
   char path[] = "/tmp/s42-lplot-XXXXXX.png", err[200];
   int fd = mkstemps(path, 4);
   ck_assert_int_ge(fd, 0);
   close(fd);
-  ck_assert_msg(lplot_write(pl, "million", path, err, sizeof err) == 0, "%s", err);
+  ck_assert_msg(plot_write(pl, "million", path, err, sizeof err) == 0, "%s", err);
   unlink(path);
-  lplot_free(pl);
+  plot_free(pl);
 }
 END_TEST
 
@@ -270,24 +300,24 @@ START_TEST(files)
 {
   char err[300], dir[] = "/tmp/s42-lplot-XXXXXX", path[400];
   ck_assert_ptr_nonnull(mkdtemp(dir));
-  struct lplot *pl = lplot_new(NULL);
+  struct plot *pl = lathe_plot(NULL);
   /* no calls: still a picture */
   snprintf(path, sizeof path, "%s/empty.svg", dir);
-  ck_assert_msg(lplot_write(pl, "empty.u22", path, err, sizeof err) == 0, "%s", err);
+  ck_assert_msg(plot_write(pl, "empty.u22", path, err, sizeof err) == 0, "%s", err);
   FILE *f = fopen(path, "r");
   ck_assert_ptr_nonnull(f);
   fclose(f);
   snprintf(path, sizeof path, "%s/x.jpg", dir);
-  ck_assert_int_eq(lplot_write(pl, "p", path, err, sizeof err), -1);
+  ck_assert_int_eq(plot_write(pl, "p", path, err, sizeof err), -1);
   ck_assert_msg(strstr(err, ".png") && strstr(err, "x.jpg"), "%s", err);
   ck_assert(access(path, F_OK) != 0);
-  ck_assert_int_eq(lplot_check_path("a.PDF", NULL, err, sizeof err), 0);
-  ck_assert_int_eq(lplot_check_path("dir.png/", NULL, err, sizeof err), -1);
-  ck_assert_int_eq(lplot_check_path("png", NULL, err, sizeof err), -1);
+  ck_assert_int_eq(plot_check_path("a.PDF", NULL, err, sizeof err), 0);
+  ck_assert_int_eq(plot_check_path("dir.png/", NULL, err, sizeof err), -1);
+  ck_assert_int_eq(plot_check_path("png", NULL, err, sizeof err), -1);
   snprintf(path, sizeof path, "%s/nodir/x.png", dir);
-  ck_assert_int_eq(lplot_write(pl, "p", path, err, sizeof err), -1);
+  ck_assert_int_eq(plot_write(pl, "p", path, err, sizeof err), -1);
   ck_assert_msg(strstr(err, "nodir"), "%s", err);
-  lplot_free(pl);
+  plot_free(pl);
   snprintf(path, sizeof path, "%s/empty.svg", dir);
   unlink(path);
   rmdir(dir);

@@ -1,6 +1,6 @@
-/* A test driver for the lathe's plot (src/host/lplot.h) until `s42 plot`
- * runs 2У22 programs: canonical calls from a little text file, as the
- * lathe would make them, into lplot, and the picture out.
+/* A test driver for the plot engine's lathe view (src/host/plot.h):
+ * canonical calls from a little text file, as the lathe would make them,
+ * into the engine (a lathe's machine), and the picture out.
  *
  *   driver CALLS OUT.{png,svg,pdf} [--stock DxL] [--xy R Z]...
  *
@@ -11,31 +11,39 @@
  *   G2 X Z I K        ARC_FEED round the centre (I a diameter, absolute)
  *   G3 X Z I K        the other way
  *   G33 X Z P         a thread of pitch P: SYNCH_START, FEED, SYNCH_STOP
- *   end               lplot_result "end"
- *   error CODE N      lplot_result "error", CODE, N
+ *   end               the run ended (plot_end, status 0)
+ *   error CODE N      the run failed at block N with CODE (status 1)
  * Prints "xy R Z X Y" for each --xy (where the point lands in the picture)
  * and "chuck Z" when the path cut past the stock's end.  Exit 0, or 1 with
  * the error on stderr. */
 #include "canon.h"
 #include "geom.h"
-#include "lplot.h"
+#include "plot.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static const double lmm[4] = {0.0005, 0.001, 0.001, 0.001};
+static const double lmm[CANON_AXES] = {0.0005, 0.001, 0.001, 0.001, 0.001, 0.001};
+static int64_t here[CANON_AXES];   /* where the last call left the tool */
 
 static struct canon_call at(int kind, double x, double z)
 {
   struct canon_call c;
   memset(&c, 0, sizeof c);
   c.kind = kind;
+  memcpy(c.from, here, sizeof here);
   c.pos[0] = llround(x / 0.001);   /* the diameter in µm: 0.5 µm of radius */
   c.pos[2] = llround(z / 0.001);
   c.mm = lmm;
   c.f = 100;
   return c;
+}
+
+static void call(struct plot *pl, const struct canon_call *c)
+{
+  memcpy(here, c->pos, sizeof here);
+  plot_call(pl, c);
 }
 
 int main(int argc, char **argv)
@@ -44,11 +52,11 @@ int main(int argc, char **argv)
     fprintf(stderr, "usage: driver CALLS OUT [--stock DxL] [--xy R Z]...\n");
     return 1;
   }
-  struct lplot_stock st = {0, 0, 0};
+  struct plot_stock st = {0, 0, 0};
   char why[300];
   for (int i = 3; i < argc; i++)
     if (!strcmp(argv[i], "--stock") && i + 1 < argc) {
-      if (lplot_parse_stock(argv[++i], &st, why, sizeof why)) {
+      if (plot_parse_stock(argv[++i], &st, why, sizeof why)) {
         fprintf(stderr, "driver: %s\n", why);
         return 1;
       }
@@ -58,7 +66,15 @@ int main(int argc, char **argv)
     perror(argv[1]);
     return 1;
   }
-  struct lplot *pl = lplot_new(&st);
+  struct plot *pl = plot_new(&st);
+  struct canon_info in;
+  memset(&in, 0, sizeof in);
+  in.kind = "lathe";
+  in.name = "16Б16Ф3";
+  in.naxes = 2;
+  for (int a = 0; a < CANON_AXES; a++)
+    in.axis[a].mm = lmm[a];
+  plot_begin(pl, &in, here);
   char line[256];
   int ln = 0;
   double cx = 0, cz = 0;   /* where the tool is, X a diameter */
@@ -76,32 +92,38 @@ int main(int argc, char **argv)
     int moved = 1;
     if (!strcmp(w, "at") && sscanf(line, "%*s %lf %lf", &x, &z) == 2) {
       c = at(CANON_TOOL, x, z);
-      lplot_call(pl, &c);
+      call(pl, &c);
     } else if ((!strcmp(w, "G0") || !strcmp(w, "G1")) && sscanf(line, "%*s %lf %lf", &x, &z) == 2) {
       c = at(w[1] == '0' ? CANON_TRAVERSE : CANON_FEED_LINE, x, z);
-      lplot_call(pl, &c);
+      call(pl, &c);
     } else if ((!strcmp(w, "G2") || !strcmp(w, "G3")) && sscanf(line, "%*s %lf %lf %lf %lf", &x, &z, &i, &k) == 4) {
       c = at(CANON_FEED_ARC, x, z);
       c.plane = GEOM_XZ;
       c.centre[0] = llround(i / 0.001);
       c.centre[1] = llround(k / 0.001);
       c.ccw = w[1] == '2';   /* the sink's sense: from X towards Z, a G02 */
-      lplot_call(pl, &c);
+      call(pl, &c);
     } else if (!strcmp(w, "G33") && sscanf(line, "%*s %lf %lf %lf", &x, &z, &k) == 3) {
       /* the synchronisation calls are where the tool is */
       c = at(CANON_SYNCH_START, cx, cz);
       c.v = k;
-      lplot_call(pl, &c);
+      call(pl, &c);
       c = at(CANON_FEED_LINE, x, z);
-      lplot_call(pl, &c);
+      call(pl, &c);
       c = at(CANON_SYNCH_STOP, x, z);
-      lplot_call(pl, &c);
+      call(pl, &c);
     } else if (!strcmp(w, "end")) {
       moved = 0;
-      lplot_result(pl, "end", NULL, -1);
+      struct plot_result res = {0};
+      res.n = -1;
+      plot_end(pl, &res);
     } else if (!strcmp(w, "error") && sscanf(line, "%*s %63s %d", code, &n) == 2) {
       moved = 0;
-      lplot_result(pl, "error", code, n);
+      struct plot_result res = {0};
+      res.status = 1;
+      res.code = code;
+      res.n = n;
+      plot_end(pl, &res);
     } else {
       fprintf(stderr, "%s:%d: not understood: %s", argv[1], ln, line);
       return 1;
@@ -115,17 +137,17 @@ int main(int argc, char **argv)
   for (int a = 3; a + 2 < argc; a++)
     if (!strcmp(argv[a], "--xy")) {
       double r = atof(argv[a + 1]), zz = atof(argv[a + 2]), px, py;
-      lplot_page_xy(pl, r, zz, &px, &py);
+      plot_lathe_page_xy(pl, r, zz, &px, &py);
       printf("xy %g %g %.2f %.2f\n", r, zz, px, py);
     }
   double chz;
-  if (lplot_chuck(pl, &chz))
+  if (plot_lathe_chuck(pl, &chz))
     printf("chuck %.3f\n", chz);
-  if (lplot_write(pl, argv[1], argv[2], why, sizeof why)) {
+  if (plot_write(pl, argv[1], argv[2], why, sizeof why)) {
     fprintf(stderr, "driver: %s\n", why);
-    lplot_free(pl);
+    plot_free(pl);
     return 1;
   }
-  lplot_free(pl);
+  plot_free(pl);
   return 0;
 }

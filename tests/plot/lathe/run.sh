@@ -1,13 +1,12 @@
 #!/bin/sh
-# The lathe's plot (src/host/lplot.c): pictures of canonical calls checked
+# The plot engine's lathe view (src/host/plot_lathe.c): pictures of canonical calls checked
 # with lcheck.py -- the removed material and the part where the calls cut,
 # the arcs' sense against hand-computed points, the cut past the stock's
 # end in red and named, the caption's status, stock and warnings in the
 # PDF's text and the SVG's <title>/<desc>, "no moves" for no calls, and
-# the refusals (an unknown extension, a missing directory).  Until `s42
-# plot` runs 2У22 programs the calls come from a small driver (driver.c,
-# built here from the sources); when S42 plots fig1_9.u22 with --stock,
-# that picture is checked too.
+# the refusals (an unknown extension, a missing directory).  The calls come
+# from a small driver (driver.c, built here from the engine's sources); the
+# picture `s42 plot` makes of fig1_9.u22 with --stock is checked too.
 #   sh tests/plot/lathe/run.sh ./s42
 S42=${1:-./s42}
 PY=${PYTHON:-python3}
@@ -20,8 +19,9 @@ t_init plot-lathe
 fail() { t_case "$1"; shift; bad "$@"; t_case ""; }
 
 DRV=$T/driver
-if ! ${CC:-cc} -O1 -g -I"$ROOT/src/host" -I"$ROOT/src/core" $(pkg-config --cflags cairo) -o "$DRV" \
-     "$HERE/driver.c" "$ROOT/src/host/lplot.c" "$ROOT/src/host/picture.c" "$ROOT/src/host/cairo_dl.c" "$ROOT/src/core/geom.c" \
+if ! ${CC:-cc} -O1 -g -I"$ROOT/src/host" -I"$ROOT/src/core" -I"$ROOT/vm" $(pkg-config --cflags cairo) -o "$DRV" \
+     "$HERE/driver.c" "$ROOT/src/host/plot.c" "$ROOT/src/host/plot_lathe.c" "$ROOT/src/host/plot_planes.c" \
+     "$ROOT/src/host/picture.c" "$ROOT/src/host/cairo_dl.c" "$ROOT/src/core/geom.c" \
      "$ROOT/src/core/atomic.c" \
      -lm -ldl 2>"$T/cc.err"; then
   fail build "the driver does not build" "$(cat "$T/cc.err")"
@@ -64,7 +64,7 @@ fi
 if pic shaft shaft.calls --stock 40x100 --xy 19 -101 --xy 19 -80 --xy 14 -45 --xy 18 -65 --xy 6 -50; then
   px shaft red@19,-101 !red@19,-80 removed@14,-45 part@18,-65 part@6,-50
   text shaft "cuts into the chuck side at Z -102.00" "the tool reached the axis at Z -0.50" "cut off"
-  if grep -q '^chuck -102.000$' "$T/shaft.xy"; then ok; else fail shaft "lplot_chuck: $(cat "$T/shaft.xy")"; fi
+  if grep -q '^chuck -102.000$' "$T/shaft.xy"; then ok; else fail shaft "plot_lathe_chuck: $(cat "$T/shaft.xy")"; fi
 fi
 
 # the arcs' sense: the middles computed by hand, not their mirror points
@@ -75,7 +75,7 @@ fi
 
 # a run that failed, and a path that never touches the stock
 if pic status status.calls --stock 10x5; then
-  text status "error: E-ARC at N12" "the path never touches the stock"
+  text status "stopped: E-ARC at N12" "the path never touches the stock"
 fi
 
 # no calls at all: a picture that says so

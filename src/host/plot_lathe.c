@@ -1,5 +1,7 @@
-/* The lathe's plot (src/host/lplot.h): the tool tip's path in the XZ plane
- * and the turned part's silhouette, drawn with cairo.
+/* The lathe's view of the plot (src/host/plot_view.h): the tool tip's path
+ * in the XZ plane and the turned part's silhouette, drawn with cairo from
+ * the engine's pieces (a lathe's X counts its diameter: the pieces' mm per
+ * count make it the radius).
  *
  * The picture is PW x PH (pixels for PNG, points for SVG and PDF):
  *   - a title line (the program's name), a line with the run's status, the
@@ -35,23 +37,16 @@
  * within the bar's radius.  Drawing strokes at most INK_BUDGET px of path
  * per style (moves under a pixel merged, the rest clipped to the frame);
  * past it the caption says the path is drawn in part. */
-#include "lplot.h"
+#include "plot_view.h"
 #include "picture.h"
-#include "canon.h"
 #include "geom.h"
 #include "cairo_dl.h"
-#include <errno.h>
-#include <fcntl.h>
 #include <float.h>
-#include <locale.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -88,17 +83,15 @@ struct lc {             /* a Li Chao tree node: r = a * j + b over boundaries j 
   int has;
 };
 
-struct lplot {
-  struct lplot_stock st;
+struct lathe {
+  struct plot_stock st;
   struct mv *v;
   size_t n, cap;
   int oom;
-  int have_pos;
-  double cur_r, cur_z;  /* where the tool is */
-  double last_r, last_z;/* where the last record ends */
-  int thread;
+  size_t done;          /* the engine's pieces taken */
+  double last_r, last_z;/* where the last move ends */
   double pitch;
-  unsigned long long calls, moves, threads;
+  unsigned long long moves, threads;
   /* the silhouette */
   int ncol;
   double dz, half;
@@ -116,7 +109,7 @@ struct lplot {
   int ext;
   double rmin, rmax, zmin, zmax, amax;
   /* the result */
-  char status[160];
+  char status[240];
   /* the caption as drawn, for the SVG's <title> and <desc> */
   char cap_title[300], cap_line[600], cap_warn[600];
 };
@@ -191,7 +184,7 @@ static double lc_query(const struct lc *t, int hi, int j)
   }
 }
 
-static int cell_of(const struct lplot *pl, double z)
+static int cell_of(const struct lathe *pl, double z)
 {
   double t = (z + pl->st.len) / pl->dz;
   int i = t <= 0 ? 0 : t >= pl->ncol ? pl->ncol - 1 : (int)floor(t);
@@ -206,7 +199,7 @@ static void set_min(double *v, double x)
 
 /* The tool tip went from (ra, za) to (rb, zb), ra, rb >= 0, za <= zb, the
  * radius linear in z, all within the stock's length. */
-static void cut_piece(struct lplot *pl, double ra, double za, double rb, double zb)
+static void cut_piece(struct lathe *pl, double ra, double za, double rb, double zb)
 {
   if (ra >= pl->half && rb >= pl->half)
     return;
@@ -243,7 +236,7 @@ static void cut_piece(struct lplot *pl, double ra, double za, double rb, double 
 }
 
 /* A thread's band: the least radius of the thread at the cells it spans. */
-static void thread_piece(struct lplot *pl, double ra, double za, double rb, double zb)
+static void thread_piece(struct lathe *pl, double ra, double za, double rb, double zb)
 {
   if (ra >= pl->half && rb >= pl->half)
     return;
@@ -257,7 +250,7 @@ static void thread_piece(struct lplot *pl, double ra, double za, double rb, doub
 }
 
 /* |r| linear: split at r = 0, clip to the stock's length, cut. */
-static void cut_line(struct lplot *pl, double r0, double z0, double r1, double z1, int thread)
+static void cut_line(struct lathe *pl, double r0, double z0, double r1, double z1, int thread)
 {
   if (!pl->st.has)
     return;
@@ -340,7 +333,7 @@ static int arc_chords(double rho, double sweep)
 
 /* Cut along the arc from share u0 to u1 in chords (its points by turning
  * a unit vector, the radius interpolated: a spiral when the two differ). */
-static void cut_arc_part(struct lplot *pl, double r0, double z0, const struct mv *m, double rho1, double u0,
+static void cut_arc_part(struct lathe *pl, double r0, double z0, const struct mv *m, double rho1, double u0,
                          double u1, int thread)
 {
   double rho0 = hypot(r0 - m->cr, z0 - m->cz);
@@ -368,7 +361,7 @@ static void cut_arc_part(struct lplot *pl, double r0, double z0, const struct mv
   }
 }
 
-static void cut_arc(struct lplot *pl, double r0, double z0, const struct mv *m, int thread)
+static void cut_arc(struct lathe *pl, double r0, double z0, const struct mv *m, int thread)
 {
   if (!pl->st.has)
     return;
@@ -403,7 +396,7 @@ static void cut_arc(struct lplot *pl, double r0, double z0, const struct mv *m, 
     }
 }
 
-static void compute_R(struct lplot *pl)
+static void compute_R(struct lathe *pl)
 {
   if (!pl->st.has || !pl->dirty)
     return;
@@ -419,7 +412,7 @@ static void compute_R(struct lplot *pl)
 
 /* The first cell (from the chuck) where the tool reached the axis: what is
  * beyond it is cut off; ncol: none. */
-static int cutoff_cell(const struct lplot *pl)
+static int cutoff_cell(const struct lathe *pl)
 {
   for (int i = 0; i < pl->ncol; i++)
     if (pl->R[i] <= 1e-6)
@@ -427,7 +420,7 @@ static int cutoff_cell(const struct lplot *pl)
   return pl->ncol;
 }
 
-double lplot_radius_at(struct lplot *pl, double z)
+static double radius_at(struct lathe *pl, double z)
 {
   if (!pl || !pl->st.has || !(z >= -pl->st.len && z <= 0))
     return -1;
@@ -435,7 +428,7 @@ double lplot_radius_at(struct lplot *pl, double z)
   return pl->R[cell_of(pl, z)];
 }
 
-int lplot_chuck(const struct lplot *pl, double *z)
+static int chuck_at(const struct lathe *pl, double *z)
 {
   if (!pl || !pl->chuck)
     return 0;
@@ -444,14 +437,27 @@ int lplot_chuck(const struct lplot *pl, double *z)
   return 1;
 }
 
-/* ---- the calls ---- */
+static int page_xy(struct lathe *pl, double r, double z, double *x, double *y);
 
-struct lplot *lplot_new(const struct lplot_stock *stock)
+/* ---- the engine's pieces ---- */
+
+static void lathe_free(struct lathe *pl)
 {
-  struct lplot *pl = calloc(1, sizeof *pl);
+  if (!pl)
+    return;
+  free(pl->v);
+  free(pl->direct);
+  free(pl->R);
+  free(pl->thr);
+  free(pl->lc);
+  free(pl);
+}
+
+static struct lathe *lathe_new(const struct plot_stock *stock)
+{
+  struct lathe *pl = calloc(1, sizeof *pl);
   if (!pl)
     return NULL;
-  snprintf(pl->status, sizeof pl->status, "run not finished");
   if (stock && stock->has && stock->d > 0 && stock->len > 0 && isfinite(stock->d) && isfinite(stock->len)) {
     pl->st = *stock;
     pl->half = stock->d / 2;
@@ -463,7 +469,7 @@ struct lplot *lplot_new(const struct lplot_stock *stock)
     pl->thr = malloc(sizeof(double) * (size_t)pl->ncol);
     pl->lc = calloc(4 * ((size_t)pl->ncol + 1), sizeof *pl->lc);
     if (!pl->direct || !pl->R || !pl->thr || !pl->lc) {
-      lplot_free(pl);
+      lathe_free(pl);
       return NULL;
     }
     for (int i = 0; i < pl->ncol; i++) {
@@ -476,24 +482,7 @@ struct lplot *lplot_new(const struct lplot_stock *stock)
   return pl;
 }
 
-void lplot_free(struct lplot *pl)
-{
-  if (!pl)
-    return;
-  free(pl->v);
-  free(pl->direct);
-  free(pl->R);
-  free(pl->thr);
-  free(pl->lc);
-  free(pl);
-}
-
-static double mm_of(const struct canon_call *c, int axis, int64_t v)
-{
-  return (double)v * (c->mm ? c->mm[axis] : 0.001);
-}
-
-static int push(struct lplot *pl, struct mv m)
+static int push(struct lathe *pl, struct mv m)
 {
   if (pl->oom)
     return -1;
@@ -513,7 +502,7 @@ static int push(struct lplot *pl, struct mv m)
   return 0;
 }
 
-static void extent(struct lplot *pl, double r, double z)
+static void extent(struct lathe *pl, double r, double z)
 {
   if (!pl->ext) {
     pl->rmin = pl->rmax = r;
@@ -529,56 +518,38 @@ static void extent(struct lplot *pl, double r, double z)
   if (fabs(r) > pl->amax) pl->amax = fabs(r);
 }
 
-void lplot_at(struct lplot *pl, double r, double z)
+/* A piece of the path: the tool tip from its start to its end (radius and
+ * Z, mm), cutting the silhouette; a start away from where the last move
+ * ended is a jump (a tool change, a new part zero).  Hand moves are not
+ * the lathe's picture: where the next move starts shows them. */
+static void take(struct lathe *pl, const struct plot *e, const struct seg *g)
 {
-  if (!pl || !isfinite(r) || !isfinite(z))
+  if (g->kind == K_MARK)
     return;
-  pl->cur_r = r;
-  pl->cur_z = z;
-  pl->have_pos = 1;
-}
-
-void lplot_call(struct lplot *pl, const struct canon_call *c)
-{
-  if (!pl || !c)
+  double r0 = g->start[0] / e->unit[0], z0 = g->start[2] / e->unit[2];
+  double r = ((double)g->start[0] + g->d[0]) / e->unit[0], z = ((double)g->start[2] + g->d[2]) / e->unit[2];
+  if (!isfinite(r) || !isfinite(z) || !isfinite(r0) || !isfinite(z0))
     return;
-  pl->calls++;
-  double r = mm_of(c, 0, c->pos[0]), z = mm_of(c, 2, c->pos[2]);
-  if (!isfinite(r) || !isfinite(z))
-    return;
-  int move = c->kind == CANON_FEED_LINE || c->kind == CANON_FEED_ARC || c->kind == CANON_TRAVERSE;
-  if (c->kind == CANON_SYNCH_START) {
-    pl->thread = 1;
-    pl->pitch = isfinite(c->v) && c->v > 0 ? c->v : 0;
-  } else if (c->kind == CANON_SYNCH_STOP)
-    pl->thread = 0;
-  if (!move || !pl->have_pos) {
-    /* the first call says where the tool is: a move before any says only
-     * where it went */
-    pl->cur_r = r;
-    pl->cur_z = z;
-    pl->have_pos = 1;
-    if (move)
-      extent(pl, r, z);
-    return;
-  }
-  double r0 = pl->cur_r, z0 = pl->cur_z;
-  pl->cur_r = r;
-  pl->cur_z = z;
   struct mv m = {r, z, 0, 0, 0, 0, 0};
-  m.kind = c->kind == CANON_TRAVERSE ? MV_TRAV : MV_LINE;
-  int thread = pl->thread && c->kind != CANON_TRAVERSE;
+  m.kind = g->kind == K_TRAV ? MV_TRAV : MV_LINE;
+  int thread = (g->flags & F_THREAD) && g->kind != K_TRAV;
   if (thread)
     m.flags |= MF_THREAD;
-  if (c->kind == CANON_FEED_ARC && c->plane == GEOM_XZ) {
-    double cr = mm_of(c, 0, c->centre[0]), cz = mm_of(c, 2, c->centre[1]);
+  if (g->kind == K_ARC && g->plane == GEOM_XZ) {
+    int p, q;
+    geom_plane_axes(GEOM_XZ, &p, &q);
+    double c[PLOT_AXES] = {(double)g->start[0], 0, (double)g->start[2], 0};
+    c[p] += g->cp;
+    c[q] += g->cq;
+    double cr = c[0] / e->unit[0], cz = c[2] / e->unit[2];
     if (isfinite(cr) && isfinite(cz) && (cr != r0 || cz != z0)) {
-      struct geom_arc a = {r - r0, z - z0, cr - r0, cz - z0, c->ccw ? 1 : 0};
+      int ccw = (g->flags & F_CCW) != 0;
+      struct geom_arc a = {r - r0, z - z0, cr - r0, cz - z0, ccw};
       double sw = geom_arc_sweep(&a);
       m.kind = MV_ARC;
       m.cr = cr;
       m.cz = cz;
-      m.sweep = (float)(c->ccw ? sw : -sw);
+      m.sweep = (float)(ccw ? sw : -sw);
     }
   }
   if (m.kind != MV_ARC && r == r0 && z == z0)
@@ -609,80 +580,37 @@ void lplot_call(struct lplot *pl, const struct canon_call *c)
     pl->v[pl->n - 1].flags |= MF_CHUCK;
 }
 
-void lplot_result(struct lplot *pl, const char *status, const char *code, int n)
+/* The lathe's state, with every piece the engine has taken. */
+static struct lathe *lathe_of(struct plot *e)
 {
-  if (!pl)
-    return;
-  char at[32] = "";
-  if (n >= 0)
-    snprintf(at, sizeof at, " at N%d", n);
-  if (status && !strcmp(status, "end") && !code)
-    snprintf(pl->status, sizeof pl->status, "end");
-  else if (code && *code)
-    snprintf(pl->status, sizeof pl->status, "%s: %s%s", status && *status ? status : "stopped", code, at);
-  else
-    snprintf(pl->status, sizeof pl->status, "%s%s", status && *status ? status : "stopped", at);
+  if (!e)
+    return NULL;
+  if (!e->vs && !(e->vs = lathe_new(&e->stock)))
+    return NULL;
+  struct lathe *pl = e->vs;
+  for (; pl->done < e->n; pl->done++)
+    take(pl, e, &e->v[pl->done]);
+  pl->pitch = e->pitch;
+  pl->oom |= e->oom;
+  return pl;
 }
 
-/* ---- the stock ---- */
-
-static int parse_mm(const char *s, const char **end, double *v)
+double plot_lathe_radius_at(struct plot *e, double z)
 {
-  /* digits with at most one '.', no sign, no exponent, no locale */
-  const char *p = s;
-  double x = 0, scale = 0;
-  int digits = 0;
-  for (; *p; p++) {
-    if (*p >= '0' && *p <= '9') {
-      if (digits < 30) {
-        if (scale == 0)
-          x = x * 10 + (*p - '0');
-        else {
-          x += (*p - '0') * scale;
-          scale /= 10;
-        }
-      }
-      digits++;
-    } else if (*p == '.' && scale == 0)
-      scale = 0.1;
-    else
-      break;
-  }
-  *end = p;
-  *v = x;
-  return digits > 0 && digits < 30 ? 0 : -1;
+  struct lathe *pl = lathe_of(e);
+  return pl ? radius_at(pl, z) : -1;
 }
 
-int lplot_parse_stock(const char *text, struct lplot_stock *s, char *why, size_t n)
+int plot_lathe_chuck(struct plot *e, double *z)
 {
-  struct lplot_stock z = {0, 0, 0};
-  if (s)
-    *s = z;
-  const char *p = text ? text : "", *e;
-  double d, len;
-  if (parse_mm(p, &e, &d) || (*e != 'x' && *e != 'X')) {
-    snprintf(why, n, "--stock '%s': expected DIAMETERxLENGTH in mm, e.g. 40x100", text ? text : "");
-    return -1;
-  }
-  if (parse_mm(e + 1, &e, &len) || *e) {
-    snprintf(why, n, "--stock '%s': expected DIAMETERxLENGTH in mm, e.g. 40x100 (the length is not a number)",
-             text);
-    return -1;
-  }
-  if (!(d > 0) || !(len > 0)) {
-    snprintf(why, n, "--stock '%s': the diameter and the length must be more than 0", text);
-    return -1;
-  }
-  if (d > 10000 || len > 10000) {
-    snprintf(why, n, "--stock '%s': a stock over 10000 mm is not a lathe's", text);
-    return -1;
-  }
-  if (s) {
-    s->has = 1;
-    s->d = d;
-    s->len = len;
-  }
-  return 0;
+  struct lathe *pl = lathe_of(e);
+  return pl ? chuck_at(pl, z) : 0;
+}
+
+int plot_lathe_page_xy(struct plot *e, double r, double z, double *x, double *y)
+{
+  struct lathe *pl = lathe_of(e);
+  return pl ? page_xy(pl, r, z, x, y) : -1;
 }
 
 /* ---- the fit ---- */
@@ -695,7 +623,7 @@ struct fit {
   double jaw_l, jaw_h;  /* the chuck's jaws, mm */
 };
 
-static void make_fit(const struct lplot *pl, struct fit *F)
+static void make_fit(const struct lathe *pl, struct fit *F)
 {
   double zlo, zhi, rlo, rhi;
   int have = 0;
@@ -764,7 +692,7 @@ static double PY(const struct fit *F, double r)
   return F->iy + F->ih / 2 - (r - F->rc) * F->s;
 }
 
-int lplot_page_xy(struct lplot *pl, double r, double z, double *x, double *y)
+static int page_xy(struct lathe *pl, double r, double z, double *x, double *y)
 {
   if (!pl)
     return -1;
@@ -789,74 +717,9 @@ int lplot_page_xy(struct lplot *pl, double r, double z, double *x, double *y)
 #define C_JAW 0x7a7a7au
 #define C_CENTRE 0x444444u
 #define C_GRID 0xececec
-#define C_TEXT 0x222222u
-#define C_LABEL 0x595959u
-#define C_FRAME 0x8c8c8cu
 #define C_WARN 0xb3000fu
-#define C_START 0x1a9933u
 #define C_END 0x222222u
 #define CHUNK 128
-
-static void rgb(cairo_t *cr, unsigned c)
-{
-  cairo_set_source_rgb(cr, ((c >> 16) & 255) / 255.0, ((c >> 8) & 255) / 255.0, (c & 255) / 255.0);
-}
-
-static void rgba(cairo_t *cr, unsigned c, double a)
-{
-  cairo_set_source_rgba(cr, ((c >> 16) & 255) / 255.0, ((c >> 8) & 255) / 255.0, (c & 255) / 255.0, a);
-}
-
-static void font(cairo_t *cr, double size, int bold)
-{
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL,
-                         bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, size);
-}
-
-static double text_w(cairo_t *cr, const char *s, double size, int bold)
-{
-  font(cr, size, bold);
-  cairo_text_extents_t e;
-  cairo_text_extents(cr, s, &e);
-  return e.x_advance;
-}
-
-static void text_at(cairo_t *cr, double x, double y, const char *s, double size, int bold, double align)
-{
-  double w = text_w(cr, s, size, bold);
-  cairo_move_to(cr, x - align * w, y);
-  cairo_show_text(cr, s);
-}
-
-
-/* v with dec decimals; trim: trailing zeros dropped. */
-static void fmt_num(char *buf, size_t n, double v, int dec, int trim)
-{
-  if (fabs(v) < 0.5 * pow(10, -dec))
-    v = 0;
-  snprintf(buf, n, "%.*f", dec, v);
-  picture_fix_point(buf);
-  if (trim && strchr(buf, '.')) {
-    char *e = buf + strlen(buf) - 1;
-    while (*e == '0')
-      *e-- = 0;
-    if (*e == '.')
-      *e = 0;
-  }
-}
-
-static double nice_step(double x, int *dec)
-{
-  if (!(x > 0) || !isfinite(x))
-    x = 1;
-  double e = floor(log10(x)), b = pow(10, e), m = x / b;
-  double s = m >= 5 ? 5 : m >= 2 ? 2 : 1;
-  double st = s * b;
-  if (dec)
-    *dec = st >= 1 ? 0 : (int)ceil(-log10(st) - 1e-9);
-  return st;
-}
 
 /* A tick's label: v with dec decimals, or %g when it is huge. */
 static void tick_label(char *buf, size_t n, double v, int dec, const char *prefix)
@@ -865,7 +728,7 @@ static void tick_label(char *buf, size_t n, double v, int dec, const char *prefi
   if (fabs(v) >= 1e7)
     snprintf(t, sizeof t, "%.3g", v);
   else
-    fmt_num(t, sizeof t, v, dec, 0);
+    plot_fmt_num(t, sizeof t, v, dec, 0);
   picture_fix_point(t);
   snprintf(buf, n, "%s%s", prefix, t);
 }
@@ -873,7 +736,7 @@ static void tick_label(char *buf, size_t n, double v, int dec, const char *prefi
 /* The next round step above s (1, 2, 5 x 10^k). */
 static double step_up(double s, int *dec)
 {
-  return nice_step(s * 2.01, dec);
+  return plot_nice_step(s * 2.01, dec);
 }
 
 static void grid_and_ticks(cairo_t *cr, const struct fit *F)
@@ -884,19 +747,19 @@ static void grid_and_ticks(cairo_t *cr, const struct fit *F)
   double rl = F->rc - (y1 - PY(F, F->rc)) / F->s, rh = F->rc + (PY(F, F->rc) - y0) / F->s;
   char lab[48];
   /* along: a round step whose labels do not touch */
-  double zstep = nice_step(70 / F->s, &zdec);
+  double zstep = plot_nice_step(70 / F->s, &zdec);
   for (int tries = 0; tries < 40; tries++) {
     double w = 0;
     tick_label(lab, sizeof lab, zl, zdec, "");
-    w = fmax(w, text_w(cr, lab, 11, 0));
+    w = fmax(w, plot_text_w(cr, lab, 11, 0));
     tick_label(lab, sizeof lab, zh, zdec, "");
-    w = fmax(w, text_w(cr, lab, 11, 0));
+    w = fmax(w, plot_text_w(cr, lab, 11, 0));
     if (zstep * F->s >= w + 14)
       break;
     zstep = step_up(zstep, &zdec);
   }
   /* up: diameters at a round step; the lines at half of it in radius */
-  double dstep = nice_step(2 * 40 / F->s, &rdec);
+  double dstep = plot_nice_step(2 * 40 / F->s, &rdec);
   for (int tries = 0; tries < 40 && dstep / 2 * F->s < 18; tries++)
     dstep = step_up(dstep, &rdec);
   double rstep = dstep / 2;
@@ -904,22 +767,22 @@ static void grid_and_ticks(cairo_t *cr, const struct fit *F)
   if (zh - zl > 0 && (zh - zl) / zstep < 400) {
     for (double k = ceil(zl / zstep); k <= floor(zh / zstep); k++) {
       double x = floor(PX(F, k * zstep)) + 0.5;
-      rgb(cr, C_GRID);
+      plot_rgb(cr, C_GRID);
       cairo_move_to(cr, x, y0);
       cairo_line_to(cr, x, y1);
       cairo_stroke(cr);
       tick_label(lab, sizeof lab, k * zstep, zdec, "");
-      double w = text_w(cr, lab, 11, 0);
+      double w = plot_text_w(cr, lab, 11, 0);
       if (x - w / 2 < FX + LBAND - 20 || x + w / 2 > FX + FW + 16)
         continue;   /* off the frame */
-      rgb(cr, C_TEXT);
-      text_at(cr, x, y1 + 15, lab, 11, 0, 0.5);
+      plot_rgb(cr, C_TEXT);
+      plot_text_at(cr, x, y1 + 15, lab, 11, 0, 0.5);
     }
   }
   if (rh - rl > 0 && (rh - rl) / rstep < 400) {
     for (double k = ceil(rl / rstep); k <= floor(rh / rstep); k++) {
       double y = floor(PY(F, k * rstep)) + 0.5;
-      rgb(cr, C_GRID);
+      plot_rgb(cr, C_GRID);
       cairo_move_to(cr, x0, y);
       cairo_line_to(cr, x1, y);
       cairo_stroke(cr);
@@ -930,10 +793,10 @@ static void grid_and_ticks(cairo_t *cr, const struct fit *F)
       else
         tick_label(lab, sizeof lab, fabs(k) * dstep, rdec, "Ø");
       double size = 11;
-      while (size > 7 && text_w(cr, lab, size, 0) > LBAND - 8)
+      while (size > 7 && plot_text_w(cr, lab, size, 0) > LBAND - 8)
         size -= 0.5;
-      rgb(cr, C_TEXT);
-      text_at(cr, x0 - 5, y + 4, lab, size, 0, 1);
+      plot_rgb(cr, C_TEXT);
+      plot_text_at(cr, x0 - 5, y + 4, lab, size, 0, 1);
     }
   }
 }
@@ -945,7 +808,7 @@ struct colv {
   int off;              /* cut off from what the chuck holds */
 };
 
-static struct colv *columns(struct lplot *pl, const struct fit *F, int *nc)
+static struct colv *columns(struct lathe *pl, const struct fit *F, int *nc)
 {
   compute_R(pl);
   double px = pl->st.len * F->s;
@@ -997,13 +860,13 @@ static void hatch(cairo_t *cr, double x0, double y0, double x1, double y1, doubl
   cairo_stroke(cr);
 }
 
-static void draw_stock(cairo_t *cr, struct lplot *pl, const struct fit *F, int *cutoff, double *cut_z)
+static void draw_stock(cairo_t *cr, struct lathe *pl, const struct fit *F, int *cutoff, double *cut_z)
 {
   double L = pl->st.len, h = pl->half;
   double zs = -L;
   *cutoff = 0;
   /* the chuck: the bar held in it, the jaws above and below */
-  rgb(cr, 0xeeeeee);
+  plot_rgb(cr, 0xeeeeee);
   cairo_rectangle(cr, PX(F, zs - F->jaw_l), PY(F, h), F->jaw_l * F->s, 2 * h * F->s);
   cairo_fill(cr);
   for (int sgn = -1; sgn <= 1; sgn += 2) {
@@ -1012,26 +875,26 @@ static void draw_stock(cairo_t *cr, struct lplot *pl, const struct fit *F, int *
     double top = fmin(ya, yb), bot = fmax(ya, yb);
     cairo_save(cr);
     cairo_rectangle(cr, xa, top, xb - xa, bot - top);
-    rgb(cr, 0xdadada);
+    plot_rgb(cr, 0xdadada);
     cairo_fill_preserve(cr);
     cairo_clip(cr);
-    rgb(cr, C_JAW);
+    plot_rgb(cr, C_JAW);
     cairo_set_line_width(cr, 0.8);
     hatch(cr, xa, top, xb, bot, 5);
     cairo_restore(cr);
     cairo_rectangle(cr, xa + 0.5, top + 0.5, xb - xa - 1, bot - top - 1);
-    rgb(cr, C_JAW);
+    plot_rgb(cr, C_JAW);
     cairo_set_line_width(cr, 1);
     cairo_stroke(cr);
   }
-  rgb(cr, C_LABEL);
-  text_at(cr, PX(F, zs - F->jaw_l / 2), PY(F, h + F->jaw_h) - 5, "chuck", 11, 0, 0.5);
+  plot_rgb(cr, C_LABEL);
+  plot_text_at(cr, PX(F, zs - F->jaw_l / 2), PY(F, h + F->jaw_h) - 5, "chuck", 11, 0, 0.5);
 
   int n;
   struct colv *c = columns(pl, F, &n);
   if (c) {
     /* the removed material: between R and d/2, above the axis */
-    rgb(cr, C_REMOVED);
+    plot_rgb(cr, C_REMOVED);
     cairo_move_to(cr, PX(F, zs), PY(F, h));
     cairo_line_to(cr, PX(F, zs), PY(F, c[0].r));
     for (int k = 0; k < n; k++)
@@ -1048,16 +911,16 @@ static void draw_stock(cairo_t *cr, struct lplot *pl, const struct fit *F, int *
     for (int sgn = 1; sgn >= -1; sgn -= 2) {
       if (a > 0) {
         part_path(cr, F, c, 0, a, zs, a < n ? zcut : 0, sgn);
-        rgb(cr, sgn > 0 ? C_PART : C_PARTPALE);
+        plot_rgb(cr, sgn > 0 ? C_PART : C_PARTPALE);
         cairo_fill(cr);
       }
       if (a < n) {
         part_path(cr, F, c, a, n, zcut, 0, sgn);
-        rgb(cr, C_CUTOFF);
+        plot_rgb(cr, C_CUTOFF);
         cairo_fill_preserve(cr);
         cairo_save(cr);
         cairo_clip(cr);
-        rgb(cr, 0xa0a0a0);
+        plot_rgb(cr, 0xa0a0a0);
         cairo_set_line_width(cr, 0.7);
         hatch(cr, PX(F, zcut), PY(F, h), PX(F, 0), PY(F, -h), 4);
         cairo_restore(cr);
@@ -1081,9 +944,9 @@ static void draw_stock(cairo_t *cr, struct lplot *pl, const struct fit *F, int *
         cairo_rectangle(cr, xa, PY(F, c[k].r), xb - xa, (c[k].r - c[k].thr) * F->s);
       }
       cairo_clip(cr);
-      rgba(cr, C_THREAD, 0.18);
+      plot_rgba(cr, C_THREAD, 0.18);
       cairo_paint(cr);
-      rgb(cr, C_THREAD);
+      plot_rgb(cr, C_THREAD);
       cairo_set_line_width(cr, 0.8);
       hatch(cr, PX(F, zs), PY(F, h), PX(F, 0), PY(F, 0), 3.5);
       cairo_restore(cr);
@@ -1092,7 +955,7 @@ static void draw_stock(cairo_t *cr, struct lplot *pl, const struct fit *F, int *
     cairo_set_line_width(cr, 1.2);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_MITER);
     for (int sgn = 1; sgn >= -1; sgn -= 2) {
-      rgb(cr, sgn > 0 ? 0x33475c : 0x8a9aab);
+      plot_rgb(cr, sgn > 0 ? 0x33475c : 0x8a9aab);
       cairo_move_to(cr, PX(F, zs), PY(F, sgn * c[0].r));
       for (int k = 0; k < n; k++)
         cairo_line_to(cr, PX(F, c[k].z), PY(F, sgn * c[k].r));
@@ -1103,7 +966,7 @@ static void draw_stock(cairo_t *cr, struct lplot *pl, const struct fit *F, int *
     free(c);
   }
   /* the stock's outline */
-  rgb(cr, C_STOCK);
+  plot_rgb(cr, C_STOCK);
   cairo_set_line_width(cr, 1.2);
   double dash[] = {7, 3};
   cairo_set_dash(cr, dash, 2, 0);
@@ -1116,7 +979,7 @@ static void centre_line(cairo_t *cr, const struct fit *F)
 {
   double y = PY(F, 0);
   double dd[] = {14, 3, 2, 3};
-  rgb(cr, C_CENTRE);
+  plot_rgb(cr, C_CENTRE);
   cairo_set_line_width(cr, 0.9);
   cairo_set_dash(cr, dd, 4, 0);
   cairo_move_to(cr, FX + LBAND, y);
@@ -1274,7 +1137,7 @@ static void move_path(cairo_t *cr, struct pen *p, const struct fit *F, const str
 
 /* Stroke the moves of one style: feed (0), traverse (1), thread (2); or
  * (style 3) those that cut past the stock's end. */
-static int draw_moves(cairo_t *cr, const struct lplot *pl, const struct fit *F, int style, double budget)
+static int draw_moves(cairo_t *cr, const struct lathe *pl, const struct fit *F, int style, double budget)
 {
   double r0 = 0, z0 = 0;
   struct pen p = {0, 0, 0, 0, 0};
@@ -1300,21 +1163,21 @@ static int draw_moves(cairo_t *cr, const struct lplot *pl, const struct fit *F, 
 }
 
 /* 1: the path is too dense to draw whole (drawn in part). */
-static int draw_path(cairo_t *cr, const struct lplot *pl, const struct fit *F)
+static int draw_path(cairo_t *cr, const struct lathe *pl, const struct fit *F)
 {
   int part = 0;
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   double dash[] = {6, 4};
-  rgb(cr, C_TRAV);
+  plot_rgb(cr, C_TRAV);
   cairo_set_line_width(cr, 1.1);
   cairo_set_dash(cr, dash, 2, 0);
   part |= draw_moves(cr, pl, F, 1, INK_BUDGET / 4);
   cairo_set_dash(cr, NULL, 0, 0);
-  rgb(cr, C_FEED);
+  plot_rgb(cr, C_FEED);
   cairo_set_line_width(cr, 1.5);
   part |= draw_moves(cr, pl, F, 0, INK_BUDGET);
-  rgb(cr, C_THREAD);
+  plot_rgb(cr, C_THREAD);
   cairo_set_line_width(cr, 1.2);
   part |= draw_moves(cr, pl, F, 2, INK_BUDGET / 4);
   if (pl->chuck) {
@@ -1323,7 +1186,7 @@ static int draw_path(cairo_t *cr, const struct lplot *pl, const struct fit *F)
     double x0 = FX + LBAND, xe = PX(F, -pl->st.len);
     cairo_rectangle(cr, x0, PY(F, pl->half), xe - x0, 2 * pl->half * F->s);
     cairo_clip(cr);
-    rgb(cr, C_CHUCKCUT);
+    plot_rgb(cr, C_CHUCKCUT);
     cairo_set_line_width(cr, 3);
     part |= draw_moves(cr, pl, F, 3, INK_BUDGET / 4);
     cairo_restore(cr);
@@ -1332,7 +1195,7 @@ static int draw_path(cairo_t *cr, const struct lplot *pl, const struct fit *F)
   /* the start: a ring; the end: a square */
   for (size_t i = 0; i < pl->n; i++)
     if (pl->v[i].kind == MV_JUMP) {
-      rgb(cr, C_START);
+      plot_rgb(cr, C_START);
       cairo_set_line_width(cr, 2);
       cairo_new_path(cr);
       cairo_arc(cr, PX(F, pl->v[i].z), PY(F, pl->v[i].r), 5, 0, 2 * M_PI);
@@ -1340,7 +1203,7 @@ static int draw_path(cairo_t *cr, const struct lplot *pl, const struct fit *F)
       break;
     }
   if (pl->n) {
-    rgb(cr, C_END);
+    plot_rgb(cr, C_END);
     cairo_rectangle(cr, PX(F, pl->last_z) - 3.5, PY(F, pl->last_r) - 3.5, 7, 7);
     cairo_fill(cr);
   }
@@ -1351,19 +1214,19 @@ enum { LG_NOTE, LG_LINE, LG_DASH, LG_ZIG, LG_RED, LG_BOX, LG_DASHBOX, LG_HATCH, 
 
 static double legend_item(cairo_t *cr, double x, double y, int style, unsigned c, const char *text, int measure)
 {
-  double w = (style == LG_NOTE ? 0 : 30) + text_w(cr, text, 11, 0);
+  double w = (style == LG_NOTE ? 0 : 30) + plot_text_w(cr, text, 11, 0);
   if (measure)
     return w;
   if (style == LG_NOTE) {
-    rgb(cr, C_LABEL);
-    text_at(cr, x, y, text, 11, 0, 0);
+    plot_rgb(cr, C_LABEL);
+    plot_text_at(cr, x, y, text, 11, 0, 0);
     return w;
   }
   cairo_new_path(cr);
   double dash[] = {6, 4}, dd[] = {10, 2.5, 2, 2.5};
   switch (style) {
   case LG_LINE: case LG_DASH: case LG_RED: case LG_CENTRE:
-    rgb(cr, c);
+    plot_rgb(cr, c);
     cairo_set_line_width(cr, style == LG_RED ? 3 : style == LG_CENTRE ? 0.9 : 1.5);
     if (style == LG_DASH) cairo_set_dash(cr, dash, 2, 0);
     if (style == LG_CENTRE) cairo_set_dash(cr, dd, 4, 0);
@@ -1373,7 +1236,7 @@ static double legend_item(cairo_t *cr, double x, double y, int style, unsigned c
     cairo_set_dash(cr, NULL, 0, 0);
     break;
   case LG_ZIG:
-    rgb(cr, c);
+    plot_rgb(cr, c);
     cairo_set_line_width(cr, 1.2);
     zigzag(cr, x, y - 4, x + 24, y - 4, 6);
     cairo_stroke(cr);
@@ -1381,19 +1244,19 @@ static double legend_item(cairo_t *cr, double x, double y, int style, unsigned c
   case LG_BOX: case LG_DASHBOX: case LG_HATCH: case LG_THRBOX:
     cairo_rectangle(cr, x + 2, y - 10, 20, 11);
     if (style == LG_DASHBOX) {
-      rgb(cr, c);
+      plot_rgb(cr, c);
       cairo_set_line_width(cr, 1.2);
       cairo_set_dash(cr, dash, 2, 0);
       cairo_stroke(cr);
       cairo_set_dash(cr, NULL, 0, 0);
       break;
     }
-    rgb(cr, style == LG_THRBOX ? 0xf2d4ea : c);
+    plot_rgb(cr, style == LG_THRBOX ? 0xf2d4ea : c);
     cairo_fill_preserve(cr);
     if (style == LG_HATCH || style == LG_THRBOX) {
       cairo_save(cr);
       cairo_clip(cr);
-      rgb(cr, style == LG_THRBOX ? C_THREAD : 0xa0a0a0);
+      plot_rgb(cr, style == LG_THRBOX ? C_THREAD : 0xa0a0a0);
       cairo_set_line_width(cr, 0.7);
       hatch(cr, x + 2, y - 10, x + 22, y + 1, 4);
       cairo_restore(cr);
@@ -1401,23 +1264,23 @@ static double legend_item(cairo_t *cr, double x, double y, int style, unsigned c
     cairo_new_path(cr);
     break;
   case LG_RING:
-    rgb(cr, c);
+    plot_rgb(cr, c);
     cairo_set_line_width(cr, 2);
     cairo_arc(cr, x + 12, y - 4, 5, 0, 2 * M_PI);
     cairo_stroke(cr);
     break;
   case LG_SQUARE:
-    rgb(cr, c);
+    plot_rgb(cr, c);
     cairo_rectangle(cr, x + 8.5, y - 7.5, 7, 7);
     cairo_fill(cr);
     break;
   }
-  rgb(cr, C_TEXT);
-  text_at(cr, x + 30, y, text, 11, 0, 0);
+  plot_rgb(cr, C_TEXT);
+  plot_text_at(cr, x + 30, y, text, 11, 0, 0);
   return w;
 }
 
-static void legend(cairo_t *cr, const struct lplot *pl, int cutoff)
+static void legend(cairo_t *cr, const struct lathe *pl, int cutoff)
 {
   struct { int style; unsigned c; const char *text; int show; } it[] = {
     {LG_LINE, C_FEED, "feed move (arcs as arcs)", 1},
@@ -1448,7 +1311,7 @@ static void legend(cairo_t *cr, const struct lplot *pl, int cutoff)
   }
 }
 
-static void draw(cairo_t *cr, struct lplot *pl, const char *program)
+static void draw(cairo_t *cr, struct lathe *pl, const char *program)
 {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
@@ -1469,19 +1332,19 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
     draw_stock(cr, pl, &F, &cutoff, &cut_z);
   centre_line(cr, &F);
   int part = draw_path(cr, pl, &F);
-  rgb(cr, C_TEXT);
-  text_at(cr, FX + FW - 6, PY(&F, 0) - 6, "Z, mm", 11, 1, 1);
+  plot_rgb(cr, C_TEXT);
+  plot_text_at(cr, FX + FW - 6, PY(&F, 0) - 6, "Z, mm", 11, 1, 1);
   if (!pl->moves) {
-    rgb(cr, C_LABEL);
-    text_at(cr, FX + LBAND + (FW - LBAND) / 2, FY + 40, "no moves", 16, 1, 0.5);
+    plot_rgb(cr, C_LABEL);
+    plot_text_at(cr, FX + LBAND + (FW - LBAND) / 2, FY + 40, "no moves", 16, 1, 0.5);
   }
   cairo_restore(cr);
-  rgb(cr, C_FRAME);
+  plot_rgb(cr, C_FRAME);
   cairo_set_line_width(cr, 1);
   cairo_rectangle(cr, FX + LBAND + 0.5, FY + 0.5, FW - LBAND - 1, FH - BBAND - 1);
   cairo_stroke(cr);
-  rgb(cr, C_TEXT);
-  text_at(cr, FX + 2, FY + 12, "Ø, mm", 11, 1, 0);
+  plot_rgb(cr, C_TEXT);
+  plot_text_at(cr, FX + 2, FY + 12, "Ø, mm", 11, 1, 0);
   legend(cr, pl, cutoff);
 
   /* the title, the status, the stock and the extents */
@@ -1489,33 +1352,33 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
   base = base ? base + 1 : program ? program : "";
   char title[300], line[600], a[40], b[40], c[40];
   snprintf(title, sizeof title, "%s", base);
-  rgb(cr, C_TEXT);
-  text_at(cr, FX, 28, title, 19, 1, 0);
-  text_at(cr, FX + text_w(cr, title, 19, 1) + 12, 28, "the lathe's tool path and the turned part, s42 (2У22)", 12, 0,
+  plot_rgb(cr, C_TEXT);
+  plot_text_at(cr, FX, 28, title, 19, 1, 0);
+  plot_text_at(cr, FX + plot_text_w(cr, title, 19, 1) + 12, 28, "the lathe's tool path and the turned part, s42 (2У22)", 12, 0,
           0);
   /* the orientation, at the right of the title */
   {
     const char *ori = "Z along: the chuck left, the face at Z 0;  the radius up (labelled Ø);  one scale";
-    double used = FX + text_w(cr, title, 19, 1) + 12 +
-                  text_w(cr, "the lathe's tool path and the turned part, s42 (2У22)", 12, 0) + 16;
+    double used = FX + plot_text_w(cr, title, 19, 1) + 12 +
+                  plot_text_w(cr, "the lathe's tool path and the turned part, s42 (2У22)", 12, 0) + 16;
     double size = 11;
-    while (size > 7 && FX + FW - text_w(cr, ori, size, 0) < used)
+    while (size > 7 && FX + FW - plot_text_w(cr, ori, size, 0) < used)
       size -= 0.5;
-    rgb(cr, C_LABEL);
-    text_at(cr, FX + FW, 28, ori, size, 0, 1);
+    plot_rgb(cr, C_LABEL);
+    plot_text_at(cr, FX + FW, 28, ori, size, 0, 1);
   }
   size_t o = 0;
   o += snprintf(line + o, sizeof line - o, "%s", pl->status);
   if (pl->st.has) {
-    fmt_num(a, sizeof a, pl->st.d, 2, 1);
-    fmt_num(b, sizeof b, pl->st.len, 2, 1);
+    plot_fmt_num(a, sizeof a, pl->st.d, 2, 1);
+    plot_fmt_num(b, sizeof b, pl->st.len, 2, 1);
     o += snprintf(line + o, sizeof line - o, "  ·  stock Ø%s × %s mm, face at Z 0", a, b);
   } else
     o += snprintf(line + o, sizeof line - o, "  ·  no stock given (--stock DxL)");
   if (pl->ext && pl->moves) {
-    fmt_num(a, sizeof a, 2 * pl->amax, 2, 0);
-    fmt_num(b, sizeof b, pl->zmin, 2, 0);
-    fmt_num(c, sizeof c, pl->zmax, 2, 0);
+    plot_fmt_num(a, sizeof a, 2 * pl->amax, 2, 0);
+    plot_fmt_num(b, sizeof b, pl->zmin, 2, 0);
+    plot_fmt_num(c, sizeof c, pl->zmax, 2, 0);
     o += snprintf(line + o, sizeof line - o, "  ·  path: max Ø%s, Z %s .. %s  ·  %llu move%s", a, b, c,
                   pl->moves, pl->moves == 1 ? "" : "s");
   } else
@@ -1524,10 +1387,10 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
   snprintf(pl->cap_title, sizeof pl->cap_title, "%s", title);
   snprintf(pl->cap_line, sizeof pl->cap_line, "%s", line);
   double lsize = 12;
-  while (lsize > 8 && text_w(cr, line, lsize, 0) > FW)
+  while (lsize > 8 && plot_text_w(cr, line, lsize, 0) > FW)
     lsize -= 0.5;
-  rgb(cr, C_LABEL);
-  text_at(cr, FX, 48, line, lsize, 0, 0);
+  plot_rgb(cr, C_LABEL);
+  plot_text_at(cr, FX, 48, line, lsize, 0, 0);
   /* warnings */
   char warn[600] = "";
   size_t w = 0;
@@ -1538,8 +1401,8 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
       w += snprintf(warn + w, sizeof warn - w, __VA_ARGS__); \
   } while (0)
   if (pl->chuck) {
-    fmt_num(a, sizeof a, pl->chuck_z, 2, 0);
-    fmt_num(b, sizeof b, -pl->st.len, 2, 0);
+    plot_fmt_num(a, sizeof a, pl->chuck_z, 2, 0);
+    plot_fmt_num(b, sizeof b, -pl->st.len, 2, 0);
     WARN("cuts into the chuck side at Z %s (the stock ends at Z %s)", a, b);
   }
   if (pl->st.has && pl->moves) {
@@ -1552,7 +1415,7 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
       WARN("the path never touches the stock");
   }
   if (cutoff) {
-    fmt_num(a, sizeof a, cut_z, 2, 0);
+    plot_fmt_num(a, sizeof a, cut_z, 2, 0);
     WARN("the tool reached the axis at Z %s: what is beyond it is cut off (hatched)", a);
   }
   if (pl->oom)
@@ -1563,58 +1426,51 @@ static void draw(cairo_t *cr, struct lplot *pl, const char *program)
   snprintf(pl->cap_warn, sizeof pl->cap_warn, "%s", warn);
   if (warn[0]) {
     double size = 12;
-    while (size > 8 && text_w(cr, warn, size, 1) > FW)
+    while (size > 8 && plot_text_w(cr, warn, size, 1) > FW)
       size -= 0.5;
-    rgb(cr, C_WARN);
-    text_at(cr, FX, 66, warn, size, 1, 0);
+    plot_rgb(cr, C_WARN);
+    plot_text_at(cr, FX, 66, warn, size, 1, 0);
   }
 }
 
-/* ---- output ---- */
+/* ---- the view ---- */
 
-int lplot_check_path(const char *path, const char *program, char *err, size_t n)
+static void draw_lathe(cairo_t *cr, struct plot *e, int raster)
 {
-  return picture_check_output(path, program, err, n);
-}
-
-
-static void xml_text(FILE *f, const char *s)
-{
-  for (; *s; s++)
-    switch (*s) {
-    case '<': fputs("&lt;", f); break;
-    case '>': fputs("&gt;", f); break;
-    case '&': fputs("&amp;", f); break;
-    default: fputc(*s, f);
-    }
-}
-
-
-struct drawing { struct lplot *pl; const char *program; };
-
-static void draw_picture(cairo_t *cr, void *ctx)
-{
-  struct drawing *d = ctx;
-  draw(cr, d->pl, d->program);
+  (void)raster;
+  struct lathe *pl = lathe_of(e);
+  if (!pl) {
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    plot_rgb(cr, C_WARN);
+    plot_text_at(cr, FX, 48, "out of memory: no picture of the path", 14, 1, 0);
+    return;
+  }
+  /* the caption's status: the engine's result caption */
+  snprintf(pl->status, sizeof pl->status, "%s",
+           !e->ended ? "run not finished" : e->why[0] ? e->why : e->status == 0 ? "end" : "stopped");
+  draw(cr, pl, e->program);
 }
 
 /* The SVG's <title> and <desc>: the caption, searchable (cairo writes the
  * picture's text as glyphs). */
-static char *svg_head(void *ctx)
+static char *svg_head(struct plot *e)
 {
-  const struct lplot *pl = ((struct drawing *)ctx)->pl;
+  const struct lathe *pl = e->vs;
+  if (!pl)
+    return NULL;
   char *buf = NULL;
   size_t len = 0;
   FILE *f = open_memstream(&buf, &len);
   if (!f)
     return NULL;
   fputs("\n<title>", f);
-  xml_text(f, pl->cap_title);
+  plot_xml_text(f, pl->cap_title);
   fputs("</title>\n<desc>", f);
-  xml_text(f, pl->cap_line);
+  plot_xml_text(f, pl->cap_line);
   if (pl->cap_warn[0]) {
     fputs("\n", f);
-    xml_text(f, pl->cap_warn);
+    plot_xml_text(f, pl->cap_warn);
   }
   fputs("</desc>", f);
   if (fclose(f) != 0) {
@@ -1624,14 +1480,10 @@ static char *svg_head(void *ctx)
   return buf;
 }
 
-int lplot_write(struct lplot *pl, const char *program, const char *path, char *err, size_t n)
+static void free_lathe(struct plot *e)
 {
-  if (!pl) {
-    snprintf(err, n, "no plot");
-    return -1;
-  }
-  if (lplot_check_path(path, NULL, err, n))
-    return -1;
-  struct drawing d = {pl, program};
-  return picture_write(path, PW, PH, program, draw_picture, svg_head, &d, err, n);
+  lathe_free(e->vs);
+  e->vs = NULL;
 }
+
+const struct plot_view plot_view_lathe = {"lathe", PW, PH, draw_lathe, svg_head, free_lathe};
